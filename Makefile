@@ -1,0 +1,31 @@
+# marm-setup: `make demo` and `make test` do all set-up on a fresh machine.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+DEMO_OUT ?= demo_out/marm_moveit_config
+
+.PHONY: demo test lint bench clean
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[test]'
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(BIN)/marm-setup inspect fixtures/marm/urdf/marm.urdf.xacro
+
+test: $(STAMP)
+	$(BIN)/ruff check marm_setup tests benchmarks
+	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci
+
+lint: $(STAMP)
+	$(BIN)/ruff check marm_setup tests benchmarks
+	$(BIN)/ruff format --check marm_setup tests benchmarks
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench_fk.py
+
+clean:
+	rm -rf $(VENV) demo_out .pytest_cache .ruff_cache .hypothesis

@@ -1,0 +1,3 @@
+from marm_setup.cli import main
+
+main()

@@ -1,0 +1,250 @@
+"""Frozen robot model (links, joints, collision shapes) and pure tree queries."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+Vec3 = tuple[float, float, float]
+
+FIXED_TYPES = ("fixed",)
+ACTUATED_TYPES = ("revolute", "continuous", "prismatic")
+
+
+@dataclass(frozen=True, slots=True)
+class Origin:
+    """A URDF `<origin>`: translation in [m], roll-pitch-yaw in [rad]."""
+
+    xyz: Vec3 = (0.0, 0.0, 0.0)
+    rpy: Vec3 = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True, slots=True)
+class Box:
+    size: Vec3
+
+
+@dataclass(frozen=True, slots=True)
+class Cylinder:
+    radius: float
+    length: float
+
+
+@dataclass(frozen=True, slots=True)
+class Sphere:
+    radius: float
+
+
+@dataclass(frozen=True, slots=True)
+class Mesh:
+    """A mesh: `uri` as written in the URDF, `path` the resolved absolute file."""
+
+    uri: str
+    path: str
+    scale: Vec3 = (1.0, 1.0, 1.0)
+
+
+Geometry = Box | Cylinder | Sphere | Mesh
+
+
+@dataclass(frozen=True, slots=True)
+class CollisionShape:
+    geometry: Geometry
+    origin: Origin = Origin()
+
+
+@dataclass(frozen=True, slots=True)
+class Link:
+    name: str
+    collisions: tuple[CollisionShape, ...] = ()
+
+    @property
+    def has_geometry(self) -> bool:
+        return bool(self.collisions)
+
+
+@dataclass(frozen=True, slots=True)
+class Mimic:
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Joint:
+    """A URDF joint; limits in [rad] or [m], velocity in [rad/s] or [m/s]."""
+
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: Origin = Origin()
+    axis: Vec3 = (1.0, 0.0, 0.0)
+    lower: float | None = None
+    upper: float | None = None
+    velocity: float | None = None
+    effort: float | None = None
+    mimic: Mimic | None = None
+    soft_lower: float | None = None
+    soft_upper: float | None = None
+
+    @property
+    def is_actuated(self) -> bool:
+        """Moves at all (revolute, continuous, prismatic); mimic joints included."""
+        return self.type in ACTUATED_TYPES
+
+    @property
+    def is_active(self) -> bool:
+        """A variable of its own: actuated and not a mimic."""
+        return self.is_actuated and self.mimic is None
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """Sampling/planning bounds: URDF limits narrowed by safety_controller soft limits."""
+        if self.type == "continuous" or self.lower is None or self.upper is None:
+            if self.type in FIXED_TYPES:
+                return (0.0, 0.0)
+            return (-math.pi, math.pi)
+        lo, hi = self.lower, self.upper
+        if self.soft_lower is not None:
+            lo = max(lo, self.soft_lower)
+        if self.soft_upper is not None:
+            hi = min(hi, self.soft_upper)
+        return (lo, hi)
+
+    @property
+    def default_position(self) -> float:
+        """MoveIt's default: 0, or mid-range where 0 is outside the bounds."""
+        lo, hi = self.bounds
+        return 0.0 if lo <= 0.0 <= hi else (lo + hi) / 2.0
+
+
+@dataclass(frozen=True)
+class RobotModel:
+    """A robot: links and joints in URDF document order; `source` is the path the user gave."""
+
+    name: str
+    links: tuple[Link, ...]
+    joints: tuple[Joint, ...]
+    root: str
+    source: str = ""
+    urdf_xml: str = field(default="", repr=False, compare=False)
+
+    # -- lookups -------------------------------------------------------------------------------
+    @cached_property
+    def link_map(self) -> dict[str, Link]:
+        return {link.name: link for link in self.links}
+
+    @cached_property
+    def joint_map(self) -> dict[str, Joint]:
+        return {joint.name: joint for joint in self.joints}
+
+    @cached_property
+    def parent_joint_of(self) -> dict[str, Joint]:
+        return {joint.child: joint for joint in self.joints}
+
+    @cached_property
+    def child_joints_of(self) -> dict[str, tuple[Joint, ...]]:
+        out: dict[str, list[Joint]] = {link.name: [] for link in self.links}
+        for joint in self.joints:
+            out[joint.parent].append(joint)
+        return {name: tuple(js) for name, js in out.items()}
+
+    def link(self, name: str) -> Link:
+        return self.link_map[name]
+
+    def joint(self, name: str) -> Joint:
+        return self.joint_map[name]
+
+    # -- tree order ----------------------------------------------------------------------------
+    @cached_property
+    def joints_in_tree_order(self) -> tuple[Joint, ...]:
+        """Depth-first pre-order from the root, children in document order."""
+        return self.subtree_joints(self.root)
+
+    @cached_property
+    def links_in_tree_order(self) -> tuple[str, ...]:
+        return (self.root, *(j.child for j in self.joints_in_tree_order))
+
+    @cached_property
+    def active_joints(self) -> tuple[Joint, ...]:
+        """The robot's variables: actuated, non-mimic joints in tree order."""
+        return tuple(j for j in self.joints_in_tree_order if j.is_active)
+
+    @cached_property
+    def active_joint_names(self) -> tuple[str, ...]:
+        return tuple(j.name for j in self.active_joints)
+
+    @cached_property
+    def geometry_links(self) -> tuple[str, ...]:
+        """Names of links that have collision geometry, sorted."""
+        return tuple(sorted(link.name for link in self.links if link.has_geometry))
+
+    # -- tree queries --------------------------------------------------------------------------
+    def path_to_root(self, link: str) -> list[Joint]:
+        """Joints from `link` up to the root (nearest first)."""
+        joints = []
+        while link in self.parent_joint_of:
+            joint = self.parent_joint_of[link]
+            joints.append(joint)
+            link = joint.parent
+        return joints
+
+    def chain(self, base: str, tip: str) -> tuple[Joint, ...] | None:
+        """Joints from `base` down to `tip`, or None when `tip` is not below `base`."""
+        joints: list[Joint] = []
+        link = tip
+        while link != base:
+            joint = self.parent_joint_of.get(link)
+            if joint is None:
+                return None
+            joints.append(joint)
+            link = joint.parent
+        return tuple(reversed(joints))
+
+    def is_below(self, link: str, ancestor: str) -> bool:
+        return self.chain(ancestor, link) is not None
+
+    def subtree_links(self, link: str) -> tuple[str, ...]:
+        """`link` and every link below it, in tree order."""
+        out = [link]
+        for joint in self.child_joints_of[link]:
+            out.extend(self.subtree_links(joint.child))
+        return tuple(out)
+
+    def subtree_joints(self, link: str) -> tuple[Joint, ...]:
+        out: list[Joint] = []
+        for joint in self.child_joints_of[link]:
+            out.append(joint)
+            out.extend(self.subtree_joints(joint.child))
+        return tuple(out)
+
+    def adjacent_geometry_pairs(self) -> frozenset[tuple[str, str]]:
+        """Pairs of geometry links joined by a joint, geometry-less links made transparent."""
+        pairs: set[tuple[str, str]] = set()
+        for link in self.geometry_links:
+            for other in self._geometry_neighbours(link):
+                pairs.add((min(link, other), max(link, other)))
+        return frozenset(pairs)
+
+    def _geometry_neighbours(self, start: str) -> set[str]:
+        """Geometry links reachable from `start` through geometry-less links only."""
+        seen, found, frontier = {start}, set(), [start]
+        while frontier:
+            link = frontier.pop()
+            for nbr in self._tree_neighbours(link):
+                if nbr in seen:
+                    continue
+                seen.add(nbr)
+                if self.link_map[nbr].has_geometry:
+                    found.add(nbr)
+                else:
+                    frontier.append(nbr)
+        return found
+
+    def _tree_neighbours(self, link: str) -> list[str]:
+        nbrs = [j.child for j in self.child_joints_of[link]]
+        if link in self.parent_joint_of:
+            nbrs.append(self.parent_joint_of[link].parent)
+        return nbrs

@@ -1,0 +1,68 @@
+"""Shared fixtures: paths, the golden-file protocol (pytest-regressions style), hypothesis profile."""
+
+from __future__ import annotations
+
+import difflib
+from pathlib import Path
+
+import pytest
+from hypothesis import settings
+
+ROOT = Path(__file__).resolve().parent.parent
+FIXTURES = ROOT / "fixtures"
+MARM_URDF = FIXTURES / "marm" / "urdf" / "marm.urdf.xacro"
+GOLDENS = Path(__file__).resolve().parent / "goldens"
+REALWORLD = ROOT.parent / "shared" / "realworld"
+
+settings.register_profile("ci", derandomize=True, deadline=None, max_examples=25)
+settings.register_profile("dev", deadline=None, max_examples=50)
+
+
+def pytest_addoption(parser):
+    parser.addoption(
+        "--update-goldens", action="store_true", help="rewrite golden files (fails once)"
+    )
+
+
+def realworld(*parts: str) -> Path:
+    """A path under ../shared/realworld, skipping the test when it is absent."""
+    path = REALWORLD.joinpath(*parts)
+    if not path.exists():
+        pytest.skip(f"{path} not present")
+    return path
+
+
+@pytest.fixture
+def assert_golden(request):
+    """Compare text with tests/goldens/<relpath>; write .obtained and fail with a diff on mismatch."""
+    update = request.config.getoption("--update-goldens")
+
+    def check(relpath: str, text: str) -> None:
+        golden = GOLDENS / relpath
+        obtained = golden.with_name(golden.name + ".obtained")
+        if update or not golden.exists():
+            existed = golden.exists()
+            old = golden.read_text(encoding="utf-8") if existed else None
+            golden.parent.mkdir(parents=True, exist_ok=True)
+            golden.write_text(text, encoding="utf-8", newline="\n")
+            obtained.unlink(missing_ok=True)
+            if old != text:
+                pytest.fail(
+                    f"golden {relpath} {'updated' if existed else 'created'}: review and commit"
+                )
+            return
+        expected = golden.read_text(encoding="utf-8")
+        if expected != text:
+            obtained.write_text(text, encoding="utf-8", newline="\n")
+            diff = "".join(
+                difflib.unified_diff(
+                    expected.splitlines(True),
+                    text.splitlines(True),
+                    f"golden/{relpath}",
+                    "obtained",
+                )
+            )
+            pytest.fail(f"golden mismatch for {relpath} (see {obtained.name}):\n{diff}")
+        obtained.unlink(missing_ok=True)
+
+    return check
