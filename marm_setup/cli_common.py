@@ -11,9 +11,7 @@ import typer
 UrdfArg = Annotated[Path, typer.Argument(help="Robot description: .urdf, .xacro or .urdf.xacro.")]
 XacroArgs = Annotated[
     list[str] | None,
-    typer.Option(
-        "--xacro-arg", help="xacro argument NAME:=VALUE (repeatable).", metavar="NAME:=VALUE"
-    ),
+    typer.Option("--xacro-arg", help="xacro argument NAME:=VALUE (repeatable).", metavar="NAME:=VALUE"),
 ]
 PackagePaths = Annotated[
     list[Path] | None,

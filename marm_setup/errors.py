@@ -10,9 +10,7 @@ class MarmError(Exception):
 
     exit_code = 2
 
-    def __init__(
-        self, message: str, *, path: str | PathLike | None = None, element: str | None = None
-    ):
+    def __init__(self, message: str, *, path: str | PathLike | None = None, element: str | None = None):
         super().__init__(message)
         self.message = message
         self.path = None if path is None else str(path)

@@ -66,8 +66,7 @@ def _fk_plan(robot: RobotModel) -> _FkPlan:
     link_names = robot.links_in_tree_order
     index = {name: i for i, name in enumerate(link_names)}
     steps = tuple(
-        (j, index[j.parent], index[j.child], origin_matrix(j.origin))
-        for j in robot.joints_in_tree_order
+        (j, index[j.parent], index[j.child], origin_matrix(j.origin)) for j in robot.joints_in_tree_order
     )
     return _FkPlan(link_names, steps)
 
@@ -83,9 +82,7 @@ def joint_values(robot: RobotModel, q: np.ndarray) -> dict[str, np.ndarray]:
     values = {name: q[:, i] for i, name in enumerate(robot.active_joint_names)}
     for joint in robot.joints:
         if joint.is_actuated and joint.mimic is not None:
-            values[joint.name] = (
-                joint.mimic.multiplier * values[joint.mimic.joint] + joint.mimic.offset
-            )
+            values[joint.name] = joint.mimic.multiplier * values[joint.mimic.joint] + joint.mimic.offset
     return values
 
 

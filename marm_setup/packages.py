@@ -95,7 +95,5 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageMap, *, path: str, el
     else:
         candidate = Path(uri) if Path(uri).is_absolute() else base_dir / uri
     if not candidate.is_file():
-        raise InputError(
-            f"mesh '{uri}' not found (looked at {candidate})", path=path, element=element
-        )
+        raise InputError(f"mesh '{uri}' not found (looked at {candidate})", path=path, element=element)
     return candidate.resolve()

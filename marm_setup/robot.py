@@ -56,9 +56,7 @@ def parse_xml(text: str, *, shown: str) -> etree._Element:
         parser = etree.XMLParser(remove_comments=True)
         return etree.fromstring(text.encode("utf-8"), parser)
     except etree.XMLSyntaxError as exc:
-        raise InputError(
-            f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}"
-        ) from None
+        raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
 
 
 def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, shown: str) -> str:
@@ -77,9 +75,7 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
         except InputError:
             raise
         except ExpatError as exc:
-            raise InputError(
-                f"malformed XML: {exc}", path=shown, element=f"line {exc.lineno}"
-            ) from None
+            raise InputError(f"malformed XML: {exc}", path=shown, element=f"line {exc.lineno}") from None
         except Exception as exc:  # xacro raises many types; all are bad input here
             raise InputError(_xacro_message(exc), path=shown, element="xacro") from None
         finally:

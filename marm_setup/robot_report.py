@@ -14,9 +14,7 @@ def describe_geometry(geometry: Geometry) -> str:
         return f"sphere r={geometry.radius:g}"
     assert isinstance(geometry, Mesh)
     scale = (
-        ""
-        if geometry.scale == (1.0, 1.0, 1.0)
-        else f" scale={' '.join(f'{s:g}' for s in geometry.scale)}"
+        "" if geometry.scale == (1.0, 1.0, 1.0) else f" scale={' '.join(f'{s:g}' for s in geometry.scale)}"
     )
     return f"mesh {geometry.uri}{scale}"
 

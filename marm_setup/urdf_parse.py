@@ -95,9 +95,7 @@ def _parse_link(el: etree._Element, ctx: _Ctx) -> Link:
         if geom is None or len(geom) == 0:
             raise ctx.error(element, "missing <geometry>")
         shapes.append(
-            CollisionShape(
-                _geometry(geom[0], element, ctx), _origin(col.find("origin"), element, ctx)
-            )
+            CollisionShape(_geometry(geom[0], element, ctx), _origin(col.find("origin"), element, ctx))
         )
     return Link(name=name, collisions=tuple(shapes))
 
@@ -133,9 +131,7 @@ def _parse_joint(el: etree._Element, ctx: _Ctx) -> Joint:
     element = f"joint[{name}]"
     jtype = el.get("type")
     if jtype not in JOINT_TYPES:
-        raise ctx.error(
-            element, f"unknown type '{jtype}'; expected one of {', '.join(JOINT_TYPES)}"
-        )
+        raise ctx.error(element, f"unknown type '{jtype}'; expected one of {', '.join(JOINT_TYPES)}")
     parent, child = el.find("parent"), el.find("child")
     if parent is None or child is None or not parent.get("link") or not child.get("link"):
         raise ctx.error(element, "needs <parent link=...> and <child link=...>")
@@ -147,9 +143,7 @@ def _parse_joint(el: etree._Element, ctx: _Ctx) -> Joint:
         parent=parent.get("link"),
         child=child.get("link"),
         origin=_origin(el.find("origin"), element, ctx),
-        axis=_floats(
-            None if axis is None else axis.get("xyz"), 3, f"{element}/axis", ctx, (1.0, 0.0, 0.0)
-        ),
+        axis=_floats(None if axis is None else axis.get("xyz"), 3, f"{element}/axis", ctx, (1.0, 0.0, 0.0)),
         lower=_attr(limit, "lower", f"{element}/limit", ctx),
         upper=_attr(limit, "upper", f"{element}/limit", ctx),
         velocity=_attr(limit, "velocity", f"{element}/limit", ctx),
@@ -210,20 +204,14 @@ def _check_tree(links: tuple[Link, ...], joints: tuple[Joint, ...], ctx: _Ctx) -
     for joint in joints:
         for role, link in (("parent", joint.parent), ("child", joint.child)):
             if link not in names:
-                raise ctx.error(
-                    f"joint[{joint.name}]/{role}", f"unknown link '{link}'{_close(link, names)}"
-                )
+                raise ctx.error(f"joint[{joint.name}]/{role}", f"unknown link '{link}'{_close(link, names)}")
         if joint.child in parent_of:
-            raise ctx.error(
-                f"joint[{joint.name}]/child", f"link '{joint.child}' already has a parent joint"
-            )
+            raise ctx.error(f"joint[{joint.name}]/child", f"link '{joint.child}' already has a parent joint")
         parent_of[joint.child] = joint.parent
     roots = sorted(names - parent_of.keys())
     if len(roots) != 1:
         what = (
-            "several root links: " + ", ".join(roots)
-            if roots
-            else "no root link (the joints form a cycle)"
+            "several root links: " + ", ".join(roots) if roots else "no root link (the joints form a cycle)"
         )
         raise ctx.error("robot", what)
     for link in sorted(parent_of):
@@ -249,9 +237,7 @@ def _check_mimics(joints: tuple[Joint, ...], ctx: _Ctx) -> None:
         if leader is None:
             raise ctx.error(f"joint[{joint.name}]/mimic", f"unknown joint '{joint.mimic.joint}'")
         if leader.mimic is not None:
-            raise ctx.error(
-                f"joint[{joint.name}]/mimic", f"'{leader.name}' is itself a mimic joint"
-            )
+            raise ctx.error(f"joint[{joint.name}]/mimic", f"'{leader.name}' is itself a mimic joint")
 
 
 def _close(name: str, names: set[str]) -> str:

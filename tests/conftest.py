@@ -19,9 +19,7 @@ settings.register_profile("dev", deadline=None, max_examples=50)
 
 
 def pytest_addoption(parser):
-    parser.addoption(
-        "--update-goldens", action="store_true", help="rewrite golden files (fails once)"
-    )
+    parser.addoption("--update-goldens", action="store_true", help="rewrite golden files (fails once)")
 
 
 def realworld(*parts: str) -> Path:
@@ -47,9 +45,7 @@ def assert_golden(request):
             golden.write_text(text, encoding="utf-8", newline="\n")
             obtained.unlink(missing_ok=True)
             if old != text:
-                pytest.fail(
-                    f"golden {relpath} {'updated' if existed else 'created'}: review and commit"
-                )
+                pytest.fail(f"golden {relpath} {'updated' if existed else 'created'}: review and commit")
             return
         expected = golden.read_text(encoding="utf-8")
         if expected != text:

@@ -20,9 +20,7 @@ def inspect(
     urdf: UrdfArg,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
-    format: Annotated[
-        OutputFormat, typer.Option("--format", help="text or json.")
-    ] = OutputFormat.text,
+    format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
 ) -> None:
     """Print the kinematic tree: joints (type, limits, mimic) and links (with/without geometry)."""
     from marm_setup.robot_report import describe_robot, format_tree
