@@ -58,9 +58,9 @@ def _root(
 
 
 def _register() -> None:
-    from marm_setup.commands import COMMANDS
+    from marm_setup.commands import load_commands
 
-    for name, fn in COMMANDS:
+    for name, fn in load_commands():
         app.command(name)(handle_errors(fn))
 
 
