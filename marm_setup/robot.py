@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
+import re
 import sys
 import types
 from collections.abc import Iterable, Mapping
@@ -86,11 +87,11 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
 
 
 def _xacro_message(exc: Exception) -> str:
-    name = type(exc).__name__
     text = " ".join(str(exc).split())
-    if name == "ArgException":
-        return f"undefined xacro arg '{text.split()[-1]}' (pass --xacro-arg NAME:=VALUE)"
-    return text or name
+    undefined = re.search(r"Undefined substitution argument (\S+)", text)
+    if undefined:
+        return f"undefined xacro arg '{undefined.group(1)}' (pass --xacro-arg NAME:=VALUE)"
+    return text or type(exc).__name__
 
 
 @contextlib.contextmanager

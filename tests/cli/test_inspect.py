@@ -1,0 +1,135 @@
+"""`marm-setup inspect`, and the bad-input contract shared by every robot-loading command."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from typer.testing import CliRunner
+
+from marm_setup.cli import app
+from tests.conftest import FIXTURES, MARM_URDF, realworld
+from tests.helpers import TWO_BOXES, build_file_tree, urdf
+
+runner = CliRunner()
+
+
+def test_inspect_prints_the_marm_tree():
+    result = runner.invoke(app, ["inspect", str(MARM_URDF)])
+    assert result.exit_code == 0, result.output
+    assert "finger_joint2 (prismatic [-0.06, 0] vel 1 mimics finger_joint1 x-1)" in result.stdout
+    assert "grasping_frame [no collision geometry]" in result.stdout
+    assert "11 links (10 with collision geometry), 10 joints (7 active, 1 mimic)" in result.stdout
+
+
+def test_inspect_json():
+    result = runner.invoke(app, ["inspect", str(MARM_URDF), "--format", "json"])
+    data = json.loads(result.stdout)
+    assert data["root"] == "base_link"
+    assert data["active_joints"][-1] == "finger_joint1"
+
+
+def test_inspect_realworld_panda():
+    root = realworld("ros1")
+    xacro = root / "panda_description/urdf/panda_arm_hand.urdf.xacro"
+    result = runner.invoke(app, ["inspect", str(xacro), "--package-path", str(root)])
+    assert result.exit_code == 0, result.output
+    assert "panda_finger_joint2" in result.stdout
+    result = runner.invoke(app, ["inspect", str(realworld("ros2", "panda_description/urdf/panda.urdf"))])
+    assert result.exit_code == 0, result.output
+
+
+MESH_LINK = '<link name="m"><collision><geometry><mesh filename="{uri}"/></geometry></collision></link>'
+FIXED_TO_A = '<joint name="jm" type="fixed"><parent link="a"/><child link="m"/></joint>'
+BAD_INPUTS = {
+    "missing file": ({}, "nothere.urdf", "nothere.urdf: file not found"),
+    "malformed xml": (
+        {"r.urdf": "<robot name='x'>\n<link name='a'>\n</robot>\n"},
+        "r.urdf",
+        ": line 3: malformed XML",
+    ),
+    "unknown link": (
+        {"r.urdf": TWO_BOXES.replace('<child link="b"/>', '<child link="bb"/>')},
+        "r.urdf",
+        "joint[j]/child: unknown link 'bb'",
+    ),
+    "two roots": (
+        {"r.urdf": TWO_BOXES.replace("</robot>", '<link name="c"/></robot>')},
+        "r.urdf",
+        "several root links: a, c",
+    ),
+    "cycle": (
+        {
+            "r.urdf": TWO_BOXES.replace(
+                "</robot>", '<joint name="k" type="fixed"><parent link="b"/><child link="a"/></joint></robot>'
+            )
+        },
+        "r.urdf",
+        "no root link (the joints form a cycle)",
+    ),
+    "lower above upper": (
+        {"r.urdf": TWO_BOXES.replace('lower="-1" upper="1"', 'lower="1" upper="-1"')},
+        "r.urdf",
+        "joint[j]/limit: lower 1.0 > upper -1.0",
+    ),
+    "missing mesh": (
+        {
+            "r.urdf": TWO_BOXES.replace(
+                "</robot>", MESH_LINK.format(uri="meshes/gone.stl") + FIXED_TO_A + "</robot>"
+            )
+        },
+        "r.urdf",
+        "link[m]/collision[0]/mesh: mesh 'meshes/gone.stl' not found (looked at ",
+    ),
+    "unknown package uri": (
+        {
+            "r.urdf": TWO_BOXES.replace(
+                "</robot>", MESH_LINK.format(uri="package://nopkg/x.stl") + FIXED_TO_A + "</robot>"
+            )
+        },
+        "r.urdf",
+        "unknown package 'nopkg'",
+    ),
+    "unknown package in find": (
+        {
+            "r.urdf.xacro": '<robot name="x" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+            '<xacro:include filename="$(find nopkg)/a.xacro"/><link name="a"/></robot>'
+        },
+        "r.urdf.xacro",
+        "$(find nopkg): unknown package 'nopkg'",
+    ),
+    "undefined xacro arg": (
+        {
+            "r.urdf.xacro": '<robot name="x" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="$(arg nm)"/></robot>'
+        },
+        "r.urdf.xacro",
+        "xacro: undefined xacro arg 'nm'",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_INPUTS))
+def test_bad_input_is_one_line_exit_2(case, tmp_path, monkeypatch):
+    files, target, expected = BAD_INPUTS[case]
+    build_file_tree(tmp_path, files)
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(app, ["inspect", target])
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith(f"error: {target}"), lines[0]
+    assert expected in lines[0]
+    assert "Traceback" not in result.output
+
+
+def test_second_fixture_takes_xacro_args():
+    path = FIXTURES / "two_link" / "urdf" / "two_link.urdf.xacro"
+    result = runner.invoke(app, ["inspect", str(path), "--xacro-arg", "with_tool:=false"])
+    assert result.exit_code == 0 and "tool [" not in result.stdout
+    result = runner.invoke(app, ["inspect", str(path), "--xacro-arg", "with_tool"])
+    assert result.exit_code == 2 and "expected NAME:=VALUE" in result.stderr
+
+
+def test_inline_urdf_helper_is_valid(tmp_path):
+    build_file_tree(tmp_path, {"a.urdf": urdf('<link name="only"/>')})
+    assert runner.invoke(app, ["inspect", str(tmp_path / "a.urdf")]).exit_code == 0

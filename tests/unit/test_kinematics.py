@@ -1,0 +1,106 @@
+"""Batched FK against yourdfpy (an independent implementation), sampling and mimic invariants."""
+
+from __future__ import annotations
+
+import io
+from functools import cache
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from marm_setup.kinematics import (
+    bounds,
+    default_configuration,
+    forward_kinematics,
+    joint_values,
+    link_index,
+    origin_matrix,
+    sample_configurations,
+    within_bounds,
+)
+from marm_setup.robot import load_robot
+from tests.conftest import MARM_URDF, REALWORLD
+
+
+@cache
+def marm():
+    return load_robot(MARM_URDF)
+
+
+@cache
+def panda():
+    root = REALWORLD / "ros1"
+    return load_robot(root / "panda_description/urdf/panda_arm_hand.urdf.xacro", package_paths=[root])
+
+
+@cache
+def reference(robot):
+    import yourdfpy
+
+    return yourdfpy.URDF.load(
+        io.StringIO(robot.urdf_xml),
+        build_scene_graph=True,
+        load_meshes=False,
+        filename_handler=lambda fname: fname,
+    )
+
+
+def robots():
+    out = [marm]
+    if (REALWORLD / "ros1").exists():
+        out.append(panda)
+    return out
+
+
+@pytest.mark.parametrize("get_robot", robots(), ids=lambda f: f.__name__)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_fk_matches_yourdfpy(get_robot, seed):
+    robot = get_robot()
+    q = sample_configurations(robot, np.random.default_rng(seed), 4)
+    poses = forward_kinematics(robot, q)
+    ref = reference(robot)
+    for k in range(len(q)):
+        ref.update_cfg(dict(zip(robot.active_joint_names, q[k], strict=True)))
+        for name, i in link_index(robot).items():
+            np.testing.assert_allclose(poses[k, i], ref.get_transform(name, robot.root), atol=1e-9)
+
+
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 50))
+def test_samples_lie_within_bounds(seed, n):
+    q = sample_configurations(marm(), np.random.default_rng(seed), n)
+    assert q.shape == (n, 7)
+    assert within_bounds(marm(), q).all()
+
+
+@given(seed=st.integers(0, 2**32 - 1))
+def test_mimic_joint_follows_its_leader(seed):
+    q = sample_configurations(marm(), np.random.default_rng(seed), 8)
+    values = joint_values(marm(), q)
+    np.testing.assert_array_equal(values["finger_joint2"], -1.0 * values["finger_joint1"])
+
+
+def test_fk_at_zero_stacks_the_urdf_origins():
+    robot = marm()
+    poses = forward_kinematics(robot, default_configuration(robot))
+    index = link_index(robot)
+    expected = np.eye(4)
+    for link in ("link1", "link2", "link3", "link4", "link5", "link6", "grasping_frame"):
+        expected = expected @ origin_matrix(robot.parent_joint_of[link].origin)
+        np.testing.assert_allclose(poses[0, index[link]], expected, atol=1e-12)
+    assert poses[0, index["grasping_frame"]][2, 3] == pytest.approx(
+        0.04 + 0.10 + 0.14 + 0.22 + 0.06 + 0.06 + 0.08
+    )
+
+
+def test_samples_are_a_prefix_for_the_same_seed():
+    a = sample_configurations(marm(), np.random.default_rng(7), 10)
+    b = sample_configurations(marm(), np.random.default_rng(7), 25)
+    np.testing.assert_array_equal(a, b[:10])
+
+
+def test_bounds_are_the_urdf_limits():
+    lower, upper = bounds(marm())
+    assert upper.tolist() == [2.96, 2.35, 2.62, 2.62, 2.62, 6.28, 0.06]
+    assert lower.tolist() == [-2.96, -2.35, -2.62, -2.62, -2.62, -6.28, 0.0]

@@ -1,0 +1,93 @@
+"""load_robot on the real fixtures, the shared panda, and inline URDFs."""
+
+from __future__ import annotations
+
+import pytest
+
+from marm_setup.errors import InputError
+from marm_setup.robot import load_robot, parse_xacro_args
+from marm_setup.robot_model import Box, Cylinder, Mesh
+from tests.conftest import FIXTURES, MARM_URDF, realworld
+from tests.helpers import TWO_BOXES, build_file_tree, urdf
+
+MARM_JOINTS = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "finger_joint1")
+
+
+def test_marm_fixture_matches_the_course_robot():
+    robot = load_robot(MARM_URDF)
+    assert robot.name == "marm" and robot.root == "base_link"
+    assert robot.active_joint_names == MARM_JOINTS
+    assert robot.joint("finger_joint2").mimic.joint == "finger_joint1"
+    assert robot.joint("finger_joint2").mimic.multiplier == -1.0
+    assert not robot.link("grasping_frame").has_geometry
+    assert robot.link("bottom_link").collisions[0].geometry == Box((1.0, 1.0, 0.02))
+    assert robot.link("link3").collisions[0].geometry == Cylinder(0.03, 0.22)
+    limits = [robot.joint(f"joint{i}").upper for i in range(1, 7)]
+    assert limits == [2.96, 2.35, 2.62, 2.62, 2.62, 6.28]
+
+
+def test_package_uri_resolves_to_the_fixture_mesh():
+    mesh = load_robot(MARM_URDF).link("link6").collisions[0].geometry
+    assert isinstance(mesh, Mesh)
+    assert mesh.uri == "package://marm_description/meshes/link6.stl"
+    assert mesh.path == str((FIXTURES / "marm" / "meshes" / "link6.stl").resolve())
+
+
+def test_xacro_args_change_the_robot():
+    path = FIXTURES / "two_link" / "urdf" / "two_link.urdf.xacro"
+    full = load_robot(path)
+    bare = load_robot(path, {"with_tool": "false", "length": "0.5"})
+    assert "tool" in full.link_map and "tool" not in bare.link_map
+    assert bare.joint("elbow").origin.xyz == (0.0, 0.0, 0.5)
+    assert bare.joint("elbow").bounds == pytest.approx((-3.141592653589793, 3.141592653589793))
+
+
+def test_marm_without_gripper():
+    robot = load_robot(MARM_URDF, {"with_gripper": "false"})
+    assert "finger_joint1" not in robot.joint_map
+    assert robot.active_joint_names == MARM_JOINTS[:-1]
+
+
+def test_adjacency_sees_through_geometry_less_links(tmp_path):
+    body = """
+    <link name="a"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+    <link name="m1"/><link name="m2"/>
+    <link name="b"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+    <joint name="j1" type="fixed"><parent link="a"/><child link="m1"/></joint>
+    <joint name="j2" type="revolute"><parent link="m1"/><child link="m2"/>
+      <limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
+    <joint name="j3" type="fixed"><parent link="m2"/><child link="b"/></joint>
+    """
+    build_file_tree(tmp_path, {"r.urdf": urdf(body)})
+    robot = load_robot(tmp_path / "r.urdf")
+    assert robot.adjacent_geometry_pairs() == {("a", "b")}
+
+
+def test_panda_ros1_xacro_with_package_path():
+    root = realworld("ros1")
+    robot = load_robot(root / "panda_description/urdf/panda_arm_hand.urdf.xacro", package_paths=[root])
+    assert robot.root == "panda_link0"
+    assert len(robot.active_joints) == 8
+    assert robot.joint("panda_finger_joint2").mimic.joint == "panda_finger_joint1"
+    assert all(isinstance(c.geometry, Mesh) for c in robot.link("panda_link3").collisions)
+
+
+def test_panda_ros2_urdf_resolves_meshes_around_the_file():
+    robot = load_robot(realworld("ros2", "panda_description/urdf/panda.urdf"))
+    assert len(robot.geometry_links) == 11
+
+
+def test_soft_limits_narrow_the_bounds(tmp_path):
+    body = TWO_BOXES.replace(
+        '<limit lower="-1" upper="1" velocity="1" effort="1"/>',
+        '<limit lower="-1" upper="1" velocity="1" effort="1"/>'
+        '<safety_controller soft_lower_limit="-0.5" soft_upper_limit="2" k_velocity="1"/>',
+    )
+    build_file_tree(tmp_path, {"r.urdf": body})
+    assert load_robot(tmp_path / "r.urdf").joint("j").bounds == (-0.5, 1.0)
+
+
+def test_parse_xacro_args_rejects_malformed_items():
+    assert parse_xacro_args(["a:=1", "b:=x:=y"]) == {"a": "1", "b": "x:=y"}
+    with pytest.raises(InputError, match="NAME:=VALUE"):
+        parse_xacro_args(["a=1"])
