@@ -135,6 +135,48 @@ class JointLimitOverride:
 
 
 @dataclass(frozen=True, slots=True)
+class CollisionPair:
+    """An SRDF `<enable_collisions>` entry (reason is free text there)."""
+
+    link1: str
+    link2: str
+    reason: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class JointProperty:
+    """An SRDF `<joint_property joint_name property_name value>`."""
+
+    joint: str
+    property: str
+    value: str
+
+
+@dataclass(frozen=True, slots=True)
+class SphereApprox:
+    """One sphere of a `<link_sphere_approximation>`: center in [m] (link frame), radius in [m]."""
+
+    center: tuple[float, float, float]
+    radius: float
+
+
+@dataclass(frozen=True, slots=True)
+class LinkSpheres:
+    link: str
+    spheres: tuple[SphereApprox, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class SrdfExtras:
+    """SRDF elements the setup does not edit, kept verbatim from an imported SRDF."""
+
+    enable_collisions: tuple[CollisionPair, ...] = ()
+    disable_default_collisions: tuple[str, ...] = ()
+    joint_properties: tuple[JointProperty, ...] = ()
+    link_sphere_approximations: tuple[LinkSpheres, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
 class SetupModel:
     package_name: str
     robot_name: str
@@ -155,6 +197,7 @@ class SetupModel:
     default_velocity_scaling: float = 0.1
     default_acceleration_scaling: float = 0.1
     default_acceleration: float = 1.0  # [rad/s^2] or [m/s^2] where the URDF gives none
+    srdf_extras: SrdfExtras = field(default_factory=SrdfExtras)
 
     def group(self, name: str) -> Group:
         return next(g for g in self.groups if g.name == name)
