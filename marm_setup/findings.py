@@ -1,0 +1,94 @@
+"""Validation findings: the `Finding` value, its order, and text/json formatting (strings only)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from dataclasses import asdict, dataclass
+
+ERROR = "error"
+WARNING = "warning"
+SEVERITIES = (ERROR, WARNING)
+
+_COLOURS = {ERROR: "\x1b[31m", WARNING: "\x1b[33m"}
+_BOLD = "\x1b[1m"
+_RESET = "\x1b[0m"
+
+
+@dataclass(frozen=True, slots=True)
+class Finding:
+    """One problem: a stable rule id (`srdf.unknown-link`), severity, where it is, what, and a fix."""
+
+    rule: str
+    severity: str  # error | warning
+    file: str  # relative to the package (or the path the user gave for files outside it)
+    element: str  # e.g. `group[arm]/chain`, `panda_arm.kinematics_solver`, `line 12`
+    message: str
+    hint: str = ""
+
+    def __post_init__(self) -> None:
+        if self.severity not in SEVERITIES:
+            raise ValueError(f"severity must be one of {SEVERITIES}, got {self.severity!r}")
+
+    @property
+    def is_error(self) -> bool:
+        return self.severity == ERROR
+
+
+def error(rule: str, file: str, element: str, message: str, hint: str = "") -> Finding:
+    return Finding(rule, ERROR, file, element, message, hint)
+
+
+def warning(rule: str, file: str, element: str, message: str, hint: str = "") -> Finding:
+    return Finding(rule, WARNING, file, element, message, hint)
+
+
+def sort_findings(findings: Iterable[Finding]) -> list[Finding]:
+    """Sorted by file, then element, then rule and message; exact duplicates dropped."""
+    return sorted(set(findings), key=lambda f: (f.file, f.element, f.rule, f.message, f.severity, f.hint))
+
+
+def count(findings: Iterable[Finding]) -> tuple[int, int]:
+    """(errors, warnings)."""
+    items = list(findings)
+    errors = sum(1 for f in items if f.is_error)
+    return errors, len(items) - errors
+
+
+def summary(findings: Iterable[Finding]) -> str:
+    """`2 errors, 1 warning` (or `no findings`)."""
+    errors, warnings = count(findings)
+    if not errors and not warnings:
+        return "no findings"
+    return f"{_plural(errors, 'error')}, {_plural(warnings, 'warning')}"
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+def format_text(findings: Iterable[Finding], *, color: bool = False) -> str:
+    """Findings grouped by file, one line each (hint on the next line), then a summary line."""
+    items = sort_findings(findings)
+    lines: list[str] = []
+    current = None
+    for f in items:
+        if f.file != current:
+            current = f.file
+            lines.append(f"{_BOLD}{f.file}{_RESET}" if color else f.file)
+        sev = f"{_COLOURS[f.severity]}{f.severity}{_RESET}" if color else f.severity
+        pad = " " * (len(WARNING) - len(f.severity))
+        where = f"{f.element}: " if f.element else ""
+        lines.append(f"  {sev}{pad} {where}{f.message} [{f.rule}]")
+        if f.hint:
+            lines.append(f"          hint: {f.hint}")
+    lines.append(summary(items))
+    return "\n".join(lines) + "\n"
+
+
+def format_json(findings: Iterable[Finding]) -> str:
+    """`{"findings": [...], "errors": n, "warnings": n}` as indented JSON."""
+    items = sort_findings(findings)
+    errors, warnings = count(items)
+    doc = {"findings": [asdict(f) for f in items], "errors": errors, "warnings": warnings}
+    return json.dumps(doc, indent=2) + "\n"
