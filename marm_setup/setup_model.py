@@ -201,3 +201,27 @@ class SetupModel:
 
     def group(self, name: str) -> Group:
         return next(g for g in self.groups if g.name == name)
+
+
+# -- file I/O (implemented in setup_io, re-exported here for one import site) -----------------
+
+
+def load_setup(path) -> SetupModel:
+    """Read `marm_setup.yaml`; InputError naming the key path on unknown keys or wrong types."""
+    from marm_setup.setup_io import load_setup as _load
+
+    return _load(path)
+
+
+def dump_setup(model: SetupModel) -> str:
+    """The YAML text of a setup, stable key order."""
+    from marm_setup.setup_io import dump_setup as _dump
+
+    return _dump(model)
+
+
+def setup_from_dict(data: dict, path: str | None = None) -> SetupModel:
+    """A SetupModel from parsed YAML (keys and types checked)."""
+    from marm_setup.setup_io import setup_from_dict as _from
+
+    return _from(data, path)

@@ -1,0 +1,198 @@
+"""Model checks of a SetupModel against its robot (issue 4 §2): the first problem found is an
+InputError naming the file and the element by its key path (`groups[arm].chain.tip`).
+
+Checks: unknown joint/link/group names (with close matches), duplicate names, chain tip not
+below its base, subgroup cycles, poses missing a joint of their group or outside its limits,
+end effectors whose parent link is inside their own group.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+from marm_setup.errors import InputError
+from marm_setup.groups import active_group_joints, group_joints, group_links, groups_by_name
+from marm_setup.robot_model import RobotModel
+from marm_setup.setup_model import Group, SetupModel
+
+LIMIT_TOLERANCE = 1e-9  # [rad] or [m]: values written with full precision sit on the limit
+
+
+class _Checker:
+    def __init__(self, model: SetupModel, robot: RobotModel, path: str | None):
+        self.model, self.robot, self.path = model, robot, path
+        self.group_names = tuple(g.name for g in model.groups)
+
+    def fail(self, message: str, where: str) -> InputError:
+        return InputError(message, path=self.path, element=where)
+
+    def name(self, kind: str, name: str, known: Iterable[str], where: str) -> None:
+        known = tuple(known)
+        if name not in known:
+            raise self.fail(f"unknown {kind} '{name}'{_close(name, known)}", where)
+
+    def joint(self, name: str, where: str) -> None:
+        self.name("joint", name, self.robot.joint_map, where)
+
+    def link(self, name: str, where: str) -> None:
+        self.name("link", name, self.robot.link_map, where)
+
+    def group(self, name: str, where: str) -> None:
+        self.name("group", name, self.group_names, where)
+
+
+def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -> None:
+    """Raise InputError for the first inconsistency between the setup and the robot."""
+    c = _Checker(model, robot, path)
+    _check_duplicates(c)
+    _check_virtual_joints(c)
+    _check_groups(c)
+    _check_subgroup_cycles(c)
+    _check_states(c)
+    _check_end_effectors(c)
+    _check_joint_lists(c)
+    _check_collision_pairs(c)
+
+
+def _close(name: str, known: tuple[str, ...]) -> str:
+    matches = difflib.get_close_matches(name, known, n=3, cutoff=0.6)
+    if matches:
+        return f" (close: {', '.join(matches)})"
+    if len(known) <= 8:
+        return f" (known: {', '.join(known) or 'none'})"
+    return ""
+
+
+def _check_duplicates(c: _Checker) -> None:
+    m = c.model
+    lists = {
+        "groups": [g.name for g in m.groups],
+        "group_states": [f"{s.group}/{s.name}" for s in m.group_states],
+        "end_effectors": [e.name for e in m.end_effectors],
+        "virtual_joints": [v.name for v in m.virtual_joints],
+        "controllers": [x.name for x in m.controllers],
+        "kinematics": [k.group for k in m.kinematics],
+        "planners": [p.group for p in m.planners],
+        "passive_joints": list(m.passive_joints),
+        "arbotix_joints": [a.joint for a in m.arbotix_joints],
+        "joint_limits": [j.joint for j in m.joint_limits],
+    }
+    for key, names in lists.items():
+        seen: set[str] = set()
+        for name in names:
+            if name in seen:
+                raise c.fail(f"duplicate name '{name}'", f"{key}[{name.split('/')[-1]}]")
+            seen.add(name)
+
+
+def _check_virtual_joints(c: _Checker) -> None:
+    for vj in c.model.virtual_joints:
+        c.link(vj.child_link, f"virtual_joints[{vj.name}].child_link")
+
+
+def _check_groups(c: _Checker) -> None:
+    for g in c.model.groups:
+        where = f"groups[{g.name}]"
+        if g.chain is None and not (g.joints or g.links or g.subgroups):
+            raise c.fail("empty group: give a chain, joints, links or subgroups", where)
+        if g.chain is not None:
+            c.link(g.chain.base, f"{where}.chain.base")
+            c.link(g.chain.tip, f"{where}.chain.tip")
+            if c.robot.chain(g.chain.base, g.chain.tip) is None or g.chain.base == g.chain.tip:
+                raise c.fail(
+                    f"chain tip '{g.chain.tip}' is not below base '{g.chain.base}'", f"{where}.chain.tip"
+                )
+        for i, j in enumerate(g.joints):
+            c.joint(j, f"{where}.joints[{i}]")
+        for i, link in enumerate(g.links):
+            c.link(link, f"{where}.links[{i}]")
+        for i, sub in enumerate(g.subgroups):
+            c.group(sub, f"{where}.subgroups[{i}]")
+
+
+def _check_subgroup_cycles(c: _Checker) -> None:
+    by_name = groups_by_name(c.model.groups)
+    for g in c.model.groups:
+        cycle = _find_cycle(g.name, by_name, [])
+        if cycle:
+            raise c.fail(f"subgroup cycle: {' -> '.join(cycle)}", f"groups[{g.name}].subgroups")
+
+
+def _find_cycle(name: str, by_name: dict[str, Group], trail: list[str]) -> list[str] | None:
+    if name in trail:
+        return [*trail[trail.index(name) :], name]
+    for sub in by_name[name].subgroups:
+        found = _find_cycle(sub, by_name, [*trail, name])
+        if found:
+            return found
+    return None
+
+
+def _check_states(c: _Checker) -> None:
+    by_name = groups_by_name(c.model.groups)
+    for s in c.model.group_states:
+        where = f"group_states[{s.name}]"
+        c.group(s.group, f"{where}.group")
+        group = by_name[s.group]
+        members = group_joints(group, by_name, c.robot)
+        for joint, value in s.values:
+            c.joint(joint, f"{where}.values.{joint}")
+            if joint not in members:
+                raise c.fail(f"joint '{joint}' is not in group '{s.group}'", f"{where}.values.{joint}")
+            _check_limit(c, joint, value, f"{where}.values.{joint}")
+        given = {j for j, _ in s.values}
+        missing = [
+            j for j in active_group_joints(group, by_name, c.robot, c.model.passive_joints) if j not in given
+        ]
+        if missing:
+            raise c.fail(f"missing joint(s) of group '{s.group}': {', '.join(missing)}", f"{where}.values")
+
+
+def _check_limit(c: _Checker, joint: str, value: float, where: str) -> None:
+    j = c.robot.joint(joint)
+    if j.type == "continuous" or not j.is_actuated:
+        return
+    lo, hi = j.bounds
+    if not lo - LIMIT_TOLERANCE <= value <= hi + LIMIT_TOLERANCE:
+        raise c.fail(f"value {value:g} is outside the limits [{lo:g}, {hi:g}]", where)
+
+
+def _check_end_effectors(c: _Checker) -> None:
+    by_name = groups_by_name(c.model.groups)
+    for ee in c.model.end_effectors:
+        where = f"end_effectors[{ee.name}]"
+        c.group(ee.group, f"{where}.group")
+        c.link(ee.parent_link, f"{where}.parent_link")
+        if ee.parent_group is not None:
+            c.group(ee.parent_group, f"{where}.parent_group")
+        if ee.parent_link in group_links(by_name[ee.group], by_name, c.robot):
+            raise c.fail(
+                f"parent link '{ee.parent_link}' is inside the end effector's own group '{ee.group}'",
+                f"{where}.parent_link",
+            )
+
+
+def _check_joint_lists(c: _Checker) -> None:
+    m = c.model
+    for i, j in enumerate(m.passive_joints):
+        c.joint(j, f"passive_joints[{i}]")
+    for ctl in m.controllers:
+        for i, j in enumerate(ctl.joints):
+            c.joint(j, f"controllers[{ctl.name}].joints[{i}]")
+        if ctl.group is not None:
+            c.group(ctl.group, f"controllers[{ctl.name}].group")
+    for k in m.kinematics:
+        c.group(k.group, f"kinematics[{k.group}].group")
+    for p in m.planners:
+        c.group(p.group, f"planners[{p.group}].group")
+    for a in m.arbotix_joints:
+        c.joint(a.joint, f"arbotix_joints[{a.joint}].joint")
+    for lim in m.joint_limits:
+        c.joint(lim.joint, f"joint_limits[{lim.joint}].joint")
+
+
+def _check_collision_pairs(c: _Checker) -> None:
+    for i, pair in enumerate(c.model.collision.disabled):
+        c.link(pair.link1, f"collision.disabled[{i}].link1")
+        c.link(pair.link2, f"collision.disabled[{i}].link2")
