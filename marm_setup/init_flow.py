@@ -1,0 +1,166 @@
+"""The `init` pipeline: infer -> import SRDF -> overlay SPEC -> check -> collision matrix ->
+render -> write. Pure apart from reading SPEC/SRDF and the final atomic write."""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from marm_setup.errors import InputError
+from marm_setup.robot import parse_xacro_args
+from marm_setup.robot_model import RobotModel
+from marm_setup.setup_model import TARGETS, CollisionSettings, RobotSource, SetupModel
+
+
+@dataclass(frozen=True)
+class InitRequest:
+    urdf: Path
+    out: Path
+    name: str | None = None
+    target: str | None = None
+    spec: Path | None = None
+    from_srdf: Path | None = None
+    trials: int = 10000
+    seed: int = 0
+    force: bool = False
+    xacro_args: tuple[str, ...] = ()
+    package_paths: tuple[Path, ...] = ()
+
+
+@dataclass(frozen=True)
+class InitResult:
+    model: SetupModel
+    inferred: tuple[str, ...]  # what the setup holds, one line each
+    status_lines: tuple[str, ...]  # one line per written file
+
+
+def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
+    model = build_setup(request, robot)
+    model = with_collision_matrix(model, robot, trials=request.trials, seed=request.seed)
+    lines = describe(model, request)
+    changes = write_package(model, robot, request.out, force=request.force)
+    from marm_setup.writer import format_change
+
+    return InitResult(model, tuple(lines), tuple(format_change(c) for c in changes))
+
+
+def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
+    """Inference, then the SRDF import, then the SPEC; checked against the robot."""
+    from marm_setup.setup_checks import check_setup
+    from marm_setup.setup_infer import derive_group_settings, infer_setup
+
+    spec = _read_spec(request.spec)
+    target = _target(request, spec)
+    name = request.name or spec.get("package_name") or f"{robot.name}_moveit_config"
+    model = infer_setup(robot, package_name=str(name), source=_source(request), target=target)
+    if request.from_srdf is not None:
+        from marm_setup.srdf import read_srdf, srdf_to_setup
+
+        model = derive_group_settings(srdf_to_setup(read_srdf(request.from_srdf), model), robot)
+        check_setup(model, robot, str(request.from_srdf))
+    if spec:
+        model = _apply_spec(model, spec, request)
+    check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
+    return model
+
+
+def _read_spec(path: Path | None) -> dict:
+    if path is None:
+        return {}
+    from marm_setup.setup_io import read_yaml_mapping
+
+    return read_yaml_mapping(path)
+
+
+def _target(request: InitRequest, spec: dict) -> str:
+    target = request.target or spec.get("target") or "ros2"
+    if target not in TARGETS:
+        raise InputError(
+            f"'{target}' is not one of: {', '.join(TARGETS)}", path=str(request.spec), element="target"
+        )
+    return target
+
+
+def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupModel:
+    from marm_setup.setup_infer import merge_spec
+    from marm_setup.setup_io import setup_from_dict, setup_to_dict
+
+    merged = merge_spec(setup_to_dict(model), spec)
+    if request.name:
+        merged["package_name"] = request.name
+    if request.target:
+        merged["target"] = request.target
+    merged["robot"] = setup_to_dict(model)["robot"]  # where the robot is comes from the command line
+    return setup_from_dict(merged, str(request.spec))
+
+
+def _source(request: InitRequest) -> RobotSource:
+    """The robot's location relative to the package folder (so the package can move with it)."""
+    out = request.out.resolve()
+    return RobotSource(
+        urdf=_relative(request.urdf, out),
+        xacro_args=tuple(sorted(parse_xacro_args(list(request.xacro_args)).items())),
+        package_paths=tuple(_relative(p, out) for p in request.package_paths),
+    )
+
+
+def _relative(path: Path, base: Path) -> str:
+    return Path(os.path.relpath(Path(path).resolve(), base)).as_posix()
+
+
+def with_collision_matrix(model: SetupModel, robot: RobotModel, *, trials: int, seed: int) -> SetupModel:
+    """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
+    if model.collision.disabled:
+        return model
+    fraction = model.collision.min_collision_fraction
+    disabled = _disabled_pairs(robot, trials=trials, seed=seed, fraction=fraction)
+    settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
+    return dataclasses.replace(model, collision=settings)
+
+
+def _disabled_pairs(robot: RobotModel, *, trials: int, seed: int, fraction: float):
+    # TODO(collision helper): switch to collision_matrix.compute_collision_matrix once committed.
+    from marm_setup.link_pairs import DisabledPair, DisabledReason
+
+    return tuple(
+        sorted(DisabledPair.of(a, b, DisabledReason.ADJACENT) for a, b in robot.adjacent_geometry_pairs())
+    )
+
+
+def describe(model: SetupModel, request: InitRequest) -> list[str]:
+    from marm_setup.link_pairs import DisabledReason
+    from marm_setup.setup_infer import describe_setup
+
+    counts = {r: sum(1 for d in model.collision.disabled if d.reason is r) for r in DisabledReason}
+    summary = ", ".join(f"{n} {r.value}" for r, n in counts.items() if n)
+    lines = describe_setup(model)
+    lines.append(
+        f"collision matrix: {len(model.collision.disabled)} disabled pairs ({summary or 'none'}); "
+        f"{model.collision.trials} trials, seed {model.collision.seed}"
+    )
+    return lines
+
+
+def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool):
+    """Render every file and write them atomically; returns the file changes."""
+    from marm_setup.writer import apply_writes, check_output_dir, plan_writes
+
+    check_output_dir(out, force=force)
+    rendered = _render(model, robot)
+    changes = plan_writes(rendered, out)
+    apply_writes(changes, out, force=force)
+    return changes
+
+
+def _render(model: SetupModel, robot: RobotModel):
+    # TODO(render helper): switch to marm_setup.package_render.render_package once committed.
+    from marm_setup.render import RenderedFile
+    from marm_setup.setup_io import dump_setup
+    from marm_setup.srdf import render_srdf
+
+    return [
+        RenderedFile("marm_setup.yaml", dump_setup(model)),
+        RenderedFile(f"config/{robot.name}.srdf", render_srdf(model, robot)),
+    ]
