@@ -121,12 +121,10 @@ def with_collision_matrix(model: SetupModel, robot: RobotModel, *, trials: int, 
 
 
 def _disabled_pairs(robot: RobotModel, *, trials: int, seed: int, fraction: float):
-    # TODO(collision helper): switch to collision_matrix.compute_collision_matrix once committed.
-    from marm_setup.link_pairs import DisabledPair, DisabledReason
+    from marm_setup.collision_matrix import compute_collision_matrix
 
-    return tuple(
-        sorted(DisabledPair.of(a, b, DisabledReason.ADJACENT) for a, b in robot.adjacent_geometry_pairs())
-    )
+    matrix = compute_collision_matrix(robot, trials=trials, seed=seed, min_collision_fraction=fraction)
+    return matrix.disabled
 
 
 def describe(model: SetupModel, request: InitRequest) -> list[str]:
