@@ -140,6 +140,19 @@ def _endpoint_failure(space: GroupSpace, checker: _Checker, q_start, q_goal) -> 
     return None
 
 
+def state_problem(
+    robot: RobotModel, check: ValidityChecker, q: np.ndarray, joint_names: Sequence[str], what: str = "state"
+) -> tuple[str, Pair | None] | None:
+    """Why the full configuration `q` cannot be planned from or to (limits, collision), or None."""
+    space = group_space(robot, joint_names, q)
+    q = np.asarray(q, dtype=float)
+    reason = _limit_reason(space, q[space.index], what)
+    if reason:
+        return reason, None
+    hit = check(q[None, :])[0]
+    return None if hit is None else (f"{what} in collision: {hit[0]} - {hit[1]}", tuple(hit))
+
+
 def plan_joint_path(
     robot: RobotModel,
     check: ValidityChecker,

@@ -1,0 +1,63 @@
+"""Runtime validation rules: plan between every two named poses of each group and fake-execute.
+
+Rules (all errors, in the SRDF's file): `runtime.pose` (a named pose cannot be planned from:
+out of limits or in self-collision; plans from and to it are skipped), `runtime.no-plan` (no
+collision-free path between two poses within the budget), `runtime.execution` (the timed
+trajectory breaks a limit, collides between checked states, or misses the goal) and
+`runtime.limits` (the group's limits are unusable).
+"""
+
+from __future__ import annotations
+
+from itertools import permutations
+
+from marm_setup.errors import InputError
+from marm_setup.findings import Finding, error
+from marm_setup.planner import PlannerOptions, state_problem
+from marm_setup.planning_problem import (
+    PlanningProblem,
+    group_names_with_poses,
+    plan_between,
+    planning_problem,
+)
+from marm_setup.robot_model import RobotModel
+
+RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
+
+
+def check_runtime(
+    package, robot: RobotModel, scene, *, seed: int = 0, options: PlannerOptions = RUNTIME_OPTIONS
+) -> list[Finding]:
+    """Findings for every group with two or more named poses (see the module docstring)."""
+    findings: list[Finding] = []
+    srdf_file = package.srdf_path or package.shown
+    for group in group_names_with_poses(package):
+        try:
+            problem = planning_problem(package, robot, scene, group)
+        except InputError as exc:
+            findings.append(error("runtime.limits", exc.path or srdf_file, f"group[{group}]", exc.message))
+            continue
+        findings += _check_group(problem, robot, srdf_file, seed, options)
+    return findings
+
+
+def _check_group(problem: PlanningProblem, robot, srdf_file: str, seed: int, options) -> list[Finding]:
+    findings, usable = [], []
+    for name in sorted(problem.poses):
+        found = state_problem(robot, problem.check, problem.poses[name], problem.joint_names, "pose")
+        if found is None:
+            usable.append(name)
+            continue
+        element = f"group_state[{name}]"
+        findings.append(
+            error("runtime.pose", srdf_file, element, f"{found[0]}; plans from and to it skipped")
+        )
+    for a, b in permutations(usable, 2):
+        outcome = plan_between(problem, robot, problem.poses[a], problem.poses[b], seed, options)
+        element = f"group[{problem.group}]/{a} -> {b}"
+        if not outcome.plan.success:
+            findings.append(error("runtime.no-plan", srdf_file, element, f"no plan: {outcome.plan.reason}"))
+        elif not outcome.execution.ok:
+            message = "fake execution failed: " + "; ".join(outcome.execution.violations)
+            findings.append(error("runtime.execution", srdf_file, element, message))
+    return findings
