@@ -1,0 +1,173 @@
+"""marm_setup.yaml: typed load, stable dump, round trips, and errors naming the key path."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+import yaml
+
+from marm_setup.errors import InputError
+from marm_setup.link_pairs import DisabledPair, DisabledReason
+from marm_setup.robot import load_robot
+from marm_setup.setup_infer import infer_setup
+from marm_setup.setup_model import (
+    ArbotixJoint,
+    CollisionPair,
+    CollisionSettings,
+    JointLimitOverride,
+    JointProperty,
+    LinkSpheres,
+    RobotSource,
+    SetupModel,
+    SphereApprox,
+    SrdfExtras,
+    dump_setup,
+    load_setup,
+    setup_from_dict,
+)
+from tests.conftest import FIXTURES, MARM_URDF
+
+
+@pytest.fixture(scope="module")
+def marm():
+    return load_robot(MARM_URDF)
+
+
+@pytest.fixture(scope="module")
+def marm_setup(marm):
+    source = RobotSource("../urdf/marm.urdf.xacro", (("with_gripper", "true"),), ("../..",))
+    model = infer_setup(marm, package_name="marm_moveit_config", source=source, target="ros1")
+    pairs = (DisabledPair.of("link2", "link1", "Adjacent"), DisabledPair.of("base_link", "link3", "Never"))
+    return dataclasses.replace(
+        model,
+        collision=CollisionSettings(seed=7, trials=1234, disabled=tuple(sorted(pairs))),
+        joint_limits=(JointLimitOverride("joint1", max_velocity=0.5, max_acceleration=1.5),),
+        arbotix_joints=(ArbotixJoint("joint1", 1, max_speed=90.0),),
+    )
+
+
+def test_load_of_dump_is_the_model_and_dump_of_load_is_the_text(marm_setup, tmp_path):
+    text = dump_setup(marm_setup)
+    path = tmp_path / "marm_setup.yaml"
+    path.write_text(text)
+    loaded = load_setup(path)
+    assert loaded == marm_setup
+    assert dump_setup(loaded) == text
+
+
+def test_dump_is_plain_yaml_in_field_order(marm_setup):
+    data = yaml.safe_load(dump_setup(marm_setup))
+    assert list(data)[:4] == ["package_name", "robot_name", "robot", "target"]
+    assert data["groups"][0] == {"name": "arm", "chain": {"base": "base_link", "tip": "grasping_frame"}}
+    assert data["group_states"][0]["values"]["joint3"] == 0.0
+    assert data["collision"]["disabled"][0] == {"link1": "base_link", "link2": "link3", "reason": "Never"}
+    assert data["robot"]["xacro_args"] == {"with_gripper": "true"}
+    assert "srdf_extras" not in data and "passive_joints" not in data
+
+
+def test_srdf_extras_round_trip():
+    extras = SrdfExtras(
+        enable_collisions=(CollisionPair("a", "b", "Tool"),),
+        disable_default_collisions=("a",),
+        joint_properties=(JointProperty("j", "angular_distance_weight", "0.5"),),
+        link_sphere_approximations=(LinkSpheres("a", (SphereApprox((0.0, 0.1, -0.2), 0.05),)),),
+    )
+    model = SetupModel("p", "r", RobotSource("r.urdf"), srdf_extras=extras, passive_joints=("j",))
+    again = setup_from_dict(yaml.safe_load(dump_setup(model)))
+    assert again == model
+
+
+def test_course_spec_fixture_loads_with_defaults():
+    from marm_setup.setup_io import read_yaml_mapping
+
+    spec = read_yaml_mapping(FIXTURES / "marm" / "marm_setup.yaml")
+    spec |= {"robot_name": "marm", "robot": {"urdf": "urdf/marm.urdf.xacro"}}
+    model = setup_from_dict(spec, "marm_setup.yaml")
+    forward = next(s for s in model.group_states if s.name == "forward")
+    assert dict(forward.values) == {
+        "joint1": 0.0,
+        "joint2": 0.4285,
+        "joint3": 0.7672,
+        "joint4": 0.0,
+        "joint5": -0.4487,
+        "joint6": 0.0,
+    }
+    assert isinstance(forward.values[0][1], float)
+
+
+BASE = {"package_name": "p", "robot_name": "r", "robot": {"urdf": "r.urdf"}}
+BAD = {
+    "unknown top key": ({"grups": []}, "grups", "unknown key 'grups' (did you mean 'groups'?)"),
+    "unknown nested key": (
+        {"groups": [{"name": "arm", "chian": {"base": "a", "tip": "b"}}]},
+        "groups[arm].chian",
+        "did you mean 'chain'?",
+    ),
+    "wrong item type": (
+        {"groups": [{"name": "arm", "joints": ["j1", "j2", "j3", 4]}]},
+        "groups[arm].joints[3]",
+        "expected a string, got an integer (4)",
+    ),
+    "not a list": ({"passive_joints": "j1"}, "passive_joints", "expected a list, got a string"),
+    "pose value": (
+        {"group_states": [{"name": "home", "group": "arm", "values": {"j1": "zero"}}]},
+        "group_states[home].values.j1",
+        "expected a number",
+    ),
+    "values as list": (
+        {"group_states": [{"name": "home", "group": "arm", "values": [0, 1]}]},
+        "group_states[home].values",
+        "expected a mapping of names to values",
+    ),
+    "bad target": ({"target": "ros3"}, "target", "'ros3' is not one of: ros2, ros1"),
+    "bad reason": (
+        {"collision": {"disabled": [{"link1": "a", "link2": "b", "reason": "Sometimes"}]}},
+        "collision.disabled[0].reason",
+        "not one of: Adjacent, Default, Always, Never, User",
+    ),
+    "bool is not an int": ({"collision": {"trials": True}}, "collision.trials", "expected an integer"),
+    "missing key": ({"groups": [{"chain": {"base": "a"}}]}, "groups[0]", "missing key 'name'"),
+    "bad controller type": (
+        {"controllers": [{"name": "c", "type": "FollowJointTrajectry", "action_ns": "x", "joints": []}]},
+        "controllers[c].type",
+        "did you mean 'FollowJointTrajectory'?",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD))
+def test_bad_setups_name_the_key_path(case):
+    extra, element, message = BAD[case]
+    with pytest.raises(InputError) as err:
+        setup_from_dict({**BASE, **extra}, "spec.yaml")
+    assert err.value.path == "spec.yaml"
+    assert err.value.element == element
+    assert message in err.value.message
+
+
+def test_missing_top_level_key():
+    with pytest.raises(InputError, match="missing key 'robot_name'"):
+        setup_from_dict({"package_name": "p", "robot": {"urdf": "r"}}, "s.yaml")
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("groups: [\n", r"not valid YAML \(line 2\)"),
+        ("- a\n- b\n", "expected a mapping at the top, got a list"),
+    ],
+)
+def test_unreadable_files(tmp_path, text, message):
+    path = tmp_path / "s.yaml"
+    path.write_text(text)
+    with pytest.raises(InputError, match=message):
+        load_setup(path)
+    with pytest.raises(InputError, match="cannot read"):
+        load_setup(tmp_path / "missing.yaml")
+
+
+def test_disabled_pairs_are_canonical_after_load():
+    data = {**BASE, "collision": {"disabled": [{"link1": "z", "link2": "a", "reason": "Never"}]}}
+    (pair,) = setup_from_dict(data).collision.disabled
+    assert pair == DisabledPair("a", "z", DisabledReason.NEVER)
