@@ -1,0 +1,132 @@
+"""Inference for `init`: the marm course setup, the shared panda, inline robots, SPEC merging."""
+
+from __future__ import annotations
+
+import pytest
+
+from marm_setup.errors import InputError
+from marm_setup.robot import load_robot
+from marm_setup.setup_checks import check_setup
+from marm_setup.setup_infer import infer_setup, merge_spec, tool_frame
+from marm_setup.setup_model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
+from tests.conftest import MARM_URDF, realworld
+from tests.helpers import build_file_tree, urdf
+
+SOURCE = RobotSource("robot.urdf")
+
+
+def test_marm_matches_the_course_setup():
+    robot = load_robot(MARM_URDF)
+    model = infer_setup(robot, package_name="marm_moveit_config", source=SOURCE, target="ros1")
+    assert model.groups == (
+        Group("arm", chain=Chain("base_link", "grasping_frame")),
+        Group(
+            "gripper",
+            joints=("finger_joint1", "finger_joint2"),
+            links=("gripper_finger_link1", "gripper_finger_link2"),
+        ),
+    )
+    assert model.end_effectors == (EndEffector("robot_gripper", "gripper", "grasping_frame"),)
+    assert model.group_states == (GroupState("home", "arm", tuple((f"joint{i}", 0.0) for i in range(1, 7))),)
+    arm, gripper = model.controllers
+    assert arm == Controller(
+        "arm_controller",
+        "FollowJointTrajectory",
+        "follow_joint_trajectory",
+        tuple(f"joint{i}" for i in range(1, 7)),
+        "arm",
+    )
+    assert gripper == Controller(
+        "gripper_controller", "GripperCommand", "gripper_action", ("finger_joint1",), "gripper"
+    )
+    (kin,) = model.kinematics
+    assert (kin.group, kin.solver, kin.search_resolution, kin.timeout) == (
+        "arm",
+        "kdl_kinematics_plugin/KDLKinematicsPlugin",
+        0.005,
+        0.05,
+    )
+    assert [a.joint for a in model.arbotix_joints][-1] == "finger_joint1"
+    check_setup(model, robot, "x")
+
+
+def test_ros2_gripper_action_is_gripper_cmd_and_no_arbotix():
+    model = infer_setup(load_robot(MARM_URDF), package_name="p", source=SOURCE, target="ros2")
+    assert model.controllers[1].action_ns == "gripper_cmd"
+    assert model.arbotix_joints == ()
+
+
+def test_marm_without_gripper_has_arm_only():
+    robot = load_robot(MARM_URDF, {"with_gripper": "false"})
+    model = infer_setup(robot, package_name="p", source=SOURCE)
+    assert [g.name for g in model.groups] == ["arm"]
+    assert model.groups[0].chain == Chain("base_link", "grasping_frame")
+    assert model.end_effectors == ()
+
+
+@pytest.mark.parametrize("target", ["ros1", "ros2"])
+def test_shared_panda_arm_to_flange_and_hand_group(target):
+    root = realworld(target)
+    if target == "ros1":
+        robot = load_robot(root / "panda_description/urdf/panda_arm_hand.urdf.xacro", package_paths=[root])
+    else:
+        robot = load_robot(root / "panda_description/urdf/panda.urdf")
+    model = infer_setup(robot, package_name="p", source=SOURCE, target=target)
+    arm, hand = model.groups
+    assert arm.chain == Chain("panda_link0", "panda_link8")
+    assert hand.joints == ("panda_finger_joint1", "panda_finger_joint2")
+    assert hand.links[:3] == ("panda_hand", "panda_leftfinger", "panda_rightfinger")
+    assert model.end_effectors[0].parent_link == "panda_link8"
+    assert len(model.group_states[0].values) == 7
+    check_setup(model, robot, "x")
+
+
+def test_home_is_clamped_into_limits_and_tool_frame_stops_at_geometry(tmp_path):
+    body = """
+    <link name="base"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+    <link name="l1"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+    <link name="flange"/>
+    <link name="tool"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+    <link name="tcp"/>
+    <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+      <limit lower="0.5" upper="1.0" velocity="1" effort="1"/></joint>
+    <joint name="f" type="fixed"><parent link="l1"/><child link="flange"/></joint>
+    <joint name="t" type="fixed"><parent link="flange"/><child link="tool"/></joint>
+    <joint name="c" type="fixed"><parent link="tool"/><child link="tcp"/></joint>
+    """
+    build_file_tree(tmp_path, {"r.urdf": urdf(body)})
+    robot = load_robot(tmp_path / "r.urdf")
+    assert tool_frame(robot, "l1") == "flange"
+    model = infer_setup(robot, package_name="p", source=SOURCE)
+    assert model.groups == (Group("arm", chain=Chain("base", "flange")),)
+    assert model.group_states[0].values == (("j1", 0.5),)
+
+
+def test_robot_without_actuated_joints_is_an_input_error(tmp_path):
+    body = '<link name="a"/><link name="b"/><joint name="f" type="fixed"><parent link="a"/><child link="b"/></joint>'
+    build_file_tree(tmp_path, {"r.urdf": urdf(body)})
+    with pytest.raises(InputError, match="no actuated joints"):
+        infer_setup(load_robot(tmp_path / "r.urdf"), package_name="p", source=SOURCE)
+
+
+def test_merge_spec_by_item_name():
+    base = {
+        "target": "ros2",
+        "author": {"name": "a", "email": "e"},
+        "group_states": [{"name": "home", "group": "arm", "values": {"j": 0.0}}],
+        "passive_joints": ["x"],
+    }
+    spec = {
+        "author": {"name": "b"},
+        "group_states": [
+            {"name": "forward", "group": "arm", "values": {"j": 0.4}},
+            {"name": "home", "group": "arm", "values": {"j": 0.1}},
+        ],
+        "passive_joints": ["y"],
+    }
+    merged = merge_spec(base, spec)
+    assert merged["author"] == {"name": "b", "email": "e"}
+    assert [s["name"] for s in merged["group_states"]] == ["home", "forward"]
+    assert merged["group_states"][0]["values"] == {"j": 0.1}
+    assert merged["passive_joints"] == ["y"]
+    assert base["author"] == {"name": "a", "email": "e"}
