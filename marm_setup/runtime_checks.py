@@ -1,7 +1,8 @@
 """Runtime validation rules: plan between every two named poses of each group and fake-execute.
 
-Rules (all errors, in the SRDF's file): `runtime.pose` (a named pose cannot be planned from:
-out of limits or in self-collision; plans from and to it are skipped), `runtime.no-plan` (no
+Rules (in the SRDF's file): `runtime.pose-skipped` (warning: a named pose cannot be planned
+from, being out of limits or in self-collision, which the pose rules report as errors; plans
+from and to it are skipped), and the errors `runtime.no-plan` (no
 collision-free path between two poses within the budget), `runtime.execution` (the timed
 trajectory breaks a limit, collides between checked states, or misses the goal) and
 `runtime.limits` (the group's limits are unusable).
@@ -12,7 +13,7 @@ from __future__ import annotations
 from itertools import permutations
 
 from marm_setup.errors import InputError
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, error, warning
 from marm_setup.planner import PlannerOptions, state_problem
 from marm_setup.planning_problem import (
     PlanningProblem,
@@ -49,9 +50,8 @@ def _check_group(problem: PlanningProblem, robot, srdf_file: str, seed: int, opt
             usable.append(name)
             continue
         element = f"group_state[{name}]"
-        findings.append(
-            error("runtime.pose", srdf_file, element, f"{found[0]}; plans from and to it skipped")
-        )
+        message = f"plans from and to '{name}' skipped: {found[0]}"
+        findings.append(warning("runtime.pose-skipped", srdf_file, element, message))
     for a, b in permutations(usable, 2):
         outcome = plan_between(problem, robot, problem.poses[a], problem.poses[b], seed, options)
         element = f"group[{problem.group}]/{a} -> {b}"
