@@ -14,7 +14,7 @@ from marm_setup.packages import package_name
 from marm_setup.render import RenderedFile, render_template
 from marm_setup.render_context import build_context
 from marm_setup.robot_model import RobotModel
-from marm_setup.setup_model import TARGETS, SetupModel
+from marm_setup.setup_model import TARGETS, SetupModel, dump_setup
 
 COMMON_FILES = ("config/robot.srdf",)
 ROS1_FILES = (
@@ -76,13 +76,6 @@ def description_package(urdf: Path) -> tuple[str, str] | None:
     return None
 
 
-def _setup_file(model: SetupModel) -> list[RenderedFile]:
-    from marm_setup import setup_model
-
-    dump = getattr(setup_model, "dump_setup", None)  # written by the setup-model work
-    return [RenderedFile(SETUP_FILE, dump(model))] if dump is not None else []
-
-
 def render_package(
     model: SetupModel, robot: RobotModel, *, description: tuple[str, str] | None = None
 ) -> list[RenderedFile]:
@@ -95,7 +88,7 @@ def render_package(
     if description is None and robot.source:
         description = description_package(Path(robot.source))
     context = build_context(model, robot, description)
-    files = _setup_file(model)
+    files = [RenderedFile(SETUP_FILE, dump_setup(model))]
     for template, path in target_templates(model.target):
         content = render_template(template, target=model.target, **context)
         files.append(RenderedFile(output_path(path, model.robot_name), content))

@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+import functools
+from pathlib import Path
+
+from marm_setup.robot import load_robot
+from marm_setup.robot_model import RobotModel
 from marm_setup.setup_model import (
     Chain,
     Controller,
@@ -15,6 +20,9 @@ from marm_setup.setup_model import (
     VirtualJoint,
 )
 
+ROOT = Path(__file__).resolve().parent.parent
+MARM_URDF = ROOT / "fixtures" / "marm" / "urdf" / "marm.urdf.xacro"
+MARM_SPEC = ROOT / "fixtures" / "marm" / "marm_setup.yaml"
 ARM_JOINTS = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
 
 
@@ -52,3 +60,25 @@ def marm_model(target: str = "ros1", urdf: str = "../marm/urdf/marm.urdf.xacro")
             Controller("gripper_controller", "GripperCommand", gripper_ns, ("finger_joint1",), "gripper"),
         ),
     )
+
+
+def inferred_marm(target: str, out: Path) -> tuple[SetupModel, RobotModel]:
+    """The marm setup as `init --setup fixtures/marm/marm_setup.yaml --out out` builds it.
+
+    The collision matrix is left empty: render tests check templates, not sampling.
+    """
+    return _inferred(target, str(out))
+
+
+@functools.lru_cache(maxsize=8)
+def _inferred(target: str, out: str) -> tuple[SetupModel, RobotModel]:
+    from marm_setup.init_flow import InitRequest, build_setup
+
+    robot = marm_robot()
+    request = InitRequest(urdf=MARM_URDF, out=Path(out), target=target, spec=MARM_SPEC)
+    return build_setup(request, robot), robot
+
+
+@functools.lru_cache(maxsize=1)
+def marm_robot() -> RobotModel:
+    return load_robot(MARM_URDF)

@@ -1,0 +1,302 @@
+"""render_package: golden trees, every file parsed back, controller wiring agrees across files."""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from pathlib import Path
+
+import pytest
+import yaml
+from lxml import etree
+
+from marm_setup.errors import InputError
+from marm_setup.package_render import (
+    ROS1_FILES,
+    ROS2_FILES,
+    description_package,
+    output_path,
+    render_package,
+)
+from marm_setup.render_context import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
+from marm_setup.setup_model import JointLimitOverride, RobotSource
+from tests.conftest import GOLDENS
+from tests.render_helpers import inferred_marm, marm_model, marm_robot
+
+TARGETS = ("ros1", "ros2")
+XML_SUFFIXES = (".xml", ".launch", ".srdf", ".xacro")
+
+
+@functools.lru_cache(maxsize=2)
+def rendered(target: str) -> dict[str, str]:
+    model, robot = inferred_marm(target, GOLDENS / target)
+    return {f.path: f.content for f in render_package(model, robot)}
+
+
+def load_yaml(files: dict[str, str], path: str):
+    return yaml.safe_load(files[path])
+
+
+def expected_paths(target: str) -> list[str]:
+    listed = ROS1_FILES if target == "ros1" else ROS2_FILES
+    return sorted({output_path(p, "marm") for p in listed} | {"marm_setup.yaml", "config/marm.srdf"})
+
+
+GOLDEN_CASES = [(t, p) for t in TARGETS for p in expected_paths(t)]
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_file_list(target):
+    assert sorted(rendered(target)) == expected_paths(target)
+
+
+@pytest.mark.parametrize(("target", "path"), GOLDEN_CASES, ids=[f"{t}/{p}" for t, p in GOLDEN_CASES])
+def test_golden_file(target, path, assert_golden):
+    assert_golden(f"{target}/{path}", rendered(target)[path])
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_render_is_pure_sorted_and_newline_terminated(target):
+    model, robot = inferred_marm(target, GOLDENS / target)
+    first, second = render_package(model, robot), render_package(model, robot)
+    assert first == second
+    assert [f.path for f in first] == sorted(f.path for f in first)
+    for f in first:
+        assert f.content.endswith("\n") and not f.content.endswith("\n\n"), f.path
+        assert "\r" not in f.content and "/work/" not in f.content, f.path
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_every_yaml_and_xml_parses(target):
+    files = rendered(target)
+    for path, content in files.items():
+        if path.endswith(".yaml"):
+            assert isinstance(yaml.safe_load(content), dict), path
+        elif path.endswith(XML_SUFFIXES):
+            etree.fromstring(content.encode())
+    compile(files.get("scripts/trajectory_demo.py", ""), "trajectory_demo.py", "exec")
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_catkin_pkg_accepts_package_xml(target, tmp_path):
+    from catkin_pkg.package import parse_package
+
+    (tmp_path / "package.xml").write_text(rendered(target)["package.xml"])
+    package = parse_package(str(tmp_path / "package.xml"))
+    assert package.name == "marm_moveit_config"
+    assert package.package_format == (2 if target == "ros1" else 3)
+    buildtool = {d.name for d in package.buildtool_depends}
+    assert buildtool == ({"catkin"} if target == "ros1" else {"ament_cmake"})
+    assert "marm_description" in {d.name for d in package.exec_depends}
+
+
+def test_ros1_yaml_structure():
+    files = rendered("ros1")
+    robot = marm_robot()
+    kin = load_yaml(files, "config/kinematics.yaml")
+    assert set(kin) == {"arm"}
+    assert kin["arm"]["kinematics_solver"] == "kdl_kinematics_plugin/KDLKinematicsPlugin"
+    assert isinstance(kin["arm"]["kinematics_solver_timeout"], float)
+
+    limits = load_yaml(files, "config/joint_limits.yaml")
+    assert set(limits["joint_limits"]) == {f"joint{i}" for i in range(1, 7)} | {"finger_joint1"}
+    for name, entry in limits["joint_limits"].items():
+        assert entry["has_velocity_limits"] is True
+        assert entry["max_velocity"] == robot.joint(name).velocity
+        assert entry["has_acceleration_limits"] is True and entry["max_acceleration"] > 0
+
+    ompl = load_yaml(files, "config/ompl_planning.yaml")
+    for group in ("arm", "gripper"):
+        assert ompl[group]["default_planner_config"] in ompl["planner_configs"]
+        assert set(ompl[group]["planner_configs"]) <= set(ompl["planner_configs"])
+
+    fake = load_yaml(files, "config/fake_controllers.yaml")
+    assert [c["name"] for c in fake["controller_list"]] == ["fake_arm_controller", "fake_gripper_controller"]
+    assert fake["controller_list"][1]["joints"] == ["finger_joint1"]
+    assert fake["initial"] == [{"group": "arm", "pose": "home"}]
+
+
+def test_ros1_arbotix_angles_come_from_urdf_limits():
+    files = rendered("ros1")
+    robot = marm_robot()
+    arbotix = load_yaml(files, "config/arbotix.yaml")
+    ids = [j["id"] for j in arbotix["joints"].values()]
+    assert len(set(ids)) == len(ids)
+    for name, servo in arbotix["joints"].items():
+        joint = robot.joint(name)
+        if joint.type == "revolute":
+            assert servo["min_angle"] == pytest.approx(math.degrees(joint.lower), abs=1e-3)
+            assert servo["max_angle"] == pytest.approx(math.degrees(joint.upper), abs=1e-3)
+    assert arbotix["controllers"]["arm_controller"]["type"] == "follow_controller"
+
+
+def test_ros1_controller_wiring_agrees():
+    files = rendered("ros1")
+    moveit = load_yaml(files, "config/controllers.yaml")["controller_list"]
+    arbotix = load_yaml(files, "config/arbotix.yaml")
+    launch = etree.fromstring(files["launch/arbotix.launch"].encode())
+    grippers = {n.get("name"): n for n in launch.iter("node") if n.get("type") == "gripper_controller"}
+    served = {f"{n}/gripper_action" for n in grippers}
+    served |= {c["action_name"] for c in arbotix["controllers"].values()}
+    assert {f"{c['name']}/{c['action_ns']}" for c in moveit} == served
+    for c in moveit:
+        if c["type"] == "FollowJointTrajectory":
+            assert arbotix["controllers"][c["name"]]["joints"] == c["joints"]
+        else:
+            params = {p.get("name"): p.get("value") for p in grippers[c["name"]].iter("param")}
+            assert params["joint"] == c["joints"][0]
+        assert set(c["joints"]) <= set(arbotix["joints"])
+
+
+def test_ros1_launch_references_exist():
+    files = rendered("ros1")
+    text = "\n".join(v for k, v in files.items() if k.startswith("launch/"))
+    for path in files:
+        if path.startswith(("config/", "launch/")) and "_moveit_controller_manager" not in path:
+            assert path in text or path.endswith(("demo.launch", "arbotix.launch")), path
+    assert (
+        "$(find marm_moveit_config)/launch/$(arg moveit_controller_manager)_moveit_controller_manager" in text
+    )
+    for manager in ("marm", "fake"):
+        assert f"launch/{manager}_moveit_controller_manager.launch.xml" in files
+
+
+def _floats_only(tree, where=""):
+    """Every number in a mapping tree, except ints listed as such by MoveIt/ros2_control."""
+    if isinstance(tree, dict):
+        for key, value in tree.items():
+            yield from _floats_only(value, f"{where}/{key}")
+    elif isinstance(tree, list):
+        for i, value in enumerate(tree):
+            yield from _floats_only(value, f"{where}[{i}]")
+    elif isinstance(tree, int | float) and not isinstance(tree, bool):
+        yield where, tree
+
+
+def test_ros2_numeric_params_are_floats():
+    files = rendered("ros2")
+    moveit = load_yaml(files, "config/moveit.yaml")["/**"]["ros__parameters"]
+    for section in ("robot_description_planning", "robot_description_kinematics", "trajectory_execution"):
+        for where, value in _floats_only(moveit[section], section):
+            assert isinstance(value, float), where
+    ompl = moveit["ompl"]
+    assert isinstance(ompl["start_state_max_bounds_error"], float)
+    assert isinstance(ompl["arm"]["longest_valid_segment_fraction"], float)
+    for where, value in _floats_only(load_yaml(files, "config/initial_positions.yaml")):
+        assert isinstance(value, float), where
+    controllers = load_yaml(files, "config/ros2_controllers.yaml")
+    assert isinstance(controllers["controller_manager"]["ros__parameters"]["update_rate"], int)
+
+
+def test_ros2_moveit_yaml_structure():
+    files = rendered("ros2")
+    params = load_yaml(files, "config/moveit.yaml")["/**"]["ros__parameters"]
+    assert params["planning_pipelines"]["pipeline_names"] == ["ompl", "pilz_industrial_motion_planner"]
+    assert params["ompl"]["planning_plugins"] == ["ompl_interface/OMPLPlanner"]
+    assert params["pilz_industrial_motion_planner"]["planning_plugins"] == [
+        "pilz_industrial_motion_planner/CommandPlanner"
+    ]
+    assert set(params["robot_description_kinematics"]) == {"arm"}
+    planning = params["robot_description_planning"]
+    assert set(planning["cartesian_limits"]) == {
+        "max_trans_vel",
+        "max_trans_acc",
+        "max_trans_dec",
+        "max_rot_vel",
+    }
+    assert "joint1" in planning["joint_limits"]
+    assert (
+        params["moveit_controller_manager"]
+        == "moveit_simple_controller_manager/MoveItSimpleControllerManager"
+    )
+
+
+def test_ros2_controller_wiring_agrees():
+    files = rendered("ros2")
+    moveit = load_yaml(files, "config/moveit.yaml")["/**"]["ros__parameters"][
+        "moveit_simple_controller_manager"
+    ]
+    ros2 = load_yaml(files, "config/ros2_controllers.yaml")
+    manager = ros2["controller_manager"]["ros__parameters"]
+    assert manager["joint_state_broadcaster"]["type"] == "joint_state_broadcaster/JointStateBroadcaster"
+    assert set(moveit["controller_names"]) == set(manager) - {"update_rate", "joint_state_broadcaster"}
+    for name in moveit["controller_names"]:
+        entry = moveit[name]
+        assert manager[name]["type"] == ROS2_CONTROLLER_TYPES[entry["type"]]
+        assert entry["action_ns"] == ROS2_ACTION_NS[entry["type"]]
+        params = ros2[name]["ros__parameters"]
+        assert params.get("joints", [params.get("joint")]) == entry["joints"]
+    demo = etree.fromstring(files["launch/demo.launch.xml"].encode())
+    spawned = {n.get("args").split()[0] for n in demo.iter("node") if n.get("exec") == "spawner"}
+    assert spawned == set(moveit["controller_names"]) | {"joint_state_broadcaster"}
+
+
+def test_ros2_initial_positions_within_limits_and_cover_ros2_control():
+    files = rendered("ros2")
+    robot = marm_robot()
+    initial = load_yaml(files, "config/initial_positions.yaml")["initial_positions"]
+    for name, value in initial.items():
+        lo, hi = robot.joint(name).bounds
+        assert lo <= value <= hi
+    xacro = etree.fromstring(files["config/marm.ros2_control.xacro"].encode())
+    joints = {j.get("name"): j for j in xacro.iter("joint")}
+    assert set(joints) == set(initial)
+    mimic = {p.get("name"): p.text for p in joints["finger_joint2"].iter("param")}
+    assert mimic["mimic"] == "finger_joint1" and float(mimic["multiplier"]) == -1.0
+    assert joints["finger_joint2"].find("command_interface") is None
+    assert xacro.find(".//plugin").text == "mock_components/GenericSystem"
+
+
+def test_ros2_launch_description_params_are_typed_str():
+    files = rendered("ros2")
+    count = 0
+    for path in ("launch/demo.launch.xml", "launch/move_group.launch.xml"):
+        for param in etree.fromstring(files[path].encode()).iter("param"):
+            if (param.get("name") or "").startswith("robot_description"):
+                assert param.get("type") == "str", (path, param.get("name"))
+                count += 1
+    assert count == 6
+
+
+def test_joint_limit_overrides_and_missing_velocity():
+    model, robot = inferred_marm("ros1", GOLDENS / "ros1")
+    model = dataclasses.replace(
+        model,
+        joint_limits=(JointLimitOverride("joint2", max_velocity=0.5, max_acceleration=2.0, max_jerk=9.0),),
+    )
+    files = {f.path: f.content for f in render_package(model, robot)}
+    entry = yaml.safe_load(files["config/joint_limits.yaml"])["joint_limits"]["joint2"]
+    assert entry == {
+        "has_velocity_limits": True,
+        "max_velocity": 0.5,
+        "has_acceleration_limits": True,
+        "max_acceleration": 2.0,
+        "has_jerk_limits": True,
+        "max_jerk": 9.0,
+    }
+
+
+def test_hand_built_model_renders_both_targets():
+    for target in TARGETS:
+        files = {f.path: f.content for f in render_package(marm_model(target), marm_robot())}
+        assert "config/marm.srdf" in files
+        assert "virtual_joint" in files["config/marm.srdf"]
+
+
+def test_description_package_and_fallback(tmp_path):
+    urdf = Path(marm_robot().source)
+    assert description_package(urdf) == ("marm_description", "urdf/marm.urdf.xacro")
+    loose = tmp_path / "robot.urdf"
+    loose.write_text("<robot name='x'/>")
+    assert description_package(loose) is None
+    model = dataclasses.replace(marm_model("ros1"), robot=RobotSource(urdf="../robot.urdf"))
+    robot = dataclasses.replace(marm_robot(), source=str(loose))
+    files = {f.path: f.content for f in render_package(model, robot)}
+    assert 'textfile="$(find marm_moveit_config)/../robot.urdf"' in files["launch/planning_context.launch"]
+
+
+def test_unknown_target_is_input_error():
+    model = dataclasses.replace(marm_model("ros1"), target="ros3")
+    with pytest.raises(InputError, match="ros3"):
+        render_package(model, marm_robot())
