@@ -153,12 +153,6 @@ def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: boo
 
 
 def _render(model: SetupModel, robot: RobotModel):
-    # TODO(render helper): switch to marm_setup.package_render.render_package once committed.
-    from marm_setup.render import RenderedFile
-    from marm_setup.setup_io import dump_setup
-    from marm_setup.srdf import render_srdf
+    from marm_setup.package_render import render_package
 
-    return [
-        RenderedFile("marm_setup.yaml", dump_setup(model)),
-        RenderedFile(f"config/{robot.name}.srdf", render_srdf(model, robot)),
-    ]
+    return render_package(model, robot)
