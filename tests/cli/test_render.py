@@ -1,0 +1,101 @@
+"""`marm-setup render DIR`: re-render from marm_setup.yaml; hand edits are conflicts (exit 2)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from marm_setup.cli import app
+from marm_setup.package_render import render_package
+from marm_setup.writer import apply_writes, plan_writes
+from tests.render_helpers import inferred_marm
+
+runner = CliRunner()
+
+
+def make_package(tmp_path: Path, target: str = "ros1") -> Path:
+    out = tmp_path / "marm_moveit_config"
+    model, robot = inferred_marm(target, out)
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    return out
+
+
+def snapshot(root: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob("*")) if p.is_file()}
+
+
+@pytest.mark.parametrize("target", ["ros1", "ros2"])
+def test_rerender_of_unchanged_setup_is_a_noop(tmp_path, target):
+    pkg = make_package(tmp_path, target)
+    before = snapshot(pkg)
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    assert all(line.startswith("unchanged ") for line in lines[:-1])
+    assert "config/marm.srdf" in result.stdout and "marm_setup.yaml" not in result.stdout
+    assert snapshot(pkg) == before
+
+
+def test_hand_edit_is_a_conflict_then_force_overwrites(tmp_path):
+    pkg = make_package(tmp_path)
+    edited = pkg / "config" / "kinematics.yaml"
+    original = edited.read_text()
+    edited.write_text(original + "# my tuning\n")
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(setup.read_text().replace("timeout: 0.05", "timeout: 0.1"))
+
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 2
+    assert "conflict  config/kinematics.yaml" in result.stdout
+    assert result.stderr.count("\n") == 1 and "Traceback" not in result.output
+    assert "config/kinematics.yaml" in result.stderr and "--force" in result.stderr
+    assert edited.read_text() == original + "# my tuning\n"
+
+    result = runner.invoke(app, ["render", str(pkg), "--force"])
+    assert result.exit_code == 0, result.output
+    assert "kinematics_solver_timeout: 0.1\n" in edited.read_text()
+    assert "# my tuning" not in edited.read_text()
+    assert runner.invoke(app, ["render", str(pkg)]).exit_code == 0  # manifest now trusts it
+
+
+def test_setup_edit_updates_untouched_files(tmp_path):
+    pkg = make_package(tmp_path)
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(
+        setup.read_text().replace("default_velocity_scaling: 0.1", "default_velocity_scaling: 0.5")
+    )
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 0, result.output
+    assert "update    config/joint_limits.yaml" in result.stdout
+    assert "default_velocity_scaling_factor: 0.5" in (pkg / "config/joint_limits.yaml").read_text()
+
+
+def test_dry_run_writes_nothing(tmp_path):
+    pkg = make_package(tmp_path)
+    (pkg / "launch" / "demo.launch").unlink()
+    (pkg / "package.xml").write_text("<package/>\n")
+    before = snapshot(pkg)
+    result = runner.invoke(app, ["render", str(pkg), "--dry-run"])
+    assert result.exit_code == 0, result.output
+    assert "create    launch/demo.launch" in result.stdout
+    assert "conflict  package.xml" in result.stdout
+    assert "dry run: nothing written" in result.stdout
+    assert snapshot(pkg) == before
+
+
+def test_missing_setup_is_input_error(tmp_path):
+    result = runner.invoke(app, ["render", str(tmp_path)])
+    assert result.exit_code == 2
+    assert "marm_setup.yaml" in result.stderr and "Traceback" not in result.output
+    assert result.stderr.count("\n") == 1
+
+
+def test_bad_setup_names_file_and_key(tmp_path):
+    pkg = make_package(tmp_path)
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(setup.read_text().replace("package_name:", "package_nmae:"))
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 2
+    assert "marm_setup.yaml" in result.stderr and "Traceback" not in result.output
