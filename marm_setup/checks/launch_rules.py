@@ -1,0 +1,140 @@
+"""Launch XML and package.xml: well-formed, paths into this package exist, args defined, typed params."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from marm_setup.findings import Finding, error, warning
+
+FIND = re.compile(r"\$\((find|find-pkg-share)\s+([^\s)]+)\)|\$\((dirname)\)")
+ARG_USE = re.compile(r"\$\((arg|var)\s+([^\s)]+)\)|\barg\(\s*['\"]([^'\"]+)['\"]\s*\)")
+PATH_TAIL = re.compile(r"[^\s'\"]*")
+FILE_ATTRS = ("file", "textfile", "command")
+
+
+def parse_launch(path: Path, rel: str):
+    """(lxml root or None, findings) for one launch file."""
+    from lxml import etree
+
+    try:
+        return etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot(), []
+    except etree.XMLSyntaxError as exc:
+        line = exc.lineno or 0
+        return None, [error("launch.malformed", rel, f"line {line}", f"not well-formed XML: {exc.msg}")]
+    except OSError as exc:
+        return None, [error("launch.malformed", rel, "", f"cannot read: {exc}")]
+
+
+def check_launch_files(root: Path, package: str, files: tuple[str, ...], target: str) -> list[Finding]:
+    """Every launch rule over the package's launch files."""
+    parsed = {}
+    out: list[Finding] = []
+    for rel in files:
+        tree, problems = parse_launch(root / rel, rel)
+        out += problems
+        if tree is not None:
+            parsed[rel] = tree
+    shared_args = set().union(*(_defined_args(t) for t in parsed.values())) if target == "ros2" else set()
+    for rel, tree in parsed.items():
+        out += check_paths(tree, rel, root, package)
+        out += check_args(tree, rel, _defined_args(tree) | shared_args)
+        if target == "ros2":
+            out += check_description_types(tree, rel)
+    return out
+
+
+def _elements(tree):
+    return (e for e in tree.iter() if isinstance(e.tag, str))
+
+
+def _where(elem) -> str:
+    name = elem.get("name")
+    label = f"{elem.tag}[{name}]" if name else elem.tag
+    return f"line {elem.sourceline}: {label}"
+
+
+def check_paths(tree, rel: str, root: Path, package: str) -> list[Finding]:
+    """`$(find <this package>)/x`, `$(find-pkg-share ...)/x` and `$(dirname)/x` must exist."""
+    out = []
+    launch_dir = (root / rel).parent
+    for elem in _elements(tree):
+        for attr, text in elem.attrib.items():
+            for target, shown in _referenced(text, root, launch_dir, package):
+                if target.exists():
+                    continue
+                if attr in FILE_ATTRS:
+                    out.append(
+                        error("launch.missing-file", rel, _where(elem), f"{attr} '{shown}' does not exist")
+                    )
+                elif target.suffix:
+                    msg = f"{attr} refers to '{shown}', which does not exist"
+                    out.append(warning("launch.missing-file", rel, _where(elem), msg))
+    return out
+
+
+def _referenced(text: str, root: Path, launch_dir: Path, package: str):
+    """(absolute path, path as written) for each resolvable path into this package in `text`."""
+    for m in FIND.finditer(text):
+        tail = PATH_TAIL.match(text, m.end()).group(0)
+        if "$(" in tail or not tail.strip("/"):
+            continue
+        if m.group(3) == "dirname":
+            yield launch_dir / tail.lstrip("/"), f"$(dirname){tail}"
+        elif m.group(2) == package:
+            yield root / tail.lstrip("/"), f"$({m.group(1)} {package}){tail}"
+
+
+def _defined_args(tree) -> set[str]:
+    return {e.get("name") for e in _elements(tree) if e.tag in ("arg", "let") and e.get("name")}
+
+
+def check_args(tree, rel: str, defined: set[str]) -> list[Finding]:
+    """Every `$(arg x)` / `$(var x)` / `arg('x')` names an `<arg>` this file can see."""
+    out = []
+    for elem in _elements(tree):
+        for attr, text in elem.attrib.items():
+            for m in ARG_USE.finditer(text):
+                name = m.group(2) or m.group(3)
+                if name and name not in defined and "$(" not in name:
+                    msg = f"{attr} uses undefined arg '{name}'"
+                    out.append(
+                        error(
+                            "launch.undefined-arg",
+                            rel,
+                            _where(elem),
+                            msg,
+                            f'declare <arg name="{name}" .../>',
+                        )
+                    )
+    return out
+
+
+def check_description_types(tree, rel: str) -> list[Finding]:
+    """ROS 2: a `robot_description*` param must be typed `str` (or YAML parsing mangles the XML)."""
+    out = []
+    for elem in _elements(tree):
+        if (
+            elem.tag == "param"
+            and (elem.get("name") or "").startswith("robot_description")
+            and elem.get("type") != "str"
+        ):
+            msg = f"parameter '{elem.get('name')}' has no type=\"str\""
+            out.append(error("launch.description-type", rel, _where(elem), msg, 'add type="str"'))
+    return out
+
+
+def check_package_xml(root: Path, rel: str | None) -> list[Finding]:
+    """package.xml exists and parses with catkin_pkg (the strict ROS parser)."""
+    if rel is None:
+        return [error("package.missing", "package.xml", "", "no package.xml", "every ROS package needs one")]
+    from catkin_pkg.package import InvalidPackage, parse_package
+
+    try:
+        parse_package(str(root / rel), warnings=[])
+    except InvalidPackage as exc:
+        text = " ".join(str(exc).split()).replace(str(root) + "/", "")
+        return [error("package.invalid", rel, "", f"catkin_pkg rejects it: {text}")]
+    except Exception as exc:  # catkin_pkg raises bare exceptions for malformed XML
+        return [error("package.invalid", rel, "", f"cannot parse: {' '.join(str(exc).split())}")]
+    return []

@@ -1,0 +1,180 @@
+"""validate_package: every static check of a MoveIt config package, plus the runtime seam.
+
+Rule families live in `marm_setup/checks/`; this module reads the package (via
+`package_discovery`), loads the robot and the collision scene once, and runs them all. The
+runtime checks (plan between named poses, execute as a fake controller) come from
+`marm_setup.runtime_checks.check_runtime(package, robot, scene)` when that module exists and
+`plan` is true.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+
+from marm_setup.checks.controller_rules import (
+    check_arbotix,
+    check_coverage,
+    check_driver_controllers,
+    check_fake_controllers,
+    check_moveit_controllers,
+    moveit_controllers,
+    ros1_driver_controllers,
+    ros2_driver_controllers,
+)
+from marm_setup.checks.kinematics_rules import check_kinematics
+from marm_setup.checks.launch_rules import check_launch_files, check_package_xml, parse_launch
+from marm_setup.checks.limits_rules import check_joint_limits
+from marm_setup.checks.ompl_rules import check_ompl
+from marm_setup.checks.pose_rules import check_pose_values
+from marm_setup.checks.srdf_rules import check_srdf
+from marm_setup.errors import InputError
+from marm_setup.findings import Finding, error, sort_findings
+from marm_setup.package_discovery import ConfigPackage, discover_package
+
+MATRIX_TRIALS = 1000
+
+
+def validate_package(
+    path: str | Path,
+    *,
+    urdf: str | Path | None = None,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | Path] = (),
+    plan: bool = True,
+    matrix_trials: int = MATRIX_TRIALS,
+) -> list[Finding]:
+    """Every finding for the package at `path`, sorted by file then element.
+
+    Raises InputError (exit 2) only when `path` is not a readable config package at all.
+    """
+    pkg = discover_package(path, urdf=urdf, xacro_args=xacro_args, package_paths=package_paths)
+    findings = list(pkg.problems)
+    findings += check_package_xml(pkg.root, pkg.package_xml)
+    findings += check_launch_files(pkg.root, pkg.name, pkg.launch_files, pkg.target)
+    robot, problems = load_package_robot(pkg)
+    findings += problems
+    if pkg.srdf_path is None:
+        findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
+    if robot is None or pkg.srdf is None:
+        return sort_findings(findings)
+    findings += check_static(pkg, robot)
+    findings += check_with_scene(pkg, robot, plan=plan, matrix_trials=matrix_trials)
+    return sort_findings(findings)
+
+
+def shown_path(pkg: ConfigPackage, file: Path) -> str:
+    """A file's path for findings: relative to the package (`../x` outside it), never absolute."""
+    return Path(os.path.relpath(Path(file).resolve(), pkg.root)).as_posix()
+
+
+def load_package_robot(pkg: ConfigPackage):
+    """(RobotModel or None, findings): the URDF loads and its meshes resolve."""
+    from marm_setup.robot import load_robot
+
+    shown = shown_path(pkg, pkg.urdf) if pkg.urdf_origin != "--urdf" else str(pkg.urdf)
+    try:
+        return load_robot(pkg.urdf, dict(pkg.xacro_args), pkg.package_paths), []
+    except InputError as exc:
+        rule = "urdf.mesh-missing" if "mesh" in exc.message and "not found" in exc.message else "urdf.load"
+        where = exc.element or ""
+        hint = "pass --package-path DIR for packages outside this folder" if "package" in exc.message else ""
+        return None, [
+            error(rule, shown, where, f"{exc.message} (robot description from {pkg.urdf_origin})", hint)
+        ]
+
+
+def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
+    """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking)."""
+    srdf, file = pkg.srdf, pkg.srdf_path
+    out = check_srdf(srdf, robot, file, pkg.srdf_text)
+    out += check_pose_values(srdf, robot, file)
+    if pkg.kinematics is not None:
+        out += check_kinematics(pkg.kinematics, srdf, robot)
+    if pkg.joint_limits is not None:
+        out += check_joint_limits(pkg.joint_limits, srdf, robot, pkg.target)
+    if pkg.ompl is not None:
+        out += check_ompl(pkg.ompl, srdf)
+    out += check_controllers(pkg, robot)
+    return out
+
+
+def check_controllers(pkg: ConfigPackage, robot) -> list[Finding]:
+    """MoveIt's controllers vs robot and groups, then vs every driver file the package has."""
+    out: list[Finding] = []
+    if pkg.fake_controllers is not None:
+        out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
+    section = pkg.moveit_controllers
+    if section is None:
+        return out
+    ctrls, problems = moveit_controllers(section)
+    out += problems
+    out += check_moveit_controllers(section, ctrls, robot)
+    out += check_coverage(section, ctrls, pkg.srdf, robot, pkg.alt_moveit_controllers)
+    if pkg.ros2_controllers is not None:
+        driver = ros2_driver_controllers(pkg.ros2_controllers)
+        out += check_driver_controllers(section, pkg.ros2_controllers, driver, ctrls, robot)
+    if pkg.ros_controllers is not None and pkg.ros_controllers.file != section.file:
+        driver = ros1_driver_controllers(pkg.ros_controllers)
+        out += check_driver_controllers(section, pkg.ros_controllers, driver, ctrls, robot)
+    if pkg.arbotix is not None:
+        out += check_arbotix(pkg.arbotix, ctrls, robot, gripper_nodes(pkg))
+    return out
+
+
+def gripper_nodes(pkg: ConfigPackage) -> dict[str, tuple[str, str]]:
+    """ArbotiX `gripper_controller` nodes in the launch files: name -> (file, `joint` param)."""
+    out: dict[str, tuple[str, str]] = {}
+    for rel in pkg.launch_files:
+        tree, _ = parse_launch(pkg.path(rel), rel)
+        if tree is None:
+            continue
+        for node in tree.iter("node"):
+            if (node.get("type") or "").startswith("gripper_controller") and node.get("name"):
+                joint = next((p.get("value", "") for p in node.iter("param") if p.get("name") == "joint"), "")
+                out.setdefault(node.get("name"), (rel, joint))
+    return out
+
+
+def check_with_scene(pkg: ConfigPackage, robot, *, plan: bool, matrix_trials: int) -> list[Finding]:
+    """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene."""
+    from marm_setup.checks.matrix_rules import check_matrix_fresh
+    from marm_setup.checks.pose_rules import check_pose_collisions
+    from marm_setup.collision import CollisionScene
+
+    try:
+        scene = CollisionScene(robot)
+    except InputError as exc:
+        return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)]
+    out = check_pose_collisions(pkg.srdf, robot, scene, pkg.srdf_path, initial_state(pkg))
+    out += check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, trials=matrix_trials)
+    if plan:
+        out += run_runtime_checks(pkg, robot, scene)
+    return out
+
+
+def initial_state(pkg: ConfigPackage) -> dict[str, float]:
+    """Joint values the package's demo starts from (fake controllers' initial poses, or
+    ros2_control's initial_positions.yaml)."""
+    from marm_setup.checks.pose_rules import initial_values
+
+    poses = []
+    fake = pkg.fake_controllers.data if pkg.fake_controllers is not None else None
+    if isinstance(fake, dict) and isinstance(fake.get("initial"), list):
+        poses = [(i.get("group"), i.get("pose")) for i in fake["initial"] if isinstance(i, dict)]
+    positions = pkg.initial_positions.data if pkg.initial_positions is not None else None
+    if isinstance(positions, dict):
+        positions = positions.get("initial_positions", positions)
+    return initial_values(pkg.srdf, poses, positions if isinstance(positions, dict) else None)
+
+
+def run_runtime_checks(pkg: ConfigPackage, robot, scene) -> list[Finding]:
+    """The planner's runtime checks, when `marm_setup.runtime_checks` is installed."""
+    try:
+        from marm_setup.runtime_checks import check_runtime
+    except ModuleNotFoundError as exc:
+        if exc.name != "marm_setup.runtime_checks":
+            raise
+        return []
+    return list(check_runtime(pkg, robot, scene))
