@@ -82,7 +82,9 @@ def _check_duplicates(c: _Checker) -> None:
         seen: set[str] = set()
         for name in names:
             if name in seen:
-                raise c.fail(f"duplicate name '{name}'", f"{key}[{name.split('/')[-1]}]")
+                group, _, short = name.rpartition("/")
+                where = f" in group '{group}'" if group else ""
+                raise c.fail(f"duplicate name '{short}'{where}", f"{key}[{short}]")
             seen.add(name)
 
 

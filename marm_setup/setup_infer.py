@@ -196,11 +196,16 @@ def _item_key(item) -> str | None:
 
 
 def _merge_items(old: list, new: list) -> list:
+    """Inferred items in place, replaced by the SPEC's of the same key; the SPEC's others appended
+    (duplicates in the SPEC are kept, so the model checks report them)."""
     if not all(_item_key(i) is not None for i in (*old, *new)):
         return new
-    merged = {_item_key(i): i for i in old}
-    merged.update({_item_key(i): i for i in new})
-    return list(merged.values())
+    first_new: dict[str, int] = {}
+    for index, item in enumerate(new):
+        first_new.setdefault(_item_key(item), index)
+    used = {first_new[_item_key(o)] for o in old if _item_key(o) in first_new}
+    out = [new[first_new[_item_key(o)]] if _item_key(o) in first_new else o for o in old]
+    return out + [item for index, item in enumerate(new) if index not in used]
 
 
 def describe_setup(model: SetupModel) -> list[str]:

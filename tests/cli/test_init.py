@@ -1,0 +1,235 @@
+"""`marm-setup init`: inference printed, package written atomically, every model-check error is
+one stderr line with exit 2 and leaves DIR as it was; golden marm setup and SRDF."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+import yaml
+from lxml import etree
+from typer.testing import CliRunner
+
+from marm_setup.cli import app
+from marm_setup.setup_model import load_setup
+from marm_setup.srdf import read_srdf
+from tests.conftest import FIXTURES, MARM_URDF, realworld
+from tests.helpers import build_file_tree
+
+runner = CliRunner()
+SPEC = FIXTURES / "marm" / "marm_setup.yaml"
+TRIALS = ["--trials", "1000"]
+
+
+def _init(out, *args):
+    return runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), *TRIALS, *args])
+
+
+def test_init_marm_prints_inference_and_writes_the_package(tmp_path):
+    out = tmp_path / "marm_moveit_config"
+    result = _init(out)
+    assert result.exit_code == 0, result.output
+    assert "group arm: chain base_link -> grasping_frame" in result.stdout
+    assert (
+        "group gripper: joints finger_joint1, finger_joint2; links gripper_finger_link1, gripper_finger_link2"
+        in (result.stdout)
+    )
+    assert "end effector robot_gripper: group gripper, parent link grasping_frame" in result.stdout
+    assert "controller gripper_controller/gripper_cmd (GripperCommand): finger_joint1" in result.stdout
+    assert "create    config/marm.srdf" in result.stdout
+    model = load_setup(out / "marm_setup.yaml")
+    assert (model.package_name, model.target, model.collision.trials) == ("marm_moveit_config", "ros2", 1000)
+    srdf = read_srdf(out / "config" / "marm.srdf")
+    assert srdf.groups == model.groups and srdf.disabled == model.collision.disabled
+    robot_path = (out / model.robot.urdf).resolve()
+    assert robot_path == MARM_URDF.resolve()
+
+
+def test_init_with_course_spec_ros1(tmp_path):
+    out = tmp_path / "pkg"
+    result = _init(out, "--setup", str(SPEC), "--name", "course_config")
+    assert result.exit_code == 0, result.output
+    assert (
+        "pose forward (arm): joint1=0, joint2=0.4285, joint3=0.7672, joint4=0, joint5=-0.4487"
+        in result.stdout
+    )
+    model = load_setup(out / "marm_setup.yaml")
+    assert (model.package_name, model.target) == ("course_config", "ros1")
+    assert model.controllers[1].action_ns == "gripper_action"
+    assert (out / "config" / "arbotix.yaml").is_file()
+    assert [s.name for s in model.group_states] == ["home", "forward"]
+
+
+def test_init_is_deterministic_and_seeded(tmp_path):
+    texts = []
+    for name in ("a", "b"):
+        assert _init(tmp_path / name, "--seed", "3").exit_code == 0
+        texts.append((tmp_path / name / "config" / "marm.srdf").read_text())
+    assert texts[0] == texts[1]
+    assert "seed: 3" in (tmp_path / "a" / "marm_setup.yaml").read_text()
+
+
+def test_refuses_non_empty_dir_without_force(tmp_path):
+    out = tmp_path / "pkg"
+    build_file_tree(out, {"keep.txt": "mine\n"})
+    result = _init(out)
+    assert result.exit_code == 2
+    assert (
+        result.stderr.strip()
+        == f"error: {out}: directory exists and is not empty (use --force to write into it)"
+    )
+    assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
+    result = _init(out, "--force")
+    assert result.exit_code == 0, result.output
+    assert (out / "keep.txt").read_text() == "mine\n" and (out / "marm_setup.yaml").is_file()
+
+
+def test_init_into_existing_empty_dir(tmp_path):
+    (tmp_path / "pkg").mkdir()
+    assert _init(tmp_path / "pkg").exit_code == 0
+
+
+def test_from_srdf_imports_the_shared_panda_setup(tmp_path):
+    root = realworld("ros1")
+    urdf = root / "panda_description/urdf/panda_arm_hand.urdf.xacro"
+    srdf = root / "panda_moveit_config/config/panda.srdf"
+    out = tmp_path / "panda_cfg"
+    args = ["init", str(urdf), "--out", str(out), "--package-path", str(root), "--from-srdf", str(srdf)]
+    result = runner.invoke(app, [*args, "--target", "ros1"])
+    assert result.exit_code == 0, result.output
+    assert "group panda_arm: chain panda_link0 -> panda_link8" in result.stdout
+    assert "controller hand_controller/gripper_action (GripperCommand): panda_finger_joint1" in result.stdout
+    model = load_setup(out / "marm_setup.yaml")
+    original = read_srdf(srdf)
+    assert model.groups == original.groups and model.collision.disabled == original.disabled
+    assert read_srdf(out / "config" / "panda.srdf").group_states == original.group_states
+
+
+ARM_CHAIN = {"name": "arm", "chain": {"base": "base_link", "tip": "grasping_frame"}}
+HOME = {"joint1": 0, "joint2": 0, "joint3": 0, "joint4": 0, "joint5": 0, "joint6": 0}
+BAD_SPECS = {
+    "unknown joint": (
+        {"groups": [{"name": "gripper", "joints": ["finger_joint1", "finger_jiont2"]}]},
+        "groups[gripper].joints[1]: unknown joint 'finger_jiont2' (close: finger_joint2, finger_joint1)",
+    ),
+    "unknown link": (
+        {"end_effectors": [{"name": "robot_gripper", "group": "gripper", "parent_link": "grasp_frame"}]},
+        "end_effectors[robot_gripper].parent_link: unknown link 'grasp_frame' (close: grasping_frame)",
+    ),
+    "chain tip not below base": (
+        {"groups": [{"name": "arm", "chain": {"base": "link3", "tip": "link1"}}]},
+        "groups[arm].chain.tip: chain tip 'link1' is not below base 'link3'",
+    ),
+    "subgroup cycle": (
+        {"groups": [{"name": "a", "subgroups": ["b"]}, {"name": "b", "subgroups": ["a"]}]},
+        "groups[a].subgroups: subgroup cycle: a -> b -> a",
+    ),
+    "unknown subgroup": (
+        {"groups": [{"name": "both", "subgroups": ["arm", "grippr"]}]},
+        "groups[both].subgroups[1]: unknown group 'grippr' (close: gripper)",
+    ),
+    "pose missing a joint": (
+        {"group_states": [{"name": "forward", "group": "arm", "values": {"joint1": 0, "joint2": 0.4}}]},
+        "group_states[forward].values: missing joint(s) of group 'arm': joint3, joint4, joint5, joint6",
+    ),
+    "pose outside limits": (
+        {"group_states": [{"name": "forward", "group": "arm", "values": {**HOME, "joint2": 3.0}}]},
+        "group_states[forward].values.joint2: value 3 is outside the limits [-2.35, 2.35]",
+    ),
+    "pose joint not in group": (
+        {"group_states": [{"name": "forward", "group": "arm", "values": {**HOME, "finger_joint1": 0.01}}]},
+        "group_states[forward].values.finger_joint1: joint 'finger_joint1' is not in group 'arm'",
+    ),
+    "pose of unknown group": (
+        {"group_states": [{"name": "up", "group": "manipulator", "values": HOME}]},
+        "group_states[up].group: unknown group 'manipulator' (known: arm, gripper)",
+    ),
+    "end effector parent inside its group": (
+        {
+            "end_effectors": [
+                {"name": "robot_gripper", "group": "gripper", "parent_link": "gripper_finger_link1"}
+            ]
+        },
+        "end_effectors[robot_gripper].parent_link: parent link 'gripper_finger_link1' is inside the end "
+        "effector's own group 'gripper'",
+    ),
+    "duplicate group": (
+        {"groups": [ARM_CHAIN, ARM_CHAIN]},
+        "groups[arm]: duplicate name 'arm'",
+    ),
+    "duplicate pose": (
+        {"group_states": [{"name": "home", "group": "arm", "values": HOME}] * 2},
+        "group_states[home]: duplicate name 'home' in group 'arm'",
+    ),
+    "unknown controller joint": (
+        {
+            "controllers": [
+                {
+                    "name": "arm_controller",
+                    "type": "FollowJointTrajectory",
+                    "action_ns": "x",
+                    "joints": ["j1"],
+                }
+            ]
+        },
+        "controllers[arm_controller].joints[0]: unknown joint 'j1'",
+    ),
+    "unknown key": (
+        {"groups": [{"name": "arm", "chian": {"base": "base_link", "tip": "link1"}}]},
+        "groups[arm].chian: unknown key 'chian' (did you mean 'chain'?)",
+    ),
+    "wrong type": (
+        {"groups": [{"name": "gripper", "joints": ["finger_joint1", 2]}]},
+        "groups[gripper].joints[1]: expected a string, got an integer (2)",
+    ),
+    "bad target": ({"target": "ros3"}, "target: 'ros3' is not one of: ros2, ros1"),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_SPECS))
+def test_model_check_errors_are_one_line_and_leave_dir_unchanged(case, tmp_path):
+    spec, expected = BAD_SPECS[case]
+    spec_path = tmp_path / "spec.yaml"
+    spec_path.write_text(yaml.safe_dump(spec))
+    out = tmp_path / "pkg"
+    out.mkdir()
+    result = _init(out, "--setup", str(spec_path))
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert lines == [f"error: {spec_path}: {expected}"]
+    assert "Traceback" not in result.output
+    assert list(out.iterdir()) == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pkg", "spec.yaml"]  # no staging dir left
+
+
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        (
+            "<robot name='marm'><group name='arm'><joint name='joint9'/></group></robot>",
+            "groups[arm].joints[0]: unknown joint 'joint9'",
+        ),
+        ("<robot name='marm'><group name='arm'>", "not well-formed XML"),
+    ],
+)
+def test_bad_srdf_import_is_one_line(tmp_path, text, expected):
+    path = tmp_path / "in.srdf"
+    path.write_text(text)
+    out = tmp_path / "pkg"
+    result = _init(out, "--from-srdf", str(path))
+    assert result.exit_code == 2, result.output
+    (line,) = result.stderr.strip().splitlines()
+    assert line.startswith(f"error: {path}: ") and expected in line
+    assert not out.exists()
+
+
+def test_golden_marm_setup_and_srdf(tmp_path, assert_golden):
+    out = tmp_path / "pkg"
+    result = _init(out, "--setup", str(SPEC), "--target", "ros1")
+    assert result.exit_code == 0, result.output
+    setup_text = (out / "marm_setup.yaml").read_text()
+    setup_text = re.sub(r"(?m)^  urdf: .*$", "  urdf: <URDF>", setup_text)
+    assert_golden("init/marm/marm_setup.yaml", setup_text)
+    srdf_text = (out / "config" / "marm.srdf").read_text()
+    etree.fromstring(srdf_text.encode())
+    assert_golden("init/marm/marm.srdf", srdf_text)
