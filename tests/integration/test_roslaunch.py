@@ -154,3 +154,42 @@ def test_check_urdf_accepts_our_ros2_urdf(tmp_path):
     assert control is not None and control.find("hardware/plugin").text == "mock_components/GenericSystem"
     initial = {j.get("name"): float(j.find("state_interface/param").text) for j in control.iter("joint")}
     assert initial == {**{f"joint{i}": 0.0 for i in range(1, 7)}, "finger_joint1": 0.0, "finger_joint2": 0.0}
+
+
+def write_panda_package(tmp_path: Path, target: str) -> tuple[Path, Path]:
+    """Our package for the shared panda (inferred setup); returns (package, description root)."""
+    from marm_setup.init_flow import InitRequest, build_setup
+    from marm_setup.robot import load_robot
+
+    root = realworld(target)
+    urdf = (
+        root
+        / "panda_description"
+        / "urdf"
+        / ("panda_arm_hand.urdf.xacro" if target == "ros1" else "panda.urdf")
+    )
+    out = tmp_path / "panda_moveit_config"
+    robot = load_robot(urdf, {}, [root])
+    model = build_setup(InitRequest(urdf=urdf, out=out, target=target, package_paths=(root,)), robot)
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    return out, root / "panda_description"
+
+
+@needs_roslaunch
+def test_roslaunch_loads_our_package_for_the_panda(tmp_path):
+    pkg, description = write_panda_package(tmp_path, "ros1")
+    for launch in ("demo.launch", "move_group.launch"):
+        params = dump_params(pkg / "launch" / launch, [description, pkg], tmp_path)
+        assert missing_move_group_params(params, ["arm", "gripper"], ["arm"]) == []
+        assert params["/robot_description_planning/joint_limits/panda_joint1/max_velocity"] > 0
+
+
+@pytest.mark.skipif(shutil.which("check_urdf") is None, reason="check_urdf not on PATH")
+def test_check_urdf_accepts_our_ros2_urdf_for_the_panda(tmp_path):
+    pkg, description = write_panda_package(tmp_path, "ros2")
+    xacro_file = pkg / "config" / "panda.urdf.xacro"
+    xml = expand_xacro(xacro_file, {}, find_packages([description, pkg]), shown=str(xacro_file))
+    urdf = tmp_path / "panda.urdf"
+    urdf.write_text(xml)
+    result = subprocess.run(["check_urdf", str(urdf)], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stdout + result.stderr
