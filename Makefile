@@ -15,6 +15,7 @@ $(STAMP): pyproject.toml
 
 demo: $(STAMP)
 	$(BIN)/marm-setup inspect fixtures/marm/urdf/marm.urdf.xacro
+	$(BIN)/marm-setup init fixtures/marm/urdf/marm.urdf.xacro --out $(DEMO_OUT) --setup fixtures/marm/marm_setup.yaml --force
 
 test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
