@@ -94,7 +94,7 @@ def update_srdf(
     new = sorted(d for d in {d.pair: d for d in disabled}.values() if d.pair not in kept_pairs)
     removed = [e for e in entries if e not in kept]
     newline = "\r\n" if "\r\n" in text else "\n"
-    anchor, indent = _anchor(text, removed, entries)
+    anchor, indent = _anchor(text, removed, entries, shown)
     block = "".join(
         f'{indent}<disable_collisions link1="{d.link1}" link2="{d.link2}" '
         f'reason="{d.reason.value}"/>{newline}'
@@ -128,12 +128,16 @@ def _line_span(text: str, entry: SrdfEntry) -> tuple[int, int]:
     return line_start, line_end
 
 
-def _anchor(text: str, removed: list[SrdfEntry], entries: list[SrdfEntry]) -> tuple[int, str]:
+def _anchor(text: str, removed: list[SrdfEntry], entries: list[SrdfEntry], shown: str) -> tuple[int, str]:
     """Where new entries go (a line start) and their indentation."""
     if removed:
         start = _line_span(text, removed[0])[0]
         return start, _indent_at(text, removed[0].start)
     close = text.rfind("</robot")
+    if close < 0:
+        raise InputError(
+            "<robot/> has no end tag to add disable_collisions before; write <robot ...></robot>", path=shown
+        )
     line_start = text.rfind("\n", 0, close) + 1
     if text[line_start:close].strip():  # `</robot>` shares its line: start a new one
         return close, ""

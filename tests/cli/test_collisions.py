@@ -1,0 +1,168 @@
+"""`marm-setup collisions`: summary, SRDF output/update, json, report, determinism, bad input."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from lxml import etree
+from typer.testing import CliRunner
+
+from marm_setup.cli import app
+from tests.collision_robots import TOY
+from tests.conftest import MARM_URDF
+
+runner = CliRunner()
+FAST = ["--trials", "300"]
+
+
+def _run(*args: str):
+    return runner.invoke(app, ["collisions", *args])
+
+
+def _pairs(path) -> list[tuple[str, str, str]]:
+    root = etree.parse(str(path)).getroot()
+    return [(e.get("link1"), e.get("link2"), e.get("reason")) for e in root.iter("disable_collisions")]
+
+
+def test_summary_and_minimal_srdf(tmp_path):
+    out = tmp_path / "marm.srdf"
+    result = _run(str(MARM_URDF), *FAST, "--output", str(out))
+    assert result.exit_code == 0, result.output
+    assert "robot marm: 45 candidate pairs" in result.stdout
+    assert "disabled " in result.stdout and "Adjacent 9" in result.stdout
+    assert "gripper_finger_link1 / gripper_finger_link2" in result.stdout  # enabled, listed
+    assert "300 trials, seed 0" in result.stdout
+    assert "below 3/N = 0.01 (95 % confidence)" in result.stdout
+    assert f"wrote {out}" in result.stderr
+    pairs = _pairs(out)
+    assert pairs == sorted(pairs) and all(a < b for a, b, _ in pairs)
+    assert etree.parse(str(out)).getroot().get("name") == "marm"
+
+
+def test_same_output_whatever_jobs(tmp_path):
+    outputs = []
+    for jobs in ("1", "2"):
+        out = tmp_path / f"j{jobs}.srdf"
+        result = _run(
+            str(MARM_URDF),
+            "--trials",
+            "2100",
+            "--seed",
+            "4",
+            "--jobs",
+            jobs,
+            "--output",
+            str(out),
+            "--format",
+            "json",
+        )
+        assert result.exit_code == 0, result.output
+        outputs.append((out.read_bytes(), result.stdout))
+    assert outputs[0] == outputs[1]
+
+
+def test_json_output(tmp_path):
+    path = tmp_path / "toy.urdf"
+    path.write_text(TOY, encoding="utf-8")
+    result = _run(str(path), *FAST, "--format", "json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert data["robot"] == "toy" and data["trials"] == 300 and data["never_bound_95"] == 0.01
+    assert data["counts"] == {"Adjacent": 8, "Default": 1, "Always": 1, "Never": 25, "User": 0, "Enabled": 1}
+    pairs = {(p["link1"], p["link2"]): p for p in data["pairs"]}
+    assert pairs[("post", "slider_c")]["reason"] is None and pairs[("post", "slider_c")]["hits"] > 0
+    assert pairs[("far", "slider_a")]["min_distance"] > 8.9
+    assert pairs[("base", "tip")]["min_distance"] is None
+
+
+def test_srdf_update_in_place_keeps_user_pairs(tmp_path):
+    srdf = tmp_path / "marm.srdf"
+    srdf.write_text(
+        '<?xml version="1.0"?>\n<robot name="marm">\n  <group name="arm"><joint name="joint1"/></group>\n'
+        '  <disable_collisions link1="link1" link2="link3" reason="User"/>\n'
+        '  <disable_collisions link1="link2" link2="link6" reason="Never"/>\n'
+        '  <disable_collisions link1="base_link" link2="link6" reason="Never"/>\n</robot>\n',
+        encoding="utf-8",
+    )
+    result = _run(str(MARM_URDF), *FAST, "--srdf", str(srdf))
+    assert result.exit_code == 0, result.output
+    text = srdf.read_text(encoding="utf-8")
+    assert '  <group name="arm"><joint name="joint1"/></group>\n' in text
+    assert '  <disable_collisions link1="link1" link2="link3" reason="User"/>\n' in text
+    assert 'link1="base_link" link2="link6"' not in text  # a stale computed pair is recomputed
+    kept = tmp_path / "kept.srdf"
+    result = _run(str(MARM_URDF), *FAST, "--srdf", str(srdf), "--keep", "--output", str(kept))
+    assert result.exit_code == 0, result.output
+    assert srdf.read_text(encoding="utf-8") == text  # --output leaves the input alone
+    assert _pairs(kept) == _pairs(srdf)  # nothing new to add, nothing removed
+
+
+def test_report_svg_and_html(tmp_path):
+    svg = tmp_path / "m.svg"
+    result = _run(str(MARM_URDF), *FAST, "--report", str(svg))
+    assert result.exit_code == 0, result.output
+    root = etree.parse(str(svg)).getroot()
+    assert root.tag == "{http://www.w3.org/2000/svg}svg"
+    titles = [t.text for t in root.iter("{http://www.w3.org/2000/svg}title")]
+    assert any(t.startswith("gripper_finger_link1 / gripper_finger_link2: Enabled") for t in titles)
+    assert len([t for t in titles if " / " in t]) == 10 * 9  # every off-diagonal cell
+    html = tmp_path / "m.html"
+    assert _run(str(MARM_URDF), *FAST, "--report", str(html)).exit_code == 0
+    assert html.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+
+
+def test_no_default_no_always(tmp_path):
+    path = tmp_path / "toy.urdf"
+    path.write_text(TOY, encoding="utf-8")
+    result = _run(str(path), *FAST, "--no-default", "--no-always", "--format", "json")
+    counts = json.loads(result.stdout)["counts"]
+    assert counts["Default"] == 0 and counts["Always"] == 0 and counts["Enabled"] == 3
+
+
+def test_padding(tmp_path):
+    path = tmp_path / "toy.urdf"
+    path.write_text(TOY, encoding="utf-8")
+    plain = json.loads(_run(str(path), *FAST, "--format", "json").stdout)
+    padded = json.loads(_run(str(path), *FAST, "--format", "json", "--padding", "1.0").stdout)
+    assert padded["padding"] == 1.0
+    assert padded["counts"]["Never"] < plain["counts"]["Never"]
+
+
+@pytest.mark.parametrize(
+    ("args", "expected"),
+    [
+        (["--trials", "-1"], "error: --trials: must be >= 0, got -1"),
+        (["--min-collision-fraction", "0"], "error: --min-collision-fraction: must be in (0, 1]"),
+        (["--jobs", "0"], "error: --jobs: must be >= 1"),
+        (["--padding", "-0.1"], "error: --padding: must be >= 0"),
+        (["--keep"], "error: --keep: --keep needs --srdf"),
+        (["--report", "m.png"], "error: m.png: unknown report type '.png'; expected .svg or .html"),
+        (["--srdf", "nothere.srdf"], "error: nothere.srdf: file not found"),
+    ],
+)
+def test_bad_options_exit_2_with_one_line(args, expected):
+    result = _run(str(MARM_URDF), *FAST, *args)
+    assert result.exit_code == 2, result.output
+    assert result.stderr.splitlines() == [result.stderr.strip()]
+    assert result.stderr.startswith(expected)
+    assert "Traceback" not in result.output
+
+
+def test_bad_srdf_and_bad_mesh_exit_2(tmp_path):
+    srdf = tmp_path / "bad.srdf"
+    srdf.write_text("<robot name='marm'>\n<group>\n</robot>\n", encoding="utf-8")
+    result = _run(str(MARM_URDF), *FAST, "--srdf", str(srdf))
+    assert result.exit_code == 2 and result.stderr.startswith(f"error: {srdf}: line 3: malformed XML")
+    assert srdf.read_text(encoding="utf-8") == "<robot name='marm'>\n<group>\n</robot>\n"
+    (tmp_path / "broken.stl").write_text("not a mesh", encoding="utf-8")
+    robot = tmp_path / "r.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"><collision><geometry><mesh filename="broken.stl"/></geometry>'
+        "</collision></link></robot>",
+        encoding="utf-8",
+    )
+    result = _run(str(robot), *FAST)
+    assert result.exit_code == 2, result.output
+    assert result.stderr.startswith(f"error: {robot}: link[a]/collision[0]/mesh: cannot read mesh")
+    assert len(result.stderr.splitlines()) == 1
