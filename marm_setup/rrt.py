@@ -129,19 +129,36 @@ def _point_at(q_path: np.ndarray, cum: np.ndarray, s: float) -> tuple[int, np.nd
     return i, q_path[i] + frac * (q_path[i + 1] - q_path[i])
 
 
+def _merge_collinear(q_path: np.ndarray) -> np.ndarray:
+    """Drop waypoints lying on the straight line between their neighbours (tree chains)."""
+    out = [q_path[0]]
+    for q, q_next in zip(q_path[1:-1], q_path[2:], strict=True):
+        a, b = q - out[-1], q_next - q
+        if np.dot(a, b) < np.linalg.norm(a) * np.linalg.norm(b) * (1 - 1e-9):
+            out.append(q)
+    return np.array([*out, q_path[-1]])
+
+
 def shortcut(checker, q_path: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """Greedy waypoint skipping, then random partial shortcuts; never lengthens the path."""
-    q_path = _greedy(checker, q_path)
+    """Greedy waypoint skipping, then random partial shortcuts; never lengthens the path.
+
+    Random shortcuts stop after `shortcut_iterations`, or after `shortcut_patience` failures
+    in a row.
+    """
+    q_path = _greedy(checker, _merge_collinear(_drop_duplicates(q_path)))
+    failures = 0
     for _ in range(checker.options.shortcut_iterations):
-        if len(q_path) < 3:
+        if len(q_path) < 3 or failures >= checker.options.shortcut_patience:
             break
         cum = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(q_path, axis=0), axis=1))])
         s1, s2 = np.sort(rng.random(2) * cum[-1])
         (i1, q1), (i2, q2) = _point_at(q_path, cum, s1), _point_at(q_path, cum, s2)
         if i1 == i2 or not checker.line_valid(q1, q2):
+            failures += 1
             continue
+        failures = 0
         q_path = np.concatenate([q_path[: i1 + 1], [q1, q2], q_path[i2 + 1 :]])
-    return _greedy(checker, _drop_duplicates(q_path))
+    return _merge_collinear(_drop_duplicates(q_path))
 
 
 def _drop_duplicates(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
