@@ -5,7 +5,7 @@ from __future__ import annotations
 from numbers import Real
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.groups import active_group_joints, groups_by_name
+from marm_setup.groups import active_group_joints, group_joints, groups_by_name
 from marm_setup.robot_model import RobotModel
 
 KDL = "kdl_kinematics_plugin/KDLKinematicsPlugin"
@@ -87,11 +87,12 @@ def _solver_hint() -> str:
 
 
 def _is_chain(group, by_name, srdf, robot: RobotModel) -> bool:
-    """The group's active joints all lie on one root-to-tip path (what KDL can solve)."""
-    active = active_group_joints(group, by_name, robot, tuple(srdf.passive_joints))
-    if not active:
+    """All the group's joints (fixed and mimic included, as MoveIt counts them) lie on one
+    root-to-tip path, and at least one of them moves: what KDL can solve."""
+    joints = group_joints(group, by_name, robot)
+    if not active_group_joints(group, by_name, robot, tuple(srdf.passive_joints)):
         return False
-    depth = {name: len(robot.path_to_root(robot.joint(name).child)) for name in active}
-    deepest = max(active, key=lambda n: depth[n])
+    depth = {name: len(robot.path_to_root(robot.joint(name).child)) for name in joints}
+    deepest = max(joints, key=lambda n: depth[n])
     on_path = {j.name for j in robot.path_to_root(robot.joint(deepest).child)}
-    return all(name in on_path for name in active)
+    return all(name in on_path for name in joints)

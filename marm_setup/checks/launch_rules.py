@@ -63,7 +63,7 @@ def check_paths(tree, rel: str, root: Path, package: str) -> list[Finding]:
             for target, shown in _referenced(text, root, launch_dir, package):
                 if target.exists():
                     continue
-                if attr in FILE_ATTRS:
+                if attr in FILE_ATTRS or "$(command" in text:
                     out.append(
                         error("launch.missing-file", rel, _where(elem), f"{attr} '{shown}' does not exist")
                     )

@@ -1,0 +1,689 @@
+"""Break-one-thing tests: copy a good package, break exactly one thing, expect exactly that finding.
+
+Good packages: the shared panda packages (MoveIt 1 and MoveIt 2 Setup Assistant output) and
+the marm packages `init` writes (ros1: ArbotiX; ros2: single config/moveit.yaml). A case
+passes when the rule fires with the expected severity and no error beyond the package's
+baseline comes from any other rule than the ones the case names.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+from tests.validate_helpers import (
+    Good,
+    copy_package,
+    edit_yaml,
+    generate_marm,
+    panda,
+    replace_text,
+    run,
+)
+
+SRDF1 = "config/panda.srdf"
+KIN = "config/kinematics.yaml"
+LIM = "config/joint_limits.yaml"
+OMPL = "config/ompl_planning.yaml"
+SIMPLE = "config/simple_moveit_controllers.yaml"
+FAKE = "config/fake_controllers.yaml"
+R2C = "config/ros2_controllers.yaml"
+MC2 = "config/moveit_controllers.yaml"
+
+
+@dataclass(frozen=True)
+class Case:
+    id: str
+    base: str  # ros1 | ros2 | marm_ros1 | marm_ros2
+    edit: Callable[[Path], None]
+    rule: str
+    severity: str = "error"
+    also: tuple[str, ...] = ()  # other error rules this break may legitimately cause
+    match: str = ""  # substring of the finding's element or message
+    kwargs: dict = field(default_factory=dict)
+
+
+def text(rel: str, old: str, new: str) -> Callable[[Path], None]:
+    return lambda pkg: replace_text(pkg, rel, old, new)
+
+
+def ydata(rel: str, fn) -> Callable[[Path], None]:
+    return lambda pkg: edit_yaml(pkg, rel, fn)
+
+
+def delete(rel: str) -> Callable[[Path], None]:
+    return lambda pkg: (pkg / rel).unlink()
+
+
+def _drop_controller(name):
+    def edit(data):
+        data["controller_list"] = [c for c in data["controller_list"] if c["name"] != name]
+
+    return edit
+
+
+def _set_controller(name, key, value):
+    def edit(data):
+        for c in data["controller_list"]:
+            if c["name"] == name:
+                if value is None:
+                    del c[key]
+                else:
+                    c[key] = value
+
+    return edit
+
+
+def _r2c_manager(fn):
+    return ydata(R2C, lambda d: fn(d["controller_manager"]["ros__parameters"]))
+
+
+def _rename_key(mapping, old, new):
+    mapping[new] = mapping.pop(old)
+
+
+SRDF_CASES = [
+    Case(
+        "robot-name", "ros1", text(SRDF1, '<robot name="panda">', '<robot name="pandas">'), "srdf.robot-name"
+    ),
+    Case(
+        "group-unknown-link",
+        "ros1",
+        text(SRDF1, '<link name="panda_hand"/>', '<link name="panda_hnd"/>'),
+        "srdf.unknown-link",
+        match="group[hand].link",
+    ),
+    Case(
+        "group-unknown-joint",
+        "ros1",
+        text(SRDF1, '<link name="panda_hand"/>', '<link name="panda_hand"/><joint name="panda_joint9"/>'),
+        "srdf.unknown-joint",
+        match="panda_joint9",
+    ),
+    Case(
+        "chain-base-below-tip",
+        "ros1",
+        text(
+            SRDF1,
+            'base_link="panda_link0" tip_link="panda_link8"',
+            'base_link="panda_link8" tip_link="panda_link0"',
+        ),
+        "srdf.chain-invalid",
+        also=("pose.joint-not-in-group", "srdf.ee-parent-not-in-parent-group", "kinematics.kdl-needs-chain"),
+    ),
+    Case(
+        "unknown-subgroup",
+        "ros1",
+        text(SRDF1, '<group name="hand"/>', '<group name="hands"/>'),
+        "srdf.unknown-subgroup",
+    ),
+    Case(
+        "subgroup-cycle",
+        "ros1",
+        text(SRDF1, '<link name="panda_hand"/>', '<link name="panda_hand"/><group name="panda_arm_hand"/>'),
+        "srdf.subgroup-cycle",
+        also=("srdf.ee-parent-in-group", "pose.missing-joint"),
+    ),
+    Case(
+        "ee-unknown-group",
+        "ros1",
+        text(SRDF1, 'group="hand" parent_group', 'group="hando" parent_group'),
+        "srdf.ee-unknown-group",
+    ),
+    Case(
+        "ee-unknown-parent-link",
+        "ros1",
+        text(SRDF1, 'parent_link="panda_link8"', 'parent_link="panda_link88"'),
+        "srdf.unknown-link",
+    ),
+    Case(
+        "ee-parent-in-group",
+        "ros1",
+        text(SRDF1, 'parent_link="panda_link8"', 'parent_link="panda_leftfinger"'),
+        "srdf.ee-parent-in-group",
+        also=("srdf.ee-parent-not-in-parent-group",),
+    ),
+    Case(
+        "ee-parent-not-in-parent-group",
+        "ros1",
+        text(SRDF1, 'parent_group="panda_arm"', 'parent_group="hand"'),
+        "srdf.ee-parent-not-in-parent-group",
+    ),
+    Case(
+        "ee-unknown-parent-group",
+        "ros1",
+        text(SRDF1, 'parent_group="panda_arm"', 'parent_group="arm"'),
+        "srdf.ee-unknown-parent-group",
+    ),
+    Case(
+        "virtual-joint-child",
+        "ros1",
+        text(SRDF1, 'child_link="panda_link0"', 'child_link="panda_link1"'),
+        "srdf.virtual-joint-child",
+    ),
+    Case(
+        "virtual-joint-type",
+        "ros1",
+        text(SRDF1, 'type="fixed" parent_frame', 'type="prismatic" parent_frame'),
+        "srdf.virtual-joint-type",
+    ),
+    Case(
+        "passive-unknown-joint",
+        "ros1",
+        text(SRDF1, "</robot>", '<passive_joint name="nope"/></robot>'),
+        "srdf.unknown-joint",
+        match="passive_joint[nope]",
+    ),
+    Case(
+        "disable-unknown-link",
+        "ros1",
+        text(SRDF1, 'link1="panda_link0" link2="panda_link4"', 'link1="panda_link0" link2="panda_link44"'),
+        "srdf.unknown-link",
+        match="disable_collisions",
+    ),
+    Case(
+        "duplicate-pair",
+        "ros1",
+        text(
+            SRDF1,
+            "</robot>",
+            '<disable_collisions link1="panda_link4" link2="panda_link0" reason="Never"/></robot>',
+        ),
+        "srdf.duplicate-pair",
+        severity="warning",
+        match="panda_link0 panda_link4",
+    ),
+    Case("srdf-malformed", "ros1", text(SRDF1, "</robot>", "</robt>"), "srdf.parse"),
+    Case("srdf-missing", "ros1", delete(SRDF1), "srdf.missing", also=("launch.missing-file",)),
+    Case(
+        "ros2-srdf-xacro-unknown-group",
+        "ros2",
+        text("config/panda_arm_hand.srdf.xacro", 'group="hand" parent_group', 'group="hando" parent_group'),
+        "srdf.ee-unknown-group",
+    ),
+]
+
+POSE_CASES = [
+    Case(
+        "pose-missing-joint",
+        "ros1",
+        text(SRDF1, '<joint name="panda_joint7" value="0.785"/>', ""),
+        "pose.missing-joint",
+        match="panda_joint7",
+    ),
+    Case(
+        "pose-out-of-limits",
+        "ros1",
+        text(
+            SRDF1, '<joint name="panda_joint4" value="-2.356"/>', '<joint name="panda_joint4" value="-3.5"/>'
+        ),
+        "pose.out-of-limits",
+        also=("pose.collision",),  # ready is the demo's initial state other poses are checked from
+        match="group_state[ready].joint[panda_joint4]",
+    ),
+    Case(
+        "pose-unknown-joint",
+        "ros1",
+        text(
+            SRDF1,
+            '<joint name="panda_finger_joint2" value="0.035"/>',
+            '<joint name="panda_finger_joint9" value="0.035"/>',
+        ),
+        "pose.unknown-joint",
+    ),
+    Case(
+        "pose-joint-not-in-group",
+        "ros1",
+        text(
+            SRDF1,
+            '<joint name="panda_finger_joint2" value="0.035"/>',
+            '<joint name="panda_finger_joint2" value="0.035"/><joint name="panda_joint1" value="0"/>',
+        ),
+        "pose.joint-not-in-group",
+    ),
+    Case(
+        "pose-unknown-group",
+        "ros1",
+        text(SRDF1, 'name="extended" group="panda_arm"', 'name="extended" group="arm"'),
+        "pose.unknown-group",
+    ),
+    Case(
+        "pose-collision",
+        "ros1",
+        text(SRDF1, '<joint name="panda_joint6" value="1.571"/>', '<joint name="panda_joint6" value="0"/>'),
+        "pose.collision",
+        match="panda_link5 - panda_link7",
+    ),
+    Case(
+        "matrix-stale",
+        "ros1",
+        text(
+            SRDF1,
+            "</robot>",
+            '<disable_collisions link1="panda_link1" link2="panda_link5" reason="Never"/></robot>',
+        ),
+        "matrix.stale",
+        match="panda_link1 panda_link5",
+    ),
+    Case(
+        "marm-pose-out-of-limits",
+        "marm_ros1",
+        text("config/marm.srdf", '<joint name="joint2" value="0.0"/>', '<joint name="joint2" value="4"/>'),
+        "pose.out-of-limits",
+        also=("pose.collision",),
+    ),
+]
+
+KINEMATICS_CASES = [
+    Case("kin-unknown-group", "ros1", text(KIN, "panda_arm:", "panda_armm:"), "kinematics.unknown-group"),
+    Case(
+        "kin-unknown-solver",
+        "ros1",
+        text(KIN, "kdl_kinematics_plugin/KDLKinematicsPlugin", "my_ik/MyPlugin"),
+        "kinematics.unknown-solver",
+        severity="warning",
+    ),
+    Case(
+        "kin-kdl-on-hand",
+        "ros1",
+        ydata(
+            KIN, lambda d: d.update(hand={"kinematics_solver": "kdl_kinematics_plugin/KDLKinematicsPlugin"})
+        ),
+        "kinematics.kdl-needs-chain",
+        match="hand",
+    ),
+    Case(
+        "kin-timeout",
+        "ros1",
+        text(KIN, "kinematics_solver_timeout: 0.05", "kinematics_solver_timeout: 0"),
+        "kinematics.non-positive",
+    ),
+    Case(
+        "kin-resolution",
+        "ros1",
+        text(KIN, "kinematics_solver_search_resolution: 0.005", "kinematics_solver_search_resolution: -1"),
+        "kinematics.non-positive",
+    ),
+    Case(
+        "kin-missing-solver",
+        "ros1",
+        text(KIN, "kinematics_solver: ", "solver: "),
+        "kinematics.missing-solver",
+    ),
+    Case(
+        "marm-ros2-kin-in-moveit-yaml",
+        "marm_ros2",
+        text("config/moveit.yaml", "kdl_kinematics_plugin/KDLKinematicsPlugin", "nope/Nope"),
+        "kinematics.unknown-solver",
+        severity="warning",
+        match="robot_description_kinematics.arm",
+    ),
+]
+
+LIMIT_CASES = [
+    Case(
+        "limits-missing-joint",
+        "ros1",
+        ydata(LIM, lambda d: d["joint_limits"].pop("panda_joint7")),
+        "limits.missing-joint",
+        severity="warning",
+        match="panda_joint7",
+    ),
+    Case(
+        "limits-non-positive",
+        "ros1",
+        ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].update(max_velocity=0.0)),
+        "limits.non-positive",
+    ),
+    Case(
+        "limits-missing-value",
+        "ros1",
+        ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].pop("max_acceleration")),
+        "limits.missing-value",
+    ),
+    Case(
+        "limits-above-urdf",
+        "ros1",
+        ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].update(max_velocity=5.0)),
+        "limits.above-urdf",
+        severity="warning",
+    ),
+    Case(
+        "limits-unknown-joint",
+        "ros1",
+        ydata(LIM, lambda d: d["joint_limits"].update(nope={"has_velocity_limits": False})),
+        "limits.unknown-joint",
+        severity="warning",
+    ),
+    Case(
+        "limits-int-in-ros2",
+        "ros2",
+        ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].update(max_jerk=300)),
+        "limits.not-float",
+        match="panda_joint1.max_jerk",
+    ),
+    Case(
+        "marm-ros2-limits-int",
+        "marm_ros2",
+        ydata(
+            "config/moveit.yaml",
+            lambda d: d["/**"]["ros__parameters"]["robot_description_planning"]["joint_limits"][
+                "joint1"
+            ].update(max_velocity=2),
+        ),
+        "limits.not-float",
+    ),
+]
+
+CONTROLLER_CASES = [
+    Case(
+        "ctrl-unknown-joint",
+        "ros1",
+        ydata(
+            SIMPLE,
+            _set_controller("hand_controller", "joints", ["panda_finger_joint1", "panda_finger_joint3"]),
+        ),
+        "controller.unknown-joint",
+        also=("controller.driver-joints",),
+    ),
+    Case(
+        "ctrl-uncovered",
+        "ros1",
+        ydata(SIMPLE, _drop_controller("hand_controller")),
+        "controller.uncovered-joint",
+        match="panda_finger_joint1",
+    ),
+    Case(
+        "ctrl-multiple-defaults",
+        "ros1",
+        ydata(
+            SIMPLE,
+            _set_controller(
+                "arm_controller", "joints", [f"panda_joint{i}" for i in range(1, 8)] + ["panda_finger_joint1"]
+            ),
+        ),
+        "controller.multiple-defaults",
+        also=("controller.driver-joints",),
+    ),
+    Case(
+        "ctrl-no-default",
+        "ros1",
+        ydata(SIMPLE, _set_controller("hand_controller", "default", False)),
+        "controller.no-default",
+        severity="warning",
+    ),
+    Case(
+        "ctrl-unknown-type",
+        "ros1",
+        ydata(SIMPLE, _set_controller("hand_controller", "type", "JointTrajectory")),
+        "controller.unknown-type",
+    ),
+    Case(
+        "ctrl-missing-action-ns",
+        "ros1",
+        ydata(SIMPLE, _set_controller("arm_controller", "action_ns", None)),
+        "controller.missing-action-ns",
+    ),
+    Case(
+        "ctrl-implausible-action-ns",
+        "ros1",
+        ydata(SIMPLE, _set_controller("arm_controller", "action_ns", "gripper_action")),
+        "controller.action-ns",
+        severity="warning",
+        also=("controller.driver-action",),
+    ),
+    Case(
+        "ros1-driver-type",
+        "ros1",
+        ydata(
+            "config/ros_controllers.yaml",
+            lambda d: d["hand_controller"].update(type="position_controllers/GripperActionController"),
+        ),
+        "controller.driver-type",
+    ),
+    Case(
+        "ros2-driver-missing",
+        "ros2",
+        _r2c_manager(lambda m: _rename_key(m, "panda_arm_controller", "arm_controller")),
+        "controller.driver-missing",
+        match="panda_arm_controller",
+    ),
+    Case(
+        "ros2-driver-type",
+        "ros2",
+        _r2c_manager(
+            lambda m: m["panda_arm_controller"].update(type="position_controllers/GripperActionController")
+        ),
+        "controller.driver-type",
+    ),
+    Case(
+        "ros2-driver-action",
+        "ros2",
+        text(MC2, "action_ns: follow_joint_trajectory", "action_ns: joint_trajectory"),
+        "controller.driver-action",
+    ),
+    Case(
+        "ros2-driver-joints",
+        "ros2",
+        ydata(R2C, lambda d: d["panda_arm_controller"]["ros__parameters"]["joints"].pop()),
+        "controller.driver-joints",
+    ),
+    Case(
+        "ros2-uncovered-without-alternative",
+        "ros2",
+        delete("config/gripper_moveit_controllers.yaml"),
+        "controller.uncovered-joint",
+        match="panda_finger_joint1",
+    ),
+    Case(
+        "fake-uncovered",
+        "ros1",
+        ydata(FAKE, lambda d: d.update(controller_list=d["controller_list"][:1])),
+        "controller.fake-uncovered",
+    ),
+    Case(
+        "fake-initial-pose",
+        "ros1",
+        text(FAKE, "pose: ready", "pose: readyy"),
+        "controller.fake-initial-pose",
+        also=("pose.collision",),  # without `ready` the arm starts folded (all zeros)
+    ),
+    Case(
+        "arbotix-action-name",
+        "marm_ros1",
+        text(
+            "config/arbotix.yaml",
+            "action_name: arm_controller/follow_joint_trajectory",
+            "action_name: follow_joint_trajectory",
+        ),
+        "controller.driver-action",
+    ),
+    Case(
+        "arbotix-joints",
+        "marm_ros1",
+        ydata("config/arbotix.yaml", lambda d: d["controllers"]["arm_controller"]["joints"].pop()),
+        "controller.driver-joints",
+    ),
+    Case(
+        "arbotix-missing-controller",
+        "marm_ros1",
+        ydata("config/arbotix.yaml", lambda d: _rename_key(d["controllers"], "arm_controller", "arm")),
+        "controller.driver-missing",
+    ),
+    Case(
+        "arbotix-gripper-node-joint",
+        "marm_ros1",
+        text(
+            "launch/arbotix.launch",
+            '<param name="joint" value="finger_joint1"/>',
+            '<param name="joint" value="joint6"/>',
+        ),
+        "controller.gripper-joint",
+    ),
+    Case(
+        "arbotix-gripper-node-name",
+        "marm_ros1",
+        text("launch/arbotix.launch", '<node name="gripper_controller"', '<node name="gripper"'),
+        "controller.driver-missing",
+    ),
+    Case(
+        "marm-ros2-driver-type",
+        "marm_ros2",
+        _r2c_manager(
+            lambda m: m["gripper_controller"].update(
+                type="joint_trajectory_controller/JointTrajectoryController"
+            )
+        ),
+        "controller.driver-type",
+    ),
+]
+
+OMPL_CASES = [
+    Case(
+        "ompl-unknown-group",
+        "ros1",
+        text(OMPL, "\npanda_arm_hand:\n", "\npanda_arm_hando:\n"),
+        "ompl.unknown-group",
+    ),
+    Case(
+        "ompl-unknown-config",
+        "ros1",
+        text(OMPL, "    - SBL\n", "    - SBLX\n"),
+        "ompl.unknown-planner-config",
+    ),
+    Case(
+        "ompl-unknown-default",
+        "ros1",
+        text(OMPL, "default_planner_config: RRTConnect", "default_planner_config: RRTConect"),
+        "ompl.unknown-default-planner",
+    ),
+    Case(
+        "ros2-ompl-unknown-config",
+        "ros2",
+        text(OMPL, "    - TrajOptDefault\n", "    - TrajOpt\n"),
+        "ompl.unknown-planner-config",
+    ),
+]
+
+LAUNCH_CASES = [
+    Case("launch-malformed", "ros1", text("launch/demo.launch", "</launch>", "</lunch>"), "launch.malformed"),
+    Case(
+        "launch-missing-file",
+        "ros1",
+        text("launch/planning_context.launch", "config/panda.srdf", "config/panda2.srdf"),
+        "launch.missing-file",
+        match="panda2.srdf",
+    ),
+    Case(
+        "launch-missing-include",
+        "ros1",
+        text("launch/demo.launch", '"$(dirname)/move_group.launch"', '"$(dirname)/move_grp.launch"'),
+        "launch.missing-file",
+    ),
+    Case(
+        "launch-undefined-arg",
+        "ros1",
+        text("launch/move_group.launch", 'value="$(arg pipeline)"', 'value="$(arg pipelin)"'),
+        "launch.undefined-arg",
+        match="pipelin",
+    ),
+    Case(
+        "launch-undefined-arg-eval",
+        "ros1",
+        text("launch/demo.launch", "arg('moveit_controller_manager')", "arg('controller_manager')"),
+        "launch.undefined-arg",
+    ),
+    Case(
+        "ros2-description-type",
+        "marm_ros2",
+        text("launch/move_group.launch.xml", 'marm.srdf\')" type="str"', "marm.srdf')\""),
+        "launch.description-type",
+    ),
+    Case(
+        "ros2-launch-missing-file",
+        "marm_ros2",
+        text("launch/demo.launch.xml", "config/marm.urdf.xacro", "config/marm2.urdf.xacro"),
+        "launch.missing-file",
+    ),
+    Case(
+        "package-xml-invalid",
+        "ros1",
+        text("package.xml", "<license>BSD</license>", ""),
+        "package.invalid",
+    ),
+    Case("package-xml-missing", "ros1", delete("package.xml"), "package.missing"),
+    Case("yaml-malformed", "ros1", text(KIN, "panda_arm:", "panda_arm: [\n"), "yaml.parse"),
+]
+
+CASES = (
+    SRDF_CASES + POSE_CASES + KINEMATICS_CASES + LIMIT_CASES + CONTROLLER_CASES + OMPL_CASES + LAUNCH_CASES
+)
+
+
+@pytest.fixture(scope="session")
+def goods(tmp_path_factory):
+    marm_root = tmp_path_factory.mktemp("marm")
+    cache: dict[str, Good] = {}
+
+    def get(base: str) -> Good:
+        if base not in cache:
+            cache[base] = (
+                panda(base) if base in ("ros1", "ros2") else Good(generate_marm(marm_root, base[5:]))
+            )
+        return cache[base]
+
+    return get
+
+
+@pytest.fixture(scope="session")
+def baseline(goods, tmp_path_factory):
+    cache: dict[str, set] = {}
+
+    def get(base: str) -> set:
+        if base not in cache:
+            good = goods(base)
+            cache[base] = set(run(good.path, good))
+        return cache[base]
+
+    return get
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.id)
+def test_break_one_thing(case: Case, goods, baseline, tmp_path_factory):
+    good = goods(case.base)
+    pkg = copy_package(good, tmp_path_factory.mktemp("case"))
+    case.edit(pkg)
+    found = run(pkg, good, **case.kwargs)
+    hits = [f for f in found if f.rule == case.rule and f not in baseline(case.base)]
+    assert hits, f"{case.rule} not found in {[(f.rule, f.element, f.message) for f in found]}"
+    assert {f.severity for f in hits} == {case.severity}
+    if case.match:
+        assert any(case.match in f.element or case.match in f.message for f in hits), hits
+    new_errors = {f for f in found if f.is_error} - baseline(case.base)
+    unexpected = {f.rule for f in new_errors} - {case.rule, *case.also}
+    assert not unexpected, [f for f in found if f.rule in unexpected]
+
+
+def test_urdf_mesh_missing(tmp_path):
+    import shutil
+
+    from tests.conftest import FIXTURES
+
+    good = Good(generate_marm(tmp_path, "ros1"))
+    robot_pkg = tmp_path / "marm_description"
+    shutil.copytree(FIXTURES / "marm", robot_pkg)
+    (robot_pkg / "meshes" / "link6.stl").unlink()
+    found = run(good.path, good, urdf=robot_pkg / "urdf" / "marm.urdf.xacro")
+    assert [f.rule for f in found] == ["urdf.mesh-missing"]
+    assert "link6.stl" in found[0].message
+
+
+def test_urdf_load_error(tmp_path):
+    good = Good(generate_marm(tmp_path, "ros2"))
+    broken = tmp_path / "broken.urdf"
+    broken.write_text("<robot name='marm'><link name='a'>", encoding="utf-8")
+    found = run(good.path, good, urdf=broken)
+    assert [(f.rule, f.file) for f in found] == [("urdf.load", str(broken))]

@@ -1,0 +1,74 @@
+"""Good packages to break for validate tests: the shared panda packages and marm from `init`."""
+
+from __future__ import annotations
+
+import shutil
+from dataclasses import dataclass
+from pathlib import Path
+
+import yaml
+
+from marm_setup.findings import Finding
+from marm_setup.validate import validate_package
+from tests.conftest import MARM_URDF, realworld
+
+
+@dataclass(frozen=True)
+class Good:
+    """A package known to be good, and the package paths it needs."""
+
+    path: Path
+    package_paths: tuple[Path, ...] = ()
+
+
+def panda(target: str) -> Good:
+    return Good(realworld(target, "panda_moveit_config"), (realworld(target),))
+
+
+def generate_marm(out_root: Path, target: str) -> Path:
+    """`marm-setup init` the marm fixture into out_root/marm_<target>."""
+    from typer.testing import CliRunner
+
+    from marm_setup.cli import app
+
+    out = out_root / f"marm_{target}"
+    if not out.exists():
+        result = CliRunner().invoke(app, ["init", str(MARM_URDF), "--out", str(out), "--target", target])
+        assert result.exit_code == 0, result.output
+    return out
+
+
+def copy_package(good: Good, dest_root: Path) -> Path:
+    """A copy of the package at dest_root/<folder name> (same depth keeps relative URDF paths)."""
+    dest = dest_root / good.path.name
+    shutil.copytree(good.path, dest)
+    return dest
+
+
+def replace_text(pkg: Path, rel: str, old: str, new: str) -> None:
+    """Replace the first `old` in pkg/rel (which must contain it)."""
+    file = pkg / rel
+    text = file.read_text(encoding="utf-8")
+    assert old in text, f"{old!r} not in {rel}"
+    file.write_text(text.replace(old, new, 1), encoding="utf-8")
+
+
+def edit_yaml(pkg: Path, rel: str, edit) -> None:
+    """Load pkg/rel, let `edit(data)` change it in place, write it back."""
+    file = pkg / rel
+    data = yaml.safe_load(file.read_text(encoding="utf-8"))
+    edit(data)
+    file.write_text(yaml.safe_dump(data, sort_keys=False), encoding="utf-8")
+
+
+def run(pkg: Path, good: Good, **kwargs) -> list[Finding]:
+    return validate_package(pkg, package_paths=good.package_paths, plan=False, **kwargs)
+
+
+def errors(findings: list[Finding]) -> set[tuple[str, str]]:
+    """(rule, element) of every error."""
+    return {(f.rule, f.element) for f in findings if f.is_error}
+
+
+def rules(findings: list[Finding], severity: str | None = None) -> set[str]:
+    return {f.rule for f in findings if severity is None or f.severity == severity}
