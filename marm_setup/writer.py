@@ -131,6 +131,8 @@ def apply_writes(changes: list[FileChange], out_dir: Path, *, force: bool = Fals
             path=str(out_dir),
         )
     out_dir = Path(out_dir)
+    if _nothing_to_do(changes, out_dir):
+        return []
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     manifest = {} if _is_fresh(out_dir) else load_manifest(out_dir)
     tmp = Path(tempfile.mkdtemp(prefix=".marm-setup-", dir=out_dir.parent))
@@ -149,6 +151,14 @@ def apply_writes(changes: list[FileChange], out_dir: Path, *, force: bool = Fals
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return [c for c in changes if c.writes]
+
+
+def _nothing_to_do(changes: list[FileChange], out_dir: Path) -> bool:
+    """Every file identical and the manifest already records them: leave the disk untouched."""
+    if any(c.writes for c in changes) or not (out_dir / MANIFEST).is_file():
+        return False
+    manifest = load_manifest(out_dir)
+    return all(manifest.get(c.path) == sha256(_encode(c.content)) for c in changes)
 
 
 def check_output_dir(out_dir: Path, *, force: bool, shown: str | None = None) -> None:

@@ -61,6 +61,7 @@ def test_rerender_is_identical_and_writes_nothing(tmp_path):
     os.utime(out / "config/a.yaml", (1, 1))
     assert statuses(plan_writes(FILES, out))["config/a.yaml"] == "identical"
     assert before[out / "package.xml"] == (out / "package.xml").stat().st_mtime_ns
+    assert before[out / MANIFEST] == (out / MANIFEST).stat().st_mtime_ns  # a true no-op
 
 
 def test_changed_render_of_untouched_file_is_update(tmp_path):
