@@ -88,6 +88,12 @@ def plan_writes(rendered: Iterable[RenderedFile], out_dir: Path) -> list[FileCha
     return changes
 
 
+def stale_files(changes: Iterable[FileChange], out_dir: Path, keep: Iterable[str] = ()) -> list[str]:
+    """Files we wrote before (manifest) that this render no longer produces and still exist."""
+    current = {c.path for c in changes} | set(keep)
+    return sorted(p for p in load_manifest(out_dir) if p not in current and (out_dir / p).is_file())
+
+
 def conflicts(changes: Iterable[FileChange]) -> list[str]:
     return [c.path for c in changes if c.status == "conflict"]
 

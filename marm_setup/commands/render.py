@@ -20,7 +20,7 @@ def render(
     """Re-render every generated file of DIR from DIR/marm_setup.yaml (create / update / unchanged / conflict)."""
     from marm_setup.errors import ConflictError
     from marm_setup.package_render import SETUP_FILE, render_package
-    from marm_setup.writer import apply_writes, conflicts, format_change, plan_writes
+    from marm_setup.writer import apply_writes, conflicts, format_change, plan_writes, stale_files
 
     model, robot = load_package_setup(dir)
     # marm_setup.yaml is the input here: render never rewrites it.
@@ -30,6 +30,8 @@ def render(
     for change in changes:
         suffix = " (overwritten: --force)" if force and change.status == "conflict" and not dry_run else ""
         typer.echo(format_change(change) + suffix)
+    for path in stale_files(changes, dir, keep=[SETUP_FILE]):
+        typer.echo(f"{'stale':<10}{path} (no longer generated; left in place)")
     if dry_run:
         typer.echo(f"dry run: nothing written ({_summary(changes)})")
         return

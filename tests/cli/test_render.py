@@ -99,3 +99,15 @@ def test_bad_setup_names_file_and_key(tmp_path):
     result = runner.invoke(app, ["render", str(pkg)])
     assert result.exit_code == 2
     assert "marm_setup.yaml" in result.stderr and "Traceback" not in result.output
+
+
+def test_switching_target_reports_stale_files(tmp_path):
+    pkg = make_package(tmp_path, "ros1")
+    setup = pkg / "marm_setup.yaml"
+    text = setup.read_text().replace("target: ros1", "target: ros2").replace("gripper_action", "gripper_cmd")
+    setup.write_text(text)
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 0, result.output
+    assert "create    config/moveit.yaml" in result.stdout
+    assert "stale     launch/demo.launch (no longer generated; left in place)" in result.stdout
+    assert (pkg / "launch" / "demo.launch").is_file()

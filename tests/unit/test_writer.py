@@ -18,6 +18,7 @@ from marm_setup.writer import (
     load_manifest,
     plan_writes,
     sha256,
+    stale_files,
 )
 
 FILES = [
@@ -155,3 +156,13 @@ def test_fresh_empty_dir_is_filled(tmp_path):
 def test_format_change():
     changes = plan_writes([RenderedFile("a", "x\n")], Path("/nonexistent-marm"))
     assert format_change(changes[0]) == "create    a"
+
+
+def test_stale_files_are_manifest_entries_no_longer_rendered(tmp_path):
+    out = tmp_path / "pkg"
+    write_all(FILES, out)
+    changes = plan_writes(FILES[:1], out)
+    assert stale_files(changes, out) == ["config/a.yaml", "scripts/run.py"]
+    assert stale_files(changes, out, keep=["scripts/run.py"]) == ["config/a.yaml"]
+    (out / "config/a.yaml").unlink()
+    assert stale_files(changes, out) == ["scripts/run.py"]
