@@ -14,7 +14,8 @@ config package at all raises `InputError` (exit 2).
   `marm_ros2` (our single `config/moveit.yaml`).
 - `urdf` (Path | None), `urdf_origin` (`--urdf`, `marm_setup.yaml`, `.setup_assistant` or
   `config/<robot>.urdf.xacro`), `xacro_args` (tuple of (name, value)), `package_paths`
-  (tuple of Path: the user's plus the folder holding this package, for `$(find ...)`).
+  (tuple of Path for `$(find ...)`: this package first, so `$(find <itself>)` is this copy,
+  then the user's, then the folder holding this package).
 - `srdf_path` (relative str | None) and `srdf` (what `marm_setup.srdf.read_srdf` returns, or None
   when absent/unreadable; a `.srdf.xacro` is expanded first); `srdf_text` the (expanded) XML.
 - Parsed YAML sections, each a `ConfigSection(file, data, prefix)` or None: `file` is the path
@@ -136,7 +137,7 @@ def discover_package(
     srdf_rel = _find_srdf(root, marm, setup_assistant)
     if pkg_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    paths = (*(Path(p).resolve() for p in package_paths), root.parent)
+    paths = (root, *(Path(p).resolve() for p in package_paths), root.parent)
     target = _detect_target(root, marm)
     urdf_path, origin, args = _find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths)
     moveit_yaml = reader.raw(MARM_MOVEIT_YAML) if target == "ros2" else None

@@ -1,0 +1,86 @@
+"""`marm-setup validate DIR`: exit 0 clean, 1 with errors (or warnings under --strict), 2 unreadable."""
+
+from __future__ import annotations
+
+import json
+
+from typer.testing import CliRunner
+
+from marm_setup.cli import app
+from tests.validate_helpers import copy_package, generate_marm, panda, replace_text
+
+runner = CliRunner()
+
+
+def test_clean_marm_package_exits_0(tmp_path):
+    pkg = generate_marm(tmp_path, "ros1")
+    result = runner.invoke(app, ["validate", str(pkg), "--no-plan"])
+    assert result.exit_code == 0, result.output
+    assert result.stdout == "no findings\n"
+
+
+def test_errors_exit_1_text_grouped_by_file(tmp_path):
+    pkg = copy_package(panda("ros1"), tmp_path)
+    replace_text(pkg, "config/kinematics.yaml", "panda_arm:", "arm:")
+    args = ["validate", str(pkg), "--no-plan", "--package-path", str(panda("ros1").package_paths[0])]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 1
+    lines = result.stdout.splitlines()
+    assert "config/kinematics.yaml" in lines
+    assert any("kinematics.unknown-group" in line and line.startswith("  error") for line in lines)
+    assert "\x1b[" not in result.stdout  # no colour when not a TTY
+    assert lines[-1].endswith("2 warnings")
+
+
+def test_warnings_pass_unless_strict(tmp_path):
+    good = panda("ros2")
+    base = ["validate", str(good.path), "--no-plan", "--package-path", str(good.package_paths[0])]
+    pkg = copy_package(good, tmp_path)
+    # remove the one real error (transport pose) so only the controller warning is left
+    replace_text(
+        pkg,
+        "config/panda_arm.xacro",
+        '<joint name="panda_joint6" value="0" />',
+        '<joint name="panda_joint6" value="1.571" />',
+    )
+    base[1] = str(pkg)
+    assert runner.invoke(app, base).exit_code == 0
+    assert runner.invoke(app, [*base, "--strict"]).exit_code == 1
+
+
+def test_json_output(tmp_path):
+    pkg = generate_marm(tmp_path, "ros2")
+    replace_text(pkg, "config/marm.srdf", 'child_link="base_link"', 'child_link="link1"')
+    result = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--format", "json"])
+    assert result.exit_code == 1
+    doc = json.loads(result.stdout)
+    assert doc["errors"] == 1
+    (finding,) = doc["findings"]
+    assert finding["rule"] == "srdf.virtual-joint-child"
+    assert finding["file"] == "config/marm.srdf"
+    assert finding["element"] == "virtual_joint[virtual_joint]"
+
+
+def test_explicit_urdf(tmp_path):
+    from tests.conftest import MARM_URDF
+
+    pkg = generate_marm(tmp_path, "ros1")
+    result = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--urdf", str(MARM_URDF)])
+    assert result.exit_code == 0, result.output
+
+
+def test_unreadable_input_exits_2_with_one_line(tmp_path):
+    for target in (tmp_path / "nope", tmp_path):
+        result = runner.invoke(app, ["validate", str(target)])
+        assert result.exit_code == 2
+        assert len(result.stderr.strip().splitlines()) == 1
+        assert result.stderr.startswith(f"error: {target}: ")
+        assert "Traceback" not in result.output
+
+
+def test_missing_urdf_package_exits_2(tmp_path):
+    pkg = copy_package(panda("ros1"), tmp_path)
+    result = runner.invoke(app, ["validate", str(pkg)])
+    assert result.exit_code == 2
+    assert "moveit_resources_panda_description" in result.stderr
+    assert "--package-path" in result.stderr
