@@ -73,7 +73,8 @@ def _dump_dataclass(obj) -> dict:
     out = {}
     for f in dataclasses.fields(obj):
         value = getattr(obj, f.name)
-        if value is None or value == ():
+        required = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        if not required and (value is None or value == ()):
             continue
         dumped = _dump_value(value, hints[f.name])
         if dumped == {} and dataclasses.is_dataclass(value):

@@ -171,3 +171,56 @@ def test_disabled_pairs_are_canonical_after_load():
     data = {**BASE, "collision": {"disabled": [{"link1": "z", "link2": "a", "reason": "Never"}]}}
     (pair,) = setup_from_dict(data).collision.disabled
     assert pair == DisabledPair("a", "z", DisabledReason.NEVER)
+
+
+def _models():
+    from hypothesis import strategies as st
+
+    from marm_setup.setup_model import Chain, EndEffector, Group, GroupState, Kinematics
+
+    names = st.text(min_size=1, max_size=12)
+    floats = st.floats(allow_nan=False, allow_infinity=False)
+    group = st.builds(
+        Group,
+        name=names,
+        chain=st.none() | st.builds(Chain, names, names),
+        joints=st.tuples(names, names) | st.just(()),
+        subgroups=st.lists(names, max_size=2).map(tuple),
+    )
+    state = st.builds(
+        GroupState,
+        name=names,
+        group=names,
+        values=st.dictionaries(names, floats, max_size=4).map(lambda d: tuple(d.items())),
+    )
+    pair = st.builds(DisabledPair.of, names, names, st.sampled_from(list(DisabledReason)))
+    return st.builds(
+        SetupModel,
+        package_name=names,
+        robot_name=names,
+        robot=st.builds(RobotSource, names),
+        target=st.sampled_from(["ros1", "ros2"]),
+        groups=st.lists(group, max_size=3).map(tuple),
+        group_states=st.lists(state, max_size=2).map(tuple),
+        end_effectors=st.lists(
+            st.builds(EndEffector, names, names, names, st.none() | names), max_size=2
+        ).map(tuple),
+        collision=st.builds(
+            CollisionSettings, seed=st.integers(0, 2**31), disabled=st.lists(pair, max_size=3).map(tuple)
+        ),
+        kinematics=st.lists(st.builds(Kinematics, names, timeout=floats), max_size=2).map(tuple),
+        default_velocity_scaling=floats,
+    )
+
+
+def test_round_trip_property():
+    from hypothesis import given
+
+    @given(_models())
+    def check(model):
+        text = dump_setup(model)
+        loaded = setup_from_dict(yaml.safe_load(text), "x.yaml")
+        assert loaded == model
+        assert dump_setup(loaded) == text
+
+    check()
