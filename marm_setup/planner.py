@@ -18,7 +18,7 @@ import numpy as np
 
 from marm_setup.kinematics import bounds
 from marm_setup.robot_model import RobotModel
-from marm_setup.rrt import interpolate, rrt_connect, shortcut
+from marm_setup.rrt import interpolate, rrt_connect, shortcut, verify_path
 
 Pair = tuple[str, str]
 ValidityChecker = Callable[[np.ndarray], Sequence[Pair | None]]
@@ -192,5 +192,8 @@ def plan_joint_path(
     if q_path is None:
         reason = f"no path within budget ({iterations} iterations, {time.perf_counter() - t0:.2f} s)"
         return PlanResult(space.joint_names, None, reason, None, iterations, time.perf_counter() - t0)
-    q_path = shortcut(checker, q_path, rng)
+    q_path = verify_path(checker, shortcut(checker, q_path, rng), rng, t0)
+    if q_path is None:
+        reason = f"no path verified within budget ({time.perf_counter() - t0:.2f} s)"
+        return PlanResult(space.joint_names, None, reason, None, iterations, time.perf_counter() - t0)
     return PlanResult(space.joint_names, q_path, None, None, iterations, time.perf_counter() - t0)

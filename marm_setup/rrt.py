@@ -170,3 +170,32 @@ def _drop_duplicates(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     if len(out) > 1 and np.linalg.norm(q_path[-1] - out[-1]) <= tol:
         out.pop()
     return np.array([*out, q_path[-1]])
+
+
+def _first_bad_segment(checker, q_path: np.ndarray) -> int | None:
+    """Index of the first segment whose own discretisation has an invalid state (one batch)."""
+    parts = [
+        interpolate(a, b, checker.options.max_step) for a, b in zip(q_path[:-1], q_path[1:], strict=True)
+    ]
+    bad, _ = checker.first_invalid(np.concatenate(parts))
+    if bad is None:
+        return None
+    return int(np.searchsorted(np.cumsum([len(p) for p in parts]), bad, side="right"))
+
+
+def verify_path(checker, q_path: np.ndarray, rng: np.random.Generator, t0: float, attempts: int = 5):
+    """The path with every segment valid at its own discretisation, or None.
+
+    Pieces of checked lines (tree chains, partial shortcuts, merged collinear runs) are
+    re-sampled differently when they become segments of their own; a segment failing that
+    is re-planned with RRT-Connect between its (valid) ends.
+    """
+    for _ in range(attempts):
+        seg = _first_bad_segment(checker, q_path)
+        if seg is None:
+            return q_path
+        sub, _ = rrt_connect(checker, q_path[seg], q_path[seg + 1], rng, t0)
+        if sub is None:
+            return None
+        q_path = np.concatenate([q_path[:seg], sub, q_path[seg + 2 :]])
+    return q_path if _first_bad_segment(checker, q_path) is None else None
