@@ -233,3 +233,13 @@ def test_golden_marm_setup_and_srdf(tmp_path, assert_golden):
     srdf_text = (out / "config" / "marm.srdf").read_text()
     etree.fromstring(srdf_text.encode())
     assert_golden("init/marm/marm.srdf", srdf_text)
+
+
+def test_missing_spec_and_out_that_is_a_file(tmp_path):
+    result = _init(tmp_path / "pkg", "--setup", str(tmp_path / "nope.yaml"))
+    assert result.exit_code == 2 and result.stderr.startswith(f"error: {tmp_path / 'nope.yaml'}: cannot read")
+    (tmp_path / "file").write_text("x")
+    result = _init(tmp_path / "file")
+    assert result.exit_code == 2
+    assert result.stderr.strip() == f"error: {tmp_path / 'file'}: exists and is not a directory"
+    assert not (tmp_path / "pkg").exists()
