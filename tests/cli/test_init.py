@@ -243,3 +243,13 @@ def test_missing_spec_and_out_that_is_a_file(tmp_path):
     assert result.exit_code == 2
     assert result.stderr.strip() == f"error: {tmp_path / 'file'}: exists and is not a directory"
     assert not (tmp_path / "pkg").exists()
+
+
+def test_xacro_args_are_recorded_and_shape_the_inference(tmp_path):
+    out = tmp_path / "pkg"
+    result = _init(out, "--xacro-arg", "with_gripper:=false")
+    assert result.exit_code == 0, result.output
+    assert "group gripper" not in result.stdout and "end effector" not in result.stdout
+    model = load_setup(out / "marm_setup.yaml")
+    assert model.robot.xacro_args == (("with_gripper", "false"),)
+    assert [g.name for g in model.groups] == ["arm"]
