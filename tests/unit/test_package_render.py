@@ -300,3 +300,22 @@ def test_unknown_target_is_input_error():
     model = dataclasses.replace(marm_model("ros1"), target="ros3")
     with pytest.raises(InputError, match="ros3"):
         render_package(model, marm_robot())
+
+
+def test_xacro_args_reach_both_targets():
+    for target in TARGETS:
+        model = marm_model(target)
+        source = dataclasses.replace(model.robot, xacro_args=(("with_gripper", "true"),))
+        model = dataclasses.replace(model, robot=source)
+        files = {f.path: f.content for f in render_package(model, marm_robot())}
+        if target == "ros1":
+            context = files["launch/planning_context.launch"]
+            assert (
+                "command=\"xacro '$(find marm_description)/urdf/marm.urdf.xacro' with_gripper:=true\""
+                in context
+            )
+        else:
+            wrapper = etree.fromstring(files["config/marm.urdf.xacro"].encode())
+            xacro_ns = "{http://www.ros.org/wiki/xacro}"
+            args = {a.get("name"): a.get("default") for a in wrapper.iter(f"{xacro_ns}arg")}
+            assert args["with_gripper"] == "true"
