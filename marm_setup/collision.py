@@ -53,7 +53,10 @@ class CollisionScene:
         self._pair_b = np.array([row[b] for _, b in self.candidate_pairs], dtype=np.intp)
         fk_index = link_index(robot)
         self._fk_rows = np.array([fk_index[name] for name in self.links], dtype=np.intp)
-        shapes, points = zip(*(_link_shapes(robot, name, coal) for name in self.links), strict=True)
+        bvh_cache: dict = {}  # one BVH per mesh file and scale
+        shapes, points = zip(
+            *(_link_shapes(robot, name, coal, bvh_cache) for name in self.links), strict=True
+        )
         self._shapes: tuple[tuple[tuple[object, np.ndarray], ...], ...] = shapes
         self._bounds = _bounds(points)
         self._request = coal.CollisionRequest()
@@ -198,19 +201,19 @@ def _set(tf, pose: np.ndarray, local: np.ndarray | None) -> None:
     tf.setTranslation(pose[:3, 3])
 
 
-def _link_shapes(robot: RobotModel, name: str, coal):
+def _link_shapes(robot: RobotModel, name: str, coal, bvh_cache: dict):
     """((coal geometry, link-from-shape 4x4 or None), ...) and link-frame hull points of `name`."""
     shapes, points = [], []
     for i, shape in enumerate(robot.link(name).collisions):
         element = f"link[{name}]/collision[{i}]"
-        geom, local_points = _coal_geometry(shape, coal, robot.source, element)
+        geom, local_points = _coal_geometry(shape, coal, robot.source, element, bvh_cache)
         local = origin_matrix(shape.origin)
         points.append(local_points @ local[:3, :3].T + local[:3, 3])
         shapes.append((geom, None if np.allclose(local, np.eye(4)) else local))
     return tuple(shapes), np.concatenate(points)
 
 
-def _coal_geometry(shape: CollisionShape, coal, shown: str, element: str):
+def _coal_geometry(shape: CollisionShape, coal, shown: str, element: str, bvh_cache: dict):
     """A coal geometry for one URDF shape and points whose hull contains it (shape frame)."""
     geom = shape.geometry
     if isinstance(geom, Box):
@@ -223,7 +226,10 @@ def _coal_geometry(shape: CollisionShape, coal, shown: str, element: str):
         return coal.Sphere(geom.radius), _corners(np.full(3, geom.radius))
     if isinstance(geom, Mesh):
         mesh = load_mesh(geom.path, geom.scale, shown=shown, element=f"{element}/mesh")
-        return _bvh(mesh, coal), np.asarray(mesh.vertices)
+        key = (geom.path, geom.scale)
+        if key not in bvh_cache:
+            bvh_cache[key] = _bvh(mesh, coal)
+        return bvh_cache[key], np.asarray(mesh.vertices)
     raise TypeError(f"unknown geometry {geom!r}")
 
 
