@@ -46,13 +46,21 @@ def plain_matrix(robot, scene: CollisionScene, trials: int, seed: int, fraction:
     pairs = scene.candidate_pairs
     reasons = {p: DisabledReason.ADJACENT for p in robot.adjacent_geometry_pairs()}
     default_hits = plain_table(scene, default_configuration(robot)[None, :])[0]
-    reasons.update({p: DisabledReason.DEFAULT for p, h in zip(pairs, default_hits, strict=True) if h and p not in reasons})
+    reasons.update(
+        {
+            p: DisabledReason.DEFAULT
+            for p, h in zip(pairs, default_hits, strict=True)
+            if h and p not in reasons
+        }
+    )
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
     seen = set()
     while True:
         counts = plain_table(scene, sample_configurations(robot, rng, ROUND)).sum(axis=0)
         seen |= {p for p, c in zip(pairs, counts, strict=True) if c and p not in reasons}
-        new = [p for p, c in zip(pairs, counts, strict=True) if p not in reasons and c >= fraction * ROUND - 1e-9]
+        new = [
+            p for p, c in zip(pairs, counts, strict=True) if p not in reasons and c >= fraction * ROUND - 1e-9
+        ]
         reasons.update(dict.fromkeys(new, DisabledReason.ALWAYS))
         if not new:
             break
