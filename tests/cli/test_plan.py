@@ -1,0 +1,179 @@
+"""`marm-setup plan`: plans between named poses of generated (marm ros1/ros2) and real (panda
+ros1/ros2) packages; every trajectory written is re-checked independently with pinocchio + coal
+at a finer step than the planner's; bad input exits 2 with one line, an unplannable query 1."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from marm_setup.cli import app
+from marm_setup.planner import PlannerOptions
+from marm_setup.robot import load_robot
+from tests.conftest import FIXTURES, MARM_URDF, realworld
+from tests.trajectory_recheck import pinocchio_models, recheck
+
+runner = CliRunner()
+FINE_STEP = PlannerOptions().max_step / 5
+
+
+@pytest.fixture(scope="module", params=["ros1", "ros2"])
+def marm_package(request, tmp_path_factory):
+    out = tmp_path_factory.mktemp(f"marm_{request.param}") / "marm_moveit_config"
+    spec = FIXTURES / "marm" / "marm_setup.yaml"
+    args = ["init", str(MARM_URDF), "--out", str(out), "--setup", str(spec), "--target", request.param]
+    result = runner.invoke(app, [*args, "--trials", "2000"])
+    assert result.exit_code == 0, result.output
+    return out
+
+
+def _plan(package, *args):
+    return runner.invoke(app, ["plan", str(package), *args])
+
+
+def _meshes(robot) -> dict[str, str]:
+    return {
+        shape.geometry.uri: shape.geometry.path
+        for link in robot.links
+        for shape in link.collisions
+        if hasattr(shape.geometry, "uri")
+    }
+
+
+def _assert_rechecked(traj, robot, srdf, start, goal, tmp_path, limits_yaml=None):
+    """The pinocchio re-check: collision-free, within bounds and limits, from start to goal."""
+    model, geom = pinocchio_models(robot.urdf_xml, _meshes(robot), srdf, tmp_path)
+    import pinocchio as pin
+
+    q_base = pin.neutral(model)
+    found = recheck(traj, model, geom, q_base, FINE_STEP)
+    assert found["max_step"] <= FINE_STEP + 1e-9 and found["states"] > 10
+    assert found["inconsistency"] <= 1e-6
+    assert found["colliding"] == [], found["colliding"][:3]
+    assert not found["below_lower"] and not found["above_upper"]
+    assert np.all(found["max_velocity"] <= found["velocity_limit"] * (1 + 1e-6))
+    idx = [model.joints[model.getJointId(n)].idx_q for n in found["joint_names"]]
+    np.testing.assert_allclose(found["start"], model.referenceConfigurations[start][idx], atol=1e-6)
+    np.testing.assert_allclose(found["end"], model.referenceConfigurations[goal][idx], atol=1e-6)
+    if limits_yaml is not None:
+        entries = yaml.safe_load(limits_yaml.read_text(encoding="utf-8"))["joint_limits"]
+        for name, v, a in zip(
+            found["joint_names"], found["max_velocity"], found["max_acceleration"], strict=True
+        ):
+            assert v <= entries[name]["max_velocity"] * (1 + 1e-6)
+            assert a <= entries[name]["max_acceleration"] * (1 + 1e-6)
+    return found
+
+
+def test_marm_home_to_forward_and_back(marm_package, tmp_path):
+    robot = load_robot(MARM_URDF, {}, [])
+    limits = marm_package / "config" / "joint_limits.yaml"
+    for start, goal in (("home", "forward"), ("forward", "home")):
+        traj = tmp_path / f"{start}_{goal}.yaml"
+        result = _plan(marm_package, "--group", "arm", "--from", start, "--to", goal, "--output", str(traj))
+        assert result.exit_code == 0, result.output
+        lines = result.stdout.splitlines()
+        assert lines[0] == f"planned arm: {start} -> {goal} (joint1, joint2, joint3, joint4, joint5, joint6)"
+        assert [line.split(":")[0].strip() for line in lines[1:]] == [
+            "waypoints",
+            "path length",
+            "duration",
+            "planning time",
+            "fake execution",
+            f"wrote {traj}",
+        ]
+        srdf = marm_package / "config" / "marm.srdf"
+        _assert_rechecked(traj, robot, srdf, start, goal, tmp_path, limits if limits.exists() else None)
+
+
+def test_same_seed_same_bytes(marm_package, tmp_path):
+    a, b = tmp_path / "a.yaml", tmp_path / "b.yaml"
+    for out in (a, b):
+        args = ["--group", "arm", "--from", "forward", "--to", "home", "--seed", "3", "--output", str(out)]
+        assert _plan(marm_package, *args).exit_code == 0
+    assert a.read_bytes() == b.read_bytes()
+
+
+@pytest.mark.parametrize("target", ["ros1", "ros2"])
+def test_panda_ready_to_extended_rechecked_by_pinocchio(target, tmp_path):
+    package = realworld(target, "panda_moveit_config")
+    traj = tmp_path / "traj.yaml"
+    result = _plan(
+        package, "--group", "panda_arm", "--from", "ready", "--to", "extended", "--output", str(traj)
+    )
+    assert result.exit_code == 0, result.output
+    from marm_setup.package_discovery import discover_package
+
+    pkg = discover_package(package)
+    robot = load_robot(pkg.urdf, dict(pkg.xacro_args), list(pkg.package_paths))
+    srdf = tmp_path / "panda.srdf"
+    srdf.write_text(pkg.srdf_text, encoding="utf-8")  # ros2 ships a .srdf.xacro: use the expanded text
+    _assert_rechecked(traj, robot, srdf, "ready", "extended", tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (
+            ["--group", "arms", "--from", "home", "--to", "forward"],
+            "unknown group 'arms'; known: arm, gripper",
+        ),
+        (["--group", "arm", "--from", "home", "--to", "nowhere"], "unknown pose 'nowhere' for group 'arm'"),
+    ],
+)
+def test_bad_input_is_one_line_exit_2(marm_package, args, message):
+    result = _plan(marm_package, *args)
+    assert result.exit_code == 2
+    assert len(result.stderr.splitlines()) == 1 and message in result.stderr
+    assert result.stderr.startswith("error: config/marm.srdf: ") and "Traceback" not in result.output
+
+
+def test_not_a_package_is_exit_2(tmp_path):
+    result = _plan(tmp_path, "--group", "arm", "--from", "a", "--to", "b")
+    assert result.exit_code == 2 and len(result.stderr.splitlines()) == 1
+
+
+def test_pose_in_collision_is_exit_1_naming_the_pair(tmp_path):
+    package = realworld("ros1", "panda_moveit_config")
+    result = _plan(package, "--group", "panda_arm", "--from", "ready", "--to", "transport")
+    assert result.exit_code == 1
+    assert result.stderr.strip() == (
+        "error: config/panda.srdf: group[panda_arm]/ready -> transport: "
+        "no plan: goal in collision: panda_link5 - panda_link7"
+    )
+
+
+def test_the_recheck_itself_catches_a_colliding_trajectory(tmp_path):
+    """Guard against a re-check that passes anything: a straight line into panda's `transport`."""
+    package = realworld("ros1", "panda_moveit_config")
+    from marm_setup.package_discovery import discover_package
+
+    pkg = discover_package(package)
+    robot = load_robot(pkg.urdf, dict(pkg.xacro_args), list(pkg.package_paths))
+    model, geom = pinocchio_models(robot.urdf_xml, _meshes(robot), package / pkg.srdf_path, tmp_path)
+    import pinocchio as pin
+
+    names = [f"panda_joint{i}" for i in range(1, 8)]
+    idx = [model.joints[model.getJointId(n)].idx_q for n in names]
+    ready, transport = (model.referenceConfigurations[p][idx].tolist() for p in ("ready", "transport"))
+    zero = [0.0] * 7
+    v_end = [
+        2 * (b - a) / 5.0 for a, b in zip(ready, transport, strict=True)
+    ]  # consistent: accelerate all the way
+    doc = {
+        "joint_names": names,
+        "points": [
+            {"positions": ready, "velocities": zero, "accelerations": zero, "time_from_start": 0.0},
+            {"positions": transport, "velocities": v_end, "accelerations": zero, "time_from_start": 5.0},
+        ],
+    }
+    traj = tmp_path / "bad.yaml"
+    traj.write_text(yaml.safe_dump(doc), encoding="utf-8")
+    found = recheck(traj, model, geom, pin.neutral(model), FINE_STEP)
+    assert found["inconsistency"] < 1e-9
+    assert ("panda_link5_0", "panda_link7_0") in found["colliding"]
+    doc["points"][1]["velocities"] = zero  # now the points disagree with the motion between them
+    traj.write_text(yaml.safe_dump(doc), encoding="utf-8")
+    assert recheck(traj, model, geom, pin.neutral(model), FINE_STEP)["inconsistency"] > 0.1
