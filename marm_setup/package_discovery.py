@@ -213,7 +213,9 @@ def _read_sections(reader: _YamlReader, target: str, moveit_yaml: Any) -> dict[s
         out["moveit_controllers"] = _ros2_moveit_controllers(reader)
         out["alt_moveit_controllers"] = _alt_controllers(reader, out["moveit_controllers"])
     else:
-        out["moveit_controllers"] = _first_with(reader, ROS1_MOVEIT_CONTROLLERS, "controller_list")
+        out["moveit_controllers"] = _first_with(reader, ROS1_MOVEIT_CONTROLLERS, "controller_list") or _first(
+            reader, ROS1_MOVEIT_CONTROLLERS[:2]
+        )
         out["alt_moveit_controllers"] = ()
     if moveit_yaml is not None:
         out.update(_marm_moveit_sections(moveit_yaml, out))

@@ -27,10 +27,10 @@ from marm_setup.checks.kinematics_rules import check_kinematics
 from marm_setup.checks.launch_rules import check_launch_files, check_package_xml, parse_launch
 from marm_setup.checks.limits_rules import check_joint_limits
 from marm_setup.checks.ompl_rules import check_ompl
-from marm_setup.checks.pose_rules import check_pose_values
+from marm_setup.checks.pose_rules import check_initial_positions, check_pose_values
 from marm_setup.checks.srdf_rules import check_srdf
 from marm_setup.errors import InputError
-from marm_setup.findings import Finding, error, sort_findings
+from marm_setup.findings import Finding, error, sort_findings, warning
 from marm_setup.package_discovery import ConfigPackage, discover_package
 
 MATRIX_TRIALS = 1000
@@ -90,6 +90,8 @@ def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
     srdf, file = pkg.srdf, pkg.srdf_path
     out = check_srdf(srdf, robot, file, pkg.srdf_text)
     out += check_pose_values(srdf, robot, file)
+    if pkg.initial_positions is not None:
+        out += check_initial_positions(pkg.initial_positions, robot)
     if pkg.kinematics is not None:
         out += check_kinematics(pkg.kinematics, srdf, robot)
     if pkg.joint_limits is not None:
@@ -107,6 +109,9 @@ def check_controllers(pkg: ConfigPackage, robot) -> list[Finding]:
         out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
     section = pkg.moveit_controllers
     if section is None:
+        if pkg.fake_controllers is None:
+            msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
+            out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out
     ctrls, problems = moveit_controllers(section)
     out += problems

@@ -215,6 +215,12 @@ def _driver_joints(params: dict) -> tuple[str, ...] | None:
 
 def check_driver_controllers(moveit_section, section, driver, ctrls, robot: RobotModel) -> list[Finding]:
     """MoveIt's controllers exist in the driver file with a matching type, joints and action."""
+    if not driver:
+        return [
+            error(
+                "controller.driver-malformed", section.file, "", "no controllers (entries with a type) found"
+            )
+        ]
     out: list[Finding] = []
     for _name, (_type, joints, where) in sorted(driver.items()):
         for joint in joints or ():
@@ -347,7 +353,8 @@ def _check_initial(section, srdf) -> list[Finding]:
     out = []
     for i, item in enumerate(data.get("initial") or []):
         where = section.element(f"initial[{i}]")
-        group, pose = (item or {}).get("group"), (item or {}).get("pose")
+        item = item if isinstance(item, dict) else {}
+        group, pose = item.get("group"), item.get("pose")
         if group not in groups:
             out.append(error("controller.fake-initial-pose", section.file, where, f"unknown group '{group}'"))
         elif (group, pose) not in states:

@@ -123,3 +123,31 @@ def _moves_pair(pair, moved: set[str], robot: RobotModel) -> bool:
 
 def _context(base: Mapping[str, float] | None) -> str:
     return " (other joints at the initial state)" if base else " (other joints at their default values)"
+
+
+def check_initial_positions(section, robot: RobotModel) -> list[Finding]:
+    """ros2_control's `initial_positions.yaml`: known joints, numbers, inside the limits."""
+    data = section.data if isinstance(section.data, dict) else {}
+    values = data.get("initial_positions", data)
+    if not isinstance(values, dict):
+        return [
+            error(
+                "pose.initial-malformed",
+                section.file,
+                section.element("initial_positions"),
+                "expected a mapping",
+            )
+        ]
+    out = []
+    for joint, value in sorted(values.items(), key=lambda kv: str(kv[0])):
+        where = section.element("initial_positions", joint)
+        if joint not in robot.joint_map:
+            out.append(error("pose.initial-unknown-joint", section.file, where, f"unknown joint '{joint}'"))
+        elif isinstance(value, bool) or not isinstance(value, (int, float)):
+            out.append(error("pose.initial-malformed", section.file, where, f"not a number: {value!r}"))
+        elif robot.joint(joint).is_actuated and robot.joint(joint).type != "continuous":
+            lo, hi = robot.joint(joint).bounds
+            if not lo - LIMIT_TOL <= value <= hi + LIMIT_TOL:
+                msg = f"initial position {value:g} is outside the limits [{lo:g}, {hi:g}]"
+                out.append(error("pose.initial-out-of-limits", section.file, where, msg))
+    return out

@@ -269,6 +269,19 @@ POSE_CASES = [
         match="panda_link1 panda_link5",
     ),
     Case(
+        "ros2-initial-out-of-limits",
+        "ros2",
+        text("config/initial_positions.yaml", "panda_joint4: -2.356", "panda_joint4: 1.0"),
+        "pose.initial-out-of-limits",
+        also=("pose.collision",),  # the initial state is what other poses are checked from
+    ),
+    Case(
+        "marm-ros2-initial-unknown-joint",
+        "marm_ros2",
+        ydata("config/initial_positions.yaml", lambda d: d["initial_positions"].update(joint9=0.0)),
+        "pose.initial-unknown-joint",
+    ),
+    Case(
         "marm-pose-out-of-limits",
         "marm_ros1",
         text("config/marm.srdf", '<joint name="joint2" value="0.0"/>', '<joint name="joint2" value="4"/>'),
@@ -479,6 +492,14 @@ CONTROLLER_CASES = [
         match="panda_finger_joint1",
     ),
     Case(
+        "no-controllers-at-all",
+        "ros1",
+        lambda pkg: [(pkg / rel).unlink() for rel in (SIMPLE, FAKE)],
+        "controller.none",
+        severity="warning",
+        also=("launch.missing-file", "pose.collision"),  # launch files load them; no initial state
+    ),
+    Case(
         "fake-uncovered",
         "ros1",
         ydata(FAKE, lambda d: d.update(controller_list=d["controller_list"][:1])),
@@ -687,3 +708,19 @@ def test_urdf_load_error(tmp_path):
     broken.write_text("<robot name='marm'><link name='a'>", encoding="utf-8")
     found = run(good.path, good, urdf=broken)
     assert [(f.rule, f.file) for f in found] == [("urdf.load", str(broken))]
+
+
+WRONG_SHAPES = [
+    "[1, 2]\n",
+    "initial: [1]\ncontroller_list: [1, {name: x}]\njoint_limits: {a: 1}\npanda_arm: 3\n",
+]
+
+
+@pytest.mark.parametrize("shape", WRONG_SHAPES, ids=["list", "mixed"])
+@pytest.mark.parametrize("rel", [KIN, LIM, OMPL, SIMPLE, FAKE, "config/ros_controllers.yaml"])
+def test_wrong_yaml_shapes_are_findings_not_crashes(rel, shape, goods, tmp_path_factory):
+    good = goods("ros1")
+    pkg = copy_package(good, tmp_path_factory.mktemp("shape"))
+    (pkg / rel).write_text(shape, encoding="utf-8")
+    found = run(pkg, good, matrix_trials=0)
+    assert any(f.file == rel for f in found)
