@@ -1,0 +1,101 @@
+"""Runtime rules: every pose pair of every group is planned and fake-executed; findings name the
+pair and the reason. Clean on marm, one skipped pose on the real panda; an unplannable pair, a
+trajectory the fake controller rejects and unusable limits each give their rule."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+from typer.testing import CliRunner
+
+from marm_setup.cli import app
+from marm_setup.collision import CollisionScene
+from marm_setup.package_discovery import discover_package
+from marm_setup.planner import PlannerOptions
+from marm_setup.planning_problem import group_names_with_poses, initial_configuration, planning_problem
+from marm_setup.robot import load_robot
+from marm_setup.runtime_checks import _check_group, check_runtime
+from tests.conftest import FIXTURES, MARM_URDF, realworld
+
+
+@pytest.fixture(scope="module")
+def marm(tmp_path_factory):
+    out = tmp_path_factory.mktemp("marm") / "marm_moveit_config"
+    spec = FIXTURES / "marm" / "marm_setup.yaml"
+    result = CliRunner().invoke(
+        app, ["init", str(MARM_URDF), "--out", str(out), "--setup", str(spec), "--trials", "2000"]
+    )
+    assert result.exit_code == 0, result.output
+    package = discover_package(out)
+    robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
+    return package, robot, CollisionScene(robot)
+
+
+def test_marm_is_clean(marm):
+    package, robot, scene = marm
+    assert group_names_with_poses(package) == ("arm",)
+    assert check_runtime(package, robot, scene) == []
+
+
+@pytest.mark.parametrize("target", ["ros1", "ros2"])
+def test_panda_skips_the_pose_in_collision(target):
+    package = discover_package(realworld(target, "panda_moveit_config"))
+    robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
+    findings = check_runtime(package, robot, CollisionScene(robot))
+    assert [(f.rule, f.severity, f.element) for f in findings] == [
+        ("runtime.pose-skipped", "warning", "group_state[transport]")
+    ]
+    assert findings[0].message == (
+        "plans from and to 'transport' skipped: pose in collision: panda_link5 - panda_link7"
+    )
+
+
+def test_initial_state_comes_from_the_package():
+    package = discover_package(realworld("ros1", "panda_moveit_config"))
+    robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
+    q = initial_configuration(package, robot)
+    names = robot.active_joint_names
+    assert q[names.index("panda_joint4")] == pytest.approx(-2.356)  # fake_controllers initial: ready
+    assert q[names.index("panda_finger_joint1")] == pytest.approx(0.035)  # and hand: open
+
+
+def test_unplannable_pair_and_rejected_execution(marm):
+    package, robot, scene = marm
+    problem = planning_problem(package, robot, scene, "arm")
+    i1 = robot.active_joint_names.index("joint2")
+    home, forward = problem.poses["home"][i1], problem.poses["forward"][i1]
+    middle = (home + forward) / 2
+
+    def wall(q):  # joint2 can never cross the middle between the two poses
+        return [("link2", "link4") if abs(row[i1] - middle) < 0.05 else None for row in q]
+
+    walled = dataclasses.replace(problem, check=wall)
+    findings = _check_group(walled, robot, "config/marm.srdf", 0, PlannerOptions(max_iterations=20))
+    assert [(f.rule, f.element) for f in findings] == [
+        ("runtime.no-plan", "group[arm]/forward -> home"),
+        ("runtime.no-plan", "group[arm]/home -> forward"),
+    ]
+    assert findings[0].message.startswith("no plan: no path within budget (20 iterations")
+    # a trajectory timed for looser limits than the hard ones is caught by the fake controller
+    loose = dataclasses.replace(problem, velocity_scaling=100.0, acceleration_scaling=100.0)
+    findings = _check_group(loose, robot, "config/marm.srdf", 0, PlannerOptions())
+    assert [f.rule for f in findings] == ["runtime.execution", "runtime.execution"]
+    assert all(f.message.startswith("fake execution failed: velocity limit: joint") for f in findings)
+    assert all("acceleration limit: joint" in f.message for f in findings)
+
+
+def test_missing_velocity_limits_are_a_finding(marm, tmp_path):
+    package, robot, scene = marm
+    stripped = robot.__class__(
+        robot.name,
+        robot.links,
+        tuple(dataclasses.replace(j, velocity=None) for j in robot.joints),
+        robot.root,
+        robot.source,
+        robot.urdf_xml,
+    )
+    bare = dataclasses.replace(package, joint_limits=None)
+    findings = check_runtime(bare, stripped, scene)
+    assert [(f.rule, f.element) for f in findings] == [("runtime.limits", "group[arm]")]
+    assert findings[0].message == "no positive velocity limit for joint joint1"
