@@ -241,14 +241,15 @@ def _map_chunks(scene, q, pairs, starts, jobs):
 
 def _never_distances(scene, q, never: list[Pair], closest) -> dict[Pair, float]:
     """Smallest exact distance [m] of each Never pair over its CLOSEST nearest-looking states."""
+    rows = sorted({i for pair in never for _, i in closest.get(pair, [])})
+    if not rows:
+        return {}
+    poses = dict(zip(rows, scene.link_poses(q[rows]), strict=True))
     out = {}
     for pair in never:
-        rows = [i for _, i in closest.get(pair, [])]
-        if not rows:
-            continue
-        poses = scene.link_poses(q[rows])
-        pair_id = int(scene.pair_ids((pair,))[0])
-        out[pair] = min(scene.distance(p, pair_id) for p in poses)
+        if closest.get(pair):
+            pair_id = int(scene.pair_ids((pair,))[0])
+            out[pair] = min(scene.distance(poses[i], pair_id) for _, i in closest[pair])
     return out
 
 
