@@ -8,10 +8,15 @@ other joints at the package's initial state). Every planner gets the same checke
 
 OMPL runs twice: with a per-state validity checker (OMPL's DiscreteMotionValidator calls it
 state by state, as MoveIt's OMPL plugin does), and with a Python MotionValidator that hands
-each whole edge to the checker in one batch, as our planner does. Our time includes
-shortcutting; OMPL's solve time excludes simplification, which is reported apart.
+each whole edge to the checker in one batch, as our planner does. Times are split alike:
+search (to the first path: OMPL's solve(); ours up to RRT-Connect's path) and smoothing
+(ours: shortcutting and the final segment verification; OMPL: reduceVertices plus
+partialShortcutPath); ratios are given for the search and for the total.
 
-Run: .venv/bin/python benchmarks/bench_planner.py [--queries 50] [--robot marm|panda|all]
+Most random pairs of these arms are joined by a free straight line, so `--hard N` adds up to
+N pairs (out of 40 N random ones) whose straight line collides: the ones that need the trees.
+
+Run: .venv/bin/python benchmarks/bench_planner.py [--queries 50] [--hard 10] [--robot marm|panda|all]
 (needs the `bench` extra: `pip install -e '.[bench]'`; ompl prints harmless nanobind "leaked"
 lines at exit.)
 """
@@ -86,14 +91,27 @@ def queries(robot, problem, rng: np.random.Generator, n: int) -> list[Query]:
     return out
 
 
+def hard_queries(robot, problem, rng: np.random.Generator, n: int, candidates: int) -> list[Query]:
+    """Up to `n` random collision-free pairs whose straight line collides (out of `candidates`)."""
+    out = []
+    for item in queries(robot, problem, rng, candidates)[-candidates:]:
+        if len(out) == n:
+            break
+        if not problem_is_direct(robot, problem, item):
+            out.append(Query(f"hard-{item.name}", item.q_start, item.q_goal))
+    return out
+
+
 def run_ours(robot, problem, item: Query, seed: int) -> Run:
-    t0 = time.perf_counter()
+    """Search time = up to the first path (like OMPL's solve); extra = shortcutting + verification."""
     rng = np.random.default_rng(seed)
+    t0 = time.perf_counter()
     result = plan_joint_path(
         robot, problem.check, item.q_start, item.q_goal, problem.joint_names, rng, OPTIONS
     )
-    seconds = time.perf_counter() - t0
-    return Run(result.success, seconds, path_length(result.q_path) if result.success else np.nan)
+    total = time.perf_counter() - t0
+    length = path_length(result.q_path) if result.success else np.nan
+    return Run(result.success, result.search_time_s, length, total - result.search_time_s)
 
 
 def _ompl_setup(robot, problem, item: Query, batched: bool):
@@ -161,22 +179,22 @@ def run_ompl(robot, problem, item: Query, batched: bool) -> Run:
     return Run(True, seconds, path.length(), time.perf_counter() - t1)
 
 
-def summarize(label: str, runs: list[Run]) -> float:
-    """Print one line; return the median planning time [ms]."""
-    times = np.array([r.seconds for r in runs]) * 1000
-    extra = np.array([r.extra_seconds for r in runs if r.success]) * 1000
+def summarize(label: str, runs: list[Run]) -> tuple[float, float]:
+    """Print one line; return the median search time and median total time [ms]."""
+    search = np.array([r.seconds for r in runs]) * 1000
+    total = np.array([r.seconds + r.extra_seconds for r in runs]) * 1000
+    smoothing = np.array([r.extra_seconds for r in runs if r.success]) * 1000
     success = 100.0 * sum(r.success for r in runs) / len(runs)
-    line = f"  {label:<26} success {success:5.1f} %  median {np.median(times):7.2f} ms  p90 {np.percentile(times, 90):7.2f} ms"
-    line += f"  mean length {np.nanmean([r.length for r in runs]):5.2f}"
-    if extra.size and extra.max() > 0:
-        line += f"  (+ simplify median {np.median(extra):.2f} ms)"
-    print(line)
-    return float(np.median(times))
+    print(
+        f"  {label:<24} success {success:5.1f} %  search median {np.median(search):7.2f} ms "
+        f"(p90 {np.percentile(search, 90):7.2f})  smoothing median {np.median(smoothing):7.2f} ms  "
+        f"total median {np.median(total):7.2f} ms  mean length {np.nanmean([r.length for r in runs]):5.2f}"
+    )
+    return float(np.median(search)), float(np.median(total))
 
 
-def bench(name: str, robot, problem, n: int) -> None:
+def bench(name: str, robot, problem, items: list[Query]) -> None:
     """Run the three planners query by query (interleaved, so machine load hits all alike)."""
-    items = queries(robot, problem, np.random.default_rng(0), n)
     direct = sum(problem_is_direct(robot, problem, item) for item in items)
     print(
         f"{name}: group {problem.group} ({len(problem.joint_names)} joints), {len(items)} queries "
@@ -193,10 +211,22 @@ def bench(name: str, robot, problem, n: int) -> None:
         runs["OMPL RRTConnect batched"].append(run_ompl(robot, problem, item, batched=True))
     medians = {label: summarize(label, r) for label, r in runs.items()}
     ours = medians["marm-setup RRT-Connect"]
-    print(
-        f"  median ratio ours/OMPL: {ours / medians['OMPL RRTConnect']:.3f}; "
-        f"ours/OMPL batched: {ours / medians['OMPL RRTConnect batched']:.3f}"
-    )
+    for other in ("OMPL RRTConnect", "OMPL RRTConnect batched"):
+        theirs = medians[other]
+        print(
+            f"  ratio of medians, ours / {other}: search {ours[0] / theirs[0]:.3f}, "
+            f"total (with smoothing) {ours[1] / theirs[1]:.3f}"
+        )
+
+
+def bench_robot(name: str, robot, problem, n: int, n_hard: int) -> None:
+    bench(name, robot, problem, queries(robot, problem, np.random.default_rng(0), n))
+    if n_hard:
+        hard = hard_queries(robot, problem, np.random.default_rng(1), n_hard, 40 * n_hard)
+        if hard:
+            bench(f"{name} (straight line blocked)", robot, problem, hard)
+        else:
+            print(f"{name}: no blocked straight line among {40 * n_hard} random pairs")
 
 
 def problem_is_direct(robot, problem, item: Query) -> bool:
@@ -210,6 +240,7 @@ def problem_is_direct(robot, problem, item: Query) -> bool:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--queries", type=int, default=50)
+    parser.add_argument("--hard", type=int, default=10, help="extra queries whose straight line collides")
     parser.add_argument("--robot", choices=("marm", "panda", "all"), default="all")
     args = parser.parse_args()
     from ompl import util as ou
@@ -219,11 +250,11 @@ def main() -> None:
     if args.robot in ("marm", "all"):
         with tempfile.TemporaryDirectory() as tmp:
             robot, problem = load(marm_package(Path(tmp) / "marm_moveit_config"), "arm")
-            bench("marm", robot, problem, args.queries)
+            bench_robot("marm", robot, problem, args.queries, args.hard)
     if args.robot in ("panda", "all"):
         if PANDA.exists():
             robot, problem = load(PANDA, "panda_arm")
-            bench("panda", robot, problem, args.queries)
+            bench_robot("panda", robot, problem, args.queries, args.hard)
         else:
             print(f"panda: skipped ({PANDA} not present)")
 

@@ -48,7 +48,8 @@ class PlanResult:
     reason: str | None = None
     colliding_pair: Pair | None = None
     iterations: int = 0
-    planning_time_s: float = 0.0
+    planning_time_s: float = 0.0  # everything: checks, search, shortcutting, verification
+    search_time_s: float = 0.0  # up to the first path (what OMPL's solve() measures)
 
     @property
     def success(self) -> bool:
@@ -117,6 +118,10 @@ class _Checker:
 
     def first_invalid(self, q: np.ndarray) -> tuple[int | None, Pair | None]:
         n, stride = len(q), self.options.coarse_stride
+        if n <= 4 * stride:  # short lines: one call beats two
+            hits = self._hits(q)
+            bad = next((k for k, hit in enumerate(hits) if hit is not None), None)
+            return (None, None) if bad is None else (bad, tuple(hits[bad]))
         coarse = np.unique(np.append(np.arange(stride - 1, n, stride), n - 1))
         hits = self._hits(q[coarse])
         bad = next((k for k, hit in enumerate(hits) if hit is not None), None)
@@ -192,8 +197,11 @@ def plan_joint_path(
     if q_path is None:
         reason = f"no path within budget ({iterations} iterations, {time.perf_counter() - t0:.2f} s)"
         return PlanResult(space.joint_names, None, reason, None, iterations, time.perf_counter() - t0)
+    t_search = time.perf_counter() - t0
     q_path = verify_path(checker, shortcut(checker, q_path, rng), rng, t0)
     if q_path is None:
         reason = f"no path verified within budget ({time.perf_counter() - t0:.2f} s)"
-        return PlanResult(space.joint_names, None, reason, None, iterations, time.perf_counter() - t0)
-    return PlanResult(space.joint_names, q_path, None, None, iterations, time.perf_counter() - t0)
+        return PlanResult(
+            space.joint_names, None, reason, None, iterations, time.perf_counter() - t0, t_search
+        )
+    return PlanResult(space.joint_names, q_path, None, None, iterations, time.perf_counter() - t0, t_search)
