@@ -10,21 +10,24 @@ import typer
 from marm_setup.cli_common import PackagePaths
 
 PackageDir = Annotated[
-    Path, typer.Argument(help="MoveIt config package folder (ours or the Setup Assistant's).")
+    Path, typer.Argument(help="MoveIt config package folder (ours or the Setup Assistant's).", metavar="DIR")
 ]
 
 
 def plan(
     package_dir: PackageDir,
-    group: Annotated[str, typer.Option("--group", help="Planning group (SRDF).")],
-    from_pose: Annotated[str, typer.Option("--from", help="Named pose to start from.")],
-    to_pose: Annotated[str, typer.Option("--to", help="Named pose to reach.")],
+    group: Annotated[str, typer.Option("--group", help="Planning group (SRDF).", metavar="G")],
+    from_pose: Annotated[str, typer.Option("--from", help="Named pose to start from.", metavar="POSE")],
+    to_pose: Annotated[str, typer.Option("--to", help="Named pose to reach.", metavar="POSE")],
     output: Annotated[
-        Path | None, typer.Option("--output", help="Write the trajectory (JointTrajectory YAML) here.")
+        Path | None,
+        typer.Option(
+            "--output", help="Write the trajectory (JointTrajectory YAML) here.", metavar="TRAJ.yaml"
+        ),
     ] = None,
-    seed: Annotated[int, typer.Option("--seed", help="Planner random seed.")] = 0,
+    seed: Annotated[int, typer.Option("--seed", help="Planner random seed.", metavar="S")] = 0,
     urdf: Annotated[
-        Path | None, typer.Option("--urdf", help="Robot description, if not the package's.")
+        Path | None, typer.Option("--urdf", help="Robot description, if not the package's.", metavar="URDF")
     ] = None,
     package_path: PackagePaths = None,
 ) -> None:
