@@ -1,0 +1,64 @@
+"""`validate` timings: each stage, in one process, for the shared panda packages and marm (init).
+
+Run: .venv/bin/python benchmarks/bench_validate.py
+(The command-line figure adds interpreter start-up and imports, about 0.5 s.)
+"""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+
+from marm_setup.checks.matrix_rules import check_matrix_fresh
+from marm_setup.package_discovery import discover_package
+from marm_setup.validate import check_static, load_package_robot, run_runtime_checks, validate_package
+
+ROOT = Path(__file__).resolve().parent.parent
+REALWORLD = ROOT.parent / "shared" / "realworld"
+MARM_URDF = ROOT / "fixtures" / "marm" / "urdf" / "marm.urdf.xacro"
+
+
+def timed(fn):
+    start = time.perf_counter()
+    value = fn()
+    return value, time.perf_counter() - start
+
+
+def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
+    from marm_setup.collision import CollisionScene
+
+    pkg, t_discover = timed(lambda: discover_package(path, package_paths=package_paths))
+    (robot, _), t_robot = timed(lambda: load_package_robot(pkg))
+    _, t_static = timed(lambda: check_static(pkg, robot))
+    scene, t_scene = timed(lambda: CollisionScene(robot))
+    _, t_matrix = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path))
+    _, t_runtime = timed(lambda: run_runtime_checks(pkg, robot, scene))
+    found, t_total = timed(lambda: validate_package(path, package_paths=package_paths))
+    _, t_noplan = timed(lambda: validate_package(path, package_paths=package_paths, plan=False))
+    print(
+        f"{path.parent.name}/{path.name}: discover+SRDF {t_discover:.2f} s, robot {t_robot:.2f} s, "
+        f"static rules {t_static:.3f} s, scene {t_scene:.2f} s, matrix (1000 states) {t_matrix:.2f} s, "
+        f"runtime {t_runtime:.2f} s | whole (warm) {t_total:.2f} s, --no-plan {t_noplan:.2f} s, "
+        f"{len(found)} findings"
+    )
+
+
+def main() -> None:
+    from typer.testing import CliRunner
+
+    from marm_setup.cli import app
+
+    for target in ("ros1", "ros2"):
+        panda = REALWORLD / target / "panda_moveit_config"
+        if panda.exists():
+            stages(panda, (REALWORLD / target,))
+    with tempfile.TemporaryDirectory() as tmp:
+        for target in ("ros1", "ros2"):
+            out = Path(tmp) / target / "marm_moveit_config"
+            CliRunner().invoke(app, ["init", str(MARM_URDF), "--out", str(out), "--target", target])
+            stages(out, ())
+
+
+if __name__ == "__main__":
+    main()
