@@ -86,7 +86,12 @@ def _referenced(text: str, root: Path, launch_dir: Path, package: str):
 
 
 def _defined_args(tree) -> set[str]:
-    return {e.get("name") for e in _elements(tree) if e.tag in ("arg", "let") and e.get("name")}
+    """Args a file declares (an `<arg>` inside `<include>` passes a value on; it declares nothing)."""
+    return {
+        e.get("name")
+        for e in _elements(tree)
+        if e.tag in ("arg", "let") and e.get("name") and getattr(e.getparent(), "tag", None) != "include"
+    }
 
 
 def check_args(tree, rel: str, defined: set[str]) -> list[Finding]:

@@ -618,6 +618,13 @@ LAUNCH_CASES = [
         "launch.undefined-arg",
     ),
     Case(
+        "launch-arg-only-passed-to-include",
+        "ros1",
+        text("launch/demo.launch", '<arg name="debug" default="false" />', ""),
+        "launch.undefined-arg",
+        match="'debug'",
+    ),
+    Case(
         "ros2-description-type",
         "marm_ros2",
         text("launch/move_group.launch.xml", 'marm.srdf\')" type="str"', "marm.srdf')\""),
