@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -110,6 +110,7 @@ class _Checker:
     options: PlannerOptions
     calls: int = 0
     states: int = 0
+    valid_lines: set = field(default_factory=set)  # (q_a, q_b) bytes of lines found valid
 
     def _hits(self, q: np.ndarray) -> list:
         self.calls += 1
@@ -135,7 +136,13 @@ class _Checker:
         return (None, None) if pair is None else (first, tuple(pair))
 
     def line_valid(self, q_a: np.ndarray, q_b: np.ndarray) -> bool:
-        return self.first_invalid(interpolate(q_a, q_b, self.options.max_step))[0] is None
+        key = (q_a.tobytes(), q_b.tobytes())
+        if key in self.valid_lines:
+            return True
+        ok = self.first_invalid(interpolate(q_a, q_b, self.options.max_step))[0] is None
+        if ok:
+            self.valid_lines.add(key)
+        return ok
 
 
 def _limit_reason(space: GroupSpace, q: np.ndarray, what: str) -> str | None:

@@ -173,14 +173,22 @@ def _drop_duplicates(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
 
 
 def _first_bad_segment(checker, q_path: np.ndarray) -> int | None:
-    """Index of the first segment whose own discretisation has an invalid state (one batch)."""
-    parts = [
-        interpolate(a, b, checker.options.max_step) for a, b in zip(q_path[:-1], q_path[1:], strict=True)
+    """Index of the first segment whose own discretisation has an invalid state.
+
+    Segments already found valid as whole lines are skipped; the rest go in one batch.
+    """
+    segments = [
+        k
+        for k in range(len(q_path) - 1)
+        if (q_path[k].tobytes(), q_path[k + 1].tobytes()) not in checker.valid_lines
     ]
+    if not segments:
+        return None
+    parts = [interpolate(q_path[k], q_path[k + 1], checker.options.max_step) for k in segments]
     bad, _ = checker.first_invalid(np.concatenate(parts))
     if bad is None:
         return None
-    return int(np.searchsorted(np.cumsum([len(p) for p in parts]), bad, side="right"))
+    return segments[int(np.searchsorted(np.cumsum([len(p) for p in parts]), bad, side="right"))]
 
 
 def verify_path(checker, q_path: np.ndarray, rng: np.random.Generator, t0: float, attempts: int = 5):
