@@ -48,3 +48,43 @@ def test_validate_is_deterministic():
     good = panda("ros2")
     runs = [validate_package(good.path, package_paths=good.package_paths, plan=False) for _ in range(2)]
     assert runs[0] == runs[1]
+
+
+def test_panda_transport_collision_is_confirmed_by_pinocchio():
+    """The one panda error is real: pinocchio (own URDF parser, mesh loader and FK) agrees."""
+    pin = pytest.importorskip("pinocchio")
+    from marm_setup.package_discovery import discover_package
+    from marm_setup.validate import load_package_robot
+
+    good = panda("ros1")
+    pkg = discover_package(good.path, package_paths=good.package_paths)
+    robot, _ = load_package_robot(pkg)
+    xml = robot.urdf_xml.replace(
+        "package://moveit_resources_panda_description/", f"{good.package_paths[0]}/panda_description/"
+    )
+    model = pin.buildModelFromXML(xml)
+    geom = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.COLLISION)
+    names = [g.name for g in geom.geometryObjects]
+    geom.addCollisionPair(pin.CollisionPair(names.index("panda_link5_0"), names.index("panda_link7_0")))
+    data, gdata = model.createData(), pin.GeometryData(geom)
+
+    def collides(pose: str) -> bool:
+        values = dict(next(s for s in pkg.srdf.group_states if s.name == pose).values)
+        q = pin.neutral(model)
+        for j in range(1, model.njoints):
+            if model.names[j] in values:
+                q[model.idx_qs[j]] = values[model.names[j]]
+        return pin.computeCollisions(model, data, geom, gdata, q, True)
+
+    assert collides("transport")
+    assert not collides("ready")
+
+
+def test_runtime_checks_run_unless_no_plan():
+    """The planner's runtime rules come in through the seam; plan=False (--no-plan) skips them."""
+    good = panda("ros1")
+    with_plan = validate_package(good.path, package_paths=good.package_paths, plan=True)
+    without = validate_package(good.path, package_paths=good.package_paths, plan=False)
+    runtime = [f for f in with_plan if f.rule.startswith("runtime.")]
+    assert [(f.rule, f.element) for f in runtime] == [("runtime.pose-skipped", "group_state[transport]")]
+    assert set(with_plan) - set(runtime) == set(without)
