@@ -15,7 +15,8 @@ config package at all raises `InputError` (exit 2).
 - `urdf` (Path | None), `urdf_origin` (`--urdf`, `marm_setup.yaml`, `.setup_assistant` or
   `config/<robot>.urdf.xacro`), `xacro_args` (tuple of (name, value)), `package_paths`
   (tuple of Path for `$(find ...)`: this package first, so `$(find <itself>)` is this copy,
-  then the user's, then the folder holding this package).
+  then the user's, then marm_setup.yaml's `robot.package_paths`, then the folder holding this
+  package).
 - `srdf_path` (relative str | None) and `srdf` (what `marm_setup.srdf.read_srdf` returns, or None
   when absent/unreadable; a `.srdf.xacro` is expanded first); `srdf_text` the (expanded) XML.
 - Parsed YAML sections, each a `ConfigSection(file, data, prefix)` or None: `file` is the path
@@ -137,7 +138,7 @@ def discover_package(
     srdf_rel = _find_srdf(root, marm, setup_assistant)
     if pkg_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    paths = (root, *(Path(p).resolve() for p in package_paths), root.parent)
+    paths = (root, *(Path(p).resolve() for p in package_paths), *_marm_package_paths(root, marm), root.parent)
     target = _detect_target(root, marm)
     urdf_path, origin, args = _find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths)
     moveit_yaml = reader.raw(MARM_MOVEIT_YAML) if target == "ros2" else None
@@ -416,6 +417,15 @@ def _setup_assistant_urdf(entry: dict, paths: tuple[Path, ...], shown: str, args
     pkg_dir = find_package(str(entry["package"]), packages, path=shown, element=".setup_assistant URDF")
     sa_args = _marm_xacro_args(str(entry.get("xacro_args") or "").split())
     return pkg_dir / str(entry["relative_path"]), ".setup_assistant", args or sa_args
+
+
+def _marm_package_paths(root: Path, marm: ConfigSection | None) -> tuple[Path, ...]:
+    """`robot.package_paths` of marm_setup.yaml (relative to the package)."""
+    robot = marm.data.get("robot") if marm is not None and isinstance(marm.data, dict) else None
+    items = robot.get("package_paths") if isinstance(robot, dict) else None
+    if not isinstance(items, list):
+        return ()
+    return tuple((root / str(p)).resolve() for p in items if isinstance(p, str))
 
 
 def _marm_xacro_args(value: Any) -> tuple[tuple[str, str], ...]:

@@ -80,3 +80,27 @@ def test_no_robot_description(tmp_path):
     with pytest.raises(InputError, match="--urdf") as info:
         discover_package(tmp_path)
     assert info.value.element == "--urdf"
+
+
+def test_marm_setup_yaml_xacro_args_and_package_paths(tmp_path):
+    from typer.testing import CliRunner
+
+    from marm_setup.cli import app
+    from tests.conftest import FIXTURES, MARM_URDF
+
+    out = tmp_path / "pkg"
+    args = [
+        "init",
+        str(MARM_URDF),
+        "--out",
+        str(out),
+        "--xacro-arg",
+        "foo:=bar",
+        "--package-path",
+        str(FIXTURES),
+    ]
+    assert CliRunner().invoke(app, args).exit_code == 0
+    pkg = discover_package(out)
+    assert pkg.xacro_args == (("foo", "bar"),)
+    assert FIXTURES.resolve() in pkg.package_paths
+    assert pkg.package_paths[0] == out.resolve()  # $(find <itself>) is this copy
