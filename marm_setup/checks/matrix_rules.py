@@ -1,4 +1,10 @@
-"""Collision-matrix freshness: a pair the SRDF marks Never must not collide in a quick resample."""
+"""Collision-matrix freshness: a pair the SRDF marks Never must not collide in a quick resample.
+
+The resample uses the matrix computation's own sampler and default seed (0), so its states are
+a prefix of the ones `init`/`collisions` drew: a matrix we computed for an unchanged URDF can
+never fail it, while a URDF change (new geometry, wider limits) shows up at once. For a matrix
+from the Setup Assistant (another sampler) a hit is still a real observed collision.
+"""
 
 from __future__ import annotations
 
