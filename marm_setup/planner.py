@@ -23,7 +23,18 @@ from marm_setup.rrt import interpolate, rrt_connect, shortcut, verify_path
 Pair = tuple[str, str]
 ValidityChecker = Callable[[np.ndarray], Sequence[Pair | None]]
 
-__all__ = ["PlanResult", "PlannerOptions", "discretize_path", "interpolate", "path_length", "plan_joint_path"]
+__all__ = [
+    "GroupSpace",
+    "PlanResult",
+    "PlannerOptions",
+    "ValidityChecker",
+    "discretize_path",
+    "group_space",
+    "interpolate",
+    "path_length",
+    "plan_joint_path",
+    "state_problem",
+]
 
 
 @dataclass(frozen=True, slots=True)
