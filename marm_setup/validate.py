@@ -153,10 +153,26 @@ def check_with_scene(pkg: ConfigPackage, robot, *, plan: bool, matrix_trials: in
     except InputError as exc:
         return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)]
     out = check_pose_collisions(pkg.srdf, robot, scene, pkg.srdf_path, initial_state(pkg))
-    out += check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, trials=matrix_trials)
+    seed, computed = matrix_settings(pkg)
+    trials = matrix_trials if computed is None else min(matrix_trials, computed)
+    out += check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed)
     if plan:
         out += run_runtime_checks(pkg, robot, scene)
     return out
+
+
+def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
+    """(seed, trials) the package's matrix was computed with (marm_setup.yaml `collision`), else
+    (0, None). Resampling no more than those trials keeps an unchanged URDF's matrix fresh."""
+    data = pkg.marm_setup.data if pkg.marm_setup is not None else None
+    collision = data.get("collision") if isinstance(data, dict) else None
+    collision = collision if isinstance(collision, dict) else {}
+
+    def integer(key):
+        value = collision.get(key)
+        return value if isinstance(value, int) and not isinstance(value, bool) else None
+
+    return integer("seed") or 0, integer("trials")
 
 
 def initial_state(pkg: ConfigPackage) -> dict[str, float]:

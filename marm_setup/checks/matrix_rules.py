@@ -1,9 +1,10 @@
 """Collision-matrix freshness: a pair the SRDF marks Never must not collide in a quick resample.
 
-The resample uses the matrix computation's own sampler and default seed (0), so its states are
-a prefix of the ones `init`/`collisions` drew: a matrix we computed for an unchanged URDF can
-never fail it, while a URDF change (new geometry, wider limits) shows up at once. For a matrix
-from the Setup Assistant (another sampler) a hit is still a real observed collision.
+The resample uses the matrix computation's own sampler (`collision_matrix.trial_samples`) and
+the seed in marm_setup.yaml (else 0), so its states are a prefix of the ones `init`/`collisions`
+drew: a matrix we computed for an unchanged URDF can never fail it, while a URDF change (new
+geometry, wider limits) shows up at once. For a matrix from the Setup Assistant (another
+sampler) a hit is still a real, observed collision.
 """
 
 from __future__ import annotations
@@ -22,13 +23,13 @@ def check_matrix_fresh(
     srdf, robot: RobotModel, scene, file: str, *, trials: int = DEFAULT_TRIALS, seed: int = DEFAULT_SEED
 ) -> list[Finding]:
     """Resample `trials` random states; every Never pair seen colliding means a stale matrix."""
-    from marm_setup.kinematics import sample_configurations
+    from marm_setup.collision_matrix import trial_samples
 
     geometry = set(scene.links)
     never = [p.pair for p in srdf.disabled if p.reason is DisabledReason.NEVER and set(p.pair) <= geometry]
     if not never or trials <= 0:
         return []
-    q = sample_configurations(robot, np.random.default_rng(seed), trials)
+    q = trial_samples(robot, seed, trials)
     counts = scene.collision_counts(scene.link_poses(q), scene.pair_ids(never))
     out = []
     for pair, n in zip(never, counts, strict=True):

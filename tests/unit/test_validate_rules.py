@@ -731,3 +731,17 @@ def test_wrong_yaml_shapes_are_findings_not_crashes(rel, shape, goods, tmp_path_
     (pkg / rel).write_text(shape, encoding="utf-8")
     found = run(pkg, good, matrix_trials=0)
     assert any(f.file == rel for f in found)
+
+
+def test_own_matrix_is_fresh_for_its_urdf_whatever_the_seed_and_trials(tmp_path):
+    """Resampling uses the matrix's own seed and at most its trials: an unchanged URDF passes."""
+    from typer.testing import CliRunner
+
+    from marm_setup.cli import app
+    from marm_setup.validate import validate_package
+    from tests.conftest import MARM_URDF
+
+    out = tmp_path / "pkg"
+    args = ["init", str(MARM_URDF), "--out", str(out), "--trials", "200", "--seed", "7"]
+    assert CliRunner().invoke(app, args).exit_code == 0
+    assert [f for f in validate_package(out, plan=False) if f.rule == "matrix.stale"] == []
