@@ -8,7 +8,6 @@ batches are arrays of shape (N, n_active). Link poses come out as (N, n_links, 4
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
@@ -29,46 +28,56 @@ def origin_matrix(origin: Origin) -> np.ndarray:
     return out
 
 
-def _axis_rotations(axis: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """(N, 3, 3) rotations about a unit `axis` by `angles` [rad] (Rodrigues)."""
+def _unit(axis: tuple[float, float, float]) -> np.ndarray:
+    vec = np.asarray(axis, dtype=float)
+    norm = np.linalg.norm(vec)
+    return vec / norm if norm > 0 else np.array([1.0, 0.0, 0.0])
+
+
+def _cross_matrix(axis: np.ndarray) -> np.ndarray:
     x, y, z = axis
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    s, c = np.sin(angles)[:, None, None], np.cos(angles)[:, None, None]
-    return np.eye(3) + s * k + (1.0 - c) * (k @ k)
-
-
-def joint_motions(joint: Joint, values: np.ndarray) -> np.ndarray | None:
-    """(N, 4, 4) motion of `joint` at `values`, or None for a joint that does not move."""
-    axis = np.asarray(joint.axis, dtype=float)
-    norm = np.linalg.norm(axis)
-    axis = axis / norm if norm > 0 else np.array([1.0, 0.0, 0.0])
-    if joint.type in ("revolute", "continuous"):
-        out = np.broadcast_to(np.eye(4), (len(values), 4, 4)).copy()
-        out[:, :3, :3] = _axis_rotations(axis, values)
-        return out
-    if joint.type == "prismatic":
-        out = np.broadcast_to(np.eye(4), (len(values), 4, 4)).copy()
-        out[:, :3, 3] = values[:, None] * axis
-        return out
-    return None
+    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
 
 
 @dataclass(frozen=True)
-class _FkPlan:
-    """Precomputed per robot: joint origins, parent link index and value source per joint."""
+class _FkStep:
+    """One joint of the FK sweep: where its value comes from and its constant parts."""
 
-    link_names: tuple[str, ...]
-    steps: tuple[tuple[Joint, int, int, np.ndarray], ...]  # joint, parent idx, child idx, origin
+    kind: str  # "revolute" (also continuous), "prismatic" or "fixed"
+    parent: int
+    child: int
+    origin: np.ndarray  # 4x4
+    axis: np.ndarray  # unit vector
+    k: np.ndarray  # cross-product matrix of the axis (Rodrigues)
+    k2: np.ndarray
+    variable: int  # column of q driving the joint (-1: fixed)
+    multiplier: float = 1.0
+    offset: float = 0.0
 
 
-@lru_cache(maxsize=16)
-def _fk_plan(robot: RobotModel) -> _FkPlan:
-    link_names = robot.links_in_tree_order
-    index = {name: i for i, name in enumerate(link_names)}
-    steps = tuple(
-        (j, index[j.parent], index[j.child], origin_matrix(j.origin)) for j in robot.joints_in_tree_order
+def _fk_step(joint: Joint, index: dict[str, int], variables: dict[str, int]) -> _FkStep:
+    kind = {"continuous": "revolute", "revolute": "revolute", "prismatic": "prismatic"}.get(
+        joint.type, "fixed"
     )
-    return _FkPlan(link_names, steps)
+    axis = _unit(joint.axis)
+    k = _cross_matrix(axis)
+    leader, multiplier, offset = joint.name, 1.0, 0.0
+    if joint.mimic is not None:
+        leader, multiplier, offset = joint.mimic.joint, joint.mimic.multiplier, joint.mimic.offset
+    variable = variables.get(leader, -1) if kind != "fixed" else -1
+    return _FkStep(kind, index[joint.parent], index[joint.child], origin_matrix(joint.origin), axis, k, k @ k,
+                   variable, multiplier, offset)  # fmt: skip
+
+
+def _fk_plan(robot: RobotModel) -> tuple[_FkStep, ...]:
+    """The FK sweep for `robot`, built once and kept on the (immutable) robot instance."""
+    plan = robot.__dict__.get("_fk_plan")
+    if plan is None:
+        index = link_index(robot)
+        variables = {name: i for i, name in enumerate(robot.active_joint_names)}
+        plan = tuple(_fk_step(j, index, variables) for j in robot.joints_in_tree_order)
+        robot.__dict__["_fk_plan"] = plan  # a cache, like functools.cached_property
+    return plan
 
 
 def link_index(robot: RobotModel) -> dict[str, int]:
@@ -82,7 +91,8 @@ def joint_values(robot: RobotModel, q: np.ndarray) -> dict[str, np.ndarray]:
     values = {name: q[:, i] for i, name in enumerate(robot.active_joint_names)}
     for joint in robot.joints:
         if joint.is_actuated and joint.mimic is not None:
-            values[joint.name] = joint.mimic.multiplier * values[joint.mimic.joint] + joint.mimic.offset
+            mimic = joint.mimic
+            values[joint.name] = mimic.multiplier * values[mimic.joint] + mimic.offset
     return values
 
 
@@ -90,13 +100,20 @@ def forward_kinematics(robot: RobotModel, q: np.ndarray) -> np.ndarray:
     """World poses (N, n_links, 4, 4) of every link for a batch of configurations."""
     q = np.atleast_2d(np.asarray(q, dtype=float))
     plan = _fk_plan(robot)
-    values = joint_values(robot, q)
-    poses = np.empty((len(q), len(plan.link_names), 4, 4))
+    poses = np.zeros((len(q), len(plan) + 1, 4, 4))
     poses[:, 0] = np.eye(4)
-    for joint, parent, child, origin in plan.steps:
-        pose = poses[:, parent] @ origin
-        motion = joint_motions(joint, values[joint.name]) if joint.is_actuated else None
-        poses[:, child] = pose if motion is None else pose @ motion
+    for step in plan:
+        pose = poses[:, step.parent] @ step.origin
+        child = poses[:, step.child]
+        child[:] = pose
+        if step.variable < 0:
+            continue
+        value = q[:, step.variable] * step.multiplier + step.offset
+        if step.kind == "revolute":
+            s, c = np.sin(value)[:, None, None], np.cos(value)[:, None, None]
+            child[:, :3, :3] = pose[:, :3, :3] @ (np.eye(3) + s * step.k + (1.0 - c) * step.k2)
+        else:
+            child[:, :3, 3] += pose[:, :3, :3] @ step.axis * value[:, None]
     return poses
 
 
