@@ -17,7 +17,7 @@ config package at all raises `InputError` (exit 2).
   (tuple of Path for `$(find ...)`: this package first, so `$(find <itself>)` is this copy,
   then the user's, then marm_setup.yaml's `robot.package_paths`, then the folder holding this
   package).
-- `srdf_path` (relative str | None) and `srdf` (what `marm_setup.srdf.read_srdf` returns, or None
+- `srdf_path` (relative str | None) and `srdf` (a `marm_setup.srdf.Srdf`, as `read_srdf` gives, or None
   when absent/unreadable; a `.srdf.xacro` is expanded first); `srdf_text` the (expanded) XML.
 - Parsed YAML sections, each a `ConfigSection(file, data, prefix)` or None: `file` is the path
   relative to the package, `data` the mapping MoveIt reads, `prefix` the dotted key path of that
@@ -46,8 +46,16 @@ from typing import Any
 
 import yaml
 
-from marm_setup.errors import InputError, MarmError
+from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error
+from marm_setup.package_sources import (
+    MARM_MOVEIT_YAML,
+    detect_target,
+    find_srdf,
+    find_urdf,
+    marm_package_paths,
+    read_srdf_source,
+)
 from marm_setup.packages import package_name
 
 YAML_NAMES = {
@@ -66,7 +74,6 @@ ROS1_MOVEIT_CONTROLLERS = (
     "config/ros_controllers.yaml",  # old Setup Assistant (controller_list inside)
 )
 ROS2_MOVEIT_CONTROLLERS = ("config/moveit_controllers.yaml",)
-MARM_MOVEIT_YAML = "config/moveit.yaml"
 
 
 @dataclass(frozen=True, slots=True)
@@ -133,24 +140,25 @@ def discover_package(
     problems: list[Finding] = []
     reader = _YamlReader(root, problems)
     marm = reader.section("marm_setup.yaml")
+    marm_data = marm.data if marm is not None else None
     setup_assistant = reader.raw(".setup_assistant")
     pkg_xml = "package.xml" if (root / "package.xml").is_file() else None
-    srdf_rel = _find_srdf(root, marm, setup_assistant)
+    srdf_rel = find_srdf(root, marm_data, setup_assistant)
     if pkg_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    paths = (root, *(Path(p).resolve() for p in package_paths), *_marm_package_paths(root, marm), root.parent)
-    target = _detect_target(root, marm)
-    urdf_path, origin, args = _find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths)
+    user_paths = tuple(Path(p).resolve() for p in package_paths)
+    paths = (root, *user_paths, *marm_package_paths(root, marm_data), root.parent)
+    target = detect_target(root, marm_data)
+    urdf_path, origin, args = find_urdf(root, shown, urdf, xacro_args, marm_data, setup_assistant, paths)
     moveit_yaml = reader.raw(MARM_MOVEIT_YAML) if target == "ros2" else None
-    layout = "marm_ros2" if moveit_yaml is not None else ("moveit2" if target == "ros2" else "moveit1")
     sections = _read_sections(reader, target, moveit_yaml)
-    srdf, srdf_text = _read_srdf(root, srdf_rel, paths, problems) if srdf_rel else (None, None)
+    srdf, srdf_text = read_srdf_source(root, srdf_rel, paths, problems) if srdf_rel else (None, None)
     return ConfigPackage(
         root=root,
         shown=shown,
         name=package_name(root) or root.name,
         target=target,
-        layout=layout,
+        layout="marm_ros2" if moveit_yaml is not None else ("moveit2" if target == "ros2" else "moveit1"),
         urdf=urdf_path,
         urdf_origin=origin,
         xacro_args=args,
@@ -307,139 +315,6 @@ def _marm_moveit_sections(raw: Any, current: dict[str, Any]) -> dict[str, Any]:
         if section is not None or current.get(field) is None:
             out[field] = section
     return out
-
-
-# -- target, SRDF, URDF --------------------------------------------------------------------------
-
-
-def _detect_target(root: Path, marm: ConfigSection | None) -> str:
-    """ros2 for ament packages, ros1 for catkin; falls back on marm_setup.yaml and file names."""
-    xml = root / "package.xml"
-    if xml.is_file():
-        text = xml.read_text(encoding="utf-8", errors="replace")
-        if "ament_cmake" in text or "ament_python" in text:
-            return "ros2"
-        if "catkin" in text:
-            return "ros1"
-    if marm is not None and isinstance(marm.data, dict) and marm.data.get("target") in ("ros1", "ros2"):
-        return marm.data["target"]
-    ros2_files = ("config/moveit_controllers.yaml", "config/ros2_controllers.yaml", MARM_MOVEIT_YAML)
-    return "ros2" if any((root / f).is_file() for f in ros2_files) else "ros1"
-
-
-def _setup_assistant_config(raw: Any) -> dict:
-    if isinstance(raw, dict) and isinstance(raw.get("moveit_setup_assistant_config"), dict):
-        return raw["moveit_setup_assistant_config"]
-    return {}
-
-
-def _sa_entry(raw: Any, key: str) -> dict:
-    config = _setup_assistant_config(raw)
-    entry = config.get(key.upper(), config.get(key.lower()))
-    return entry if isinstance(entry, dict) else {}
-
-
-def _find_srdf(root: Path, marm: ConfigSection | None, setup_assistant: Any) -> str | None:
-    candidates: list[str] = []
-    if marm is not None and isinstance(marm.data, dict) and marm.data.get("robot_name"):
-        candidates.append(f"config/{marm.data['robot_name']}.srdf")
-    rel = _sa_entry(setup_assistant, "srdf").get("relative_path")
-    if isinstance(rel, str):
-        candidates.append(rel)
-    candidates += sorted(p.relative_to(root).as_posix() for p in (root / "config").glob("*.srdf"))
-    candidates += sorted(p.relative_to(root).as_posix() for p in (root / "config").glob("*.srdf.xacro"))
-    return next((c for c in candidates if (root / c).is_file()), None)
-
-
-def _read_srdf(
-    root: Path, rel: str, paths: tuple[Path, ...], problems: list[Finding]
-) -> tuple[Any, str | None]:
-    """(parsed SRDF, its text); a `.srdf.xacro` is expanded by xacro first; failures -> problems."""
-    from marm_setup.srdf import parse_srdf_string
-
-    file = root / rel
-    try:
-        text = _srdf_text(file, rel, paths)
-        return parse_srdf_string(text, rel), text
-    except MarmError as exc:
-        problems.append(error("srdf.parse", rel, exc.element or "", exc.message))
-        return None, None
-
-
-def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...]) -> str:
-    if not rel.endswith(".xacro"):
-        try:
-            return file.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"cannot read: {exc}", path=rel) from None
-    from marm_setup.packages import find_packages
-    from marm_setup.robot import expand_xacro
-
-    return expand_xacro(file, {}, find_packages(paths, near=file), shown=rel)
-
-
-def _find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths):
-    """(path, origin, xacro args) of the robot description; InputError when none can be found."""
-    args = tuple(sorted((xacro_args or {}).items()))
-    if urdf is not None:
-        return Path(urdf), "--urdf", args
-    if marm is not None and isinstance(marm.data, dict) and isinstance(marm.data.get("robot"), dict):
-        robot = marm.data["robot"]
-        if isinstance(robot.get("urdf"), str):
-            file = Path(robot["urdf"])
-            file = file if file.is_absolute() else root / file
-            return file, "marm_setup.yaml", args or _marm_xacro_args(robot.get("xacro_args"))
-    name = package_name(root) or root.name
-    robot_name = _srdf_robot_name(root)
-    for candidate in sorted((root / "config").glob("*.urdf.xacro")):
-        if robot_name is None or candidate.name == f"{robot_name}.urdf.xacro":
-            return candidate, "config/<robot>.urdf.xacro", args
-    entry = _sa_entry(setup_assistant, "urdf")
-    if entry.get("package") and entry.get("relative_path"):
-        return _setup_assistant_urdf(entry, paths, shown, args)
-    raise InputError(
-        f"cannot find the robot description of package '{name}' "
-        "(no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro)",
-        path=shown,
-        element="--urdf",
-    )
-
-
-def _srdf_robot_name(root: Path) -> str | None:
-    srdfs = sorted((root / "config").glob("*.srdf"))
-    return srdfs[0].name[: -len(".srdf")] if len(srdfs) == 1 else None
-
-
-def _setup_assistant_urdf(entry: dict, paths: tuple[Path, ...], shown: str, args):
-    from marm_setup.packages import find_package, find_packages
-
-    packages = find_packages(paths)
-    pkg_dir = find_package(str(entry["package"]), packages, path=shown, element=".setup_assistant URDF")
-    sa_args = _marm_xacro_args(str(entry.get("xacro_args") or "").split())
-    return pkg_dir / str(entry["relative_path"]), ".setup_assistant", args or sa_args
-
-
-def _marm_package_paths(root: Path, marm: ConfigSection | None) -> tuple[Path, ...]:
-    """`robot.package_paths` of marm_setup.yaml (relative to the package)."""
-    robot = marm.data.get("robot") if marm is not None and isinstance(marm.data, dict) else None
-    items = robot.get("package_paths") if isinstance(robot, dict) else None
-    if not isinstance(items, list):
-        return ()
-    return tuple((root / str(p)).resolve() for p in items if isinstance(p, str))
-
-
-def _marm_xacro_args(value: Any) -> tuple[tuple[str, str], ...]:
-    """xacro args given as a mapping, a list of `NAME:=VALUE` or a list of pairs."""
-    if isinstance(value, dict):
-        return tuple(sorted((str(k), str(v)) for k, v in value.items()))
-    out = []
-    for item in value or ():
-        if isinstance(item, str) and ":=" in item:
-            name, _, val = item.partition(":=")
-            out.append((name, val))
-        elif isinstance(item, (list, tuple)) and len(item) == 2:
-            out.append((str(item[0]), str(item[1])))
-    return tuple(sorted(out))
 
 
 def _launch_files(root: Path) -> tuple[str, ...]:
