@@ -13,9 +13,15 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
+# The marm course robot: look at it, generate its MoveIt 1 package, validate it (static rules
+# plus planning between its named poses), and plan home -> forward into a trajectory file.
 demo: $(STAMP)
 	$(BIN)/marm-setup inspect fixtures/marm/urdf/marm.urdf.xacro
-	$(BIN)/marm-setup init fixtures/marm/urdf/marm.urdf.xacro --out $(DEMO_OUT) --setup fixtures/marm/marm_setup.yaml --force
+	$(BIN)/marm-setup init fixtures/marm/urdf/marm.urdf.xacro --out $(DEMO_OUT) \
+		--setup fixtures/marm/marm_setup.yaml --target ros1 --force
+	$(BIN)/marm-setup validate $(DEMO_OUT)
+	$(BIN)/marm-setup plan $(DEMO_OUT) --group arm --from home --to forward \
+		--output $(DEMO_OUT)/../home_to_forward.yaml
 
 test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
@@ -26,8 +32,11 @@ lint: $(STAMP)
 	$(BIN)/ruff format --check marm_setup tests benchmarks
 
 bench: $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[test,bench]'
 	$(BIN)/python benchmarks/bench_fk.py
 	$(BIN)/python benchmarks/bench_collisions.py
+	$(BIN)/python benchmarks/bench_planner.py
+	$(BIN)/python benchmarks/bench_validate.py
 
 clean:
 	rm -rf $(VENV) demo_out .pytest_cache .ruff_cache .hypothesis
