@@ -30,12 +30,28 @@ def realworld(*parts: str) -> Path:
     return path
 
 
+_GOLDENS_READ: set[str] = set()
+
+
+def pytest_terminal_summary(terminalreporter):
+    """Report (never delete) golden files that no test of this run read."""
+    if not _GOLDENS_READ:
+        return
+    on_disk = {p.relative_to(GOLDENS).as_posix() for p in GOLDENS.rglob("*") if p.is_file()}
+    orphans = sorted(p for p in on_disk - _GOLDENS_READ if not p.endswith(".obtained"))
+    if orphans:
+        terminalreporter.write_sep("-", "golden files no test of this run read (remove them if stale)")
+        for path in orphans:
+            terminalreporter.write_line(f"  tests/goldens/{path}")
+
+
 @pytest.fixture
 def assert_golden(request):
     """Compare text with tests/goldens/<relpath>; write .obtained and fail with a diff on mismatch."""
     update = request.config.getoption("--update-goldens")
 
     def check(relpath: str, text: str) -> None:
+        _GOLDENS_READ.add(relpath)
         golden = GOLDENS / relpath
         obtained = golden.with_name(golden.name + ".obtained")
         if update or not golden.exists():
