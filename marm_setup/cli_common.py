@@ -8,7 +8,9 @@ from typing import Annotated
 
 import typer
 
-UrdfArg = Annotated[Path, typer.Argument(help="Robot description: .urdf, .xacro or .urdf.xacro.")]
+UrdfArg = Annotated[
+    Path, typer.Argument(help="Robot description: .urdf, .xacro or .urdf.xacro.", metavar="URDF")
+]
 XacroArgs = Annotated[
     list[str] | None,
     typer.Option("--xacro-arg", help="xacro argument NAME:=VALUE (repeatable).", metavar="NAME:=VALUE"),
