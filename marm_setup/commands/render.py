@@ -57,6 +57,7 @@ def load_package_setup(pkg_dir: Path):
     """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names."""
     from marm_setup.errors import InputError
     from marm_setup.robot import load_robot
+    from marm_setup.setup_checks import check_setup
     from marm_setup.setup_model import load_setup
 
     setup_path = pkg_dir / "marm_setup.yaml"
@@ -70,7 +71,9 @@ def load_package_setup(pkg_dir: Path):
     source = model.robot
     urdf = _relative_to(pkg_dir, source.urdf)
     package_paths = [_relative_to(pkg_dir, p) for p in source.package_paths]
-    return model, load_robot(urdf, dict(source.xacro_args), package_paths)
+    robot = load_robot(urdf, dict(source.xacro_args), package_paths)
+    check_setup(model, robot, str(setup_path))  # an edit may name unknown joints or leave limits
+    return model, robot
 
 
 def _relative_to(base: Path, path: str) -> Path:

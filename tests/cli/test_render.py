@@ -101,6 +101,19 @@ def test_bad_setup_names_file_and_key(tmp_path):
     assert "marm_setup.yaml" in result.stderr and "Traceback" not in result.output
 
 
+def test_pose_edited_out_of_limits_is_refused_and_nothing_written(tmp_path):
+    pkg = make_package(tmp_path)
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(setup.read_text().replace("joint2: 0.4285", "joint2: 9.0"))
+    before = snapshot(pkg)
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 2
+    line = result.stderr.strip()
+    assert line.startswith(f"error: {setup}: group_states[forward]") and "joint2" in line, line
+    assert "\n" not in line
+    assert snapshot(pkg) == before
+
+
 def test_switching_target_reports_stale_files(tmp_path):
     pkg = make_package(tmp_path, "ros1")
     setup = pkg / "marm_setup.yaml"
