@@ -121,6 +121,10 @@ class ConfigPackage:
     def path(self, rel: str) -> Path:
         return self.root / rel
 
+    def user_path(self, rel: str | None) -> str:
+        """A package file as the user would type it (`DIR/rel`), for error messages."""
+        return str(Path(self.shown) / rel) if rel else self.shown
+
 
 # -- entry point -------------------------------------------------------------------------------
 

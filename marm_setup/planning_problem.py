@@ -103,11 +103,17 @@ def planning_problem(package, robot: RobotModel, scene, group: str) -> PlanningP
     groups = groups_by_name(srdf.groups)
     if group not in groups:
         known = ", ".join(sorted(groups)) or "none"
-        raise InputError(f"unknown group '{group}'; known: {known}", path=package.srdf_path, element="group")
+        raise InputError(
+            f"unknown group '{group}'; known: {known}",
+            path=package.user_path(package.srdf_path),
+            element="group",
+        )
     joints = active_group_joints(groups[group], groups, robot, tuple(srdf.passive_joints))
     if not joints:
         raise InputError(
-            f"group '{group}' has no active joints", path=package.srdf_path, element=f"group[{group}]"
+            f"group '{group}' has no active joints",
+            path=package.user_path(package.srdf_path),
+            element=f"group[{group}]",
         )
     entries, scale_v, scale_a = _limits_section(package)
     try:
@@ -123,7 +129,7 @@ def planning_problem(package, robot: RobotModel, scene, group: str) -> PlanningP
 
 
 def _limits_file(package) -> str:
-    return package.joint_limits.file if package.joint_limits is not None else package.shown
+    return package.user_path(package.joint_limits.file if package.joint_limits is not None else None)
 
 
 def pose(problem: PlanningProblem, name: str, srdf_path: str | None) -> np.ndarray:

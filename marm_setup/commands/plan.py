@@ -45,14 +45,15 @@ def plan(
         raise InputError("no robot description found; pass --urdf", path=str(package_dir))
     robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
     problem = planning_problem(package, robot, CollisionScene(robot), group)
-    q_start, q_goal = pose(problem, from_pose, package.srdf_path), pose(problem, to_pose, package.srdf_path)
+    srdf_shown = package.user_path(package.srdf_path)
+    q_start, q_goal = pose(problem, from_pose, srdf_shown), pose(problem, to_pose, srdf_shown)
     outcome = plan_between(problem, robot, q_start, q_goal, seed)
     where = f"group[{group}]/{from_pose} -> {to_pose}"
     if not outcome.plan.success:
-        raise PlanningFailed(f"no plan: {outcome.plan.reason}", path=package.srdf_path, element=where)
+        raise PlanningFailed(f"no plan: {outcome.plan.reason}", path=srdf_shown, element=where)
     if not outcome.execution.ok:
         message = "fake execution failed: " + "; ".join(outcome.execution.violations)
-        raise PlanningFailed(message, path=package.srdf_path, element=where)
+        raise PlanningFailed(message, path=srdf_shown, element=where)
     traj, result = outcome.trajectory, outcome.plan
     typer.echo(f"planned {group}: {from_pose} -> {to_pose} ({', '.join(problem.joint_names)})")
     typer.echo(f"  waypoints:     {len(result.q_path)} ({len(traj.times)} trajectory points)")
