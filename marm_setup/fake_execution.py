@@ -51,12 +51,14 @@ def _first_over(values: np.ndarray, limit: np.ndarray, times: np.ndarray, names,
 def _structure(traj: TimedTrajectory, space: GroupSpace) -> str | None:
     if tuple(traj.joint_names) != tuple(space.joint_names):
         return f"joint names {list(traj.joint_names)} are not the group's {list(space.joint_names)}"
-    if len(traj.times) < 2 or traj.times[0] != 0.0 or np.any(np.diff(traj.times) <= 0):
-        return "time_from_start must start at 0 and increase strictly, with at least 2 points"
+    if len(traj.times) < 1 or traj.times[0] != 0.0 or np.any(np.diff(traj.times) <= 0):
+        return "time_from_start must start at 0 and increase strictly, with at least 1 point"
     return None
 
 
 def _consistency(traj: TimedTrajectory, tol: float) -> str | None:
+    if len(traj.times) < 2:
+        return None
     dt = np.diff(traj.times)[:, None]
     reached = traj.positions[:-1] + 0.5 * (traj.velocities[:-1] + traj.velocities[1:]) * dt
     err = np.abs(reached - traj.positions[1:])

@@ -52,6 +52,9 @@ class TimedTrajectory:
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Positions, velocities, accelerations (len(t), n) under constant acceleration per interval."""
         t = np.clip(np.asarray(t, dtype=float), self.times[0], self.times[-1])
+        if len(self.times) == 1:  # a pose to itself: one point, at rest
+            rows = np.zeros(len(t), dtype=int)
+            return self.positions[rows], self.velocities[rows], self.accelerations[rows]
         k = np.clip(np.searchsorted(self.times, t, side="right") - 1, 0, len(self.times) - 2)
         dt_seg = np.diff(self.times)
         acc = np.diff(self.velocities, axis=0) / np.where(dt_seg > 0, dt_seg, 1.0)[:, None]
@@ -97,6 +100,8 @@ def merge_collinear(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
         out.append(q)
     if np.linalg.norm(q_path[-1] - out[-1]) > tol or len(out) == 1:
         out.append(q_path[-1])
+    else:  # the last kept waypoint is within tol of the goal: end exactly at the goal
+        out[-1] = q_path[-1]
     return np.array(out)
 
 
@@ -120,11 +125,16 @@ def _segment_knots(d: np.ndarray, limits: JointLimits) -> list[tuple[float, floa
 
 
 def time_parameterize(q_path: np.ndarray, limits: JointLimits, max_period_s: float = 0.1) -> TimedTrajectory:
-    """Trapezoidal profile per segment, stopping at waypoints; points every <= max_period_s [s]."""
+    """Trapezoidal profile per segment, stopping at waypoints; points every <= max_period_s [s].
+
+    A path that does not move (start = goal) gives one point at t = 0.
+    """
     q_path = merge_collinear(np.asarray(q_path, dtype=float))
     times, pos, vel = [0.0], [q_path[0]], [np.zeros(q_path.shape[1])]
     for q0, q1 in zip(q_path[:-1], q_path[1:], strict=True):
         d = q1 - q0
+        if not np.any(d):
+            continue
         knots = _segment_knots(d, limits)
         for (_, s0, sd0, sdd0), (dt, _, _, _) in zip(knots[:-1], knots[1:], strict=True):
             if dt <= 1e-12:

@@ -123,3 +123,9 @@ def test_bad_trajectory_files_name_the_element(data, element):
     with pytest.raises(InputError) as exc:
         trajectory_from_dict(data, "t.yaml")
     assert exc.value.path == "t.yaml" and exc.value.element == element
+
+
+def test_a_pose_to_itself_executes_as_one_point(space):
+    traj = traj_for([[0.4, 0.1], [0.4, 0.1]])
+    report = fake_execute(traj, space, LIMITS, free, np.array([0.4, 0.1]))
+    assert report.ok and report.samples == 1 and report.duration_s == 0.0

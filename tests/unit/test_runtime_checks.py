@@ -99,3 +99,11 @@ def test_missing_velocity_limits_are_a_finding(marm, tmp_path):
     findings = check_runtime(bare, stripped, scene)
     assert [(f.rule, f.element) for f in findings] == [("runtime.limits", "group[arm]")]
     assert findings[0].message == "no positive velocity limit for joint joint1"
+
+
+def test_two_named_poses_with_the_same_values_are_clean(marm):
+    # SRDFs often name one configuration twice (home, ready): a plan between them does not move
+    package, robot, scene = marm
+    problem = planning_problem(package, robot, scene, "arm")
+    twin = dataclasses.replace(problem, poses={**problem.poses, "ready": problem.poses["home"].copy()})
+    assert _check_group(twin, robot, "config/marm.srdf", 0, PlannerOptions()) == []

@@ -97,3 +97,18 @@ def test_limits_from_config_prefers_the_yaml_and_falls_back_like_moveit():
     scaled = limits.scaled(0.1, 0.5)
     np.testing.assert_allclose(scaled.max_velocity, [0.05, 0.1, 0.1])
     np.testing.assert_allclose(scaled.max_acceleration, [0.1, 0.75, 0.75])
+
+
+def test_a_path_that_does_not_move_is_one_point_at_rest():
+    traj = time_parameterize(np.array([[0.3, -0.2], [0.3, -0.2]]), LIMITS)
+    assert traj.times.tolist() == [0.0] and traj.duration == 0.0
+    np.testing.assert_array_equal(traj.positions, [[0.3, -0.2]])
+    q, v, a = traj.sample(np.array([0.0, 1.0]))
+    np.testing.assert_array_equal(q, [[0.3, -0.2], [0.3, -0.2]])
+    assert not v.any() and not a.any()
+
+
+def test_ends_exactly_at_the_goal_after_a_waypoint_within_tolerance_of_it():
+    path = np.array([[1.0, 0.0], [4.9e-74, 0.0], [0.0, 0.0]])  # found by hypothesis
+    traj = time_parameterize(path, LIMITS)
+    np.testing.assert_array_equal(traj.positions[-1], [0.0, 0.0])
