@@ -96,6 +96,23 @@ def test_same_seed_same_bytes(marm_package, tmp_path):
     assert a.read_bytes() == b.read_bytes()
 
 
+def test_a_pose_to_itself_is_one_point(marm_package, tmp_path):
+    traj = tmp_path / "stay.yaml"
+    result = _plan(marm_package, "--group", "arm", "--from", "home", "--to", "home", "--output", str(traj))
+    assert result.exit_code == 0, result.output
+    points = yaml.safe_load(traj.read_text(encoding="utf-8"))["points"]
+    assert len(points) == 1 and points[0]["time_from_start"] == 0.0
+
+
+def test_an_output_that_cannot_be_written_is_one_line_exit_2(marm_package, tmp_path):
+    result = _plan(
+        marm_package, "--group", "arm", "--from", "home", "--to", "forward", "--output", str(tmp_path)
+    )
+    assert result.exit_code == 2
+    assert result.stderr == f"error: {tmp_path}: cannot write: is a folder\n"
+    assert list(tmp_path.iterdir()) == []  # no temporary file left behind
+
+
 @pytest.mark.parametrize("target", ["ros1", "ros2"])
 def test_panda_ready_to_extended_rechecked_by_pinocchio(target, tmp_path):
     package = realworld(target, "panda_moveit_config")
