@@ -87,6 +87,8 @@ def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths):
     """(path, origin, xacro args) of the robot description; InputError when none can be found."""
     args = tuple(sorted((xacro_args or {}).items()))
     if urdf is not None:
+        if not Path(urdf).is_file():
+            raise InputError("file not found", path=str(urdf), element="--urdf")
         return Path(urdf), "--urdf", args
     if isinstance(marm, dict) and isinstance(marm.get("robot"), dict):
         robot = marm["robot"]
@@ -119,7 +121,8 @@ def _setup_assistant_urdf(entry: dict, paths: tuple[Path, ...], shown: str, args
     from marm_setup.packages import find_package, find_packages
 
     packages = find_packages(paths)
-    pkg_dir = find_package(str(entry["package"]), packages, path=shown, element=".setup_assistant URDF")
+    where = str(Path(shown) / ".setup_assistant")
+    pkg_dir = find_package(str(entry["package"]), packages, path=where, element="URDF.package")
     sa_args = _marm_xacro_args(str(entry.get("xacro_args") or "").split())
     return pkg_dir / str(entry["relative_path"]), ".setup_assistant", args or sa_args
 

@@ -78,6 +78,8 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
         except ExpatError as exc:
             raise InputError(f"malformed XML: {exc}", path=shown, element=f"line {exc.lineno}") from None
         except Exception as exc:  # xacro raises many types; all are bad input here
+            if isinstance(getattr(exc, "exc", None), InputError):  # ours, wrapped by XacroException
+                raise exc.exc from None
             raise InputError(_xacro_message(exc), path=shown, element="xacro") from None
         finally:
             xacro.substitution_args_context["arg"] = {}

@@ -74,6 +74,12 @@ def load_package_robot(pkg: ConfigPackage):
     from marm_setup.robot import load_robot
 
     shown = shown_path(pkg, pkg.urdf) if pkg.urdf_origin != "--urdf" else str(pkg.urdf)
+    if not pkg.urdf.is_file():  # named by marm_setup.yaml or .setup_assistant (--urdf is checked earlier)
+        element = "robot.urdf" if pkg.urdf_origin == "marm_setup.yaml" else "URDF.relative_path"
+        message = f"robot description '{shown}' not found"
+        return None, [
+            error("urdf.missing", pkg.urdf_origin, element, message, "fix the path, or pass --urdf URDF")
+        ]
     try:
         return load_robot(pkg.urdf, dict(pkg.xacro_args), pkg.package_paths), []
     except InputError as exc:

@@ -84,3 +84,55 @@ def test_missing_urdf_package_exits_2(tmp_path):
     assert result.exit_code == 2
     assert "moveit_resources_panda_description" in result.stderr
     assert "--package-path" in result.stderr
+    assert result.stderr.startswith(f"error: {pkg / '.setup_assistant'}: URDF.package: unknown package")
+    assert len(result.stderr.strip().splitlines()) == 1
+
+
+def test_missing_explicit_urdf_exits_2(tmp_path):
+    pkg = generate_marm(tmp_path, "ros1")
+    result = runner.invoke(app, ["validate", str(pkg), "--urdf", "nothere.urdf"])
+    assert result.exit_code == 2
+    assert result.stderr == "error: nothere.urdf: --urdf: file not found\n"
+
+
+def test_copied_ros2_panda_names_the_unknown_xacro_package(tmp_path):
+    """config/panda.urdf.xacro's $(find ...) fails: one clean finding, not xacro's wrapped repr."""
+    pkg = copy_package(panda("ros2"), tmp_path)
+    result = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--format", "json"])
+    assert result.exit_code == 1
+    (finding,) = json.loads(result.stdout)["findings"]
+    assert (finding["rule"], finding["file"]) == ("urdf.load", "config/panda.urdf.xacro")
+    assert finding["element"] == "$(find moveit_resources_panda_description)"
+    assert finding["message"].startswith("unknown package 'moveit_resources_panda_description'")
+    assert "<class" not in finding["message"] and str(tmp_path) not in finding["message"]
+
+
+def test_setup_assistant_pointing_at_a_missing_urdf(tmp_path):
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, ".setup_assistant", "urdf/panda_arm_hand.urdf.xacro", "urdf/gone.urdf.xacro")
+    args = ["validate", str(pkg), "--package-path", str(good.package_paths[0]), "--format", "json"]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 1
+    found = [f for f in json.loads(result.stdout)["findings"] if f["severity"] == "error"]
+    assert [(f["rule"], f["file"], f["element"]) for f in found] == [
+        ("urdf.missing", ".setup_assistant", "URDF.relative_path")
+    ]
+    assert found[0]["message"].endswith("panda_description/urdf/gone.urdf.xacro' not found")
+
+
+def test_marm_package_moved_away_from_its_urdf(tmp_path):
+    """marm_setup.yaml's relative robot.urdf no longer resolves after a move: one finding on it."""
+    pkg = generate_marm(tmp_path, "ros1")
+    moved = tmp_path / "deeper" / "still" / "pkg"
+    moved.parent.mkdir(parents=True)
+    pkg.rename(moved)
+    result = runner.invoke(app, ["validate", str(moved), "--format", "json"])
+    assert result.exit_code == 1
+    (finding,) = json.loads(result.stdout)["findings"]
+    assert (finding["rule"], finding["file"], finding["element"]) == (
+        "urdf.missing",
+        "marm_setup.yaml",
+        "robot.urdf",
+    )
+    assert "--urdf" in finding["hint"]
