@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import math
 from pathlib import Path
 
 from lxml import etree
@@ -71,7 +72,21 @@ def _floats(text: str | None, n: int, element: str, ctx: _Ctx, default=None) -> 
         raise ctx.error(element, f"expected {n} numbers, got '{text}'") from None
     if len(values) != n:
         raise ctx.error(element, f"expected {n} numbers, got '{text}'")
+    if not all(math.isfinite(v) for v in values):
+        raise ctx.error(element, f"expected finite numbers, got '{text}'")
     return values
+
+
+def _sizes(el: etree._Element, keys: tuple[str, ...], element: str, ctx: _Ctx) -> tuple[float, ...]:
+    """Non-negative shape dimensions from attributes `keys` (one number each, `size` three)."""
+    out: list[float] = []
+    for key in keys:
+        n = 3 if key == "size" else 1
+        values = _floats(el.get(key), n, f"{element}@{key}", ctx)
+        if any(v < 0 for v in values):
+            raise ctx.error(f"{element}@{key}", f"must not be negative, got '{el.get(key)}'")
+        out.extend(values)
+    return tuple(out)
 
 
 def _origin(el: etree._Element | None, element: str, ctx: _Ctx) -> Origin:
@@ -103,11 +118,11 @@ def _parse_link(el: etree._Element, ctx: _Ctx) -> Link:
 def _geometry(el: etree._Element, element: str, ctx: _Ctx) -> Geometry:
     element = f"{element}/{el.tag}"
     if el.tag == "box":
-        return Box(_floats(el.get("size"), 3, f"{element}@size", ctx))
+        return Box(_sizes(el, ("size",), element, ctx))
     if el.tag == "cylinder":
-        return Cylinder(*_floats(f"{el.get('radius')} {el.get('length')}", 2, element, ctx))
+        return Cylinder(*_sizes(el, ("radius", "length"), element, ctx))
     if el.tag == "sphere":
-        return Sphere(*_floats(el.get("radius"), 1, f"{element}@radius", ctx))
+        return Sphere(*_sizes(el, ("radius",), element, ctx))
     if el.tag == "mesh":
         uri = el.get("filename")
         if not uri:
@@ -152,6 +167,8 @@ def _parse_joint(el: etree._Element, ctx: _Ctx) -> Joint:
         soft_lower=_attr(safety, "soft_lower_limit", f"{element}/safety_controller", ctx),
         soft_upper=_attr(safety, "soft_upper_limit", f"{element}/safety_controller", ctx),
     )
+    if joint.is_actuated and not any(joint.axis):
+        raise ctx.error(f"{element}/axis", "axis must not be zero")
     return _check_limits(joint, limit, ctx)
 
 
@@ -238,6 +255,11 @@ def _check_mimics(joints: tuple[Joint, ...], ctx: _Ctx) -> None:
             raise ctx.error(f"joint[{joint.name}]/mimic", f"unknown joint '{joint.mimic.joint}'")
         if leader.mimic is not None:
             raise ctx.error(f"joint[{joint.name}]/mimic", f"'{leader.name}' is itself a mimic joint")
+        if not leader.is_actuated:
+            raise ctx.error(
+                f"joint[{joint.name}]/mimic",
+                f"follows '{leader.name}', a {leader.type} joint; a mimic must follow a moving joint",
+            )
 
 
 def _close(name: str, names: set[str]) -> str:

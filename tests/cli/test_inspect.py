@@ -98,6 +98,38 @@ BAD_INPUTS = {
         "r.urdf.xacro",
         "$(find nopkg): unknown package 'nopkg'",
     ),
+    "zero joint axis": (
+        {"r.urdf": TWO_BOXES.replace('axis xyz="0 0 1"', 'axis xyz="0 0 0"')},
+        "r.urdf",
+        "joint[j]/axis: axis must not be zero",
+    ),
+    "nan in a limit": (
+        {"r.urdf": TWO_BOXES.replace('lower="-1"', 'lower="nan"')},
+        "r.urdf",
+        "joint[j]/limit@lower: expected finite numbers, got 'nan'",
+    ),
+    "negative box size": (
+        {"r.urdf": TWO_BOXES.replace('size="', 'size="-', 1)},
+        "r.urdf",
+        "link[a]/collision[0]/box@size: must not be negative",
+    ),
+    "cylinder without length": (
+        {"r.urdf": TWO_BOXES.replace('<box size="0.1 0.1 0.1"/>', '<cylinder radius="0.1"/>', 1)},
+        "r.urdf",
+        "link[a]/collision[0]/cylinder@length: missing value",
+    ),
+    "mimic of a fixed joint": (
+        {
+            "r.urdf": TWO_BOXES.replace(
+                "</robot>",
+                '<link name="c"/><joint name="k" type="revolute"><parent link="b"/><child link="c"/>'
+                '<mimic joint="f"/><limit lower="-1" upper="1"/></joint>'
+                '<link name="d"/><joint name="f" type="fixed"><parent link="a"/><child link="d"/></joint></robot>',
+            )
+        },
+        "r.urdf",
+        "joint[k]/mimic: follows 'f', a fixed joint; a mimic must follow a moving joint",
+    ),
     "undefined xacro arg": (
         {
             "r.urdf.xacro": '<robot name="x" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="$(arg nm)"/></robot>'
