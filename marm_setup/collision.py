@@ -54,10 +54,9 @@ class CollisionScene:
         fk_index = link_index(robot)
         self._fk_rows = np.array([fk_index[name] for name in self.links], dtype=np.intp)
         bvh_cache: dict = {}  # one BVH per mesh file and scale
-        shapes, points = zip(
-            *(_link_shapes(robot, name, coal, bvh_cache) for name in self.links), strict=True
-        )
-        self._shapes: tuple[tuple[tuple[object, np.ndarray], ...], ...] = shapes
+        built = [_link_shapes(robot, name, coal, bvh_cache) for name in self.links]
+        self._shapes: tuple[tuple[tuple[object, np.ndarray], ...], ...] = tuple(s for s, _ in built)
+        points = [p for _, p in built]
         self._bounds = _bounds(points)
         self._request = coal.CollisionRequest()
         self._request.security_margin = self.padding
@@ -248,8 +247,8 @@ def _bvh(mesh, coal):
 
 def _bounds(points: Sequence[np.ndarray]) -> _Bounds:
     """Bounding sphere (centred on the box) and link-frame box of each link's hull points."""
-    lo = np.array([p.min(axis=0) for p in points])
-    hi = np.array([p.max(axis=0) for p in points])
+    lo = np.array([p.min(axis=0) for p in points]).reshape(-1, 3)
+    hi = np.array([p.max(axis=0) for p in points]).reshape(-1, 3)
     center = (lo + hi) / 2.0
     radius = np.array([np.linalg.norm(p - c, axis=1).max() for p, c in zip(points, center, strict=True)])
     return _Bounds(center, radius, center, (hi - lo) / 2.0)

@@ -166,3 +166,14 @@ def test_bad_srdf_and_bad_mesh_exit_2(tmp_path):
     assert result.exit_code == 2, result.output
     assert result.stderr.startswith(f"error: {robot}: link[a]/collision[0]/mesh: cannot read mesh")
     assert len(result.stderr.splitlines()) == 1
+
+
+def test_a_robot_without_collision_geometry_has_an_empty_matrix(tmp_path):
+    path = tmp_path / "bare.urdf"
+    path.write_text('<robot name="bare"><link name="a"/></robot>', encoding="utf-8")
+    report = tmp_path / "m.svg"
+    result = _run(str(path), *FAST, "--format", "json", "--report", str(report))
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert data["pairs"] == [] and set(data["counts"].values()) == {0}
+    etree.parse(str(report))  # a well-formed (empty) heat map
