@@ -67,8 +67,9 @@ def _plural(n: int, word: str) -> str:
     return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
 
-def format_text(findings: Iterable[Finding], *, color: bool = False) -> str:
-    """Findings grouped by file, one line each (hint on the next line), then a summary line."""
+def format_text(findings: Iterable[Finding], *, color: bool = False, checked: str = "") -> str:
+    """Findings grouped by file, one line each (hint on the next line), then `checked` (a line
+    saying what was validated) and a summary line."""
     items = sort_findings(findings)
     lines: list[str] = []
     current = None
@@ -82,13 +83,18 @@ def format_text(findings: Iterable[Finding], *, color: bool = False) -> str:
         lines.append(f"  {sev}{pad} {where}{f.message} [{f.rule}]")
         if f.hint:
             lines.append(f"          hint: {f.hint}")
+    if checked:
+        lines.append(checked)
     lines.append(summary(items))
     return "\n".join(lines) + "\n"
 
 
-def format_json(findings: Iterable[Finding]) -> str:
-    """`{"findings": [...], "errors": n, "warnings": n}` as indented JSON."""
+def format_json(findings: Iterable[Finding], *, checked: dict | None = None) -> str:
+    """`{"findings": [...], "errors": n, "warnings": n}` (and `"validated": checked` when given)
+    as indented JSON."""
     items = sort_findings(findings)
     errors, warnings = count(items)
     doc = {"findings": [asdict(f) for f in items], "errors": errors, "warnings": warnings}
+    if checked is not None:
+        doc["validated"] = checked
     return json.dumps(doc, indent=2) + "\n"

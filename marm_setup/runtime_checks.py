@@ -27,9 +27,16 @@ RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
 
 
 def check_runtime(
-    package, robot: RobotModel, scene, *, seed: int = 0, options: PlannerOptions = RUNTIME_OPTIONS
+    package,
+    robot: RobotModel,
+    scene,
+    *,
+    seed: int = 0,
+    options: PlannerOptions = RUNTIME_OPTIONS,
+    planned: list[tuple[str, str, str]] | None = None,
 ) -> list[Finding]:
-    """Findings for every group with two or more named poses (see the module docstring)."""
+    """Findings for every group with two or more named poses (see the module docstring);
+    `planned`, when given, receives (group, from, to) of every pose pair planned."""
     findings: list[Finding] = []
     srdf_file = package.srdf_path or package.shown
     for group in group_names_with_poses(package):
@@ -38,11 +45,13 @@ def check_runtime(
         except InputError as exc:
             findings.append(error("runtime.limits", exc.path or srdf_file, f"group[{group}]", exc.message))
             continue
-        findings += _check_group(problem, robot, srdf_file, seed, options)
+        findings += _check_group(problem, robot, srdf_file, seed, options, planned)
     return findings
 
 
-def _check_group(problem: PlanningProblem, robot, srdf_file: str, seed: int, options) -> list[Finding]:
+def _check_group(
+    problem: PlanningProblem, robot, srdf_file: str, seed: int, options, planned: list | None = None
+) -> list[Finding]:
     findings, usable = [], []
     for name in sorted(problem.poses):
         found = state_problem(robot, problem.check, problem.poses[name], problem.joint_names, "pose")
@@ -53,6 +62,8 @@ def _check_group(problem: PlanningProblem, robot, srdf_file: str, seed: int, opt
         message = f"plans from and to '{name}' skipped: {found[0]}"
         findings.append(warning("runtime.pose-skipped", srdf_file, element, message))
     for a, b in permutations(usable, 2):
+        if planned is not None:
+            planned.append((problem.group, a, b))
         outcome = plan_between(problem, robot, problem.poses[a], problem.poses[b], seed, options)
         element = f"group[{problem.group}]/{a} -> {b}"
         if not outcome.plan.success:

@@ -3,14 +3,14 @@
 Rule families live in `marm_setup/checks/`; this module reads the package (via
 `package_discovery`), loads the robot and the collision scene once, and runs them all. The
 runtime checks (plan between named poses, execute as a fake controller) come from
-`marm_setup.runtime_checks.check_runtime(package, robot, scene)` when that module exists and
-`plan` is true.
+`marm_setup.runtime_checks.check_runtime(package, robot, scene)` when `plan` is true.
 """
 
 from __future__ import annotations
 
 import os
 from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 from marm_setup.checks.controller_rules import (
@@ -36,6 +36,35 @@ from marm_setup.package_discovery import ConfigPackage, discover_package
 MATRIX_TRIALS = 1000
 
 
+@dataclass(frozen=True)
+class Validation:
+    """What one validation checked, and what it found."""
+
+    findings: tuple[Finding, ...]
+    package: str  # package.xml <name>
+    target: str  # ros1 | ros2
+    layout: str  # moveit1 | moveit2 | marm_ros2
+    urdf: str  # the robot description, as the user would type it
+    urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro
+    robot: str | None  # the URDF's robot name; None when it did not load (or there is no SRDF)
+    planned_pairs: int | None  # pose pairs planned by the runtime checks; None when they did not run
+
+    def describe(self) -> str:
+        """One line: what was validated, against which robot, and whether planning ran."""
+        robot = f"robot '{self.robot}'" if self.robot else "robot (not loaded: model checks skipped)"
+        n = self.planned_pairs
+        runtime = "runtime planning skipped" if n is None else f"planned {n} pose pair{'' if n == 1 else 's'}"
+        return (
+            f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
+            f"from {self.urdf} ({self.urdf_origin}); {runtime}"
+        )
+
+    def as_dict(self) -> dict:
+        """The json `validated` object (everything but the findings)."""
+        keys = ("package", "target", "layout", "urdf", "urdf_origin", "robot", "planned_pairs")
+        return {key: getattr(self, key) for key in keys}
+
+
 def validate_package(
     path: str | Path,
     *,
@@ -45,7 +74,28 @@ def validate_package(
     plan: bool = True,
     matrix_trials: int = MATRIX_TRIALS,
 ) -> list[Finding]:
-    """Every finding for the package at `path`, sorted by file then element.
+    """Every finding for the package at `path`, sorted by file then element (see `validate`)."""
+    found = validate(
+        path,
+        urdf=urdf,
+        xacro_args=xacro_args,
+        package_paths=package_paths,
+        plan=plan,
+        matrix_trials=matrix_trials,
+    )
+    return list(found.findings)
+
+
+def validate(
+    path: str | Path,
+    *,
+    urdf: str | Path | None = None,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | Path] = (),
+    plan: bool = True,
+    matrix_trials: int = MATRIX_TRIALS,
+) -> Validation:
+    """Validate the package at `path`: its findings and what was checked.
 
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
@@ -57,16 +107,34 @@ def validate_package(
     findings += problems
     if pkg.srdf_path is None:
         findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
-    if robot is None or pkg.srdf is None:
-        return sort_findings(findings)
-    findings += check_static(pkg, robot)
-    findings += check_with_scene(pkg, robot, plan=plan, matrix_trials=matrix_trials)
-    return sort_findings(findings)
+    pairs = None
+    checked = robot is not None and pkg.srdf is not None
+    if checked:
+        findings += check_static(pkg, robot)
+        scene_findings, pairs = check_with_scene(pkg, robot, plan=plan, matrix_trials=matrix_trials)
+        findings += scene_findings
+    return Validation(
+        findings=tuple(sort_findings(findings)),
+        package=pkg.name,
+        target=pkg.target,
+        layout=pkg.layout,
+        urdf=user_urdf(pkg),
+        urdf_origin=pkg.urdf_origin,
+        robot=robot.name if checked else None,
+        planned_pairs=pairs,
+    )
 
 
 def shown_path(pkg: ConfigPackage, file: Path) -> str:
     """A file's path for findings: relative to the package (`../x` outside it), never absolute."""
     return Path(os.path.relpath(Path(file).resolve(), pkg.root)).as_posix()
+
+
+def user_urdf(pkg: ConfigPackage) -> str:
+    """The robot description as the user would type it: as given to --urdf, else `DIR/...`."""
+    if pkg.urdf_origin == "--urdf":
+        return str(pkg.urdf)
+    return os.path.normpath(pkg.user_path(shown_path(pkg, pkg.urdf)))
 
 
 def load_package_robot(pkg: ConfigPackage):
@@ -148,8 +216,11 @@ def gripper_nodes(pkg: ConfigPackage) -> dict[str, tuple[str, str]]:
     return out
 
 
-def check_with_scene(pkg: ConfigPackage, robot, *, plan: bool, matrix_trials: int) -> list[Finding]:
-    """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene."""
+def check_with_scene(
+    pkg: ConfigPackage, robot, *, plan: bool, matrix_trials: int
+) -> tuple[list[Finding], int | None]:
+    """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
+    with the number of pose pairs the runtime checks planned (None when they did not run)."""
     from marm_setup.checks.matrix_rules import check_matrix_fresh
     from marm_setup.checks.pose_rules import check_pose_collisions
     from marm_setup.collision import CollisionScene
@@ -157,14 +228,15 @@ def check_with_scene(pkg: ConfigPackage, robot, *, plan: bool, matrix_trials: in
     try:
         scene = CollisionScene(robot)
     except InputError as exc:
-        return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)]
+        return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)], None
     out = check_pose_collisions(pkg.srdf, robot, scene, pkg.srdf_path, initial_state(pkg))
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
     out += check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed)
-    if plan:
-        out += run_runtime_checks(pkg, robot, scene)
-    return out
+    if not plan:
+        return out, None
+    runtime, pairs = run_runtime_checks(pkg, robot, scene)
+    return out + runtime, pairs
 
 
 def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
@@ -196,12 +268,9 @@ def initial_state(pkg: ConfigPackage) -> dict[str, float]:
     return initial_values(pkg.srdf, poses, positions if isinstance(positions, dict) else None)
 
 
-def run_runtime_checks(pkg: ConfigPackage, robot, scene) -> list[Finding]:
-    """The planner's runtime checks, when `marm_setup.runtime_checks` is installed."""
-    try:
-        from marm_setup.runtime_checks import check_runtime
-    except ModuleNotFoundError as exc:
-        if exc.name != "marm_setup.runtime_checks":
-            raise
-        return []
-    return list(check_runtime(pkg, robot, scene))
+def run_runtime_checks(pkg: ConfigPackage, robot, scene) -> tuple[list[Finding], int]:
+    """The planner's runtime checks, and how many pose pairs they planned."""
+    from marm_setup.runtime_checks import check_runtime
+
+    planned: list[tuple[str, str, str]] = []
+    return list(check_runtime(pkg, robot, scene, planned=planned)), len(planned)

@@ -30,9 +30,9 @@ def validate(
     2 when the package cannot be read."""
     from marm_setup.findings import count, format_json, format_text
     from marm_setup.robot import parse_xacro_args
-    from marm_setup.validate import validate_package
+    from marm_setup.validate import validate as run_validation
 
-    findings = validate_package(
+    result = run_validation(
         package,
         urdf=urdf,
         xacro_args=parse_xacro_args(xacro_arg or []),
@@ -40,9 +40,10 @@ def validate(
         plan=not no_plan,
     )
     if format is OutputFormat.json:
-        typer.echo(format_json(findings), nl=False)
+        typer.echo(format_json(result.findings, checked=result.as_dict()), nl=False)
     else:
-        typer.echo(format_text(findings, color=sys.stdout.isatty()), nl=False)
-    errors, warnings = count(findings)
+        text = format_text(result.findings, color=sys.stdout.isatty(), checked=result.describe())
+        typer.echo(text, nl=False)
+    errors, warnings = count(result.findings)
     if errors or (strict and warnings):
         raise typer.Exit(1)

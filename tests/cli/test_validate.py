@@ -7,6 +7,7 @@ import json
 from typer.testing import CliRunner
 
 from marm_setup.cli import app
+from tests.conftest import MARM_URDF
 from tests.validate_helpers import copy_package, generate_marm, panda, replace_text
 
 runner = CliRunner()
@@ -16,7 +17,35 @@ def test_clean_marm_package_exits_0(tmp_path):
     pkg = generate_marm(tmp_path, "ros1")
     result = runner.invoke(app, ["validate", str(pkg), "--no-plan"])
     assert result.exit_code == 0, result.output
-    assert result.stdout == "no findings\n"
+    assert result.stdout.endswith("\nno findings\n")  # after one line saying what was validated
+    urdf = MARM_URDF.resolve()
+    assert result.stdout.splitlines() == [
+        f"validated marm_moveit_config (ros1, moveit1 layout) with robot 'marm' from {urdf} "
+        "(marm_setup.yaml); runtime planning skipped",
+        "no findings",
+    ]
+
+
+def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
+    good = panda("ros2")
+    args = ["validate", str(good.path), "--package-path", str(good.package_paths[0])]
+    text = runner.invoke(app, args).stdout.splitlines()
+    assert text[-2] == (
+        f"validated moveit_resources_panda_moveit_config (ros2, moveit2 layout) with robot 'panda' "
+        f"from {good.path / 'config/panda.urdf.xacro'} (config/<robot>.urdf.xacro); planned 4 pose pairs"
+    )
+    assert text[-1] == "1 error, 2 warnings"
+    doc = json.loads(runner.invoke(app, [*args, "--format", "json", "--no-plan"]).stdout)
+    assert doc["validated"] == {
+        "package": "moveit_resources_panda_moveit_config",
+        "target": "ros2",
+        "layout": "moveit2",
+        "urdf": str(good.path / "config/panda.urdf.xacro"),
+        "urdf_origin": "config/<robot>.urdf.xacro",
+        "robot": "panda",
+        "planned_pairs": None,
+    }
+    assert (doc["errors"], doc["warnings"]) == (1, 1)
 
 
 def test_errors_exit_1_text_grouped_by_file(tmp_path):
@@ -62,8 +91,6 @@ def test_json_output(tmp_path):
 
 
 def test_explicit_urdf(tmp_path):
-    from tests.conftest import MARM_URDF
-
     pkg = generate_marm(tmp_path, "ros1")
     result = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--urdf", str(MARM_URDF)])
     assert result.exit_code == 0, result.output
