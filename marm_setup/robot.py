@@ -40,15 +40,27 @@ def load_robot(
     """Load a `.urdf` or xacro file into a RobotModel; every failure is an InputError."""
     shown = str(path)
     file = Path(path)
+    if file.is_dir():
+        raise InputError("is a folder; expected a .urdf or .xacro file", path=shown)
     if not file.is_file():
         raise InputError("file not found", path=shown)
     packages = find_packages(package_paths, near=file)
     if file.suffix == ".xacro":
         xml = expand_xacro(file, dict(xacro_args or {}), packages, shown=shown)
     else:
-        xml = file.read_text(encoding="utf-8")
+        xml = read_text(file, shown=shown)
     root = parse_xml(xml, shown=shown)
     return parse_urdf(root, xml, file.parent, packages, shown=shown)
+
+
+def read_text(file: Path, *, shown: str) -> str:
+    """The UTF-8 text of `file`; unreadable or non-UTF-8 content is an InputError."""
+    try:
+        return file.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None
 
 
 def parse_xml(text: str, *, shown: str) -> etree._Element:
@@ -66,7 +78,7 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
 
     import xacro
 
-    text = file.read_text(encoding="utf-8").replace("$(find-pkg-share ", "$(find ")
+    text = read_text(file, shown=shown).replace("$(find-pkg-share ", "$(find ")
     captured = io.StringIO()
     with _ament_index_stub(packages, shown), contextlib.redirect_stderr(captured):
         try:

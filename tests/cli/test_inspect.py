@@ -165,3 +165,17 @@ def test_second_fixture_takes_xacro_args():
 def test_inline_urdf_helper_is_valid(tmp_path):
     build_file_tree(tmp_path, {"a.urdf": urdf('<link name="only"/>')})
     assert runner.invoke(app, ["inspect", str(tmp_path / "a.urdf")]).exit_code == 0
+
+
+def test_a_folder_or_non_utf8_file_is_one_line_exit_2(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "latin1.urdf").write_bytes('<robot name="r\xe9"><link name="a"/></robot>'.encode("latin-1"))
+    (tmp_path / "latin1.urdf.xacro").write_bytes((tmp_path / "latin1.urdf").read_bytes())
+    (tmp_path / "robot").mkdir()
+    for target, expected in (
+        ("latin1.urdf", "error: latin1.urdf: not UTF-8 text (byte 14)"),
+        ("latin1.urdf.xacro", "error: latin1.urdf.xacro: not UTF-8 text (byte 14)"),
+        ("robot", "error: robot: is a folder; expected a .urdf or .xacro file"),
+    ):
+        result = runner.invoke(app, ["inspect", target])
+        assert result.exit_code == 2 and result.stderr == expected + "\n", result.output
