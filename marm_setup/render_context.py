@@ -11,16 +11,23 @@ from pathlib import PurePosixPath
 
 from marm_setup.groups import active_group_joints, groups_by_name
 from marm_setup.robot_model import Joint, RobotModel
-from marm_setup.setup_model import Controller, GroupState, Kinematics, PlannerDefaults, SetupModel
+from marm_setup.setup_model import (
+    DRIVER_ACTION_NS,
+    Controller,
+    GroupState,
+    Kinematics,
+    PlannerDefaults,
+    SetupModel,
+)
 
 # MoveIt 2 / ros2_control: controller type per MoveIt controller type, and its action namespace.
 ROS2_CONTROLLER_TYPES = {
     "FollowJointTrajectory": "joint_trajectory_controller/JointTrajectoryController",
     "GripperCommand": "position_controllers/GripperActionController",
 }
-ROS2_ACTION_NS = {"FollowJointTrajectory": "follow_joint_trajectory", "GripperCommand": "gripper_cmd"}
+ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == "ros2"}
 # ArbotiX: follow_controller serves `<name>/<action_ns>`; the gripper_controller node `<node>/gripper_action`.
-ARBOTIX_GRIPPER_ACTION_NS = "gripper_action"
+ARBOTIX_GRIPPER_ACTION_NS = DRIVER_ACTION_NS["ros1", "GripperCommand"]
 
 OMPL_PLANNERS = (
     ("AnytimePathShortening", "geometric::AnytimePathShortening"),

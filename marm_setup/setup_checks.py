@@ -3,7 +3,8 @@ InputError naming the file and the element by its key path (`groups[arm].chain.t
 
 Checks: unknown joint/link/group names (with close matches), duplicate names, chain tip not
 below its base, subgroup cycles, poses missing a joint of their group or outside its limits,
-end effectors whose parent link is inside their own group.
+end effectors whose parent link is inside their own group, controller action namespaces the
+target's driver does not serve.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from collections.abc import Iterable
 from marm_setup.errors import InputError
 from marm_setup.groups import active_group_joints, group_joints, group_links, groups_by_name
 from marm_setup.robot_model import RobotModel
-from marm_setup.setup_model import Group, SetupModel
+from marm_setup.setup_model import DRIVER_ACTION_NS, Group, SetupModel
 
 LIMIT_TOLERANCE = 1e-9  # [rad] or [m]: values written with full precision sit on the limit
 
@@ -52,6 +53,7 @@ def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -
     _check_states(c)
     _check_end_effectors(c)
     _check_joint_lists(c)
+    _check_controller_actions(c)
     _check_collision_pairs(c)
 
 
@@ -192,6 +194,19 @@ def _check_joint_lists(c: _Checker) -> None:
         c.joint(a.joint, f"arbotix_joints[{a.joint}].joint")
     for lim in m.joint_limits:
         c.joint(lim.joint, f"joint_limits[{lim.joint}].joint")
+
+
+def _check_controller_actions(c: _Checker) -> None:
+    """MoveIt's `<name>/<action_ns>` must be the action the target's driver serves."""
+    target = c.model.target
+    for ctl in c.model.controllers:
+        served = DRIVER_ACTION_NS.get((target, ctl.type))
+        if served is not None and ctl.action_ns != served:
+            raise c.fail(
+                f"'{ctl.action_ns}' is not served by the {target} driver: a {ctl.type} controller "
+                f"serves '{ctl.name}/{served}' (set action_ns: {served})",
+                f"controllers[{ctl.name}].action_ns",
+            )
 
 
 def _check_collision_pairs(c: _Checker) -> None:

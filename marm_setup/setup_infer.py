@@ -16,6 +16,7 @@ from marm_setup.errors import InputError
 from marm_setup.groups import active_group_joints, groups_by_name
 from marm_setup.robot_model import Joint, RobotModel
 from marm_setup.setup_model import (
+    DRIVER_ACTION_NS,
     ArbotixJoint,
     Chain,
     Controller,
@@ -30,7 +31,6 @@ from marm_setup.setup_model import (
 )
 
 ARM, GRIPPER, END_EFFECTOR, HOME = "arm", "gripper", "robot_gripper", "home"
-GRIPPER_ACTION_NS = {"ros1": "gripper_action", "ros2": "gripper_cmd"}
 ITEM_KEYS = ("name", "group", "joint", "link")
 
 
@@ -153,15 +153,11 @@ def _controllers(model: SetupModel, robot: RobotModel) -> tuple[Controller, ...]
         joints = active_group_joints(group, by_name, robot, model.passive_joints)
         if group.subgroups or not joints:
             continue
-        name = f"{group.name}_controller"
-        if group.name in ee_groups:
-            out.append(
-                Controller(name, "GripperCommand", GRIPPER_ACTION_NS[model.target], joints[:1], group.name)
-            )
-        else:
-            out.append(
-                Controller(name, "FollowJointTrajectory", "follow_joint_trajectory", joints, group.name)
-            )
+        gripper = group.name in ee_groups
+        kind = "GripperCommand" if gripper else "FollowJointTrajectory"
+        action_ns = DRIVER_ACTION_NS.get((model.target, kind), "follow_joint_trajectory")
+        joints = joints[:1] if gripper else joints
+        out.append(Controller(f"{group.name}_controller", kind, action_ns, joints, group.name))
     return tuple(out)
 
 

@@ -14,6 +14,16 @@ TARGETS = ("ros2", "ros1")
 VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
 CONTROLLER_TYPES = ("FollowJointTrajectory", "GripperCommand")
 KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+# The action namespace each target's driver serves, per controller type, where the driver fixes
+# it: ros2_control's JointTrajectoryController and GripperActionController serve
+# `<name>/follow_joint_trajectory` and `<name>/gripper_cmd`; the ArbotiX gripper_controller node
+# serves `<node>/gripper_action`. (The ArbotiX follow_controller serves the action_name that
+# arbotix.yaml gives it, so a ros1 FollowJointTrajectory controller may use any action_ns.)
+DRIVER_ACTION_NS = {
+    ("ros2", "FollowJointTrajectory"): "follow_joint_trajectory",
+    ("ros2", "GripperCommand"): "gripper_cmd",
+    ("ros1", "GripperCommand"): "gripper_action",
+}
 
 
 @dataclass(frozen=True, slots=True)

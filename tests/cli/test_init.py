@@ -183,6 +183,21 @@ BAD_SPECS = {
         "groups[gripper].joints[1]: expected a string, got an integer (2)",
     ),
     "bad target": ({"target": "ros3"}, "target: 'ros3' is not one of: ros2, ros1"),
+    "gripper action the driver does not serve": (
+        {
+            "target": "ros1",
+            "controllers": [
+                {
+                    "name": "gripper_controller",
+                    "type": "GripperCommand",
+                    "action_ns": "gripper_cmd",
+                    "joints": ["finger_joint1"],
+                }
+            ],
+        },
+        "controllers[gripper_controller].action_ns: 'gripper_cmd' is not served by the ros1 driver: "
+        "a GripperCommand controller serves 'gripper_controller/gripper_action' (set action_ns: gripper_action)",
+    ),
 }
 
 

@@ -124,3 +124,18 @@ def test_switching_target_reports_stale_files(tmp_path):
     assert "create    config/moveit.yaml" in result.stdout
     assert "stale     launch/demo.launch (no longer generated; left in place)" in result.stdout
     assert (pkg / "launch" / "demo.launch").is_file()
+
+
+def test_switching_target_without_the_drivers_action_ns_is_refused(tmp_path):
+    pkg = make_package(tmp_path, "ros1")
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(setup.read_text().replace("target: ros1", "target: ros2"))
+    before = snapshot(pkg)
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 2
+    assert result.stderr.strip() == (
+        f"error: {setup}: controllers[gripper_controller].action_ns: 'gripper_action' is not served by "
+        "the ros2 driver: a GripperCommand controller serves 'gripper_controller/gripper_cmd' "
+        "(set action_ns: gripper_cmd)"
+    )
+    assert snapshot(pkg) == before
