@@ -105,8 +105,8 @@ def _check_options(trials, fraction, jobs, padding, srdf, keep, report) -> None:
         raise InputError(f"must be in (0, 1], got {fraction}", element="--min-collision-fraction")
     if jobs < 1:
         raise InputError(f"must be >= 1, got {jobs}", element="--jobs")
-    if padding < 0.0:
-        raise InputError(f"must be >= 0, got {padding}", element="--padding")
+    if not 0.0 <= padding < float("inf"):  # also refuses nan, which would disable every pair
+        raise InputError(f"must be >= 0 and finite, got {padding}", element="--padding")
     if keep and srdf is None:
         raise InputError("--keep needs --srdf (the SRDF whose pairs to keep)", element="--keep")
     if report is not None and report.suffix.lower() not in REPORT_SUFFIXES:

@@ -136,6 +136,7 @@ def test_padding(tmp_path):
         (["--min-collision-fraction", "0"], "error: --min-collision-fraction: must be in (0, 1]"),
         (["--jobs", "0"], "error: --jobs: must be >= 1"),
         (["--padding", "-0.1"], "error: --padding: must be >= 0"),
+        (["--padding", "nan"], "error: --padding: must be >= 0 and finite, got nan"),
         (["--keep"], "error: --keep: --keep needs --srdf"),
         (["--report", "m.png"], "error: m.png: unknown report type '.png'; expected .svg or .html"),
         (["--srdf", "nothere.srdf"], "error: nothere.srdf: file not found"),
