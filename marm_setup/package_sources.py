@@ -105,11 +105,22 @@ def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths):
     if entry.get("package") and entry.get("relative_path"):
         return _setup_assistant_urdf(entry, paths, shown, args)
     raise InputError(
-        f"cannot find the robot description of package '{name}' "
-        "(no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro)",
+        f"cannot find the robot description of package '{name}' ({_why_no_urdf(root, marm, setup_assistant)})",
         path=shown,
         element="--urdf",
     )
+
+
+def _why_no_urdf(root: Path, marm: Any, setup_assistant: Any) -> str:
+    """Why none of the robot description sources gave a URDF, naming the files that exist."""
+    for rel, data in (("marm_setup.yaml", marm), (".setup_assistant", setup_assistant)):
+        if (root / rel).is_file() and data is None:
+            return f"{rel} is not readable YAML; fix it or pass --urdf URDF"
+    if (root / ".setup_assistant").is_file():
+        return ".setup_assistant gives no URDF package and relative_path; pass --urdf URDF"
+    if (root / "marm_setup.yaml").is_file():
+        return "marm_setup.yaml gives no robot.urdf; pass --urdf URDF"
+    return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro; pass --urdf URDF"
 
 
 def _srdf_robot_name(root: Path) -> str | None:

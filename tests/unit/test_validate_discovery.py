@@ -104,3 +104,19 @@ def test_marm_setup_yaml_xacro_args_and_package_paths(tmp_path):
     assert pkg.xacro_args == (("foo", "bar"),)
     assert FIXTURES.resolve() in pkg.package_paths
     assert pkg.package_paths[0] == out.resolve()  # $(find <itself>) is this copy
+
+
+@pytest.mark.parametrize(
+    ("text", "reason"),
+    [
+        ("moveit_setup_assistant_config: [\n", ".setup_assistant is not readable YAML"),
+        ("moveit_setup_assistant_config:\n  SRDF: {relative_path: config/a.srdf}\n", "gives no URDF package"),
+    ],
+)
+def test_no_robot_description_names_the_broken_setup_assistant(tmp_path, text, reason):
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "a.srdf").write_text('<robot name="a"/>', encoding="utf-8")
+    (tmp_path / ".setup_assistant").write_text(text, encoding="utf-8")
+    with pytest.raises(InputError, match=reason) as info:
+        discover_package(tmp_path)
+    assert info.value.element == "--urdf"
