@@ -139,24 +139,42 @@ def apply_writes(changes: list[FileChange], out_dir: Path, *, force: bool = Fals
     out_dir = Path(out_dir)
     if _nothing_to_do(changes, out_dir):
         return []
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    manifest = {} if _is_fresh(out_dir) else load_manifest(out_dir)
-    tmp = Path(tempfile.mkdtemp(prefix=".marm-setup-", dir=out_dir.parent))
     try:
-        stage = tmp / "pkg"
-        written = _stage(changes, stage, manifest)
-        if _is_fresh(out_dir):
-            if out_dir.exists():
-                out_dir.rmdir()
-            os.rename(stage, out_dir)
-        else:
-            for rel in written:
-                target = out_dir / rel
-                target.parent.mkdir(parents=True, exist_ok=True)
-                os.replace(stage / rel, target)
+        out_dir.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=".marm-setup-", dir=out_dir.parent))
+    except OSError as exc:
+        raise _write_error(exc, out_dir) from None
+    try:
+        manifest = {} if _is_fresh(out_dir) else load_manifest(out_dir)
+        _swap_in(tmp / "pkg", _stage(changes, tmp / "pkg", manifest), out_dir)
+    except OSError as exc:
+        raise _write_error(exc, out_dir) from None
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return [c for c in changes if c.writes]
+
+
+def _swap_in(stage: Path, written: list[str], out_dir: Path) -> None:
+    """Move the staged files into out_dir: the whole folder when fresh, else file by file."""
+    if _is_fresh(out_dir):
+        try:
+            if out_dir.exists():
+                out_dir.rmdir()
+            os.rename(stage, out_dir)
+        except OSError as exc:
+            raise _write_error(exc, out_dir) from None
+        return
+    for rel in written:
+        target = out_dir / rel
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(stage / rel, target)
+        except OSError as exc:
+            raise _write_error(exc, out_dir, rel) from None
+
+
+def _write_error(exc: OSError, out_dir: Path, rel: str | None = None) -> InputError:
+    return InputError(f"cannot write: {exc.strerror or exc}", path=str(out_dir), element=rel)
 
 
 def _nothing_to_do(changes: list[FileChange], out_dir: Path) -> bool:
@@ -172,6 +190,9 @@ def check_output_dir(out_dir: Path, *, force: bool, shown: str | None = None) ->
     shown = shown or str(out_dir)
     if out_dir.exists() and not out_dir.is_dir():
         raise InputError("exists and is not a directory", path=shown)
+    above = next((p for p in out_dir.parents if p.exists()), None)
+    if above is not None and not above.is_dir():
+        raise InputError(f"cannot create it: '{above}' is not a directory", path=shown)
     if not force and not _is_fresh(out_dir):
         raise InputError("directory exists and is not empty (use --force to write into it)", path=shown)
 

@@ -268,3 +268,12 @@ def test_xacro_args_are_recorded_and_shape_the_inference(tmp_path):
     model = load_setup(out / "marm_setup.yaml")
     assert model.robot.xacro_args == (("with_gripper", "false"),)
     assert [g.name for g in model.groups] == ["arm"]
+
+
+def test_out_below_a_file_is_one_line(tmp_path):
+    (tmp_path / "file").write_text("x")
+    result = _init(tmp_path / "file" / "pkg")
+    assert result.exit_code == 2, result.output
+    assert result.stderr.strip() == (
+        f"error: {tmp_path / 'file' / 'pkg'}: cannot create it: '{tmp_path / 'file'}' is not a directory"
+    )

@@ -166,3 +166,23 @@ def test_stale_files_are_manifest_entries_no_longer_rendered(tmp_path):
     assert stale_files(changes, out, keep=["scripts/run.py"]) == ["config/a.yaml"]
     (out / "config/a.yaml").unlink()
     assert stale_files(changes, out) == ["scripts/run.py"]
+
+
+def test_os_errors_while_writing_are_input_errors_naming_the_file(tmp_path):
+    out = tmp_path / "pkg"
+    write_all(FILES, out)
+    (out / "config" / "a.yaml").unlink()
+    (out / "config" / "a.yaml").mkdir()  # a folder where a generated file goes
+    changes = plan_writes([RenderedFile("config/a.yaml", "a: 2\n")], out)
+    with pytest.raises(InputError, match="cannot write") as info:
+        apply_writes(changes, out)
+    assert (info.value.path, info.value.element) == (str(out), "config/a.yaml")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pkg"]  # staging dir removed
+
+
+def test_output_dir_below_a_file_is_refused(tmp_path):
+    (tmp_path / "file").write_text("x")
+    with pytest.raises(InputError, match="is not a directory"):
+        check_output_dir(tmp_path / "file" / "pkg", force=False)
+    with pytest.raises(InputError, match="cannot write"):
+        write_all(FILES, tmp_path / "file" / "pkg")
