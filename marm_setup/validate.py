@@ -65,25 +65,9 @@ class Validation:
         return {key: getattr(self, key) for key in keys}
 
 
-def validate_package(
-    path: str | Path,
-    *,
-    urdf: str | Path | None = None,
-    xacro_args: Mapping[str, str] | None = None,
-    package_paths: Iterable[str | Path] = (),
-    plan: bool = True,
-    matrix_trials: int = MATRIX_TRIALS,
-) -> list[Finding]:
-    """Every finding for the package at `path`, sorted by file then element (see `validate`)."""
-    found = validate(
-        path,
-        urdf=urdf,
-        xacro_args=xacro_args,
-        package_paths=package_paths,
-        plan=plan,
-        matrix_trials=matrix_trials,
-    )
-    return list(found.findings)
+def validate_package(path: str | Path, **options) -> list[Finding]:
+    """Every finding for the package at `path`, sorted by file then element (`validate`'s options)."""
+    return list(validate(path, **options).findings)
 
 
 def validate(
