@@ -2,6 +2,10 @@
 
 Pure: data in, text out. Cells are coloured by reason; enabled (sometimes colliding) pairs are
 shaded by their hit rate in the fully counted Always-round samples.
+
+Hit counts come from the Always rounds only (rounds of 200 samples in which every remaining
+pair is checked): the Never phase stops checking a pair at its first hit, so its trials give
+"seen colliding", not a count. Every output says so (HIT_COUNTS).
 """
 
 from __future__ import annotations
@@ -29,6 +33,10 @@ LETTERS = {
 }
 HEAT_LOW, HEAT_HIGH = (254, 230, 206), (230, 85, 13)  # enabled: 0 % -> 100 % hit rate
 CELL, CHAR, PAD = 22, 7.0, 12
+HIT_COUNTS = (
+    "hits/samples count the Always-round samples only (every pair checked in each); the Never "
+    "trials stop checking a pair at its first hit, so they add no counts, only seen_colliding"
+)
 
 
 def final_reasons(matrix: CollisionMatrix, disabled: Iterable[DisabledPair] | None = None) -> dict:
@@ -45,7 +53,15 @@ def describe_matrix(
     counts = {r.value: sum(1 for v in reasons.values() if v is r) for r in DisabledReason}
     pairs = [_pair_dict(s, reasons.get(s.pair)) for s in matrix.stats]
     pairs += [
-        {"link1": a, "link2": b, "reason": r.value, "hits": None, "samples": None, "min_distance": None}
+        {
+            "link1": a,
+            "link2": b,
+            "reason": r.value,
+            "hits": None,
+            "samples": None,
+            "seen_colliding": None,
+            "min_distance": None,
+        }
         for (a, b), r in sorted(reasons.items())
         if (a, b) not in {s.pair for s in matrix.stats}
     ]
@@ -57,6 +73,7 @@ def describe_matrix(
         "min_collision_fraction": matrix.min_collision_fraction,
         "padding": matrix.padding,
         "never_bound_95": never_bound(matrix.trials),
+        "hit_counts": HIT_COUNTS,
         "counts": counts,
         "pairs": sorted(pairs, key=lambda p: (p["link1"], p["link2"])),
     }
@@ -69,12 +86,14 @@ def never_bound(trials: int) -> float | None:
 
 def _pair_dict(stats: PairStats, reason: DisabledReason | None) -> dict:
     distance = None if stats.min_distance is None else round(stats.min_distance, 6)
+    sampled = stats.samples > 0 or stats.reason in (None, DisabledReason.NEVER)  # else never checked
     return {
         "link1": stats.link1,
         "link2": stats.link2,
         "reason": None if reason is None else reason.value,
         "hits": stats.hits,
         "samples": stats.samples,
+        "seen_colliding": stats.seen_colliding if sampled else None,
         "min_distance": distance if reason is DisabledReason.NEVER else None,
     }
 
@@ -150,7 +169,9 @@ def _cell(a, b, i, j, left, top, reasons, stats) -> Cell:
 def _title(pair, reason, st, rate) -> str:
     text = f"{pair[0]} / {pair[1]}: {ENABLED if reason is None else reason.value}"
     if rate is not None:
-        text += f", in collision in {st.hits} of {st.samples} samples ({100 * rate:.1f} %)"
+        text += f", in collision in {st.hits} of {st.samples} Always-round samples ({100 * rate:.1f} %)"
+    if reason is None and st is not None and not st.hits:
+        text += ", seen colliding in the trials"
     if reason is DisabledReason.NEVER and st is not None and st.min_distance is not None:
         text += f", closest {1000 * st.min_distance:.1f} mm"
     return text
@@ -169,12 +190,13 @@ def _summary(matrix: CollisionMatrix, reasons) -> list[str]:
         f"{len(matrix.stats)} candidate pairs; disabled: {counts}; enabled (sometimes colliding): {enabled}",
         f"{matrix.trials} trials, seed {matrix.seed}, Always at >= {matrix.min_collision_fraction:g}"
         + (f"; a Never pair collides with p < {bound:.2g} (95 %)" if bound else ""),
+        "hit rates: Always-round samples only (the trials stop checking a pair at its first hit)",
     ]
 
 
 def _legend(x: float, y: float) -> list[dict]:
     items = [(COLORS[r], f"{LETTERS[r]} {r.value}") for r in DisabledReason]
-    items.append((_mix(HEAT_LOW, HEAT_HIGH, 0.5), "% enabled: hit rate"))
+    items.append((_mix(HEAT_LOW, HEAT_HIGH, 0.5), "% enabled: Always-round hit rate"))
     return [{"x": x + k * 100, "y": y, "fill": f, "text": t} for k, (f, t) in enumerate(items)]
 
 
@@ -188,11 +210,13 @@ def format_summary(
     lines = [
         f"robot {robot_name}: {len(matrix.stats)} candidate pairs (links with collision geometry)",
         f"disabled {len(reasons)}: {counts}",
-        f"enabled (seen colliding, checked at run time) {len(enabled)}:",
+        f"enabled (seen colliding, checked at run time) {len(enabled)}, "
+        "with hits/samples of the Always rounds (the trials stop at a pair's first hit):",
     ]
     for s in enabled:
-        rate = f"{s.hits}/{s.samples} samples" if s.samples else "seen in trials"
-        lines.append(f"  {s.link1} / {s.link2}  ({rate})")
+        hits = f"{s.hits}/{s.samples}" if s.samples else ""
+        seen = "seen in trials" if not s.hits else ""
+        lines.append(f"  {s.link1} / {s.link2}  ({', '.join(x for x in (hits, seen) if x)})")
     lines.append(
         f"{matrix.trials} trials, seed {matrix.seed}, Always at >= {matrix.min_collision_fraction:g} "
         f"of a {ROUND}-sample round, padding {matrix.padding:g} m, {seconds:.2f} s"

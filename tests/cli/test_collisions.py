@@ -178,3 +178,21 @@ def test_a_robot_without_collision_geometry_has_an_empty_matrix(tmp_path):
     data = json.loads(result.stdout)
     assert data["pairs"] == [] and set(data["counts"].values()) == {0}
     etree.parse(str(report))  # a well-formed (empty) heat map
+
+
+def test_outputs_say_what_their_hit_counts_mean(tmp_path):
+    # the trials stop checking a pair at its first hit: counts come from the Always rounds only
+    result = _run(str(MARM_URDF), *FAST, "--format", "json", "--report", str(tmp_path / "m.svg"))
+    data = json.loads(result.stdout)
+    assert "Always-round samples only" in data["hit_counts"]
+    pairs = {(p["link1"], p["link2"]): p for p in data["pairs"]}
+    assert pairs[("base_link", "bottom_link")]["seen_colliding"] is None  # Adjacent: never sampled
+    enabled = [p for p in data["pairs"] if p["reason"] is None]
+    assert enabled and all(p["seen_colliding"] is True and p["samples"] == 200 for p in enabled)
+    assert any(p["hits"] == 0 for p in enabled)  # seen only in the trials: no count, still enabled
+    assert all(p["seen_colliding"] is False for p in data["pairs"] if p["reason"] == "Never")
+    assert "hit rates: Always-round samples only" in (tmp_path / "m.svg").read_text(encoding="utf-8")
+    text = _run(str(MARM_URDF), *FAST).stdout
+    assert "with hits/samples of the Always rounds (the trials stop at a pair's first hit):" in text
+    zero = next(p for p in enabled if p["hits"] == 0)
+    assert f"  {zero['link1']} / {zero['link2']}  (0/200, seen in trials)" in text
