@@ -76,15 +76,26 @@ def limits_from_config(
     """
     v_max, a_max = [], []
     for name in joint_names:
-        entry = joint_limits.get(name) or {}
-        v = entry.get("max_velocity") if entry.get("has_velocity_limits", True) else None
+        entry = joint_limits.get(name)
+        entry = entry if isinstance(entry, Mapping) else {}
+        v = _number(entry, "max_velocity", name) if entry.get("has_velocity_limits", True) else None
         v = v if v is not None else robot.joint(name).velocity
         if v is None or v <= 0:
             raise ValueError(f"no positive velocity limit for joint {name}")
-        a = entry.get("max_acceleration") if entry.get("has_acceleration_limits", False) else None
-        a_max.append(float(a) if a is not None and a > 0 else default_acceleration)
+        a = _number(entry, "max_acceleration", name) if entry.get("has_acceleration_limits", False) else None
+        a_max.append(a if a is not None and a > 0 else default_acceleration)
         v_max.append(float(v))
     return JointLimits(tuple(joint_names), np.array(v_max), np.array(a_max))
+
+
+def _number(entry: Mapping, key: str, joint: str) -> float | None:
+    """`entry[key]` as a float (None when absent); ValueError for anything but a finite number."""
+    value = entry.get(key)
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
+        raise ValueError(f"{key} of joint {joint} must be a number, got {value!r}")
+    return float(value)
 
 
 def merge_collinear(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:

@@ -113,6 +113,20 @@ def test_an_output_that_cannot_be_written_is_one_line_exit_2(marm_package, tmp_p
     assert list(tmp_path.iterdir()) == []  # no temporary file left behind
 
 
+def test_a_limit_that_is_not_a_number_is_one_line_exit_2(tmp_path):
+    package = tmp_path / "marm_moveit_config"
+    spec = FIXTURES / "marm" / "marm_setup.yaml"
+    args = ["init", str(MARM_URDF), "--out", str(package), "--setup", str(spec), "--target", "ros1"]
+    assert runner.invoke(app, [*args, "--trials", "300"]).exit_code == 0
+    limits = package / "config" / "joint_limits.yaml"
+    data = yaml.safe_load(limits.read_text(encoding="utf-8"))
+    data["joint_limits"]["joint2"]["max_velocity"] = "fast"
+    limits.write_text(yaml.safe_dump(data), encoding="utf-8")
+    result = _plan(package, "--group", "arm", "--from", "home", "--to", "forward")
+    assert result.exit_code == 2, result.output
+    assert result.stderr == f"error: {limits}: max_velocity of joint joint2 must be a number, got 'fast'\n"
+
+
 @pytest.mark.parametrize("target", ["ros1", "ros2"])
 def test_panda_ready_to_extended_rechecked_by_pinocchio(target, tmp_path):
     package = realworld(target, "panda_moveit_config")

@@ -112,3 +112,13 @@ def test_ends_exactly_at_the_goal_after_a_waypoint_within_tolerance_of_it():
     path = np.array([[1.0, 0.0], [4.9e-74, 0.0], [0.0, 0.0]])  # found by hypothesis
     traj = time_parameterize(path, LIMITS)
     np.testing.assert_array_equal(traj.positions[-1], [0.0, 0.0])
+
+
+@pytest.mark.parametrize(
+    ("key", "value"), [("max_velocity", "fast"), ("max_velocity", True), ("max_acceleration", [2])]
+)
+def test_limits_that_are_not_numbers_are_a_value_error_naming_the_joint(key, value):
+    robot = load_robot(MARM_URDF, {}, [])
+    entry = {"has_velocity_limits": True, "has_acceleration_limits": True, key: value}
+    with pytest.raises(ValueError, match=f"^{key} of joint joint1 must be a number, got "):
+        limits_from_config(robot, ("joint1",), {"joint1": entry})
