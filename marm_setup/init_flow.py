@@ -48,12 +48,14 @@ def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
 
 def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
     """Inference, then the SRDF import, then the SPEC; checked against the robot."""
-    from marm_setup.setup_checks import check_setup
+    from marm_setup.setup_checks import check_setup, package_name_problem, ros_package_name
     from marm_setup.setup_infer import derive_group_settings, infer_setup
 
+    if request.name and (problem := package_name_problem(request.name)):
+        raise InputError(problem, element="--name")
     spec = _read_spec(request.spec)
     target = _target(request, spec)
-    name = request.name or spec.get("package_name") or f"{robot.name}_moveit_config"
+    name = request.name or spec.get("package_name") or ros_package_name(f"{robot.name}_moveit_config")
     model = infer_setup(robot, package_name=str(name), source=_source(request), target=target)
     if request.from_srdf is not None:
         from marm_setup.srdf import read_srdf, srdf_to_setup

@@ -10,6 +10,7 @@ target's driver does not serve.
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterable
 
 from marm_setup.errors import InputError
@@ -18,6 +19,7 @@ from marm_setup.robot_model import RobotModel
 from marm_setup.setup_model import DRIVER_ACTION_NS, Group, SetupModel
 
 LIMIT_TOLERANCE = 1e-9  # [rad] or [m]: values written with full precision sit on the limit
+PACKAGE_NAME = re.compile(r"[a-z][a-z0-9_]*")  # REP 144, as catkin and ament require
 
 
 class _Checker:
@@ -46,6 +48,9 @@ class _Checker:
 def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -> None:
     """Raise InputError for the first inconsistency between the setup and the robot."""
     c = _Checker(model, robot, path)
+    problem = package_name_problem(model.package_name)
+    if problem:
+        raise c.fail(problem, "package_name")
     _check_duplicates(c)
     _check_virtual_joints(c)
     _check_groups(c)
@@ -55,6 +60,22 @@ def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -
     _check_joint_lists(c)
     _check_controller_actions(c)
     _check_collision_pairs(c)
+
+
+def package_name_problem(name: str) -> str | None:
+    """Why `name` cannot name a ROS package (REP 144), or None."""
+    if PACKAGE_NAME.fullmatch(name):
+        return None
+    return (
+        f"'{name}' is not a valid ROS package name: lowercase letters, digits and '_', "
+        f"starting with a letter (e.g. '{ros_package_name(name)}')"
+    )
+
+
+def ros_package_name(text: str) -> str:
+    """`text` made into a valid package name: lowercase, other characters as '_'."""
+    name = re.sub(r"[^a-z0-9_]+", "_", text.lower()).strip("_")
+    return name if name[:1].isalpha() else f"pkg_{name}".rstrip("_")
 
 
 def _close(name: str, known: tuple[str, ...]) -> str:

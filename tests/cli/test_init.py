@@ -183,6 +183,11 @@ BAD_SPECS = {
         "groups[gripper].joints[1]: expected a string, got an integer (2)",
     ),
     "bad target": ({"target": "ros3"}, "target: 'ros3' is not one of: ros2, ros1"),
+    "bad package name": (
+        {"package_name": "Marm MoveIt"},
+        "package_name: 'Marm MoveIt' is not a valid ROS package name: lowercase letters, digits and '_', "
+        "starting with a letter (e.g. 'marm_moveit')",
+    ),
     "gripper action the driver does not serve": (
         {
             "target": "ros1",
@@ -277,3 +282,22 @@ def test_out_below_a_file_is_one_line(tmp_path):
     assert result.stderr.strip() == (
         f"error: {tmp_path / 'file' / 'pkg'}: cannot create it: '{tmp_path / 'file'}' is not a directory"
     )
+
+
+def test_bad_name_option_is_one_line_and_robot_names_become_valid_package_names(tmp_path):
+    result = _init(tmp_path / "pkg", "--name", "marm-config")
+    assert result.exit_code == 2, result.output
+    assert result.stderr.strip() == (
+        "error: --name: 'marm-config' is not a valid ROS package name: lowercase letters, digits and '_', "
+        "starting with a letter (e.g. 'marm_config')"
+    )
+    assert not (tmp_path / "pkg").exists()
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text(
+        "<robot name='My-Arm'><link name='a'/><link name='b'/>"
+        "<joint name='j' type='revolute'><parent link='a'/><child link='b'/>"
+        "<limit lower='-1' upper='1' velocity='1' effort='1'/></joint></robot>"
+    )
+    result = runner.invoke(app, ["init", str(urdf), "--out", str(tmp_path / "pkg"), "--trials", "10"])
+    assert result.exit_code == 0, result.output
+    assert load_setup(tmp_path / "pkg" / "marm_setup.yaml").package_name == "my_arm_moveit_config"
