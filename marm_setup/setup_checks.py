@@ -3,8 +3,8 @@ InputError naming the file and the element by its key path (`groups[arm].chain.t
 
 Checks: unknown joint/link/group names (with close matches), duplicate names, chain tip not
 below its base, subgroup cycles, poses missing a joint of their group or outside its limits,
-end effectors whose parent link is inside their own group, controller action namespaces the
-target's driver does not serve.
+end effectors whose parent link is inside their own group, virtual joints not at the root,
+controller action namespaces the target's driver does not serve, package names ROS rejects.
 """
 
 from __future__ import annotations
@@ -113,7 +113,14 @@ def _check_duplicates(c: _Checker) -> None:
 
 def _check_virtual_joints(c: _Checker) -> None:
     for vj in c.model.virtual_joints:
-        c.link(vj.child_link, f"virtual_joints[{vj.name}].child_link")
+        where = f"virtual_joints[{vj.name}].child_link"
+        c.link(vj.child_link, where)
+        if vj.child_link != c.robot.root:
+            raise c.fail(
+                f"child link '{vj.child_link}' is not the robot's root link '{c.robot.root}' "
+                "(MoveIt skips such a virtual joint)",
+                where,
+            )
 
 
 def _check_groups(c: _Checker) -> None:

@@ -183,6 +183,15 @@ BAD_SPECS = {
         "groups[gripper].joints[1]: expected a string, got an integer (2)",
     ),
     "bad target": ({"target": "ros3"}, "target: 'ros3' is not one of: ros2, ros1"),
+    "virtual joint not at the root": (
+        {
+            "virtual_joints": [
+                {"name": "virtual_joint", "type": "fixed", "parent_frame": "world", "child_link": "link1"}
+            ]
+        },
+        "virtual_joints[virtual_joint].child_link: child link 'link1' is not the robot's root link 'base_link' "
+        "(MoveIt skips such a virtual joint)",
+    ),
     "bad package name": (
         {"package_name": "Marm MoveIt"},
         "package_name: 'Marm MoveIt' is not a valid ROS package name: lowercase letters, digits and '_', "
