@@ -129,14 +129,22 @@ def _point_at(q_path: np.ndarray, cum: np.ndarray, s: float) -> tuple[int, np.nd
     return i, q_path[i] + frac * (q_path[i + 1] - q_path[i])
 
 
-def _merge_collinear(q_path: np.ndarray) -> np.ndarray:
-    """Drop waypoints lying on the straight line between their neighbours (tree chains)."""
+def merge_collinear(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+    """Drop repeated waypoints and waypoints on the straight line between their neighbours."""
     out = [q_path[0]]
     for q, q_next in zip(q_path[1:-1], q_path[2:], strict=True):
         a, b = q - out[-1], q_next - q
-        if np.dot(a, b) < np.linalg.norm(a) * np.linalg.norm(b) * (1 - 1e-9):
-            out.append(q)
-    return np.array([*out, q_path[-1]])
+        na, nb = np.linalg.norm(a), np.linalg.norm(b)
+        if na <= tol:
+            continue
+        if nb > tol and np.dot(a, b) >= na * nb * (1 - 1e-12):
+            continue
+        out.append(q)
+    if np.linalg.norm(q_path[-1] - out[-1]) > tol or len(out) == 1:
+        out.append(q_path[-1])
+    else:  # the last kept waypoint is within tol of the goal: end exactly at the goal
+        out[-1] = q_path[-1]
+    return np.array(out)
 
 
 def shortcut(checker, q_path: np.ndarray, rng: np.random.Generator) -> np.ndarray:
@@ -145,7 +153,7 @@ def shortcut(checker, q_path: np.ndarray, rng: np.random.Generator) -> np.ndarra
     Random shortcuts stop after `shortcut_iterations`, or after `shortcut_patience` failures
     in a row.
     """
-    q_path = _greedy(checker, _merge_collinear(_drop_duplicates(q_path)))
+    q_path = _greedy(checker, merge_collinear(q_path))
     failures = 0
     for _ in range(checker.options.shortcut_iterations):
         if len(q_path) < 3 or failures >= checker.options.shortcut_patience:
@@ -158,18 +166,7 @@ def shortcut(checker, q_path: np.ndarray, rng: np.random.Generator) -> np.ndarra
             continue
         failures = 0
         q_path = np.concatenate([q_path[: i1 + 1], [q1, q2], q_path[i2 + 1 :]])
-    return _merge_collinear(_drop_duplicates(q_path))
-
-
-def _drop_duplicates(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
-    """Remove waypoints within `tol` of the previous one (the goal itself is always kept)."""
-    out = [q_path[0]]
-    for q in q_path[1:-1]:
-        if np.linalg.norm(q - out[-1]) > tol:
-            out.append(q)
-    if len(out) > 1 and np.linalg.norm(q_path[-1] - out[-1]) <= tol:
-        out.pop()
-    return np.array([*out, q_path[-1]])
+    return merge_collinear(q_path)
 
 
 def _first_bad_segment(checker, q_path: np.ndarray) -> int | None:

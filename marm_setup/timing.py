@@ -19,6 +19,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from marm_setup.robot_model import RobotModel
+from marm_setup.rrt import merge_collinear
+
+__all__ = [
+    "JointLimits",
+    "TimedTrajectory",
+    "limits_from_config",
+    "merge_collinear",
+    "time_parameterize",
+]
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,24 +105,6 @@ def _number(entry: Mapping, key: str, joint: str) -> float | None:
     if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
         raise ValueError(f"{key} of joint {joint} must be a number, got {value!r}")
     return float(value)
-
-
-def merge_collinear(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
-    """Drop repeated waypoints and waypoints on the straight line between their neighbours."""
-    out = [q_path[0]]
-    for q, q_next in zip(q_path[1:-1], q_path[2:], strict=True):
-        a, b = q - out[-1], q_next - q
-        na, nb = np.linalg.norm(a), np.linalg.norm(b)
-        if na <= tol:
-            continue
-        if nb > tol and np.dot(a, b) >= na * nb * (1 - 1e-12):
-            continue
-        out.append(q)
-    if np.linalg.norm(q_path[-1] - out[-1]) > tol or len(out) == 1:
-        out.append(q_path[-1])
-    else:  # the last kept waypoint is within tol of the goal: end exactly at the goal
-        out[-1] = q_path[-1]
-    return np.array(out)
 
 
 def _segment_knots(d: np.ndarray, limits: JointLimits) -> list[tuple[float, float, float, float]]:
