@@ -13,6 +13,7 @@ from marm_setup.groups import active_group_joints, groups_by_name
 from marm_setup.robot_model import Joint, RobotModel
 from marm_setup.setup_model import (
     DRIVER_ACTION_NS,
+    OMPL_PLANNERS,
     Controller,
     GroupState,
     Kinematics,
@@ -29,20 +30,6 @@ ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if
 # ArbotiX: follow_controller serves `<name>/<action_ns>`; the gripper_controller node `<node>/gripper_action`.
 ARBOTIX_GRIPPER_ACTION_NS = DRIVER_ACTION_NS["ros1", "GripperCommand"]
 
-OMPL_PLANNERS = (
-    ("AnytimePathShortening", "geometric::AnytimePathShortening"),
-    ("BKPIECE", "geometric::BKPIECE"),
-    ("EST", "geometric::EST"),
-    ("KPIECE", "geometric::KPIECE"),
-    ("LBKPIECE", "geometric::LBKPIECE"),
-    ("PRM", "geometric::PRM"),
-    ("PRMstar", "geometric::PRMstar"),
-    ("RRT", "geometric::RRT"),
-    ("RRTConnect", "geometric::RRTConnect"),
-    ("RRTstar", "geometric::RRTstar"),
-    ("SBL", "geometric::SBL"),
-    ("TRRT", "geometric::TRRT"),
-)
 # Pilz / MoveIt defaults for cartesian limits ([m/s], [m/s^2], [rad/s]).
 CARTESIAN_LIMITS = (
     ("max_trans_vel", 1.0),

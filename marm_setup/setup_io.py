@@ -22,9 +22,11 @@ from marm_setup.errors import InputError
 from marm_setup.link_pairs import DisabledPair
 from marm_setup.setup_model import (
     CONTROLLER_TYPES,
+    OMPL_PLANNERS,
     TARGETS,
     VIRTUAL_JOINT_TYPES,
     Controller,
+    PlannerDefaults,
     SetupModel,
     VirtualJoint,
 )
@@ -36,6 +38,7 @@ CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (SetupModel, "target"): TARGETS,
     (VirtualJoint, "type"): VIRTUAL_JOINT_TYPES,
     (Controller, "type"): CONTROLLER_TYPES,
+    (PlannerDefaults, "default_planner"): tuple(name for name, _ in OMPL_PLANNERS),
 }
 # Keys that name a list item in key paths (`groups[arm]`), tried in order.
 ITEM_KEYS = ("name", "group", "joint", "link")

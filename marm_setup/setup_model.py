@@ -14,6 +14,21 @@ TARGETS = ("ros2", "ros1")
 VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
 CONTROLLER_TYPES = ("FollowJointTrajectory", "GripperCommand")
 KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+# The OMPL planner configurations the package defines (name, type): a group's default_planner is one.
+OMPL_PLANNERS = (
+    ("AnytimePathShortening", "geometric::AnytimePathShortening"),
+    ("BKPIECE", "geometric::BKPIECE"),
+    ("EST", "geometric::EST"),
+    ("KPIECE", "geometric::KPIECE"),
+    ("LBKPIECE", "geometric::LBKPIECE"),
+    ("PRM", "geometric::PRM"),
+    ("PRMstar", "geometric::PRMstar"),
+    ("RRT", "geometric::RRT"),
+    ("RRTConnect", "geometric::RRTConnect"),
+    ("RRTstar", "geometric::RRTstar"),
+    ("SBL", "geometric::SBL"),
+    ("TRRT", "geometric::TRRT"),
+)
 # The action namespace each target's driver serves, per controller type, where the driver fixes
 # it: ros2_control's JointTrajectoryController and GripperActionController serve
 # `<name>/follow_joint_trajectory` and `<name>/gripper_cmd`; the ArbotiX gripper_controller node

@@ -133,6 +133,11 @@ BAD = {
         "controllers[c].type",
         "did you mean 'FollowJointTrajectory'?",
     ),
+    "unknown OMPL planner": (
+        {"planners": [{"group": "arm", "default_planner": "RRTconnect"}]},
+        "planners[arm].default_planner",
+        "did you mean 'RRTConnect'?",
+    ),
 }
 
 
