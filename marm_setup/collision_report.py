@@ -50,7 +50,7 @@ def describe_matrix(
 ) -> dict:
     """Everything about the matrix as plain data (for `--format json`), pairs sorted."""
     reasons = final_reasons(matrix, disabled)
-    counts = {r.value: sum(1 for v in reasons.values() if v is r) for r in DisabledReason}
+    counts = reason_counts(reasons)
     pairs = [_pair_dict(s, reasons.get(s.pair)) for s in matrix.stats]
     pairs += [
         {
@@ -77,6 +77,11 @@ def describe_matrix(
         "counts": counts,
         "pairs": sorted(pairs, key=lambda p: (p["link1"], p["link2"])),
     }
+
+
+def reason_counts(reasons: dict) -> dict[str, int]:
+    """Disabled pairs per reason, in MoveIt's order (every reason listed, zeros included)."""
+    return {r.value: sum(1 for v in reasons.values() if v is r) for r in DisabledReason}
 
 
 def never_bound(trials: int) -> float | None:
@@ -183,7 +188,7 @@ def _mix(lo, hi, share: float) -> str:
 
 
 def _summary(matrix: CollisionMatrix, reasons) -> list[str]:
-    counts = ", ".join(f"{r.value} {sum(1 for v in reasons.values() if v is r)}" for r in DisabledReason)
+    counts = ", ".join(f"{reason} {n}" for reason, n in reason_counts(reasons).items())
     enabled = sum(1 for s in matrix.stats if reasons.get(s.pair) is None)
     bound = never_bound(matrix.trials)
     return [
@@ -205,7 +210,7 @@ def format_summary(
 ) -> str:
     """The text summary `marm-setup collisions` prints."""
     reasons = final_reasons(matrix, disabled)
-    counts = ", ".join(f"{r.value} {sum(1 for v in reasons.values() if v is r)}" for r in DisabledReason)
+    counts = ", ".join(f"{reason} {n}" for reason, n in reason_counts(reasons).items())
     enabled = [s for s in matrix.stats if reasons.get(s.pair) is None]
     lines = [
         f"robot {robot_name}: {len(matrix.stats)} candidate pairs (links with collision geometry)",

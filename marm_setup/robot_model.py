@@ -203,9 +203,6 @@ class RobotModel:
             link = joint.parent
         return tuple(reversed(joints))
 
-    def is_below(self, link: str, ancestor: str) -> bool:
-        return self.chain(ancestor, link) is not None
-
     def subtree_links(self, link: str) -> tuple[str, ...]:
         """`link` and every link below it, in tree order."""
         out = [link]
