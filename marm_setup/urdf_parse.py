@@ -181,6 +181,12 @@ def _check_limits(joint: Joint, limit: etree._Element | None, ctx: _Ctx) -> Join
             joint = _replace_limits(joint, joint.lower or 0.0, joint.upper or 0.0)
         if joint.lower > joint.upper:
             raise ctx.error(element, f"lower {joint.lower} > upper {joint.upper}")
+        lo, hi = joint.bounds
+        if lo > hi:
+            raise ctx.error(
+                f"joint[{joint.name}]/safety_controller",
+                f"soft limits leave no range inside [{joint.lower}, {joint.upper}]",
+            )
     if joint.velocity is not None and joint.velocity < 0:
         raise ctx.error(element, f"negative velocity {joint.velocity}")
     return joint

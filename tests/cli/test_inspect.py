@@ -130,6 +130,15 @@ BAD_INPUTS = {
         "r.urdf",
         "joint[k]/mimic: follows 'f', a fixed joint; a mimic must follow a moving joint",
     ),
+    "soft limits outside the limits": (
+        {
+            "r.urdf": TWO_BOXES.replace(
+                "</joint>", '<safety_controller soft_lower_limit="1.5" soft_upper_limit="2"/></joint>'
+            )
+        },
+        "r.urdf",
+        "joint[j]/safety_controller: soft limits leave no range inside [-1.0, 1.0]",
+    ),
     "undefined xacro arg": (
         {
             "r.urdf.xacro": '<robot name="x" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="$(arg nm)"/></robot>'
