@@ -22,10 +22,15 @@ from marm_setup.package_render import (
 from marm_setup.render_context import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
 from marm_setup.setup_model import JointLimitOverride, RobotSource
 from tests.conftest import GOLDENS
-from tests.render_helpers import inferred_marm, marm_model, marm_robot
+from tests.render_helpers import inferred_marm, marm_robot
 
 TARGETS = ("ros1", "ros2")
 XML_SUFFIXES = (".xml", ".launch", ".srdf", ".xacro")
+
+
+def marm_model(target: str):
+    """The marm setup `init --setup fixtures/marm/marm_setup.yaml --target <target>` builds."""
+    return inferred_marm(target, GOLDENS / target)[0]
 
 
 @functools.lru_cache(maxsize=2)
@@ -277,7 +282,7 @@ def test_joint_limit_overrides_and_missing_velocity():
     }
 
 
-def test_hand_built_model_renders_both_targets():
+def test_both_targets_render_the_srdf_with_the_virtual_joint():
     for target in TARGETS:
         files = {f.path: f.content for f in render_package(marm_model(target), marm_robot())}
         assert "config/marm.srdf" in files
