@@ -38,8 +38,9 @@ class InitResult:
 
 def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
     model = build_setup(request, robot)
+    given = bool(model.collision.disabled)
     model = with_collision_matrix(model, robot, trials=request.trials, seed=request.seed)
-    lines = describe(model, request)
+    lines = describe(model, matrix_given=given)
     changes = write_package(model, robot, request.out, force=request.force)
     from marm_setup.writer import format_change
 
@@ -129,16 +130,21 @@ def _disabled_pairs(robot: RobotModel, *, trials: int, seed: int, fraction: floa
     return matrix.disabled
 
 
-def describe(model: SetupModel, request: InitRequest) -> list[str]:
+def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
+    """What the setup holds; the matrix line says whether it was computed or taken as given."""
     from marm_setup.link_pairs import DisabledReason
     from marm_setup.setup_infer import describe_setup
 
     counts = {r: sum(1 for d in model.collision.disabled if d.reason is r) for r in DisabledReason}
     summary = ", ".join(f"{n} {r.value}" for r, n in counts.items() if n)
+    source = (
+        "as given (SRDF / SPEC), not recomputed"
+        if matrix_given
+        else f"{model.collision.trials} trials, seed {model.collision.seed}"
+    )
     lines = describe_setup(model)
     lines.append(
-        f"collision matrix: {len(model.collision.disabled)} disabled pairs ({summary or 'none'}); "
-        f"{model.collision.trials} trials, seed {model.collision.seed}"
+        f"collision matrix: {len(model.collision.disabled)} disabled pairs ({summary or 'none'}); {source}"
     )
     return lines
 

@@ -98,6 +98,8 @@ def test_from_srdf_imports_the_shared_panda_setup(tmp_path):
     result = runner.invoke(app, [*args, "--target", "ros1"])
     assert result.exit_code == 0, result.output
     assert "group panda_arm: chain panda_link0 -> panda_link8" in result.stdout
+    assert "disabled pairs" in result.stdout and "as given (SRDF / SPEC), not recomputed" in result.stdout
+    assert "10000 trials" not in result.stdout  # no sampling was run
     assert "controller hand_controller/gripper_action (GripperCommand): panda_finger_joint1" in result.stdout
     model = load_setup(out / "marm_setup.yaml")
     original = read_srdf(srdf)
