@@ -67,7 +67,7 @@ def collisions(
 
     Seeded and deterministic (same seed, same bytes, whatever --jobs). Never is statistical: with N trials and no hit, a pair collides with probability below 3/N (95 %). Meshes are surfaces, as in MoveIt: a shape entirely inside a mesh, not touching it, does not collide.
     """
-    _check_options(trials, min_collision_fraction, jobs, padding, srdf, keep, report)
+    _check_options(trials, min_collision_fraction, seed, jobs, padding, srdf, keep, report)
     from marm_setup.collision import CollisionScene
     from marm_setup.collision_matrix import compute_collision_matrix
     from marm_setup.collision_srdf import load_srdf_text, read_srdf_entries
@@ -98,9 +98,11 @@ def collisions(
     _print_result(matrix, robot.name, disabled, seconds, format)
 
 
-def _check_options(trials, fraction, jobs, padding, srdf, keep, report) -> None:
+def _check_options(trials, fraction, seed, jobs, padding, srdf, keep, report) -> None:
     if trials < 0:
         raise InputError(f"must be >= 0, got {trials}", element="--trials")
+    if seed < 0:
+        raise InputError(f"must be >= 0, got {seed}", element="--seed")
     if not 0.0 < fraction <= 1.0:
         raise InputError(f"must be in (0, 1], got {fraction}", element="--min-collision-fraction")
     if jobs < 1:

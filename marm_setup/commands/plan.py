@@ -40,6 +40,8 @@ def plan(
     from marm_setup.robot import load_robot
     from marm_setup.trajectory_io import write_trajectory
 
+    if seed < 0:
+        raise InputError(f"must be >= 0, got {seed}", element="--seed")
     package = discover_package(package_dir, urdf=urdf, package_paths=package_path or ())
     if package.urdf is None:
         raise InputError("no robot description found; pass --urdf", path=str(package_dir))

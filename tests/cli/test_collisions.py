@@ -135,6 +135,7 @@ def test_padding(tmp_path):
         (["--trials", "-1"], "error: --trials: must be >= 0, got -1"),
         (["--min-collision-fraction", "0"], "error: --min-collision-fraction: must be in (0, 1]"),
         (["--jobs", "0"], "error: --jobs: must be >= 1"),
+        (["--seed", "-1"], "error: --seed: must be >= 0, got -1"),
         (["--padding", "-0.1"], "error: --padding: must be >= 0"),
         (["--padding", "nan"], "error: --padding: must be >= 0 and finite, got nan"),
         (["--keep"], "error: --keep: --keep needs --srdf"),

@@ -162,6 +162,11 @@ def test_bad_input_is_one_line_exit_2(marm_package, args, message):
     assert "Traceback" not in result.output
 
 
+def test_a_negative_seed_is_one_line_exit_2(marm_package):
+    result = _plan(marm_package, "--group", "arm", "--from", "home", "--to", "forward", "--seed", "-1")
+    assert result.exit_code == 2 and result.stderr == "error: --seed: must be >= 0, got -1\n"
+
+
 def test_not_a_package_is_exit_2(tmp_path):
     result = _plan(tmp_path, "--group", "arm", "--from", "a", "--to", "b")
     assert result.exit_code == 2 and len(result.stderr.splitlines()) == 1
