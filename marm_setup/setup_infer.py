@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from marm_setup.errors import InputError
 from marm_setup.groups import active_group_joints, groups_by_name
 from marm_setup.robot_model import Joint, RobotModel
+from marm_setup.setup_io import ITEM_KEYS
 from marm_setup.setup_model import (
     DRIVER_ACTION_NS,
     ArbotixJoint,
@@ -31,7 +32,6 @@ from marm_setup.setup_model import (
 )
 
 ARM, GRIPPER, END_EFFECTOR, HOME = "arm", "gripper", "robot_gripper", "home"
-ITEM_KEYS = ("name", "group", "joint", "link")
 
 
 @dataclass(frozen=True, slots=True)
