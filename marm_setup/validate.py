@@ -245,7 +245,7 @@ def initial_state(pkg: ConfigPackage) -> dict[str, float]:
     poses = []
     fake = pkg.fake_controllers.data if pkg.fake_controllers is not None else None
     if isinstance(fake, dict) and isinstance(fake.get("initial"), list):
-        poses = [(i.get("group"), i.get("pose")) for i in fake["initial"] if isinstance(i, dict)]
+        poses = [(str(i.get("group")), str(i.get("pose"))) for i in fake["initial"] if isinstance(i, dict)]
     positions = pkg.initial_positions.data if pkg.initial_positions is not None else None
     if isinstance(positions, dict):
         positions = positions.get("initial_positions", positions)

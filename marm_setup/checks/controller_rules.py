@@ -38,7 +38,8 @@ def moveit_controllers(section) -> tuple[list[MoveItController], list[Finding]]:
     if isinstance(data.get("controller_list"), list):
         items = [(section.element(f"controller_list[{i}]"), c) for i, c in enumerate(data["controller_list"])]
     elif isinstance(data.get("controller_names"), list):
-        items = [(section.element(n), data.get(n, {"name": n}) or {}) for n in data["controller_names"]]
+        names = [str(n) for n in data["controller_names"]]
+        items = [(section.element(n), data.get(n, {"name": n}) or {}) for n in names]
         items = [
             (where, {"name": where.rsplit(".", 1)[-1], **c}) for where, c in items if isinstance(c, dict)
         ]
@@ -182,11 +183,11 @@ def _group_joints(srdf, robot: RobotModel) -> dict[str, list[str]]:
 def ros2_driver_controllers(section) -> dict[str, tuple[str, tuple[str, ...] | None, str]]:
     """name -> (type, joints or None, element) from a ros2_controllers.yaml."""
     data = section.data if isinstance(section.data, dict) else {}
-    manager = (data.get("controller_manager") or {}).get("ros__parameters") or {}
+    manager = _mapping(_mapping(data.get("controller_manager")).get("ros__parameters"))
     out = {}
     for name, entry in manager.items():
         if isinstance(entry, dict) and "type" in entry:
-            params = (data.get(name) or {}).get("ros__parameters") or {}
+            params = _mapping(_mapping(data.get(name)).get("ros__parameters"))
             out[name] = (
                 str(entry["type"]),
                 _driver_joints(params),
@@ -203,6 +204,11 @@ def ros1_driver_controllers(section) -> dict[str, tuple[str, tuple[str, ...] | N
         for name, entry in data.items()
         if isinstance(entry, dict) and "type" in entry
     }
+
+
+def _mapping(value) -> dict:
+    """`value` when it is a mapping, else an empty one (malformed YAML reads as absent)."""
+    return value if isinstance(value, dict) else {}
 
 
 def _driver_joints(params: dict) -> tuple[str, ...] | None:
@@ -249,7 +255,10 @@ def _check_against_driver(moveit_section, section, driver, c: MoveItController) 
     elif c.action_ns and c.action_ns != served_ns:
         msg = f"{dtype} serves '{c.name}/{served_ns}', MoveIt uses action_ns '{c.action_ns}'"
         out.append(error("controller.driver-action", file, where, msg, f"set action_ns: {served_ns}"))
-    if djoints is not None and set(djoints) != set(c.joints):
+    if djoints is None:
+        msg = f"'{c.name}' names no joints ({dtype} needs them; MoveIt's has {list(c.joints)})"
+        out.append(error("controller.driver-joints", file, where, msg))
+    elif set(djoints) != set(c.joints):
         msg = f"joints {list(djoints)} differ from MoveIt's {list(c.joints)} for '{c.name}'"
         out.append(error("controller.driver-joints", file, where, msg))
     return out
@@ -265,12 +274,12 @@ def check_arbotix(
     name, action_name and joints; GripperCommand controllers match a gripper_controller node."""
     data = section.data if isinstance(section.data, dict) else {}
     out: list[Finding] = []
-    for joint in sorted(data.get("joints") or {}):
+    for joint in sorted(str(j) for j in _mapping(data.get("joints"))):
         if joint not in robot.joint_map:
             out.append(
                 error("controller.unknown-joint", section.file, f"joints.{joint}", f"unknown joint '{joint}'")
             )
-    drivers = data.get("controllers") or {}
+    drivers = _mapping(data.get("controllers"))
     for c in ctrls:
         if c.type == "GripperCommand":
             out += _check_gripper_node(section, c, gripper_nodes)
@@ -351,10 +360,15 @@ def _check_initial(section, srdf) -> list[Finding]:
     groups = {g.name for g in srdf.groups}
     states = {(s.group, s.name) for s in srdf.group_states}
     out = []
-    for i, item in enumerate(data.get("initial") or []):
+    initial = data.get("initial")
+    if initial is not None and not isinstance(initial, list):
+        return [
+            error("controller.fake-initial-pose", section.file, section.element("initial"), "expected a list")
+        ]
+    for i, item in enumerate(initial or []):
         where = section.element(f"initial[{i}]")
-        item = item if isinstance(item, dict) else {}
-        group, pose = item.get("group"), item.get("pose")
+        item = _mapping(item)
+        group, pose = str(item.get("group")), str(item.get("pose"))
         if group not in groups:
             out.append(error("controller.fake-initial-pose", section.file, where, f"unknown group '{group}'"))
         elif (group, pose) not in states:

@@ -48,12 +48,12 @@ def _check_group(section, where: str, entry: dict, configs: dict) -> list[Findin
     if not isinstance(listed, list):
         listed = []
         out.append(error("ompl.malformed", section.file, f"{where}.planner_configs", "expected a list"))
-    for name in listed:
+    for name in map(str, listed):
         if name not in configs:
             msg = f"planner config '{name}' is not defined under planner_configs"
             out.append(error("ompl.unknown-planner-config", section.file, f"{where}.planner_configs", msg))
     default = entry.get("default_planner_config")
-    if default is not None and default not in configs:
+    if default is not None and str(default) not in configs:
         msg = f"default_planner_config '{default}' is not defined under planner_configs"
         hint = "known: " + ", ".join(sorted(map(str, configs))[:8]) if configs else ""
         out.append(

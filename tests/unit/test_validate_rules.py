@@ -745,3 +745,44 @@ def test_own_matrix_is_fresh_for_its_urdf_whatever_the_seed_and_trials(tmp_path)
     args = ["init", str(MARM_URDF), "--out", str(out), "--trials", "200", "--seed", "7"]
     assert CliRunner().invoke(app, args).exit_code == 0
     assert [f for f in validate_package(out, plan=False) if f.rule == "matrix.stale"] == []
+
+
+def _set(keys, value):
+    def edit(data):
+        for key in keys[:-1]:
+            data = data[key]
+        data[keys[-1]] = value
+
+    return edit
+
+
+NESTED_WRONG_SHAPES = [  # (base, file, keys, value, whether it is an error)
+    ("ros1", FAKE, ("initial", 0, "group"), {}, True),
+    ("ros1", FAKE, ("initial",), 3, True),
+    ("ros1", OMPL, ("panda_arm", "planner_configs", 0), {}, True),
+    ("ros1", OMPL, ("panda_arm", "default_planner_config"), [], True),
+    ("ros2", MC2, ("moveit_simple_controller_manager", "controller_names", 0), {}, True),
+    # an alternative controllers file is only consulted for coverage: no finding, no crash
+    (
+        "ros2",
+        "config/gripper_moveit_controllers.yaml",
+        ("moveit_simple_controller_manager", "controller_names", 0),
+        {},
+        False,
+    ),
+    ("ros2", R2C, ("panda_arm_controller", "ros__parameters"), 3, True),
+    ("ros2", R2C, ("controller_manager",), "x", True),
+    ("marm_ros1", "config/arbotix.yaml", ("controllers",), ["arm_controller"], True),
+]
+
+
+@pytest.mark.parametrize(("base", "rel", "keys", "value", "is_error"), NESTED_WRONG_SHAPES)
+def test_wrong_nested_yaml_shapes_are_findings_not_crashes(
+    base, rel, keys, value, is_error, goods, tmp_path_factory
+):
+    good = goods(base)
+    pkg = copy_package(good, tmp_path_factory.mktemp("nested"))
+    edit_yaml(pkg, rel, _set(keys, value))
+    found = run(pkg, good, matrix_trials=0)
+    new_errors = {f for f in found if f.is_error} - set(run(good.path, good, matrix_trials=0))
+    assert bool(new_errors) == is_error, found
