@@ -237,6 +237,26 @@ def test_ros2_controller_wiring_agrees():
     assert spawned == set(moveit["controller_names"]) | {"joint_state_broadcaster"}
 
 
+# ros2_controllers: the package that exports each controller plugin type.
+PLUGIN_PACKAGES = {
+    "joint_state_broadcaster/JointStateBroadcaster": "joint_state_broadcaster",
+    "joint_trajectory_controller/JointTrajectoryController": "joint_trajectory_controller",
+    "position_controllers/GripperActionController": "gripper_controllers",
+}
+
+
+def test_ros2_package_xml_depends_on_every_controller_plugin_package(tmp_path):
+    from catkin_pkg.package import parse_package
+
+    files = rendered("ros2")
+    (tmp_path / "package.xml").write_text(files["package.xml"])
+    depends = {d.name for d in parse_package(str(tmp_path / "package.xml")).exec_depends}
+    manager = load_yaml(files, "config/ros2_controllers.yaml")["controller_manager"]["ros__parameters"]
+    types = {entry["type"] for entry in manager.values() if isinstance(entry, dict)}
+    assert types == set(PLUGIN_PACKAGES)
+    assert {PLUGIN_PACKAGES[t] for t in types} <= depends
+
+
 def test_ros2_initial_positions_within_limits_and_cover_ros2_control():
     files = rendered("ros2")
     robot = marm_robot()
