@@ -28,11 +28,11 @@ _EPS = 1e-9
 
 @dataclass(frozen=True, eq=False)
 class _Bounds:
-    """Link-frame bounding volumes of all links, row per geometry link."""
+    """Link-frame bounding volumes of all links, row per geometry link: a box and the sphere
+    around it share `center`."""
 
-    sphere_center: np.ndarray  # (L, 3)
+    center: np.ndarray  # (L, 3)
     sphere_radius: np.ndarray  # (L,)
-    box_center: np.ndarray  # (L, 3)
     box_half: np.ndarray  # (L, 3)
 
 
@@ -115,7 +115,7 @@ class CollisionScene:
         """(N, P) distance between bounding spheres minus padding; > 0 means cannot collide."""
         b = self._bounds
         rot, trans = poses[..., :3, :3], poses[..., :3, 3]
-        centers = np.einsum("nlij,lj->nli", rot, b.sphere_center) + trans
+        centers = np.einsum("nlij,lj->nli", rot, b.center) + trans
         a_rows, b_rows = self._pair_a[ids], self._pair_b[ids]
         dist = np.linalg.norm(centers[:, a_rows] - centers[:, b_rows], axis=-1)
         return dist - b.sphere_radius[a_rows] - b.sphere_radius[b_rows] - self.padding
@@ -137,8 +137,8 @@ class CollisionScene:
         """Separating-axis test of the padded link boxes, one row per (pose_a, pose_b)."""
         b, pad = self._bounds, self.padding / 2.0 + _EPS
         rot_a, rot_b = pose_a[:, :3, :3], pose_b[:, :3, :3]
-        ca = np.einsum("mij,mj->mi", rot_a, b.box_center[a_rows]) + pose_a[:, :3, 3]
-        cb = np.einsum("mij,mj->mi", rot_b, b.box_center[b_rows]) + pose_b[:, :3, 3]
+        ca = np.einsum("mij,mj->mi", rot_a, b.center[a_rows]) + pose_a[:, :3, 3]
+        cb = np.einsum("mij,mj->mi", rot_b, b.center[b_rows]) + pose_b[:, :3, 3]
         ea, eb = b.box_half[a_rows] + pad, b.box_half[b_rows] + pad
         r = np.einsum("mki,mkj->mij", rot_a, rot_b)
         t = np.einsum("mki,mk->mi", rot_a, cb - ca)
@@ -251,4 +251,4 @@ def _bounds(points: Sequence[np.ndarray]) -> _Bounds:
     hi = np.array([p.max(axis=0) for p in points]).reshape(-1, 3)
     center = (lo + hi) / 2.0
     radius = np.array([np.linalg.norm(p - c, axis=1).max() for p, c in zip(points, center, strict=True)])
-    return _Bounds(center, radius, center, (hi - lo) / 2.0)
+    return _Bounds(center, radius, (hi - lo) / 2.0)
