@@ -90,9 +90,12 @@ def compute_collision_matrix(
         _disable_default(scene, q0, reasons)
     counts = _disable_always(scene, seed, min_collision_fraction, reasons) if check_always else {}
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
+    seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
     q = trial_samples(robot, seed, trials)
-    seen, closest = _run_trials(scene, q, remaining, jobs, progress)
-    seen |= {p for p, (hits, _) in counts.items() if hits}
+    seen_in_trials, closest = _run_trials(
+        scene, q, tuple(p for p in remaining if p not in seen), jobs, progress
+    )
+    seen |= seen_in_trials
     never = [p for p in remaining if p not in seen]
     reasons.update(dict.fromkeys(never, DisabledReason.NEVER))
     distances = _never_distances(scene, q, never, closest)
