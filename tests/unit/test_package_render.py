@@ -235,6 +235,11 @@ def test_ros2_controller_wiring_agrees():
     demo = etree.fromstring(files["launch/demo.launch.xml"].encode())
     spawned = {n.get("args").split()[0] for n in demo.iter("node") if n.get("exec") == "spawner"}
     assert spawned == set(moveit["controller_names"]) | {"joint_state_broadcaster"}
+    param_file = "--param-file $(find-pkg-share marm_moveit_config)/config/ros2_controllers.yaml"
+    for node in demo.iter("node"):  # a controller with a parameter section gets it from its spawner
+        args = node.get("args") or ""
+        if node.get("exec") == "spawner" and args.split()[0] in ros2:
+            assert param_file in args, args
 
 
 # ros2_controllers: the package that exports each controller plugin type.
