@@ -128,6 +128,14 @@ def default_configuration(robot: RobotModel) -> np.ndarray:
     return np.array([j.default_position for j in robot.active_joints])
 
 
+def wrap_continuous(robot: RobotModel, q: np.ndarray) -> np.ndarray:
+    """`q` with continuous joints wrapped into [-pi, pi): the same angle, as MoveIt's enforceBounds."""
+    q = np.array(q, dtype=float)
+    cols = [i for i, j in enumerate(robot.active_joints) if j.type == "continuous"]
+    q[..., cols] = (q[..., cols] + np.pi) % (2.0 * np.pi) - np.pi
+    return q
+
+
 def sample_configurations(robot: RobotModel, rng: np.random.Generator, n: int) -> np.ndarray:
     """`n` configurations uniform within the bounds; row i depends only on the rng stream."""
     lower, upper = bounds(robot)

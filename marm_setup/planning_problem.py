@@ -3,7 +3,8 @@
 Read from a `ConfigPackage` (ours or the Setup Assistant's): the SRDF gives groups, named poses,
 passive joints and the disabled pairs; `joint_limits.yaml` (ros1) or `robot_description_planning`
 (ros2) the limits and default scaling factors. Joints outside the group sit at the robot's
-default state (0, or mid-range), as MoveIt's default start state does.
+default state (0, or mid-range), as MoveIt's default start state does. Continuous joints are
+wrapped into [-pi, pi), as MoveIt's enforceBounds does (a pose may say 4.0 rad).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import numpy as np
 from marm_setup.errors import InputError
 from marm_setup.fake_execution import ExecutionOptions, ExecutionReport, fake_execute
 from marm_setup.groups import active_group_joints, groups_by_name
-from marm_setup.kinematics import default_configuration
+from marm_setup.kinematics import default_configuration, wrap_continuous
 from marm_setup.planner import (
     PlannerOptions,
     PlanResult,
@@ -121,7 +122,11 @@ def planning_problem(package, robot: RobotModel, scene, group: str) -> PlanningP
     except ValueError as exc:
         raise InputError(str(exc), path=_limits_file(package)) from None
     q_initial = initial_configuration(package, robot)
-    poses = {s.name: _overlay(robot, q_initial, s.values) for s in srdf.group_states if s.group == group}
+    poses = {
+        s.name: wrap_continuous(robot, _overlay(robot, q_initial, s.values))
+        for s in srdf.group_states
+        if s.group == group
+    }
     pairs = scene.enabled_pairs((p.link1, p.link2) for p in srdf.disabled)
     return PlanningProblem(
         group, joints, poses, limits, scale_v, scale_a, lambda q: scene.first_collisions(q, pairs)

@@ -5,6 +5,7 @@ trajectory the fake controller rejects and unusable limits each give their rule.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import pytest
 from typer.testing import CliRunner
@@ -107,3 +108,28 @@ def test_two_named_poses_with_the_same_values_are_clean(marm):
     problem = planning_problem(package, robot, scene, "arm")
     twin = dataclasses.replace(problem, poses={**problem.poses, "ready": problem.poses["home"].copy()})
     assert _check_group(twin, robot, "config/marm.srdf", 0, PlannerOptions()) == []
+
+
+def test_a_continuous_joint_pose_beyond_pi_is_the_same_angle_wrapped(marm):
+    # pose rules accept any value of a continuous joint; the planner must too (MoveIt wraps it)
+    package, robot, scene = marm
+    spun = robot.__class__(
+        robot.name,
+        robot.links,
+        tuple(dataclasses.replace(j, type="continuous") if j.name == "joint1" else j for j in robot.joints),
+        robot.root,
+        robot.source,
+        robot.urdf_xml,
+    )
+    states = tuple(
+        dataclasses.replace(
+            s, values=tuple((n, v + 2 * math.pi if n == "joint1" else v) for n, v in s.values)
+        )
+        if s.name == "forward"
+        else s
+        for s in package.srdf.group_states
+    )
+    turned = dataclasses.replace(package, srdf=dataclasses.replace(package.srdf, group_states=states))
+    problem = planning_problem(turned, spun, CollisionScene(spun), "arm")
+    assert -math.pi <= problem.poses["forward"][spun.active_joint_names.index("joint1")] < math.pi
+    assert _check_group(problem, spun, "config/marm.srdf", 0, PlannerOptions()) == []
