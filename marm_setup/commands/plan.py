@@ -35,7 +35,6 @@ def plan(
     from marm_setup.collision import CollisionScene
     from marm_setup.errors import InputError, PlanningFailed
     from marm_setup.package_discovery import discover_package
-    from marm_setup.planner import path_length
     from marm_setup.planning_problem import plan_between, planning_problem, pose
     from marm_setup.robot import load_robot
     from marm_setup.trajectory_io import write_trajectory
@@ -56,16 +55,25 @@ def plan(
     if not outcome.execution.ok:
         message = "fake execution failed: " + "; ".join(outcome.execution.violations)
         raise PlanningFailed(message, path=srdf_shown, element=where)
-    traj, result = outcome.trajectory, outcome.plan
     typer.echo(f"planned {group}: {from_pose} -> {to_pose} ({', '.join(problem.joint_names)})")
-    typer.echo(f"  waypoints:     {len(result.q_path)} ({len(traj.times)} trajectory points)")
-    typer.echo(f"  path length:   {path_length(result.q_path):.4f} (joint space, rad/m)")
-    typer.echo(
-        f"  duration:      {traj.duration:.3f} s (velocity scaling {problem.velocity_scaling:g}, "
-        f"acceleration scaling {problem.acceleration_scaling:g})"
-    )
-    typer.echo(f"  planning time: {result.planning_time_s * 1000:.1f} ms ({result.iterations} iterations)")
-    typer.echo(f"  fake execution: ok ({outcome.execution.samples} states checked)")
+    typer.echo(_summary(problem, outcome))
     if output is not None:
-        write_trajectory(traj, output)
+        write_trajectory(outcome.trajectory, output)
         typer.echo(f"wrote {output}")
+
+
+def _summary(problem, outcome) -> str:
+    """The indented summary lines of a successful, fake-executed plan."""
+    from marm_setup.planner import path_length
+
+    traj, result = outcome.trajectory, outcome.plan
+    return "\n".join(
+        [
+            f"  waypoints:     {len(result.q_path)} ({len(traj.times)} trajectory points)",
+            f"  path length:   {path_length(result.q_path):.4f} (joint space, rad/m)",
+            f"  duration:      {traj.duration:.3f} s (velocity scaling {problem.velocity_scaling:g}, "
+            f"acceleration scaling {problem.acceleration_scaling:g})",
+            f"  planning time: {result.planning_time_s * 1000:.1f} ms ({result.iterations} iterations)",
+            f"  fake execution: ok ({outcome.execution.samples} states checked)",
+        ]
+    )
