@@ -4,7 +4,8 @@ InputError naming the file and the element by its key path (`groups[arm].chain.t
 Checks: unknown joint/link/group names (with close matches), duplicate names, chain tip not
 below its base, subgroup cycles, poses missing a joint of their group or outside its limits,
 end effectors whose parent link is inside their own group, virtual joints not at the root,
-controller action namespaces the target's driver does not serve, package names ROS rejects.
+controller action namespaces the target's driver does not serve, package names ROS rejects,
+a robot_name other than the URDF's.
 """
 
 from __future__ import annotations
@@ -51,6 +52,8 @@ def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -
     problem = package_name_problem(model.package_name)
     if problem:
         raise c.fail(problem, "package_name")
+    if model.robot_name != robot.name:
+        raise c.fail(f"'{model.robot_name}' is not the URDF's robot name '{robot.name}'", "robot_name")
     _check_duplicates(c)
     _check_virtual_joints(c)
     _check_groups(c)

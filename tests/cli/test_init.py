@@ -194,6 +194,10 @@ BAD_SPECS = {
         "virtual_joints[virtual_joint].child_link: child link 'link1' is not the robot's root link 'base_link' "
         "(MoveIt skips such a virtual joint)",
     ),
+    "robot name not the URDF's": (
+        {"robot_name": "foo"},
+        "robot_name: 'foo' is not the URDF's robot name 'marm'",
+    ),
     "bad package name": (
         {"package_name": "Marm MoveIt"},
         "package_name: 'Marm MoveIt' is not a valid ROS package name: lowercase letters, digits and '_', "
