@@ -50,14 +50,18 @@ def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
 def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
     """Inference, then the SRDF import, then the SPEC; checked against the robot."""
     from marm_setup.setup_checks import check_setup, package_name_problem, ros_package_name
-    from marm_setup.setup_infer import derive_group_settings, infer_setup
+    from marm_setup.setup_infer import derive_group_settings, fill_group_settings, infer_setup
 
     if request.name and (problem := package_name_problem(request.name)):
         raise InputError(problem, element="--name")
     spec = _read_spec(request.spec)
     target = _target(request, spec)
     name = request.name or spec.get("package_name") or ros_package_name(f"{robot.name}_moveit_config")
-    model = infer_setup(robot, package_name=str(name), source=_source(request), target=target)
+    given = bool(spec) or request.from_srdf is not None  # may give the groups inference cannot find
+    model = infer_setup(
+        robot, package_name=str(name), source=_source(request), target=target, arm_required=not given
+    )
+    inferred_groups = bool(model.groups)
     if request.from_srdf is not None:
         from marm_setup.srdf import read_srdf, srdf_to_setup
 
@@ -65,6 +69,14 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
         check_setup(model, robot, str(request.from_srdf))
     if spec:
         model = _apply_spec(model, spec, request)
+        if not inferred_groups:
+            model = fill_group_settings(model, robot)
+    if not model.groups:
+        raise InputError(
+            "no planning groups: no serial arm from the root to infer, and the SPEC / SRDF gives none",
+            path=str(request.spec or request.from_srdf),
+            element="groups",
+        )
     check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
     return model
 

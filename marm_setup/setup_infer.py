@@ -45,24 +45,34 @@ class ArmGuess:
 
 
 def infer_setup(
-    robot: RobotModel, *, package_name: str, source: RobotSource, target: str = "ros2"
+    robot: RobotModel,
+    *,
+    package_name: str,
+    source: RobotSource,
+    target: str = "ros2",
+    arm_required: bool = True,
 ) -> SetupModel:
-    """A complete setup for `robot` (collision matrix left empty: `init` computes it)."""
-    guess = infer_arm(robot)
-    groups = [Group(ARM, chain=guess.chain)]
-    end_effectors: tuple[EndEffector, ...] = ()
-    if guess.gripper_joints:
-        groups.append(Group(GRIPPER, joints=guess.gripper_joints, links=guess.gripper_links))
-        end_effectors = (EndEffector(END_EFFECTOR, GRIPPER, guess.chain.tip),)
+    """A complete setup for `robot` (collision matrix left empty: `init` computes it).
+
+    Without a serial arm from the root (a dual-arm robot) this is an InputError, or, when not
+    `arm_required` (a SPEC or SRDF gives the groups), a setup with no groups.
+    """
     model = SetupModel(
         package_name=package_name,
         robot_name=robot.name,
         robot=source,
         target=target,
         virtual_joints=(VirtualJoint("virtual_joint", "fixed", "world", robot.root),),
-        groups=tuple(groups),
-        end_effectors=end_effectors,
     )
+    if not arm_required and not any(j.is_actuated for j in _serial_path(robot)):
+        return model
+    guess = infer_arm(robot)
+    groups = [Group(ARM, chain=guess.chain)]
+    end_effectors: tuple[EndEffector, ...] = ()
+    if guess.gripper_joints:
+        groups.append(Group(GRIPPER, joints=guess.gripper_joints, links=guess.gripper_links))
+        end_effectors = (EndEffector(END_EFFECTOR, GRIPPER, guess.chain.tip),)
+    model = dataclasses.replace(model, groups=tuple(groups), end_effectors=end_effectors)
     model = dataclasses.replace(model, group_states=(home_pose(model, robot),))
     return derive_group_settings(model, robot)
 
@@ -128,6 +138,13 @@ def home_pose(model: SetupModel, robot: RobotModel) -> GroupState:
 
 def _clamp(value: float, bounds: tuple[float, float]) -> float:
     return min(max(value, bounds[0]), bounds[1])
+
+
+def fill_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:
+    """`derive_group_settings` for the lists (controllers, kinematics, ...) the setup left empty."""
+    derived = derive_group_settings(model, robot)
+    names = ("controllers", "kinematics", "planners", "arbotix_joints")
+    return dataclasses.replace(model, **{n: getattr(model, n) or getattr(derived, n) for n in names})
 
 
 def derive_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:

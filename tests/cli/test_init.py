@@ -316,3 +316,55 @@ def test_bad_name_option_is_one_line_and_robot_names_become_valid_package_names(
     result = runner.invoke(app, ["init", str(urdf), "--out", str(tmp_path / "pkg"), "--trials", "10"])
     assert result.exit_code == 0, result.output
     assert load_setup(tmp_path / "pkg" / "marm_setup.yaml").package_name == "my_arm_moveit_config"
+
+
+def _dual_arm_urdf() -> str:
+    """Two 2-joint arms on one base: no single serial arm from the root to infer."""
+    from tests.helpers import urdf
+
+    body = ['<link name="base"/>']
+    for side in ("l", "r"):
+        for i, parent in ((1, "base"), (2, f"{side}1")):
+            body.append(
+                f'<link name="{side}{i}"/><joint name="{side}_j{i}" type="revolute"><parent link="{parent}"/>'
+                f'<child link="{side}{i}"/><origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>'
+                '<limit lower="-1" upper="1" velocity="1" effort="1"/></joint>'
+            )
+    return urdf("\n".join(body), name="dual")
+
+
+def test_spec_gives_the_groups_inference_cannot_find(tmp_path):
+    spec = {
+        "groups": [
+            {"name": "left", "chain": {"base": "base", "tip": "l2"}},
+            {"name": "right", "chain": {"base": "base", "tip": "r2"}},
+        ]
+    }
+    build_file_tree(tmp_path, {"dual.urdf": _dual_arm_urdf(), "spec.yaml": yaml.safe_dump(spec)})
+    args = ["init", str(tmp_path / "dual.urdf"), "--trials", "10"]
+
+    result = runner.invoke(app, [*args, "--out", str(tmp_path / "a")])
+    assert result.exit_code == 2
+    assert "no actuated joints on a serial chain from the root" in result.stderr
+
+    result = runner.invoke(app, [*args, "--out", str(tmp_path / "b"), "--setup", str(tmp_path / "spec.yaml")])
+    assert result.exit_code == 0, result.output
+    model = load_setup(tmp_path / "b" / "marm_setup.yaml")
+    assert [g.name for g in model.groups] == ["left", "right"]
+    assert [(c.name, c.joints) for c in model.controllers] == [
+        ("left_controller", ("l_j1", "l_j2")),
+        ("right_controller", ("r_j1", "r_j2")),
+    ]
+    assert [k.group for k in model.kinematics] == ["left", "right"]
+    assert [p.group for p in model.planners] == ["left", "right"]
+
+    (tmp_path / "empty.yaml").write_text("author: {name: me}\n")
+    result = runner.invoke(
+        app, [*args, "--out", str(tmp_path / "c"), "--setup", str(tmp_path / "empty.yaml")]
+    )
+    assert result.exit_code == 2
+    assert result.stderr.strip() == (
+        f"error: {tmp_path / 'empty.yaml'}: groups: no planning groups: no serial arm from the root to infer, "
+        "and the SPEC / SRDF gives none"
+    )
+    assert not (tmp_path / "c").exists()
