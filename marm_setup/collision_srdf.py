@@ -13,6 +13,7 @@ import re
 import tempfile
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from html import escape
 from pathlib import Path
 
 from lxml import etree
@@ -96,7 +97,7 @@ def update_srdf(
     newline = "\r\n" if "\r\n" in text else "\n"
     anchor, indent = _anchor(text, removed, entries, shown)
     block = "".join(
-        f'{indent}<disable_collisions link1="{d.link1}" link2="{d.link2}" '
+        f'{indent}<disable_collisions link1="{escape(d.link1)}" link2="{escape(d.link2)}" '
         f'reason="{d.reason.value}"/>{newline}'
         for d in new
     )

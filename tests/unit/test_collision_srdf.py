@@ -165,3 +165,9 @@ def test_update_of_the_shared_panda_srdf(tmp_path):
     (pkgs / "moveit_resources_panda_description").symlink_to(root / "panda_description")
     removed, removable = _pin_removed(robot.urdf_xml, srdf, pkgs)
     assert removed == removable == len(final) - 1  # panda_hand/panda_link7: both on joint 7
+
+
+def test_update_escapes_link_names():
+    text, _ = update_srdf('<robot name="r">\n</robot>\n', [DisabledPair.of('a&"b', "c<d", N)], shown="r.srdf")
+    entry = etree.fromstring(text.encode()).find("disable_collisions")
+    assert (entry.get("link1"), entry.get("link2")) == ('a&"b', "c<d")
