@@ -154,6 +154,32 @@ def test_ros1_controller_wiring_agrees():
         assert set(c["joints"]) <= set(arbotix["joints"])
 
 
+def test_ros1_trajectory_demo_drives_the_arbotix_arm_controller():
+    import ast
+
+    files = rendered("ros1")
+    tree = ast.parse(files["scripts/trajectory_demo.py"])
+    consts = {
+        node.targets[0].id: ast.literal_eval(node.value)
+        for node in tree.body
+        if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Name)
+    }
+    arm = load_yaml(files, "config/arbotix.yaml")["controllers"]["arm_controller"]
+    assert consts["ACTION"] == arm["action_name"] and consts["JOINTS"] == arm["joints"]
+    poses = {s.name: dict(s.values) for s in marm_model("ros1").group_states}
+    assert consts["HOME"] == [poses["home"][j] for j in arm["joints"]]
+    assert consts["GOAL"] == [poses["forward"][j] for j in arm["joints"]]
+    # ArbotiX's follow_controller times a point by time_from_start and warns when velocities come too
+    assigned = {
+        t.attr
+        for n in ast.walk(tree)
+        if isinstance(n, ast.Assign)
+        for t in n.targets
+        if isinstance(t, ast.Attribute)
+    }
+    assert "time_from_start" in assigned and "velocities" not in assigned
+
+
 def test_ros1_launch_references_exist():
     files = rendered("ros1")
     text = "\n".join(v for k, v in files.items() if k.startswith("launch/"))

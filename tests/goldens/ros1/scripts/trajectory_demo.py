@@ -33,8 +33,7 @@ def main():
     trajectory.joint_names = JOINTS
     point = JointTrajectoryPoint()
     point.positions = target
-    point.velocities = [0.0] * len(JOINTS)
-    point.time_from_start = rospy.Duration(DURATION)
+    point.time_from_start = rospy.Duration(DURATION)  # no velocities: the driver interpolates
     trajectory.points.append(point)
 
     goal = FollowJointTrajectoryGoal()
