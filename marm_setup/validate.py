@@ -54,6 +54,7 @@ class Validation:
         robot = f"robot '{self.robot}'" if self.robot else "robot (not loaded: model checks skipped)"
         n = self.planned_pairs
         runtime = "runtime planning skipped" if n is None else f"planned {n} pose pair{'' if n == 1 else 's'}"
+        runtime += " (no group has two usable named poses)" if n == 0 else ""
         return (
             f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
             f"from {self.urdf} ({self.urdf_origin}); {runtime}"

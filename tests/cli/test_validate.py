@@ -163,3 +163,12 @@ def test_marm_package_moved_away_from_its_urdf(tmp_path):
         "robot.urdf",
     )
     assert "--urdf" in finding["hint"]
+
+
+def test_a_package_with_one_pose_per_group_says_why_nothing_was_planned(tmp_path):
+    pkg = generate_marm(tmp_path, "ros1")  # inferred setup: only 'home'
+    result = runner.invoke(app, ["validate", str(pkg)])
+    assert result.exit_code == 0, result.output
+    assert result.stdout.splitlines()[-2].endswith(
+        "; planned 0 pose pairs (no group has two usable named poses)"
+    )
