@@ -5,6 +5,7 @@ Pure functions of (SetupModel, RobotModel); templates loop over these values and
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from pathlib import PurePosixPath
@@ -182,14 +183,17 @@ def _servo(joint: Joint, servo_id: int, max_speed: float | None) -> ArbotixServo
 
 
 def arbotix_servos(model: SetupModel, robot: RobotModel) -> list[ArbotixServo]:
-    """One servo per active controller joint, in tree order; ids from the setup or 1, 2, ..."""
+    """One servo per active controller joint, in tree order; ids from the setup, else the
+    smallest ids the setup does not use (1, 2, ...)."""
     given = {a.joint: a for a in model.arbotix_joints}
+    used = {a.id for a in model.arbotix_joints}
+    free = (i for i in itertools.count(1) if i not in used)
     wanted = {j for c in model.controllers for j in c.joints}
     joints = [j for j in robot.joints_in_tree_order if j.name in wanted and j.is_active]
     servos = []
-    for index, joint in enumerate(joints, start=1):
+    for joint in joints:
         spec = given.get(joint.name)
-        servos.append(_servo(joint, spec.id if spec else index, spec.max_speed if spec else None))
+        servos.append(_servo(joint, spec.id if spec else next(free), spec.max_speed if spec else None))
     return servos
 
 

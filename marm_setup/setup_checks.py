@@ -20,6 +20,7 @@ from marm_setup.robot_model import RobotModel
 from marm_setup.setup_model import DRIVER_ACTION_NS, Group, SetupModel
 
 LIMIT_TOLERANCE = 1e-9  # [rad] or [m]: values written with full precision sit on the limit
+MAX_SERVO_ID = 253  # Dynamixel ids on an ArbotiX bus (254 is broadcast)
 PACKAGE_NAME = re.compile(r"[a-z][a-z0-9_]*")  # REP 144, as catkin and ament require
 
 
@@ -221,8 +222,14 @@ def _check_joint_lists(c: _Checker) -> None:
         c.group(k.group, f"kinematics[{k.group}].group")
     for p in m.planners:
         c.group(p.group, f"planners[{p.group}].group")
+    servo_ids: dict[int, str] = {}
     for a in m.arbotix_joints:
         c.joint(a.joint, f"arbotix_joints[{a.joint}].joint")
+        if not 0 <= a.id <= MAX_SERVO_ID:
+            raise c.fail(f"servo id {a.id} is outside 0..{MAX_SERVO_ID}", f"arbotix_joints[{a.joint}].id")
+        if a.id in servo_ids:
+            raise c.fail(f"servo id {a.id} is also {servo_ids[a.id]}'s", f"arbotix_joints[{a.joint}].id")
+        servo_ids[a.id] = a.joint
     for lim in m.joint_limits:
         c.joint(lim.joint, f"joint_limits[{lim.joint}].joint")
 

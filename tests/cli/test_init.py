@@ -198,6 +198,10 @@ BAD_SPECS = {
         {"robot_name": "foo"},
         "robot_name: 'foo' is not the URDF's robot name 'marm'",
     ),
+    "duplicate servo id": (
+        {"target": "ros1", "arbotix_joints": [{"joint": "joint2", "id": 1}]},
+        "arbotix_joints[joint2].id: servo id 1 is also joint1's",
+    ),
     "bad package name": (
         {"package_name": "Marm MoveIt"},
         "package_name: 'Marm MoveIt' is not a valid ROS package name: lowercase letters, digits and '_', "

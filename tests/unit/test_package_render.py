@@ -20,7 +20,7 @@ from marm_setup.package_render import (
     render_package,
 )
 from marm_setup.render_context import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
-from marm_setup.setup_model import JointLimitOverride, RobotSource
+from marm_setup.setup_model import ArbotixJoint, JointLimitOverride, RobotSource
 from tests.conftest import GOLDENS
 from tests.render_helpers import inferred_marm, marm_robot
 
@@ -134,6 +134,14 @@ def test_ros1_arbotix_angles_come_from_urdf_limits():
             assert servo["min_angle"] == pytest.approx(math.degrees(joint.lower), abs=1e-3)
             assert servo["max_angle"] == pytest.approx(math.degrees(joint.upper), abs=1e-3)
     assert arbotix["controllers"]["arm_controller"]["type"] == "follow_controller"
+
+
+def test_ros1_servo_ids_not_in_the_setup_avoid_the_given_ones():
+    model = dataclasses.replace(marm_model("ros1"), arbotix_joints=(ArbotixJoint("finger_joint1", 1),))
+    files = {f.path: f.content for f in render_package(model, marm_robot())}
+    ids = {name: j["id"] for name, j in load_yaml(files, "config/arbotix.yaml")["joints"].items()}
+    assert ids["finger_joint1"] == 1
+    assert sorted(ids.values()) == list(range(1, 8))
 
 
 def test_ros1_controller_wiring_agrees():
