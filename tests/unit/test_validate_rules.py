@@ -87,6 +87,29 @@ def _rename_key(mapping, old, new):
 
 SRDF_CASES = [
     Case(
+        "duplicate-group",
+        "marm_ros1",
+        text(
+            "config/marm.srdf",
+            '<group name="gripper">',
+            '<group name="gripper"/>\n    <group name="gripper">',
+        ),
+        "srdf.duplicate-group",
+        match="defined 2 times",
+    ),
+    Case(
+        "empty-group",
+        "marm_ros1",
+        text(
+            "config/marm.srdf",
+            '<group name="gripper">',
+            '<group name="nothing"/>\n    <group name="gripper">',
+        ),
+        "srdf.empty-group",
+        severity="warning",
+        match="group[nothing]",
+    ),
+    Case(
         "robot-name", "ros1", text(SRDF1, '<robot name="panda">', '<robot name="pandas">'), "srdf.robot-name"
     ),
     Case(
