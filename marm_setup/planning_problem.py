@@ -79,10 +79,16 @@ def _limits_section(package) -> tuple[dict, float, float]:
     data = package.joint_limits.data if package.joint_limits is not None else None
     data = data if isinstance(data, dict) else {}
     entries = data.get("joint_limits") if isinstance(data.get("joint_limits"), dict) else {}
-    scale_v = data.get("default_velocity_scaling_factor", 1.0)
-    scale_a = data.get("default_acceleration_scaling_factor", 1.0)
-    ok = all(isinstance(s, int | float) and 0 < s <= 1 for s in (scale_v, scale_a))
-    return entries, (float(scale_v) if ok else 1.0), (float(scale_a) if ok else 1.0)
+    scale_v, scale_a = (
+        _scaling(data.get(f"default_{kind}_scaling_factor")) for kind in ("velocity", "acceleration")
+    )
+    return entries, scale_v, scale_a
+
+
+def _scaling(value) -> float:
+    """A default scaling factor in (0, 1]; 1 (MoveIt's default) when absent or unusable."""
+    usable = isinstance(value, int | float) and not isinstance(value, bool) and 0 < value <= 1
+    return float(value) if usable else 1.0
 
 
 def group_names_with_poses(package) -> tuple[str, ...]:

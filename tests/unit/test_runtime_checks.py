@@ -133,3 +133,11 @@ def test_a_continuous_joint_pose_beyond_pi_is_the_same_angle_wrapped(marm):
     problem = planning_problem(turned, spun, CollisionScene(spun), "arm")
     assert -math.pi <= problem.poses["forward"][spun.active_joint_names.index("joint1")] < math.pi
     assert _check_group(problem, spun, "config/marm.srdf", 0, PlannerOptions()) == []
+
+
+def test_one_unusable_scaling_factor_does_not_reset_the_other(marm):
+    package, robot, scene = marm
+    data = {**package.joint_limits.data, "default_velocity_scaling_factor": 1.5}
+    edited = dataclasses.replace(package, joint_limits=dataclasses.replace(package.joint_limits, data=data))
+    problem = planning_problem(edited, robot, scene, "arm")
+    assert (problem.velocity_scaling, problem.acceleration_scaling) == (1.0, 0.1)
