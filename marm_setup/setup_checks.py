@@ -5,12 +5,13 @@ Checks: unknown joint/link/group names (with close matches), duplicate names, ch
 below its base, subgroup cycles, poses missing a joint of their group or outside its limits,
 end effectors whose parent link is inside their own group, virtual joints not at the root,
 controller action namespaces the target's driver does not serve, package names ROS rejects,
-a robot_name other than the URDF's.
+a robot_name other than the URDF's, numbers that must be positive (fractions in (0, 1]).
 """
 
 from __future__ import annotations
 
 import difflib
+import math
 import re
 from collections.abc import Iterable
 
@@ -63,6 +64,7 @@ def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -
     _check_end_effectors(c)
     _check_joint_lists(c)
     _check_controller_actions(c)
+    _check_ranges(c)
     _check_collision_pairs(c)
 
 
@@ -245,6 +247,34 @@ def _check_controller_actions(c: _Checker) -> None:
                 f"serves '{ctl.name}/{served}' (set action_ns: {served})",
                 f"controllers[{ctl.name}].action_ns",
             )
+
+
+def _check_ranges(c: _Checker) -> None:
+    """Numbers MoveIt / the drivers need positive, and fractions in (0, 1]."""
+    for where, value, upper in _ranged_values(c.model):
+        if value is not None and not 0 < value <= upper:
+            bound = "> 0" if upper == math.inf else f"in (0, {upper:g}]"
+            raise c.fail(f"must be {bound}, got {value:g}", where)
+
+
+def _ranged_values(m: SetupModel):
+    """(key path, value, upper bound) of every number with a lower bound of 0 (exclusive)."""
+    inf = math.inf
+    yield "default_velocity_scaling", m.default_velocity_scaling, 1.0
+    yield "default_acceleration_scaling", m.default_acceleration_scaling, 1.0
+    yield "default_acceleration", m.default_acceleration, inf
+    yield "collision.trials", m.collision.trials, inf
+    yield "collision.min_collision_fraction", m.collision.min_collision_fraction, 1.0
+    for k in m.kinematics:
+        for name in ("search_resolution", "timeout", "attempts"):
+            yield f"kinematics[{k.group}].{name}", getattr(k, name), inf
+    for p in m.planners:
+        yield f"planners[{p.group}].longest_valid_segment_fraction", p.longest_valid_segment_fraction, 1.0
+    for lim in m.joint_limits:
+        for name in ("max_velocity", "max_acceleration", "max_jerk"):
+            yield f"joint_limits[{lim.joint}].{name}", getattr(lim, name), inf
+    for a in m.arbotix_joints:
+        yield f"arbotix_joints[{a.joint}].max_speed", a.max_speed, inf
 
 
 def _check_collision_pairs(c: _Checker) -> None:

@@ -202,6 +202,14 @@ BAD_SPECS = {
         {"target": "ros1", "arbotix_joints": [{"joint": "joint2", "id": 1}]},
         "arbotix_joints[joint2].id: servo id 1 is also joint1's",
     ),
+    "negative IK timeout": (
+        {"kinematics": [{"group": "arm", "timeout": -0.05}]},
+        "kinematics[arm].timeout: must be > 0, got -0.05",
+    ),
+    "velocity scaling above 1": (
+        {"default_velocity_scaling": 2},
+        "default_velocity_scaling: must be in (0, 1], got 2",
+    ),
     "bad package name": (
         {"package_name": "Marm MoveIt"},
         "package_name: 'Marm MoveIt' is not a valid ROS package name: lowercase letters, digits and '_', "
