@@ -42,12 +42,29 @@ def _meshes(robot) -> dict[str, str]:
     }
 
 
-def _assert_rechecked(traj, robot, srdf, start, goal, tmp_path, limits_yaml=None):
-    """The pinocchio re-check: collision-free, within bounds and limits, from start to goal."""
-    model, geom = pinocchio_models(robot.urdf_xml, _meshes(robot), srdf, tmp_path)
+def _held_state(model, package, robot):
+    """Pinocchio's q with the joints outside the group where the planner holds them: the
+    package's initial state (e.g. the panda's open fingers), mimic joints following."""
     import pinocchio as pin
 
-    q_base = pin.neutral(model)
+    from marm_setup.kinematics import joint_values
+    from marm_setup.package_discovery import discover_package
+    from marm_setup.planning_problem import initial_configuration
+
+    q = pin.neutral(model)
+    values = joint_values(robot, initial_configuration(discover_package(package), robot))
+    for name, value in values.items():
+        joint = model.joints[model.getJointId(name)] if model.existJointName(name) else None
+        if joint is not None and joint.nq == 1:
+            q[joint.idx_q] = value[0]
+    return q
+
+
+def _assert_rechecked(traj, robot, srdf, start, goal, tmp_path, package, limits_yaml=None):
+    """The pinocchio re-check: collision-free, within bounds and limits, from start to goal,
+    with the other joints held where the planner held them."""
+    model, geom = pinocchio_models(robot.urdf_xml, _meshes(robot), srdf, tmp_path)
+    q_base = _held_state(model, package, robot)
     found = recheck(traj, model, geom, q_base, FINE_STEP)
     assert found["max_step"] <= FINE_STEP + 1e-9 and found["states"] > 10
     assert found["inconsistency"] <= 1e-6
@@ -85,7 +102,8 @@ def test_marm_home_to_forward_and_back(marm_package, tmp_path):
             f"wrote {traj}",
         ]
         srdf = marm_package / "config" / "marm.srdf"
-        _assert_rechecked(traj, robot, srdf, start, goal, tmp_path, limits if limits.exists() else None)
+        limits_yaml = limits if limits.exists() else None
+        _assert_rechecked(traj, robot, srdf, start, goal, tmp_path, marm_package, limits_yaml)
 
 
 def test_same_seed_same_bytes(marm_package, tmp_path):
@@ -141,7 +159,7 @@ def test_panda_ready_to_extended_rechecked_by_pinocchio(target, tmp_path):
     robot = load_robot(pkg.urdf, dict(pkg.xacro_args), list(pkg.package_paths))
     srdf = tmp_path / "panda.srdf"
     srdf.write_text(pkg.srdf_text, encoding="utf-8")  # ros2 ships a .srdf.xacro: use the expanded text
-    _assert_rechecked(traj, robot, srdf, "ready", "extended", tmp_path)
+    _assert_rechecked(traj, robot, srdf, "ready", "extended", tmp_path, package)
 
 
 @pytest.mark.parametrize(
