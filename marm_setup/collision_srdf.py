@@ -160,8 +160,12 @@ def load_srdf_text(path: Path, *, shown: str) -> str:
         return path.read_bytes().decode("utf-8")
     except FileNotFoundError:
         raise InputError("file not found", path=shown) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read: {exc}", path=shown) from None
+    except IsADirectoryError:
+        raise InputError("is a folder; expected an SRDF file", path=shown) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None
 
 
 def write_text_atomic(path: Path, text: str, *, shown: str) -> None:

@@ -141,6 +141,7 @@ def test_padding(tmp_path):
         (["--keep"], "error: --keep: --keep needs --srdf"),
         (["--report", "m.png"], "error: m.png: unknown report type '.png'; expected .svg or .html"),
         (["--srdf", "nothere.srdf"], "error: nothere.srdf: file not found"),
+        (["--srdf", "."], "error: .: is a folder; expected an SRDF file"),
     ],
 )
 def test_bad_options_exit_2_with_one_line(args, expected):
