@@ -22,8 +22,8 @@ class InitRequest:
     target: str | None = None
     spec: Path | None = None
     from_srdf: Path | None = None
-    trials: int = 10000
-    seed: int = 0
+    trials: int | None = None  # None: the SPEC's collision.trials, else 10000
+    seed: int | None = None  # None: the SPEC's collision.seed, else 0
     force: bool = False
     xacro_args: tuple[str, ...] = ()
     package_paths: tuple[Path, ...] = ()
@@ -39,7 +39,9 @@ class InitResult:
 def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
     model = build_setup(request, robot)
     given = bool(model.collision.disabled)
-    model = with_collision_matrix(model, robot, trials=request.trials, seed=request.seed)
+    trials = model.collision.trials if request.trials is None else request.trials
+    seed = model.collision.seed if request.seed is None else request.seed
+    model = with_collision_matrix(model, robot, trials=trials, seed=seed)
     lines = describe(model, matrix_given=given)
     changes = write_package(model, robot, request.out, force=request.force)
     from marm_setup.writer import format_change

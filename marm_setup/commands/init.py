@@ -41,9 +41,18 @@ def init(
     setup: SetupOption = None,
     from_srdf: FromSrdfOption = None,
     trials: Annotated[
-        int, typer.Option("--trials", help="Random states for the Never pairs.", min=1)
-    ] = 10000,
-    seed: Annotated[int, typer.Option("--seed", help="Seed of the collision sampling.")] = 0,
+        int | None,
+        typer.Option(
+            "--trials",
+            help="Random states for the Never pairs [default: SPEC's, else 10000].",
+            min=1,
+            metavar="N",
+        ),
+    ] = None,
+    seed: Annotated[
+        int | None,
+        typer.Option("--seed", help="Seed of the collision sampling [default: SPEC's, else 0].", metavar="S"),
+    ] = None,
     force: Annotated[bool, typer.Option("--force", help="Write into an existing non-empty DIR.")] = False,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,

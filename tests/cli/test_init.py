@@ -380,3 +380,18 @@ def test_spec_gives_the_groups_inference_cannot_find(tmp_path):
         "and the SPEC / SRDF gives none"
     )
     assert not (tmp_path / "c").exists()
+
+
+def test_spec_collision_seed_and_trials_apply_unless_given_on_the_command_line(tmp_path):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("collision: {trials: 300, seed: 5}\n")
+    base = ["init", str(MARM_URDF), "--setup", str(spec)]
+    result = runner.invoke(app, [*base, "--out", str(tmp_path / "a")])
+    assert result.exit_code == 0, result.output
+    assert "300 trials, seed 5" in result.stdout
+    collision = load_setup(tmp_path / "a" / "marm_setup.yaml").collision
+    assert (collision.trials, collision.seed) == (300, 5)
+    result = runner.invoke(app, [*base, "--out", str(tmp_path / "b"), "--trials", "200", "--seed", "0"])
+    assert result.exit_code == 0, result.output
+    collision = load_setup(tmp_path / "b" / "marm_setup.yaml").collision
+    assert (collision.trials, collision.seed) == (200, 0)
