@@ -46,12 +46,12 @@ class Validation:
     layout: str  # moveit1 | moveit2 | marm_ros2
     urdf: str  # the robot description, as the user would type it
     urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro
-    robot: str | None  # the URDF's robot name; None when it did not load (or there is no SRDF)
+    robot: str | None  # the URDF's robot name; None when it did not load
     planned_pairs: int | None  # pose pairs planned by the runtime checks; None when they did not run
 
     def describe(self) -> str:
         """One line: what was validated, against which robot, and whether planning ran."""
-        robot = f"robot '{self.robot}'" if self.robot else "robot (not loaded: model checks skipped)"
+        robot = f"robot '{self.robot}'" if self.robot else "robot (not loaded: URDF checks skipped)"
         n = self.planned_pairs
         runtime = "runtime planning skipped" if n is None else f"planned {n} pose pair{'' if n == 1 else 's'}"
         runtime += " (no group has two usable named poses)" if n == 0 else ""
@@ -105,7 +105,7 @@ def validate(
         layout=pkg.layout,
         urdf=user_urdf(pkg),
         urdf_origin=pkg.urdf_origin,
-        robot=robot.name if checked else None,
+        robot=robot.name if robot is not None else None,
         planned_pairs=pairs,
     )
 
