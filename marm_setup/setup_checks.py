@@ -18,7 +18,7 @@ from collections.abc import Iterable
 from marm_setup.errors import InputError
 from marm_setup.groups import active_group_joints, group_joints, group_links, groups_by_name
 from marm_setup.robot_model import RobotModel
-from marm_setup.setup_model import DRIVER_ACTION_NS, Group, SetupModel
+from marm_setup.setup_model import DRIVER_ACTION_NS, Controller, Group, SetupModel
 
 LIMIT_TOLERANCE = 1e-9  # [rad] or [m]: values written with full precision sit on the limit
 MAX_SERVO_ID = 253  # Dynamixel ids on an ArbotiX bus (254 is broadcast)
@@ -216,8 +216,7 @@ def _check_joint_lists(c: _Checker) -> None:
     for i, j in enumerate(m.passive_joints):
         c.joint(j, f"passive_joints[{i}]")
     for ctl in m.controllers:
-        for i, j in enumerate(ctl.joints):
-            c.joint(j, f"controllers[{ctl.name}].joints[{i}]")
+        _check_controller_joints(c, ctl)
         if ctl.group is not None:
             c.group(ctl.group, f"controllers[{ctl.name}].group")
     for k in m.kinematics:
@@ -234,6 +233,20 @@ def _check_joint_lists(c: _Checker) -> None:
         servo_ids[a.id] = a.joint
     for lim in m.joint_limits:
         c.joint(lim.joint, f"joint_limits[{lim.joint}].joint")
+
+
+def _check_controller_joints(c: _Checker, ctl: Controller) -> None:
+    """At least one joint, each a variable of its own (mimic and fixed joints take no commands)."""
+    if not ctl.joints:
+        raise c.fail("a controller needs at least one joint", f"controllers[{ctl.name}].joints")
+    for i, name in enumerate(ctl.joints):
+        where = f"controllers[{ctl.name}].joints[{i}]"
+        c.joint(name, where)
+        joint = c.robot.joint(name)
+        if joint.mimic is not None:
+            raise c.fail(f"'{name}' mimics '{joint.mimic.joint}': command that joint instead", where)
+        if not joint.is_actuated:
+            raise c.fail(f"'{name}' is a {joint.type} joint: nothing to command", where)
 
 
 def _check_controller_actions(c: _Checker) -> None:

@@ -176,6 +176,45 @@ BAD_SPECS = {
         },
         "controllers[arm_controller].joints[0]: unknown joint 'j1'",
     ),
+    "controller without joints": (
+        {
+            "controllers": [
+                {
+                    "name": "gripper_controller",
+                    "type": "GripperCommand",
+                    "action_ns": "gripper_cmd",
+                    "joints": [],
+                }
+            ]
+        },
+        "controllers[gripper_controller].joints: a controller needs at least one joint",
+    ),
+    "controller commanding a mimic joint": (
+        {
+            "controllers": [
+                {
+                    "name": "gripper_controller",
+                    "type": "GripperCommand",
+                    "action_ns": "gripper_cmd",
+                    "joints": ["finger_joint2"],
+                }
+            ]
+        },
+        "controllers[gripper_controller].joints[0]: 'finger_joint2' mimics 'finger_joint1': command that joint instead",
+    ),
+    "controller commanding a fixed joint": (
+        {
+            "controllers": [
+                {
+                    "name": "arm_controller",
+                    "type": "FollowJointTrajectory",
+                    "action_ns": "follow_joint_trajectory",
+                    "joints": ["joint1", "grasping_frame_joint"],
+                }
+            ]
+        },
+        "controllers[arm_controller].joints[1]: 'grasping_frame_joint' is a fixed joint: nothing to command",
+    ),
     "unknown key": (
         {"groups": [{"name": "arm", "chian": {"base": "base_link", "tip": "link1"}}]},
         "groups[arm].chian: unknown key 'chian' (did you mean 'chain'?)",
