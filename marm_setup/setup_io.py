@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import enum
+import math
 import types
 import typing
 from functools import cache
@@ -188,6 +189,8 @@ def _load_tuple(hint, data, ctx: _Ctx, where: str):
 
 def _load_scalar(hint, data, ctx: _Ctx, where: str):
     if hint is float and isinstance(data, int | float) and not isinstance(data, bool):
+        if not math.isfinite(data):
+            raise ctx.fail(f"expected a finite number, got {data}", where)
         return float(data)
     if hint is int and isinstance(data, int) and not isinstance(data, bool):
         return data

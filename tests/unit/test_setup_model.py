@@ -133,6 +133,11 @@ BAD = {
         "controllers[c].type",
         "did you mean 'FollowJointTrajectory'?",
     ),
+    "infinite pose value": (
+        {"group_states": [{"name": "home", "group": "arm", "values": {"j1": float("inf")}}]},
+        "group_states[home].values.j1",
+        "expected a finite number, got inf",
+    ),
     "unknown OMPL planner": (
         {"planners": [{"group": "arm", "default_planner": "RRTconnect"}]},
         "planners[arm].default_planner",
