@@ -59,6 +59,9 @@ def find_packages(
     """
     environ = os.environ if environ is None else environ
     found: dict[str, Path] = {}
+    for given in package_paths:
+        if not Path(given).is_dir():
+            raise InputError("not a directory", path=str(given), element="--package-path")
     roots = [Path(p) for p in package_paths] + _env_roots(environ)
     for root in roots:
         for pkg, path in _packages_below(root.resolve()).items():

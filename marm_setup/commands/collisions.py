@@ -99,8 +99,8 @@ def collisions(
 
 
 def _check_options(trials, fraction, seed, jobs, padding, srdf, keep, report) -> None:
-    if trials < 0:
-        raise InputError(f"must be >= 0, got {trials}", element="--trials")
+    if trials < 1:  # with no trials every pair not yet seen colliding would be called Never
+        raise InputError(f"must be >= 1, got {trials}", element="--trials")
     if seed < 0:
         raise InputError(f"must be >= 0, got {seed}", element="--seed")
     if not 0.0 < fraction <= 1.0:

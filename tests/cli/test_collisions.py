@@ -132,7 +132,8 @@ def test_padding(tmp_path):
 @pytest.mark.parametrize(
     ("args", "expected"),
     [
-        (["--trials", "-1"], "error: --trials: must be >= 0, got -1"),
+        (["--trials", "-1"], "error: --trials: must be >= 1, got -1"),
+        (["--trials", "0"], "error: --trials: must be >= 1, got 0"),
         (["--min-collision-fraction", "0"], "error: --min-collision-fraction: must be in (0, 1]"),
         (["--jobs", "0"], "error: --jobs: must be >= 1"),
         (["--seed", "-1"], "error: --seed: must be >= 0, got -1"),

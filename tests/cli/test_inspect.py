@@ -171,6 +171,12 @@ def test_second_fixture_takes_xacro_args():
     assert result.exit_code == 2 and "expected NAME:=VALUE" in result.stderr
 
 
+def test_missing_package_path_is_named(tmp_path):
+    result = runner.invoke(app, ["inspect", str(MARM_URDF), "--package-path", str(tmp_path / "nope")])
+    assert result.exit_code == 2
+    assert result.stderr.strip() == f"error: {tmp_path / 'nope'}: --package-path: not a directory"
+
+
 def test_inline_urdf_helper_is_valid(tmp_path):
     build_file_tree(tmp_path, {"a.urdf": urdf('<link name="only"/>')})
     assert runner.invoke(app, ["inspect", str(tmp_path / "a.urdf")]).exit_code == 0
