@@ -51,11 +51,7 @@ class _Checker:
 def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -> None:
     """Raise InputError for the first inconsistency between the setup and the robot."""
     c = _Checker(model, robot, path)
-    problem = package_name_problem(model.package_name)
-    if problem:
-        raise c.fail(problem, "package_name")
-    if model.robot_name != robot.name:
-        raise c.fail(f"'{model.robot_name}' is not the URDF's robot name '{robot.name}'", "robot_name")
+    _check_names(c)
     _check_duplicates(c)
     _check_virtual_joints(c)
     _check_groups(c)
@@ -66,6 +62,14 @@ def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -
     _check_controller_actions(c)
     _check_ranges(c)
     _check_collision_pairs(c)
+
+
+def _check_names(c: _Checker) -> None:
+    problem = package_name_problem(c.model.package_name)
+    if problem:
+        raise c.fail(problem, "package_name")
+    if c.model.robot_name != c.robot.name:
+        raise c.fail(f"'{c.model.robot_name}' is not the URDF's robot name '{c.robot.name}'", "robot_name")
 
 
 def package_name_problem(name: str) -> str | None:
