@@ -116,7 +116,7 @@ class Kinematics:
     solver: str = KDL_PLUGIN
     search_resolution: float = 0.005
     timeout: float = 0.05
-    attempts: int = 3
+    attempts: int = 3  # kept for old files; MoveIt >= 1.0 reads no attempts, so none is rendered
 
 
 @dataclass(frozen=True, slots=True)

@@ -103,6 +103,7 @@ def test_ros1_yaml_structure():
     assert set(kin) == {"arm"}
     assert kin["arm"]["kinematics_solver"] == "kdl_kinematics_plugin/KDLKinematicsPlugin"
     assert isinstance(kin["arm"]["kinematics_solver_timeout"], float)
+    assert "kinematics_solver_attempts" not in kin["arm"]  # MoveIt 1 warns: it only has a timeout
 
     limits = load_yaml(files, "config/joint_limits.yaml")
     assert set(limits["joint_limits"]) == {f"joint{i}" for i in range(1, 7)} | {"finger_joint1"}
