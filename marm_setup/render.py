@@ -35,14 +35,17 @@ def templates_dir() -> Path:
 
 
 def fmt_float(value: float) -> str:
-    """Stable float text: shortest round-trip repr, always with a decimal point, no -0."""
+    """Stable float text: shortest round-trip repr, always with a decimal point (YAML 1.1, which
+    rosparam's PyYAML speaks, reads `1e-05` as a string but `1.0e-05` as a float), no -0."""
     value = float(value)
     if value == 0.0:
         return "0.0"
     if math.isinf(value) or math.isnan(value):
         raise ValueError(f"cannot render {value}")
-    text = repr(value)
-    return text if any(c in text for c in ".e") else text + ".0"
+    mantissa, e, exponent = repr(value).partition("e")
+    if "." not in mantissa:
+        mantissa += ".0"
+    return f"{mantissa}{e}{exponent}"
 
 
 def fmt_number(value: float) -> str:
