@@ -48,12 +48,6 @@ def fmt_float(value: float) -> str:
     return f"{mantissa}{e}{exponent}"
 
 
-def fmt_number(value: float) -> str:
-    """A float for places that accept ints too: integers lose the `.0`."""
-    text = fmt_float(value)
-    return text[:-2] if text.endswith(".0") else text
-
-
 def yaml_str(value: object) -> str:
     """A YAML scalar that parses back as the same string (quotes `on`, `1e3`, `null`, ...)."""
     text = str(value)
@@ -80,7 +74,7 @@ def environment() -> jinja2.Environment:
             default=False,
         ),
     )
-    env.filters.update(fmt_float=fmt_float, fmt_number=fmt_number, yaml_str=yaml_str, yaml_bool=yaml_bool)
+    env.filters.update(fmt_float=fmt_float, yaml_str=yaml_str, yaml_bool=yaml_bool)
     return env
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 import yaml
 
-from marm_setup.render import fmt_float, fmt_number, yaml_str
+from marm_setup.render import fmt_float, yaml_str
 
 
 @pytest.mark.parametrize("value", [0.0, -0.0, 1.0, 2, 0.005, -0.4487, 1e-05, 2.5e-07, 1e16, -3.2e20, 1 / 3])
@@ -20,10 +20,6 @@ def test_fmt_float_refuses_non_finite_numbers():
     for value in (float("inf"), float("nan")):
         with pytest.raises(ValueError):
             fmt_float(value)
-
-
-def test_fmt_number_drops_only_a_trailing_dot_zero():
-    assert (fmt_number(3.0), fmt_number(0.25), fmt_number(1e-05)) == ("3", "0.25", "1.0e-05")
 
 
 @pytest.mark.parametrize("text", ["on", "yes", "null", "1e3", "0.5", "arm", "a: b", "#x"])
