@@ -267,7 +267,9 @@ def _check_controller_actions(c: _Checker) -> None:
 
 
 def _check_ranges(c: _Checker) -> None:
-    """Numbers MoveIt / the drivers need positive, and fractions in (0, 1]."""
+    """Numbers MoveIt / the drivers need positive, and fractions in (0, 1]; a seed >= 0."""
+    if c.model.collision.seed < 0:
+        raise c.fail(f"must be >= 0, got {c.model.collision.seed}", "collision.seed")
     for where, value, upper in _ranged_values(c.model):
         if value is not None and not 0 < value <= upper:
             bound = "> 0" if upper == math.inf else f"in (0, {upper:g}]"

@@ -178,14 +178,17 @@ def _virtual_joint(r: _Reader, elem) -> VirtualJoint:
 
 
 def _disabled(r: _Reader, root) -> tuple[DisabledPair, ...]:
-    """`disable_collisions` pairs, canonical and sorted; a missing reason counts as User."""
-    valid = ", ".join(m.value for m in DisabledReason)
+    """`disable_collisions` pairs, canonical and sorted.
+
+    A missing or unknown reason counts as User, as in the Setup Assistant: kept, never recomputed.
+    """
+    known = {m.value for m in DisabledReason}
     pairs: dict[tuple[str, str], DisabledPair] = {}
     for e in root.iterchildren("disable_collisions"):
         a, b = r.attr(e, "link1", "disable_collisions"), r.attr(e, "link2", "disable_collisions")
         reason = e.get("reason") or DisabledReason.USER.value
-        if reason not in {m.value for m in DisabledReason}:
-            raise r.fail(f"unknown reason '{reason}' (valid: {valid})", f"disable_collisions[{a} {b}]")
+        if reason not in known:
+            reason = DisabledReason.USER.value
         pairs.setdefault(link_pair(a, b), DisabledPair.of(a, b, reason))
     return tuple(sorted(pairs.values()))
 

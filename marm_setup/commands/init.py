@@ -58,8 +58,12 @@ def init(
     package_path: PackagePaths = None,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package."""
+    from marm_setup.errors import InputError
     from marm_setup.init_flow import InitRequest, run_init
     from marm_setup.writer import check_output_dir
+
+    if seed is not None and seed < 0:
+        raise InputError(f"must be >= 0, got {seed}", element="--seed")
 
     request = InitRequest(
         urdf=urdf,

@@ -434,3 +434,10 @@ def test_spec_collision_seed_and_trials_apply_unless_given_on_the_command_line(t
     assert result.exit_code == 0, result.output
     collision = load_setup(tmp_path / "b" / "marm_setup.yaml").collision
     assert (collision.trials, collision.seed) == (200, 0)
+
+
+def test_negative_seed_is_one_line(tmp_path):
+    result = CliRunner().invoke(app, ["init", str(MARM_URDF), "--out", str(tmp_path / "o"), "--seed", "-1"])
+    assert result.exit_code == 2
+    assert result.stderr.strip() == "error: --seed: must be >= 0, got -1"
+    assert not (tmp_path / "o").exists()

@@ -110,11 +110,6 @@ def test_every_srdfdom_element_is_kept():
         ("<srdf/>", "robot", "root element is <srdf>"),
         ("<robot><group/></robot>", "group", "missing attribute 'name'"),
         (
-            "<robot><disable_collisions link1='a' link2='b' reason='Sometimes'/></robot>",
-            "disable_collisions[a b]",
-            "unknown reason 'Sometimes'",
-        ),
-        (
             "<robot><group_state name='s' group='g'><joint name='j' value='x'/></group_state></robot>",
             "group_state[s].joint[j]",
             "not a number",
@@ -171,3 +166,15 @@ def test_pinocchio_reference_configurations(marm, marm_model, tmp_path):
     forward = configs["forward"]
     for joint, value in FORWARD:
         assert forward[model.joints[model.getJointId(joint)].idx_q] == pytest.approx(value)
+
+
+def test_unknown_or_missing_reason_is_user_as_in_the_setup_assistant():
+    text = (
+        "<robot name='r'><disable_collisions link1='b' link2='a' reason='Sometimes'/>"
+        "<disable_collisions link1='c' link2='a'/></robot>"
+    )
+    disabled = parse_srdf_string(text, "x.srdf").disabled
+    assert disabled == (
+        DisabledPair.of("a", "b", DisabledReason.USER),
+        DisabledPair.of("a", "c", DisabledReason.USER),
+    )
