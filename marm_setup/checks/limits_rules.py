@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from numbers import Real
 
 from marm_setup.findings import Finding, error, warning
@@ -82,7 +83,7 @@ def _check_entry(section, where, entry: dict, joint, target: str) -> list[Findin
                     f"{flag} is true but {key} is missing",
                 )
             )
-        elif not _number(value) or value <= 0:
+        elif not _number(value) or not 0 < value < math.inf:  # also nan and .inf
             out.append(
                 error(
                     "limits.non-positive",

@@ -375,6 +375,12 @@ LIMIT_CASES = [
         "limits.non-positive",
     ),
     Case(
+        "limits-nan",
+        "ros1",
+        ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].update(max_velocity=float("nan"))),
+        "limits.non-positive",
+    ),
+    Case(
         "limits-missing-value",
         "ros1",
         ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].pop("max_acceleration")),
