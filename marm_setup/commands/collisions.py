@@ -58,6 +58,14 @@ def collisions(
     always: Annotated[
         bool, typer.Option("--always/--no-always", help="Disable pairs (almost) always colliding.")
     ] = True,
+    default_pose: Annotated[
+        str | None,
+        typer.Option(
+            "--default-pose",
+            help="With --srdf: a named pose of that SRDF as the default state (else 0 / mid-range).",
+            metavar="NAME",
+        ),
+    ] = None,
     report: Annotated[
         Path | None, typer.Option("--report", help="Write a heat map of the matrix (.svg or .html).")
     ] = None,
@@ -68,6 +76,8 @@ def collisions(
     Seeded and deterministic (same seed, same bytes, whatever --jobs). Never is statistical: with N trials and no hit, a pair collides with probability below 3/N (95 %). Meshes are surfaces, as in MoveIt: a shape entirely inside a mesh, not touching it, does not collide.
     """
     _check_options(trials, min_collision_fraction, seed, jobs, padding, srdf, keep, report)
+    if default_pose is not None and srdf is None:
+        raise InputError("needs --srdf (the SRDF holding the pose)", element="--default-pose")
     from marm_setup.collision import CollisionScene
     from marm_setup.collision_matrix import compute_collision_matrix
     from marm_setup.collision_srdf import load_srdf_text, read_srdf_entries
@@ -77,6 +87,9 @@ def collisions(
     if srdf is not None:
         srdf_text = load_srdf_text(srdf, shown=str(srdf))
         read_srdf_entries(srdf_text, shown=str(srdf))  # fail on a bad SRDF before the long part
+    default_q = (
+        None if default_pose is None else _pose_configuration(robot, srdf_text, default_pose, str(srdf))
+    )
     scene = CollisionScene(robot, padding)
     started = time.perf_counter()
     with _progress_bar() as progress:
@@ -88,6 +101,7 @@ def collisions(
             min_collision_fraction=min_collision_fraction,
             check_default=default,
             check_always=always,
+            default_q=default_q,
             jobs=jobs,
             progress=progress,
         )
@@ -96,6 +110,23 @@ def collisions(
     if report is not None:
         _write_report(report, matrix, robot, disabled)
     _print_result(matrix, robot.name, disabled, seconds, format)
+
+
+def _pose_configuration(robot, srdf_text: str, name: str, shown: str):
+    """The default configuration with the SRDF pose `name` laid over it."""
+    from marm_setup.kinematics import default_configuration
+    from marm_setup.srdf import parse_srdf_string
+
+    states = {s.name: s for s in parse_srdf_string(srdf_text, shown).group_states}
+    if name not in states:
+        known = ", ".join(sorted(states)) or "none"
+        raise InputError(f"unknown pose '{name}'; known: {known}", path=shown, element="--default-pose")
+    q = default_configuration(robot)
+    index = {joint: i for i, joint in enumerate(robot.active_joint_names)}
+    for joint, value in states[name].values:
+        if joint in index:
+            q[index[joint]] = value
+    return q
 
 
 def _check_options(trials, fraction, seed, jobs, padding, srdf, keep, report) -> None:

@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 
 from marm_setup.cli import app
 from tests.collision_robots import TOY
-from tests.conftest import MARM_URDF
+from tests.conftest import MARM_URDF, realworld
 
 runner = CliRunner()
 FAST = ["--trials", "300"]
@@ -199,3 +199,44 @@ def test_outputs_say_what_their_hit_counts_mean(tmp_path):
     assert "with hits/samples of the Always rounds (the trials stop at a pair's first hit):" in text
     zero = next(p for p in enabled if p["hits"] == 0)
     assert f"  {zero['link1']} / {zero['link2']}  (0/200, seen in trials)" in text
+
+
+def test_default_pose_from_the_srdf_replaces_the_zero_state(tmp_path):
+    root = realworld("ros1")
+    xacro = str(root / "panda_description/urdf/panda_arm_hand.urdf.xacro")
+    srdf = root / "panda_moveit_config/config/panda.srdf"
+    common = [xacro, "--package-path", str(root), "--srdf", str(srdf), "--trials", "300", "--format", "json"]
+    reasons = {}
+    for name, extra in (("zero", []), ("ready", ["--default-pose", "ready"])):
+        result = _run(*common, "--output", str(tmp_path / f"{name}.srdf"), *extra)
+        assert result.exit_code == 0, result.output
+        pairs = {(p["link1"], p["link2"]): p["reason"] for p in json.loads(result.stdout)["pairs"]}
+        reasons[name] = pairs[("panda_link5", "panda_link7")]
+    # the meshes touch with joint6 at 0; in 'ready' (joint6 = 1.571) they are apart
+    assert reasons["zero"] == "Default" and reasons["ready"] != "Default"
+
+
+@pytest.mark.parametrize(
+    ("extra", "expected"),
+    [
+        (["--default-pose", "home"], "error: --default-pose: needs --srdf (the SRDF holding the pose)"),
+        (
+            ["--srdf", "S", "--default-pose", "nope"],
+            "S: --default-pose: unknown pose 'nope'; known: forward, home",
+        ),
+    ],
+)
+def test_bad_default_pose_is_one_line(tmp_path, extra, expected):
+    srdf = tmp_path / "marm.srdf"
+    assert _run(str(MARM_URDF), *FAST, "--output", str(srdf)).exit_code == 0
+    text = srdf.read_text().replace("</robot>", "")
+    srdf.write_text(
+        text
+        + '<group_state name="home" group="arm"><joint name="joint1" value="0"/></group_state>'
+        + '<group_state name="forward" group="arm"><joint name="joint2" value="0.4"/></group_state></robot>'
+    )
+    result = _run(str(MARM_URDF), *FAST, *[str(srdf) if a == "S" else a for a in extra])
+    assert result.exit_code == 2
+    assert (
+        result.stderr.strip().endswith(expected.replace("S: ", "")) and len(result.stderr.splitlines()) == 1
+    )
