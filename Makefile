@@ -3,7 +3,8 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
-DEMO_OUT ?= demo_out/marm_moveit_config
+DEMO_DIR ?= demo_out
+DEMO_OUT := $(DEMO_DIR)/marm_moveit_config
 
 .PHONY: demo test lint bench clean
 
@@ -21,7 +22,7 @@ demo: $(STAMP)
 		--setup fixtures/marm/marm_setup.yaml --target ros1 --force
 	$(BIN)/marm-setup validate $(DEMO_OUT)
 	$(BIN)/marm-setup plan $(DEMO_OUT) --group arm --from home --to forward \
-		--output $(DEMO_OUT)/../home_to_forward.yaml
+		--output $(DEMO_DIR)/home_to_forward.yaml
 
 test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
