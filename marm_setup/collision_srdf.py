@@ -8,9 +8,7 @@ every existing entry is kept and only new pairs are added.
 
 from __future__ import annotations
 
-import os
 import re
-import tempfile
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from html import escape
@@ -166,20 +164,3 @@ def load_srdf_text(path: Path, *, shown: str) -> str:
         raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
     except OSError as exc:
         raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None
-
-
-def write_text_atomic(path: Path, text: str, *, shown: str) -> None:
-    """Write `text` (UTF-8, newlines as given) to `path` through a temporary file."""
-    path, tmp = Path(path), None
-    try:
-        if path.is_dir():
-            raise IsADirectoryError(21, "is a folder")
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-        with os.fdopen(fd, "wb") as out:
-            out.write(text.encode("utf-8"))
-        os.replace(tmp, path)
-    except OSError as exc:
-        if tmp is not None:
-            Path(tmp).unlink(missing_ok=True)
-        raise InputError(f"cannot write: {exc.strerror or exc}", path=shown) from None

@@ -78,6 +78,6 @@ def load_trajectory(path: str | PathLike) -> TimedTrajectory:
 
 def write_trajectory(traj: TimedTrajectory, path: str | PathLike) -> None:
     """Write the YAML file (UTF-8, LF) atomically; InputError naming `path` when it cannot."""
-    from marm_setup.collision_srdf import write_text_atomic
+    from marm_setup.writer import write_text_atomic
 
     write_text_atomic(Path(path), dump_trajectory(traj), shown=str(path))

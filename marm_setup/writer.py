@@ -204,3 +204,20 @@ STATUS_WORDS = {"new": "create", "identical": "unchanged", "update": "update", "
 def format_change(change: FileChange) -> str:
     """`create    config/marm.srdf`: one status line for the CLI."""
     return f"{STATUS_WORDS[change.status]:<10}{change.path}"
+
+
+def write_text_atomic(path: Path, text: str, *, shown: str) -> None:
+    """Write `text` (UTF-8, newlines as given) to `path` through a temporary file."""
+    path, tmp = Path(path), None
+    try:
+        if path.is_dir():
+            raise IsADirectoryError(21, "is a folder")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
+        with os.fdopen(fd, "wb") as out:
+            out.write(text.encode("utf-8"))
+        os.replace(tmp, path)
+    except OSError as exc:
+        if tmp is not None:
+            Path(tmp).unlink(missing_ok=True)
+        raise InputError(f"cannot write: {exc.strerror or exc}", path=shown) from None

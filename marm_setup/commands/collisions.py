@@ -148,7 +148,8 @@ def _check_options(trials, fraction, seed, jobs, padding, srdf, keep, report) ->
 
 def _write_srdf(robot_name, matrix, srdf, srdf_text, output, keep):
     """Write the SRDF the options ask for; return the final disabled pairs."""
-    from marm_setup.collision_srdf import render_minimal_srdf, update_srdf, write_text_atomic
+    from marm_setup.collision_srdf import render_minimal_srdf, update_srdf
+    from marm_setup.writer import write_text_atomic
 
     if srdf is None:
         if output is not None:
@@ -164,7 +165,7 @@ def _write_srdf(robot_name, matrix, srdf, srdf_text, output, keep):
 
 def _write_report(report: Path, matrix, robot, disabled) -> None:
     from marm_setup.collision_report import render_matrix_html, render_matrix_svg
-    from marm_setup.collision_srdf import write_text_atomic
+    from marm_setup.writer import write_text_atomic
 
     links = [name for name in robot.links_in_tree_order if robot.link(name).has_geometry]
     svg = render_matrix_svg(matrix, robot.name, links, disabled)

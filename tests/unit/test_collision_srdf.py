@@ -8,15 +8,11 @@ import pytest
 from lxml import etree
 
 from marm_setup.collision_matrix import compute_collision_matrix
-from marm_setup.collision_srdf import (
-    read_srdf_entries,
-    render_minimal_srdf,
-    update_srdf,
-    write_text_atomic,
-)
+from marm_setup.collision_srdf import read_srdf_entries, render_minimal_srdf, update_srdf
 from marm_setup.errors import InputError
 from marm_setup.link_pairs import DisabledPair, DisabledReason
 from marm_setup.robot import load_robot
+from marm_setup.writer import write_text_atomic
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 
 N, U, A = DisabledReason.NEVER, DisabledReason.USER, DisabledReason.ADJACENT
