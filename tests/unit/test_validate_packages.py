@@ -88,3 +88,19 @@ def test_runtime_checks_run_unless_no_plan():
     runtime = [f for f in with_plan if f.rule.startswith("runtime.")]
     assert [(f.rule, f.element) for f in runtime] == [("runtime.pose-skipped", "group_state[transport]")]
     assert set(with_plan) - set(runtime) == set(without)
+
+
+def test_unreadable_collision_mesh_is_a_finding(tmp_path):
+    import shutil
+
+    from tests.conftest import FIXTURES
+
+    description = shutil.copytree(FIXTURES / "marm", tmp_path / "marm_description")
+    (description / "meshes" / "link6.stl").write_text("garbage")
+    pkg = generate_marm(tmp_path, "ros1")
+    urdf = description / "urdf" / "marm.urdf.xacro"
+    found = validate_package(pkg, urdf=urdf, plan=False)
+    assert [(f.rule, f.element) for f in found] == [
+        ("urdf.collision-geometry", "link[link6]/collision[0]/mesh")
+    ]
+    assert "cannot read mesh" in found[0].message
