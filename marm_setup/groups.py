@@ -60,5 +60,16 @@ def active_group_joints(
     )
 
 
+def planning_joints(
+    groups: tuple[Group, ...], robot: RobotModel, passive: tuple[str, ...] = ()
+) -> tuple[str, ...]:
+    """Every active joint of any group, sorted by name (the joints that need planning limits)."""
+    by_name = groups_by_name(groups)
+    names: set[str] = set()
+    for group in groups:
+        names.update(active_group_joints(group, by_name, robot, passive))
+    return tuple(sorted(names))
+
+
 def groups_by_name(groups: tuple[Group, ...]) -> dict[str, Group]:
     return {g.name: g for g in groups}

@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass
 from pathlib import PurePosixPath
 
-from marm_setup.groups import active_group_joints, groups_by_name
+from marm_setup.groups import active_group_joints, groups_by_name, planning_joints
 from marm_setup.robot_model import Joint, RobotModel
 from marm_setup.setup_model import (
     DRIVER_ACTION_NS,
@@ -142,20 +142,11 @@ def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
     ]
 
 
-def planning_joints(model: SetupModel, robot: RobotModel) -> tuple[str, ...]:
-    """Every active joint of every group, sorted by name."""
-    names: set[str] = set()
-    by_name = groups_by_name(model.groups)
-    for group in model.groups:
-        names.update(active_group_joints(group, by_name, robot, model.passive_joints))
-    return tuple(sorted(names))
-
-
 def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
     """URDF velocity limits, the setup's default acceleration, then the setup's overrides."""
     overrides = {o.joint: o for o in model.joint_limits}
     out = []
-    for name in planning_joints(model, robot):
+    for name in planning_joints(model.groups, robot, model.passive_joints):
         joint = robot.joint(name)
         o = overrides.get(name)
         velocity = o.max_velocity if o and o.max_velocity is not None else joint.velocity

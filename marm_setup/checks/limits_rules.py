@@ -6,7 +6,7 @@ import math
 from numbers import Real
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.groups import active_group_joints, groups_by_name
+from marm_setup.groups import planning_joints
 from marm_setup.robot_model import RobotModel
 
 FLAGS = {
@@ -52,10 +52,7 @@ def check_joint_limits(section, srdf, robot: RobotModel, target: str) -> list[Fi
 
 
 def _check_coverage(section, limits, srdf, robot) -> list[Finding]:
-    by_name = groups_by_name(srdf.groups)
-    wanted: set[str] = set()
-    for group in srdf.groups:
-        wanted.update(active_group_joints(group, by_name, robot, tuple(srdf.passive_joints)))
+    wanted = planning_joints(tuple(srdf.groups), robot, tuple(srdf.passive_joints))
     return [
         warning(
             "limits.missing-joint",
@@ -64,7 +61,7 @@ def _check_coverage(section, limits, srdf, robot) -> list[Finding]:
             f"no limits for active group joint '{joint}' (MoveIt falls back to the URDF, no acceleration limit)",
             hint="add an entry with has_velocity_limits/max_velocity and has_acceleration_limits/max_acceleration",
         )
-        for joint in sorted(wanted - set(limits))
+        for joint in sorted(set(wanted) - set(limits))
     ]
 
 
