@@ -13,18 +13,7 @@ from marm_setup.kinematics import sample_configurations
 from marm_setup.meshes import load_mesh
 from marm_setup.robot import load_robot
 from tests.collision_robots import TOY, mesh_shell_urdf
-from tests.conftest import MARM_URDF
 from tests.helpers import urdf
-
-
-@pytest.fixture(scope="module")
-def marm():
-    return load_robot(MARM_URDF)
-
-
-@pytest.fixture(scope="module")
-def marm_scene(marm):
-    return CollisionScene(marm)
 
 
 @pytest.fixture

@@ -18,7 +18,7 @@ from marm_setup.collision_matrix import (
 from marm_setup.link_pairs import DisabledPair, DisabledReason
 from marm_setup.robot import load_robot
 from tests.collision_robots import TOY
-from tests.conftest import MARM_URDF, realworld
+from tests.conftest import realworld
 
 A, D, X, N, U = (
     DisabledReason.ADJACENT,
@@ -44,16 +44,6 @@ def toy_scene(toy):
 @pytest.fixture(scope="module")
 def toy_matrix(toy, toy_scene):
     return compute_collision_matrix(toy, toy_scene, trials=500, seed=0)
-
-
-@pytest.fixture(scope="module")
-def marm():
-    return load_robot(MARM_URDF)
-
-
-@pytest.fixture(scope="module")
-def marm_scene(marm):
-    return CollisionScene(marm)
 
 
 def _reasons(matrix: CollisionMatrix) -> dict[tuple[str, str], DisabledReason]:

@@ -9,7 +9,6 @@ import yaml
 
 from marm_setup.errors import InputError
 from marm_setup.link_pairs import DisabledPair, DisabledReason
-from marm_setup.robot import load_robot
 from marm_setup.setup_infer import infer_setup
 from marm_setup.setup_model import (
     ArbotixJoint,
@@ -26,12 +25,7 @@ from marm_setup.setup_model import (
     load_setup,
     setup_from_dict,
 )
-from tests.conftest import FIXTURES, MARM_URDF
-
-
-@pytest.fixture(scope="module")
-def marm():
-    return load_robot(MARM_URDF)
+from tests.conftest import FIXTURES
 
 
 @pytest.fixture(scope="module")

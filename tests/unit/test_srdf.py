@@ -10,11 +10,10 @@ from lxml import etree
 
 from marm_setup.errors import InputError
 from marm_setup.link_pairs import DisabledPair, DisabledReason
-from marm_setup.robot import load_robot
 from marm_setup.setup_infer import infer_setup
 from marm_setup.setup_model import CollisionPair, GroupState, RobotSource, SetupModel
 from marm_setup.srdf import parse_srdf_string, read_srdf, render_srdf, setup_to_srdf, srdf_to_setup
-from tests.conftest import MARM_URDF, realworld
+from tests.conftest import realworld
 
 FORWARD = (
     ("joint1", 0.0),
@@ -24,11 +23,6 @@ FORWARD = (
     ("joint5", -0.4487),
     ("joint6", 0.0),
 )
-
-
-@pytest.fixture(scope="module")
-def marm():
-    return load_robot(MARM_URDF)
 
 
 @pytest.fixture(scope="module")
