@@ -9,33 +9,31 @@ from typer.testing import CliRunner
 
 from marm_setup import __version__
 from marm_setup.cli import app
+from marm_setup.commands import COMMAND_SPECS
 
 HEAVY = ("coal", "trimesh", "yourdfpy", "scipy")
 
 
-def test_help_imports_nothing_heavy():
+def _heavy_modules_after(*argvs: list[str]) -> str:
+    """Run each `marm-setup ARGV` in one fresh interpreter; the heavy modules it imported."""
     code = (
         "import sys\n"
         "from marm_setup.cli import app\n"
         "from typer.testing import CliRunner\n"
-        "CliRunner().invoke(app, ['--help'])\n"
+        f"for argv in {list(argvs)!r}:\n"
+        "    CliRunner().invoke(app, argv)\n"
         f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == ""
+    return out.stdout.strip()
+
+
+def test_help_imports_nothing_heavy():
+    assert _heavy_modules_after(["--help"]) == ""
 
 
 def test_every_command_help_imports_nothing_heavy():
-    code = (
-        "import sys\n"
-        "from marm_setup.cli import app\n"
-        "from typer.testing import CliRunner\n"
-        "for cmd in ['init', 'collisions', 'render', 'validate', 'plan', 'inspect']:\n"
-        "    CliRunner().invoke(app, [cmd, '--help'])\n"
-        f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))\n"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == ""
+    assert _heavy_modules_after(*([name, "--help"] for name, _, _ in COMMAND_SPECS)) == ""
 
 
 def test_version_and_no_args():
