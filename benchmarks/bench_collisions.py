@@ -19,11 +19,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from marm_setup.collision import CollisionScene  # noqa: E402
-from marm_setup.collision_matrix import ROUND, compute_collision_matrix, trial_samples  # noqa: E402
-from marm_setup.kinematics import default_configuration, sample_configurations  # noqa: E402
-from marm_setup.link_pairs import DisabledPair, DisabledReason  # noqa: E402
-from marm_setup.robot import load_robot  # noqa: E402
+from marm_setup.collision.matrix import ROUND, compute_collision_matrix, trial_samples  # noqa: E402
+from marm_setup.collision.pairs import DisabledPair, DisabledReason  # noqa: E402
+from marm_setup.collision.scene import CollisionScene  # noqa: E402
+from marm_setup.robot.kinematics import default_configuration, sample_configurations  # noqa: E402
+from marm_setup.robot.load import load_robot  # noqa: E402
 
 ROBOTS = {
     "marm": ROOT / "fixtures/marm/urdf/marm.urdf.xacro",

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from marm_setup.kinematics import forward_kinematics, sample_configurations
-from marm_setup.robot import load_robot
+from marm_setup.robot.kinematics import forward_kinematics, sample_configurations
+from marm_setup.robot.load import load_robot
 
 ROOT = Path(__file__).resolve().parent.parent
 PANDA = ROOT.parent / "shared" / "realworld" / "ros1"

@@ -33,11 +33,11 @@ from pathlib import Path
 
 import numpy as np
 
-from marm_setup.collision import CollisionScene
-from marm_setup.package_discovery import discover_package
-from marm_setup.planner import PlannerOptions, group_space, path_length, plan_joint_path, state_problem
-from marm_setup.planning_problem import planning_problem
-from marm_setup.robot import load_robot
+from marm_setup.collision.scene import CollisionScene
+from marm_setup.plan.planner import PlannerOptions, group_space, path_length, plan_joint_path, state_problem
+from marm_setup.plan.problem import planning_problem
+from marm_setup.robot.load import load_robot
+from marm_setup.validate.discovery import discover_package
 
 ROOT = Path(__file__).resolve().parent.parent
 PANDA = ROOT.parent / "shared" / "realworld" / "ros1" / "panda_moveit_config"
@@ -150,7 +150,7 @@ def _ompl_setup(robot, problem, item: Query, batched: bool):
 
 
 def _batched_validator(ob, si, space, check, values):
-    from marm_setup.rrt import interpolate
+    from marm_setup.plan.rrt import interpolate
 
     class BatchedMotionValidator(ob.MotionValidator):
         """Checks a whole edge (after its first state) in one checker call."""
@@ -230,7 +230,7 @@ def bench_robot(name: str, robot, problem, n: int, n_hard: int) -> None:
 
 
 def problem_is_direct(robot, problem, item: Query) -> bool:
-    from marm_setup.rrt import interpolate
+    from marm_setup.plan.rrt import interpolate
 
     space = group_space(robot, problem.joint_names, item.q_start)
     q = interpolate(item.q_start[space.index], item.q_goal[space.index], OPTIONS.max_step)

@@ -10,9 +10,9 @@ import tempfile
 import time
 from pathlib import Path
 
-from marm_setup.checks.matrix_rules import check_matrix_fresh
-from marm_setup.package_discovery import discover_package
-from marm_setup.validate import check_static, load_package_robot, run_runtime_checks, validate_package
+from marm_setup.validate.discovery import discover_package
+from marm_setup.validate.rules.matrix_rules import check_matrix_fresh
+from marm_setup.validate.runner import check_static, load_package_robot, run_runtime_checks, validate_package
 
 ROOT = Path(__file__).resolve().parent.parent
 REALWORLD = ROOT.parent / "shared" / "realworld"
@@ -26,7 +26,7 @@ def timed(fn):
 
 
 def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
-    from marm_setup.collision import CollisionScene
+    from marm_setup.collision.scene import CollisionScene
 
     pkg, t_discover = timed(lambda: discover_package(path, package_paths=package_paths))
     (robot, _), t_robot = timed(lambda: load_package_robot(pkg))
@@ -47,7 +47,7 @@ def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
 def main() -> None:
     from typer.testing import CliRunner
 
-    from marm_setup.cli import app
+    from marm_setup.cli.app import app
 
     for target in ("ros1", "ros2"):
         panda = REALWORLD / target / "panda_moveit_config"

@@ -1,3 +1,3 @@
-from marm_setup.cli import main
+from marm_setup.cli.app import main
 
 main()

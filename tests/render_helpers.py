@@ -6,9 +6,9 @@ from __future__ import annotations
 import functools
 from pathlib import Path
 
-from marm_setup.robot import load_robot
-from marm_setup.robot_model import RobotModel
-from marm_setup.setup_model import SetupModel
+from marm_setup.robot.load import load_robot
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.model import SetupModel
 from tests.conftest import FIXTURES, MARM_URDF
 
 MARM_SPEC = FIXTURES / "marm" / "marm_setup.yaml"
@@ -24,7 +24,7 @@ def inferred_marm(target: str, out: Path) -> tuple[SetupModel, RobotModel]:
 
 @functools.lru_cache(maxsize=8)
 def _inferred(target: str, out: str) -> tuple[SetupModel, RobotModel]:
-    from marm_setup.init_flow import InitRequest, build_setup
+    from marm_setup.pipeline import InitRequest, build_setup
 
     robot = marm_robot()
     request = InitRequest(urdf=MARM_URDF, out=Path(out), target=target, spec=MARM_SPEC)

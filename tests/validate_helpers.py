@@ -9,7 +9,7 @@ from pathlib import Path
 import yaml
 
 from marm_setup.findings import Finding
-from marm_setup.validate import validate_package
+from marm_setup.validate.runner import validate_package
 from tests.conftest import MARM_URDF, realworld
 
 
@@ -29,7 +29,7 @@ def generate_marm(out_root: Path, target: str) -> Path:
     """`marm-setup init` the marm fixture into out_root/marm_<target>."""
     from typer.testing import CliRunner
 
-    from marm_setup.cli import app
+    from marm_setup.cli.app import app
 
     out = out_root / f"marm_{target}"
     if not out.exists():

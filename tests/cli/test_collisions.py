@@ -8,7 +8,7 @@ import pytest
 from lxml import etree
 from typer.testing import CliRunner
 
-from marm_setup.cli import app
+from marm_setup.cli.app import app
 from tests.collision_robots import TOY
 from tests.conftest import MARM_URDF, realworld
 

@@ -10,9 +10,9 @@ import yaml
 from lxml import etree
 from typer.testing import CliRunner
 
-from marm_setup.cli import app
-from marm_setup.setup_model import load_setup
-from marm_setup.srdf import read_srdf
+from marm_setup.cli.app import app
+from marm_setup.setup.srdf import read_srdf
+from marm_setup.setup.yaml_io import load_setup
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 from tests.helpers import build_file_tree
 

@@ -7,7 +7,7 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-from marm_setup.cli import app
+from marm_setup.cli.app import app
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 from tests.helpers import TWO_BOXES, build_file_tree, urdf
 

@@ -9,9 +9,9 @@ import pytest
 import yaml
 from typer.testing import CliRunner
 
-from marm_setup.cli import app
-from marm_setup.planner import PlannerOptions
-from marm_setup.robot import load_robot
+from marm_setup.cli.app import app
+from marm_setup.plan.planner import PlannerOptions
+from marm_setup.robot.load import load_robot
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 from tests.trajectory_recheck import pinocchio_models, recheck
 
@@ -47,9 +47,9 @@ def _held_state(model, package, robot):
     package's initial state (e.g. the panda's open fingers), mimic joints following."""
     import pinocchio as pin
 
-    from marm_setup.kinematics import joint_values
-    from marm_setup.package_discovery import discover_package
-    from marm_setup.planning_problem import initial_configuration
+    from marm_setup.plan.problem import initial_configuration
+    from marm_setup.robot.kinematics import joint_values
+    from marm_setup.validate.discovery import discover_package
 
     q = pin.neutral(model)
     values = joint_values(robot, initial_configuration(discover_package(package), robot))
@@ -153,7 +153,7 @@ def test_panda_ready_to_extended_rechecked_by_pinocchio(target, tmp_path):
         package, "--group", "panda_arm", "--from", "ready", "--to", "extended", "--output", str(traj)
     )
     assert result.exit_code == 0, result.output
-    from marm_setup.package_discovery import discover_package
+    from marm_setup.validate.discovery import discover_package
 
     pkg = discover_package(package)
     robot = load_robot(pkg.urdf, dict(pkg.xacro_args), list(pkg.package_paths))
@@ -203,7 +203,7 @@ def test_pose_in_collision_is_exit_1_naming_the_pair(tmp_path):
 def test_the_recheck_itself_catches_a_colliding_trajectory(tmp_path):
     """Guard against a re-check that passes anything: a straight line into panda's `transport`."""
     package = realworld("ros1", "panda_moveit_config")
-    from marm_setup.package_discovery import discover_package
+    from marm_setup.validate.discovery import discover_package
 
     pkg = discover_package(package)
     robot = load_robot(pkg.urdf, dict(pkg.xacro_args), list(pkg.package_paths))

@@ -7,9 +7,9 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from marm_setup.cli import app
-from marm_setup.package_render import render_package
-from marm_setup.writer import apply_writes, plan_writes
+from marm_setup.cli.app import app
+from marm_setup.render.package import render_package
+from marm_setup.render.writer import apply_writes, plan_writes
 from tests.render_helpers import inferred_marm
 
 runner = CliRunner()

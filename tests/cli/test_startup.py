@@ -8,8 +8,8 @@ import sys
 from typer.testing import CliRunner
 
 from marm_setup import __version__
-from marm_setup.cli import app
-from marm_setup.commands import COMMAND_SPECS
+from marm_setup.cli.app import app
+from marm_setup.cli.commands import COMMAND_SPECS
 
 HEAVY = ("coal", "trimesh", "yourdfpy", "scipy")
 
@@ -18,7 +18,7 @@ def _heavy_modules_after(*argvs: list[str]) -> str:
     """Run each `marm-setup ARGV` in one fresh interpreter; the heavy modules it imported."""
     code = (
         "import sys\n"
-        "from marm_setup.cli import app\n"
+        "from marm_setup.cli.app import app\n"
         "from typer.testing import CliRunner\n"
         f"for argv in {list(argvs)!r}:\n"
         "    CliRunner().invoke(app, argv)\n"

@@ -6,7 +6,7 @@ import json
 
 from typer.testing import CliRunner
 
-from marm_setup.cli import app
+from marm_setup.cli.app import app
 from tests.conftest import MARM_URDF
 from tests.validate_helpers import copy_package, generate_marm, panda, replace_text
 

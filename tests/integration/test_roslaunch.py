@@ -15,10 +15,10 @@ import pytest
 import yaml
 from lxml import etree
 
-from marm_setup.package_render import render_package
-from marm_setup.packages import find_packages
-from marm_setup.robot import expand_xacro
-from marm_setup.writer import apply_writes, plan_writes
+from marm_setup.render.package import render_package
+from marm_setup.render.writer import apply_writes, plan_writes
+from marm_setup.robot.load import expand_xacro
+from marm_setup.robot.ros_packages import find_packages
 from tests.conftest import FIXTURES, realworld
 from tests.render_helpers import inferred_marm
 
@@ -27,8 +27,8 @@ needs_roslaunch = pytest.mark.skipif(shutil.which("roslaunch") is None, reason="
 XACRO_SHIM = """#!{python}
 import sys
 from pathlib import Path
-from marm_setup.packages import find_packages
-from marm_setup.robot import expand_xacro, parse_xacro_args
+from marm_setup.robot.ros_packages import find_packages
+from marm_setup.robot.load import expand_xacro, parse_xacro_args
 args = [a for a in sys.argv[1:] if not a.startswith("-")]
 file = Path(args[0])
 sys.stdout.write(expand_xacro(file, parse_xacro_args(args[1:]), find_packages([], near=file), shown=str(file)))
@@ -158,8 +158,8 @@ def test_check_urdf_accepts_our_ros2_urdf(tmp_path):
 
 def write_panda_package(tmp_path: Path, target: str) -> tuple[Path, Path]:
     """Our package for the shared panda (inferred setup); returns (package, description root)."""
-    from marm_setup.init_flow import InitRequest, build_setup
-    from marm_setup.robot import load_robot
+    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.robot.load import load_robot
 
     root = realworld(target)
     urdf = (

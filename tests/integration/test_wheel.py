@@ -45,7 +45,7 @@ def test_installed_package_finds_its_templates(wheel, tmp_path):
         check=True,
         capture_output=True,
     )
-    code = "from marm_setup.render import templates_dir; print(templates_dir())"
+    code = "from marm_setup.templating import templates_dir; print(templates_dir())"
     out = subprocess.run(
         [sys.executable, "-c", code],
         cwd=tmp_path,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from marm_setup.robot import load_robot
+from marm_setup.robot.load import load_robot
 from tests.conftest import MARM_URDF
 
 
@@ -15,6 +15,6 @@ def marm():
 
 @pytest.fixture(scope="session")
 def marm_scene(marm):
-    from marm_setup.collision import CollisionScene
+    from marm_setup.collision.scene import CollisionScene
 
     return CollisionScene(marm)

@@ -7,11 +7,11 @@ import itertools
 import numpy as np
 import pytest
 
-from marm_setup.collision import CollisionScene
+from marm_setup.collision.scene import CollisionScene
 from marm_setup.errors import InputError
-from marm_setup.kinematics import sample_configurations
-from marm_setup.meshes import load_mesh
-from marm_setup.robot import load_robot
+from marm_setup.robot.kinematics import sample_configurations
+from marm_setup.robot.load import load_robot
+from marm_setup.robot.meshes import load_mesh
 from tests.collision_robots import TOY, mesh_shell_urdf
 from tests.helpers import urdf
 

@@ -7,16 +7,16 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from marm_setup.collision import CollisionScene
-from marm_setup.collision_matrix import (
+from marm_setup.collision.matrix import (
     CHUNK,
     CollisionMatrix,
     compute_collision_matrix,
     merge_user_pairs,
     trial_samples,
 )
-from marm_setup.link_pairs import DisabledPair, DisabledReason
-from marm_setup.robot import load_robot
+from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.collision.scene import CollisionScene
+from marm_setup.robot.load import load_robot
 from tests.collision_robots import TOY
 from tests.conftest import realworld
 

@@ -7,12 +7,12 @@ import re
 import pytest
 from lxml import etree
 
-from marm_setup.collision_matrix import compute_collision_matrix
-from marm_setup.collision_srdf import read_srdf_entries, render_minimal_srdf, update_srdf
+from marm_setup.collision.matrix import compute_collision_matrix
+from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.collision.srdf_update import read_srdf_entries, render_minimal_srdf, update_srdf
 from marm_setup.errors import InputError
-from marm_setup.link_pairs import DisabledPair, DisabledReason
-from marm_setup.robot import load_robot
-from marm_setup.writer import write_text_atomic
+from marm_setup.render.writer import write_text_atomic
+from marm_setup.robot.load import load_robot
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 
 N, U, A = DisabledReason.NEVER, DisabledReason.USER, DisabledReason.ADJACENT

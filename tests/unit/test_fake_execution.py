@@ -10,11 +10,16 @@ import numpy as np
 import pytest
 
 from marm_setup.errors import InputError
-from marm_setup.fake_execution import ExecutionOptions, fake_execute, sample_times
-from marm_setup.planner import group_space
-from marm_setup.robot import load_robot
-from marm_setup.timing import JointLimits, TimedTrajectory, time_parameterize
-from marm_setup.trajectory_io import dump_trajectory, load_trajectory, trajectory_from_dict, write_trajectory
+from marm_setup.plan.execution import ExecutionOptions, fake_execute, sample_times
+from marm_setup.plan.planner import group_space
+from marm_setup.plan.timing import JointLimits, TimedTrajectory, time_parameterize
+from marm_setup.plan.trajectory_io import (
+    dump_trajectory,
+    load_trajectory,
+    trajectory_from_dict,
+    write_trajectory,
+)
+from marm_setup.robot.load import load_robot
 from tests.conftest import MARM_URDF
 
 GROUP = ("joint1", "joint2")

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from marm_setup.kinematics import (
+from marm_setup.robot.kinematics import (
     bounds,
     default_configuration,
     forward_kinematics,
@@ -20,7 +20,7 @@ from marm_setup.kinematics import (
     sample_configurations,
     within_bounds,
 )
-from marm_setup.robot import load_robot
+from marm_setup.robot.load import load_robot
 from tests.conftest import MARM_URDF, REALWORLD
 
 

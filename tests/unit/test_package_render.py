@@ -12,15 +12,15 @@ import yaml
 from lxml import etree
 
 from marm_setup.errors import InputError
-from marm_setup.package_render import (
+from marm_setup.render.context import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
+from marm_setup.render.package import (
     ROS1_FILES,
     ROS2_FILES,
     description_package,
     output_path,
     render_package,
 )
-from marm_setup.render_context import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
-from marm_setup.setup_model import ArbotixJoint, JointLimitOverride, RobotSource
+from marm_setup.setup.model import ArbotixJoint, JointLimitOverride, RobotSource
 from tests.conftest import GOLDENS
 from tests.render_helpers import inferred_marm, marm_robot
 

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from marm_setup.collision import CollisionScene
-from marm_setup.planner import (
+from marm_setup.collision.scene import CollisionScene
+from marm_setup.plan.planner import (
     PlannerOptions,
     discretize_path,
     group_space,
@@ -19,8 +19,8 @@ from marm_setup.planner import (
     plan_joint_path,
     state_problem,
 )
-from marm_setup.robot import load_robot
-from marm_setup.rrt import shortcut
+from marm_setup.plan.rrt import shortcut
+from marm_setup.robot.load import load_robot
 from tests.conftest import MARM_URDF
 
 ARM = ("joint1", "joint2", "joint3", "joint4", "joint5", "joint6")
@@ -155,7 +155,7 @@ def test_shortcut_never_lengthens(robot):
             return (None, None) if k is None else (k, hits[k])
 
         def line_valid(self, a, b):
-            from marm_setup.rrt import interpolate
+            from marm_setup.plan.rrt import interpolate
 
             return self.first_invalid(interpolate(a, b, OPTIONS.max_step))[0] is None
 
@@ -211,7 +211,7 @@ def test_marm_gripper_mimic_follows_its_leader(robot, marm_scene):
     result = plan_joint_path(robot, check, q_start, q_goal, ("finger_joint1",), np.random.default_rng(0))
     assert result.success, result.reason
     assert calls and all(c.shape[1] == len(robot.active_joint_names) for c in calls)
-    from marm_setup.kinematics import joint_values
+    from marm_setup.robot.kinematics import joint_values
 
     values = joint_values(robot, np.concatenate(calls))
     np.testing.assert_allclose(values["finger_joint2"], -values["finger_joint1"])

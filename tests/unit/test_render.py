@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 import yaml
 
-from marm_setup.render import fmt_float, yaml_str
+from marm_setup.templating import fmt_float, yaml_str
 
 
 @pytest.mark.parametrize("value", [0.0, -0.0, 1.0, 2, 0.005, -0.4487, 1e-05, 2.5e-07, 1e16, -3.2e20, 1 / 3])

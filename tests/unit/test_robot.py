@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 
 from marm_setup.errors import InputError
-from marm_setup.robot import load_robot, parse_xacro_args
-from marm_setup.robot_model import Box, Cylinder, Mesh
+from marm_setup.robot.load import load_robot, parse_xacro_args
+from marm_setup.robot.model import Box, Cylinder, Mesh
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 from tests.helpers import TWO_BOXES, build_file_tree, urdf
 

@@ -10,13 +10,13 @@ import math
 import pytest
 from typer.testing import CliRunner
 
-from marm_setup.cli import app
-from marm_setup.collision import CollisionScene
-from marm_setup.package_discovery import discover_package
-from marm_setup.planner import PlannerOptions
-from marm_setup.planning_problem import group_names_with_poses, initial_configuration, planning_problem
-from marm_setup.robot import load_robot
-from marm_setup.runtime_checks import _check_group, check_runtime
+from marm_setup.cli.app import app
+from marm_setup.collision.scene import CollisionScene
+from marm_setup.plan.planner import PlannerOptions
+from marm_setup.plan.problem import group_names_with_poses, initial_configuration, planning_problem
+from marm_setup.robot.load import load_robot
+from marm_setup.validate.discovery import discover_package
+from marm_setup.validate.runtime import _check_group, check_runtime
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import pytest
 
 from marm_setup.errors import InputError
-from marm_setup.robot import load_robot
-from marm_setup.setup_checks import check_setup
-from marm_setup.setup_infer import infer_setup, merge_spec, tool_frame
-from marm_setup.setup_model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
+from marm_setup.robot.load import load_robot
+from marm_setup.setup.checks import check_setup
+from marm_setup.setup.infer import infer_setup, merge_spec, tool_frame
+from marm_setup.setup.model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
 from tests.conftest import MARM_URDF, realworld
 from tests.helpers import build_file_tree, urdf
 

@@ -7,10 +7,10 @@ import dataclasses
 import pytest
 import yaml
 
+from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
-from marm_setup.link_pairs import DisabledPair, DisabledReason
-from marm_setup.setup_infer import infer_setup
-from marm_setup.setup_model import (
+from marm_setup.setup.infer import infer_setup
+from marm_setup.setup.model import (
     ArbotixJoint,
     CollisionPair,
     CollisionSettings,
@@ -21,10 +21,8 @@ from marm_setup.setup_model import (
     SetupModel,
     SphereApprox,
     SrdfExtras,
-    dump_setup,
-    load_setup,
-    setup_from_dict,
 )
+from marm_setup.setup.yaml_io import dump_setup, load_setup, setup_from_dict
 from tests.conftest import FIXTURES
 
 
@@ -73,7 +71,7 @@ def test_srdf_extras_round_trip():
 
 
 def test_course_spec_fixture_loads_with_defaults():
-    from marm_setup.setup_io import read_yaml_mapping
+    from marm_setup.setup.yaml_io import read_yaml_mapping
 
     spec = read_yaml_mapping(FIXTURES / "marm" / "marm_setup.yaml")
     spec |= {"robot_name": "marm", "robot": {"urdf": "urdf/marm.urdf.xacro"}}
@@ -180,7 +178,7 @@ def test_disabled_pairs_are_canonical_after_load():
 def _models():
     from hypothesis import strategies as st
 
-    from marm_setup.setup_model import Chain, EndEffector, Group, GroupState, Kinematics
+    from marm_setup.setup.model import Chain, EndEffector, Group, GroupState, Kinematics
 
     names = st.text(min_size=1, max_size=12)
     floats = st.floats(allow_nan=False, allow_infinity=False)

@@ -8,11 +8,11 @@ import dataclasses
 import pytest
 from lxml import etree
 
+from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
-from marm_setup.link_pairs import DisabledPair, DisabledReason
-from marm_setup.setup_infer import infer_setup
-from marm_setup.setup_model import CollisionPair, GroupState, RobotSource, SetupModel
-from marm_setup.srdf import parse_srdf_string, read_srdf, render_srdf, setup_to_srdf, srdf_to_setup
+from marm_setup.setup.infer import infer_setup
+from marm_setup.setup.model import CollisionPair, GroupState, RobotSource, SetupModel
+from marm_setup.setup.srdf import parse_srdf_string, read_srdf, render_srdf, setup_to_srdf, srdf_to_setup
 from tests.conftest import realworld
 
 FORWARD = (
@@ -27,7 +27,7 @@ FORWARD = (
 
 @pytest.fixture(scope="module")
 def marm_model(marm):
-    from marm_setup.init_flow import with_collision_matrix
+    from marm_setup.pipeline import with_collision_matrix
 
     model = infer_setup(marm, package_name="p", source=RobotSource("x"), target="ros1")
     model = dataclasses.replace(

@@ -10,8 +10,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from marm_setup.robot import load_robot
-from marm_setup.timing import JointLimits, limits_from_config, merge_collinear, time_parameterize
+from marm_setup.plan.timing import JointLimits, limits_from_config, merge_collinear, time_parameterize
+from marm_setup.robot.load import load_robot
 from tests.conftest import MARM_URDF
 
 LIMITS = JointLimits(("a", "b"), np.array([1.0, 2.0]), np.array([2.0, 1.0]))

@@ -7,7 +7,7 @@ import shutil
 import pytest
 
 from marm_setup.errors import InputError
-from marm_setup.package_discovery import discover_package
+from marm_setup.validate.discovery import discover_package
 from tests.validate_helpers import generate_marm, panda
 
 
@@ -85,7 +85,7 @@ def test_no_robot_description(tmp_path):
 def test_marm_setup_yaml_xacro_args_and_package_paths(tmp_path):
     from typer.testing import CliRunner
 
-    from marm_setup.cli import app
+    from marm_setup.cli.app import app
     from tests.conftest import FIXTURES, MARM_URDF
 
     out = tmp_path / "pkg"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from marm_setup.validate import validate_package
+from marm_setup.validate.runner import validate_package
 from tests.validate_helpers import generate_marm, panda
 
 
@@ -53,8 +53,8 @@ def test_validate_is_deterministic():
 def test_panda_transport_collision_is_confirmed_by_pinocchio():
     """The one panda error is real: pinocchio (own URDF parser, mesh loader and FK) agrees."""
     pin = pytest.importorskip("pinocchio")
-    from marm_setup.package_discovery import discover_package
-    from marm_setup.validate import load_package_robot
+    from marm_setup.validate.discovery import discover_package
+    from marm_setup.validate.runner import load_package_robot
 
     good = panda("ros1")
     pkg = discover_package(good.path, package_paths=good.package_paths)

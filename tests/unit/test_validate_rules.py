@@ -766,8 +766,8 @@ def test_own_matrix_is_fresh_for_its_urdf_whatever_the_seed_and_trials(tmp_path)
     """Resampling uses the matrix's own seed and at most its trials: an unchanged URDF passes."""
     from typer.testing import CliRunner
 
-    from marm_setup.cli import app
-    from marm_setup.validate import validate_package
+    from marm_setup.cli.app import app
+    from marm_setup.validate.runner import validate_package
     from tests.conftest import MARM_URDF
 
     out = tmp_path / "pkg"

@@ -9,8 +9,7 @@ from pathlib import Path
 import pytest
 
 from marm_setup.errors import ConflictError, InputError
-from marm_setup.render import RenderedFile
-from marm_setup.writer import (
+from marm_setup.render.writer import (
     MANIFEST,
     apply_writes,
     check_output_dir,
@@ -20,6 +19,7 @@ from marm_setup.writer import (
     sha256,
     stale_files,
 )
+from marm_setup.templating import RenderedFile
 
 FILES = [
     RenderedFile("package.xml", "<package/>\n"),

@@ -1,0 +1,214 @@
+"""`marm-setup collisions`: the self-collision matrix alone (a headless `collisions_updater`)."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from marm_setup.cli.common import (
+    OutputFormat,
+    PackagePaths,
+    UrdfArg,
+    XacroArgs,
+    echo_err,
+    load_robot_from_cli,
+)
+from marm_setup.errors import InputError
+
+REPORT_SUFFIXES = (".svg", ".html")
+
+
+def collisions(
+    urdf: UrdfArg,
+    xacro_arg: XacroArgs = None,
+    package_path: PackagePaths = None,
+    trials: Annotated[int, typer.Option("--trials", help="Random states for the Never phase.")] = 10000,
+    min_collision_fraction: Annotated[
+        float,
+        typer.Option(
+            "--min-collision-fraction", help="Always: in collision in at least this share of samples."
+        ),
+    ] = 0.95,
+    seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same output).")] = 0,
+    jobs: Annotated[
+        int, typer.Option("--jobs", help="Worker processes (the result does not depend on it).")
+    ] = 1,
+    padding: Annotated[
+        float, typer.Option("--padding", help="Treat pairs closer than this [m] as colliding.")
+    ] = 0.0,
+    srdf: Annotated[
+        Path | None,
+        typer.Option("--srdf", help="Update this SRDF (in place unless --output).", metavar="IN.srdf"),
+    ] = None,
+    output: Annotated[
+        Path | None, typer.Option("--output", help="Write the SRDF here (minimal SRDF without --srdf).")
+    ] = None,
+    keep: Annotated[
+        bool,
+        typer.Option("--keep", help="With --srdf: keep every pair it already disables (User always kept)."),
+    ] = False,
+    default: Annotated[
+        bool, typer.Option("--default/--no-default", help="Disable pairs colliding at the default state.")
+    ] = True,
+    always: Annotated[
+        bool, typer.Option("--always/--no-always", help="Disable pairs (almost) always colliding.")
+    ] = True,
+    default_pose: Annotated[
+        str | None,
+        typer.Option(
+            "--default-pose",
+            help="With --srdf: a named pose of that SRDF as the default state (else 0 / mid-range).",
+            metavar="NAME",
+        ),
+    ] = None,
+    report: Annotated[
+        Path | None, typer.Option("--report", help="Write a heat map of the matrix (.svg or .html).")
+    ] = None,
+    format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
+) -> None:
+    """Compute which link pairs MoveIt need not check (Adjacent, Default, Always, Never).
+
+    Seeded and deterministic (same seed, same bytes, whatever --jobs). Never is statistical: with N trials and no hit, a pair collides with probability below 3/N (95 %). Meshes are surfaces, as in MoveIt: a shape entirely inside a mesh, not touching it, does not collide.
+    """
+    _check_options(trials, min_collision_fraction, seed, jobs, padding, srdf, keep, report)
+    if default_pose is not None and srdf is None:
+        raise InputError("needs --srdf (the SRDF holding the pose)", element="--default-pose")
+    from marm_setup.collision.matrix import compute_collision_matrix
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision.srdf_update import load_srdf_text, read_srdf_entries
+
+    robot = load_robot_from_cli(urdf, xacro_arg, package_path)
+    srdf_text = None
+    if srdf is not None:
+        srdf_text = load_srdf_text(srdf, shown=str(srdf))
+        read_srdf_entries(srdf_text, shown=str(srdf))  # fail on a bad SRDF before the long part
+    default_q = (
+        None if default_pose is None else _pose_configuration(robot, srdf_text, default_pose, str(srdf))
+    )
+    scene = CollisionScene(robot, padding)
+    started = time.perf_counter()
+    with _progress_bar() as progress:
+        matrix = compute_collision_matrix(
+            robot,
+            scene,
+            trials=trials,
+            seed=seed,
+            min_collision_fraction=min_collision_fraction,
+            check_default=default,
+            check_always=always,
+            default_q=default_q,
+            jobs=jobs,
+            progress=progress,
+        )
+    seconds = time.perf_counter() - started
+    disabled = _write_srdf(robot.name, matrix, srdf, srdf_text, output, keep)
+    if report is not None:
+        _write_report(report, matrix, robot, disabled)
+    _print_result(matrix, robot.name, disabled, seconds, format)
+
+
+def _pose_configuration(robot, srdf_text: str, name: str, shown: str):
+    """The default configuration with the SRDF pose `name` laid over it."""
+    from marm_setup.robot.kinematics import default_configuration
+    from marm_setup.setup.srdf import parse_srdf_string
+
+    states = {s.name: s for s in parse_srdf_string(srdf_text, shown).group_states}
+    if name not in states:
+        known = ", ".join(sorted(states)) or "none"
+        raise InputError(f"unknown pose '{name}'; known: {known}", path=shown, element="--default-pose")
+    q = default_configuration(robot)
+    index = {joint: i for i, joint in enumerate(robot.active_joint_names)}
+    for joint, value in states[name].values:
+        if joint in index:
+            q[index[joint]] = value
+    return q
+
+
+def _check_options(trials, fraction, seed, jobs, padding, srdf, keep, report) -> None:
+    if trials < 1:  # with no trials every pair not yet seen colliding would be called Never
+        raise InputError(f"must be >= 1, got {trials}", element="--trials")
+    if seed < 0:
+        raise InputError(f"must be >= 0, got {seed}", element="--seed")
+    if not 0.0 < fraction <= 1.0:
+        raise InputError(f"must be in (0, 1], got {fraction}", element="--min-collision-fraction")
+    if jobs < 1:
+        raise InputError(f"must be >= 1, got {jobs}", element="--jobs")
+    if not 0.0 <= padding < float("inf"):  # also refuses nan, which would disable every pair
+        raise InputError(f"must be >= 0 and finite, got {padding}", element="--padding")
+    if keep and srdf is None:
+        raise InputError("--keep needs --srdf (the SRDF whose pairs to keep)", element="--keep")
+    if report is not None and report.suffix.lower() not in REPORT_SUFFIXES:
+        raise InputError(f"unknown report type '{report.suffix}'; expected .svg or .html", path=str(report))
+
+
+def _write_srdf(robot_name, matrix, srdf, srdf_text, output, keep):
+    """Write the SRDF the options ask for; return the final disabled pairs."""
+    from marm_setup.collision.srdf_update import render_minimal_srdf, update_srdf
+    from marm_setup.render.writer import write_text_atomic
+
+    if srdf is None:
+        if output is not None:
+            write_text_atomic(output, render_minimal_srdf(robot_name, matrix.disabled), shown=str(output))
+            echo_err(f"wrote {output}")
+        return matrix.disabled
+    text, disabled = update_srdf(srdf_text, matrix.disabled, keep=keep, shown=str(srdf))
+    target = output or srdf
+    write_text_atomic(target, text, shown=str(target))
+    echo_err(f"wrote {target}")
+    return disabled
+
+
+def _write_report(report: Path, matrix, robot, disabled) -> None:
+    from marm_setup.collision.report import render_matrix_html, render_matrix_svg
+    from marm_setup.render.writer import write_text_atomic
+
+    links = [name for name in robot.links_in_tree_order if robot.link(name).has_geometry]
+    svg = render_matrix_svg(matrix, robot.name, links, disabled)
+    text = render_matrix_html(svg, robot.name) if report.suffix.lower() == ".html" else svg
+    write_text_atomic(report, text, shown=str(report))
+    echo_err(f"wrote {report}")
+
+
+def _print_result(matrix, robot_name, disabled, seconds, format: OutputFormat) -> None:
+    from marm_setup.collision.report import describe_matrix, format_summary
+
+    if format is OutputFormat.json:
+        typer.echo(json.dumps(describe_matrix(matrix, robot_name, disabled), indent=2))
+    else:
+        typer.echo(format_summary(matrix, robot_name, disabled, seconds))
+
+
+class _progress_bar:
+    """A rich progress bar on stderr while sampling; a no-op callback when stderr is not a TTY."""
+
+    def __enter__(self):
+        self._progress = None
+        if not sys.stderr.isatty():
+            return None
+        from rich.console import Console
+        from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
+
+        self._progress = Progress(
+            TextColumn("sampling"),
+            BarColumn(),
+            TaskProgressColumn(),
+            TimeRemainingColumn(),
+            console=Console(stderr=True),
+            transient=True,
+        )
+        self._progress.start()
+        task = self._progress.add_task("sampling", total=None)
+
+        def update(done: int, total: int) -> None:
+            self._progress.update(task, completed=done, total=total)
+
+        return update
+
+    def __exit__(self, *exc) -> None:
+        if self._progress is not None:
+            self._progress.stop()

@@ -1,0 +1,89 @@
+"""`marm-setup init`: infer (or take) a setup, compute the collision matrix, write the package."""
+
+from __future__ import annotations
+
+import enum
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from marm_setup.cli.common import PackagePaths, UrdfArg, XacroArgs, load_robot_from_cli
+
+
+class Target(str, enum.Enum):
+    ros2 = "ros2"
+    ros1 = "ros1"
+
+
+OutOption = Annotated[Path, typer.Option("--out", help="Package folder to create.", metavar="DIR")]
+NameOption = Annotated[
+    str | None, typer.Option("--name", help="Package name (default: <robot>_moveit_config).", metavar="PKG")
+]
+TargetOption = Annotated[Target | None, typer.Option("--target", help="ros2 (default) or ros1.")]
+SetupOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--setup", help="SPEC yaml (marm_setup.yaml schema, any subset) over the inference.", metavar="SPEC"
+    ),
+]
+FromSrdfOption = Annotated[
+    Path | None,
+    typer.Option("--from-srdf", help="Import groups, poses, ... from an existing SRDF.", metavar="SRDF"),
+]
+
+
+def init(
+    urdf: UrdfArg,
+    out: OutOption,
+    name: NameOption = None,
+    target: TargetOption = None,
+    setup: SetupOption = None,
+    from_srdf: FromSrdfOption = None,
+    trials: Annotated[
+        int | None,
+        typer.Option(
+            "--trials",
+            help="Random states for the Never pairs [default: SPEC's, else 10000].",
+            min=1,
+            metavar="N",
+        ),
+    ] = None,
+    seed: Annotated[
+        int | None,
+        typer.Option("--seed", help="Seed of the collision sampling [default: SPEC's, else 0].", metavar="S"),
+    ] = None,
+    force: Annotated[bool, typer.Option("--force", help="Write into an existing non-empty DIR.")] = False,
+    xacro_arg: XacroArgs = None,
+    package_path: PackagePaths = None,
+) -> None:
+    """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package."""
+    from marm_setup.errors import InputError
+    from marm_setup.pipeline import InitRequest, run_init
+    from marm_setup.render.writer import check_output_dir
+
+    if seed is not None and seed < 0:
+        raise InputError(f"must be >= 0, got {seed}", element="--seed")
+
+    request = InitRequest(
+        urdf=urdf,
+        out=out,
+        name=name,
+        target=target.value if target else None,
+        spec=setup,
+        from_srdf=from_srdf,
+        trials=trials,
+        seed=seed,
+        force=force,
+        xacro_args=tuple(xacro_arg or ()),
+        package_paths=tuple(package_path or ()),
+    )
+    check_output_dir(out, force=force, shown=str(out))
+    robot = load_robot_from_cli(urdf, xacro_arg, package_path)
+    result = run_init(request, robot)
+    sources = ["inferred", *(f"{o} {p}" for o, p in (("SRDF", from_srdf), ("SPEC", setup)) if p)]
+    typer.echo(f"setup for robot {robot.name} ({' + '.join(sources)}), target {result.model.target}:")
+    for line in result.inferred:
+        typer.echo(f"  {line}")
+    for line in result.status_lines:
+        typer.echo(line)

@@ -1,0 +1,81 @@
+"""`marm-setup render`: re-render a package from its marm_setup.yaml, keeping hand edits safe."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+DirArg = Annotated[Path, typer.Argument(help="Config package folder holding marm_setup.yaml.", metavar="DIR")]
+
+
+def render(
+    dir: DirArg,
+    force: Annotated[bool, typer.Option("--force", help="Overwrite hand-edited files.")] = False,
+    dry_run: Annotated[
+        bool, typer.Option("--dry-run", help="Print what would change; write nothing.")
+    ] = False,
+) -> None:
+    """Re-render every generated file of DIR from DIR/marm_setup.yaml (create / update / unchanged / conflict)."""
+    from marm_setup.errors import ConflictError
+    from marm_setup.render.package import SETUP_FILE, render_package
+    from marm_setup.render.writer import apply_writes, conflicts, format_change, plan_writes, stale_files
+
+    model, robot = load_package_setup(dir)
+    # marm_setup.yaml is the input here: render never rewrites it.
+    rendered = [f for f in render_package(model, robot) if f.path != SETUP_FILE]
+    changes = plan_writes(rendered, dir)
+    clashing = conflicts(changes)
+    for change in changes:
+        suffix = " (overwritten: --force)" if force and change.status == "conflict" and not dry_run else ""
+        typer.echo(format_change(change) + suffix)
+    for path in stale_files(changes, dir, keep=[SETUP_FILE]):
+        typer.echo(f"{'stale':<10}{path} (no longer generated; left in place)")
+    if dry_run:
+        typer.echo(f"dry run: nothing written ({_summary(changes)})")
+        return
+    if clashing and not force:
+        raise ConflictError(
+            f"{len(clashing)} hand-edited file(s) not overwritten: {', '.join(clashing)} (use --force)",
+            path=str(dir),
+        )
+    apply_writes(changes, dir, force=force)
+    typer.echo(_summary(changes))
+
+
+def _summary(changes) -> str:
+    from marm_setup.render.writer import STATUS_WORDS
+
+    counts = {word: 0 for word in STATUS_WORDS.values()}
+    for change in changes:
+        counts[STATUS_WORDS[change.status]] += 1
+    return ", ".join(f"{n} {word}" for word, n in counts.items())
+
+
+def load_package_setup(pkg_dir: Path):
+    """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names."""
+    from marm_setup.errors import InputError
+    from marm_setup.robot.load import load_robot
+    from marm_setup.setup.checks import check_setup
+    from marm_setup.setup.yaml_io import load_setup
+
+    setup_path = pkg_dir / "marm_setup.yaml"
+    if not pkg_dir.is_dir():
+        raise InputError("not a directory", path=str(pkg_dir))
+    if not setup_path.is_file():
+        raise InputError(
+            "no marm_setup.yaml here (create the package with `marm-setup init`)", path=str(pkg_dir)
+        )
+    model = load_setup(setup_path)
+    source = model.robot
+    urdf = _relative_to(pkg_dir, source.urdf)
+    package_paths = [_relative_to(pkg_dir, p) for p in source.package_paths]
+    robot = load_robot(urdf, dict(source.xacro_args), package_paths)
+    check_setup(model, robot, str(setup_path))  # an edit may name unknown joints or leave limits
+    return model, robot
+
+
+def _relative_to(base: Path, path: str) -> Path:
+    candidate = Path(path)
+    return candidate if candidate.is_absolute() else base / candidate

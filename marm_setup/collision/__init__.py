@@ -1,0 +1,1 @@
+"""Self-collision: link pairs and reasons, the coal collision scene, the MoveIt collision matrix, SRDF updates and the matrix report."""

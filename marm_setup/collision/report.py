@@ -1,0 +1,234 @@
+"""Collision-matrix reports: a JSON-ready summary and a link-by-link SVG (or HTML) heat map.
+
+Pure: data in, text out. Cells are coloured by reason; enabled (sometimes colliding) pairs are
+shaded by their hit rate in the fully counted Always-round samples.
+
+Hit counts come from the Always rounds only (rounds of 200 samples in which every remaining
+pair is checked): the Never phase stops checking a pair at its first hit, so its trials give
+"seen colliding", not a count. Every output says so (HIT_COUNTS).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from marm_setup.collision.matrix import ROUND, CollisionMatrix, PairStats
+from marm_setup.collision.pairs import DisabledPair, DisabledReason
+
+ENABLED = "Enabled"
+COLORS = {
+    DisabledReason.ADJACENT: "#bdbdbd",
+    DisabledReason.DEFAULT: "#9e9ac8",
+    DisabledReason.ALWAYS: "#de2d26",
+    DisabledReason.NEVER: "#a1d99b",
+    DisabledReason.USER: "#6baed6",
+}
+LETTERS = {
+    DisabledReason.ADJACENT: "A",
+    DisabledReason.DEFAULT: "D",
+    DisabledReason.ALWAYS: "X",
+    DisabledReason.NEVER: "N",
+    DisabledReason.USER: "U",
+}
+HEAT_LOW, HEAT_HIGH = (254, 230, 206), (230, 85, 13)  # enabled: 0 % -> 100 % hit rate
+CELL, CHAR, PAD = 22, 7.0, 12
+HIT_COUNTS = (
+    "hits/samples count the Always-round samples only (every pair checked in each); the Never "
+    "trials stop checking a pair at its first hit, so they add no counts, only seen_colliding"
+)
+
+
+def final_reasons(matrix: CollisionMatrix, disabled: Iterable[DisabledPair] | None = None) -> dict:
+    """Pair -> reason (None: enabled), from `disabled` (e.g. after merging User pairs) or the matrix."""
+    chosen = matrix.disabled if disabled is None else disabled
+    return {d.pair: d.reason for d in chosen}
+
+
+def describe_matrix(
+    matrix: CollisionMatrix, robot_name: str, disabled: Sequence[DisabledPair] | None = None
+) -> dict:
+    """Everything about the matrix as plain data (for `--format json`), pairs sorted."""
+    reasons = final_reasons(matrix, disabled)
+    counts = reason_counts(reasons)
+    pairs = [_pair_dict(s, reasons.get(s.pair)) for s in matrix.stats]
+    pairs += [
+        {
+            "link1": a,
+            "link2": b,
+            "reason": r.value,
+            "hits": None,
+            "samples": None,
+            "seen_colliding": None,
+            "min_distance": None,
+        }
+        for (a, b), r in sorted(reasons.items())
+        if (a, b) not in {s.pair for s in matrix.stats}
+    ]
+    counts[ENABLED] = sum(1 for p in pairs if p["reason"] is None)
+    return {
+        "robot": robot_name,
+        "trials": matrix.trials,
+        "seed": matrix.seed,
+        "min_collision_fraction": matrix.min_collision_fraction,
+        "padding": matrix.padding,
+        "never_bound_95": never_bound(matrix.trials),
+        "hit_counts": HIT_COUNTS,
+        "counts": counts,
+        "pairs": sorted(pairs, key=lambda p: (p["link1"], p["link2"])),
+    }
+
+
+def reason_counts(reasons: dict) -> dict[str, int]:
+    """Disabled pairs per reason, in MoveIt's order (every reason listed, zeros included)."""
+    return {r.value: sum(1 for v in reasons.values() if v is r) for r in DisabledReason}
+
+
+def never_bound(trials: int) -> float | None:
+    """95 % upper bound on a Never pair's collision probability (rule of three): 3/N."""
+    return 3.0 / trials if trials else None
+
+
+def _pair_dict(stats: PairStats, reason: DisabledReason | None) -> dict:
+    distance = None if stats.min_distance is None else round(stats.min_distance, 6)
+    sampled = stats.samples > 0 or stats.reason in (None, DisabledReason.NEVER)  # else never checked
+    return {
+        "link1": stats.link1,
+        "link2": stats.link2,
+        "reason": None if reason is None else reason.value,
+        "hits": stats.hits,
+        "samples": stats.samples,
+        "seen_colliding": stats.seen_colliding if sampled else None,
+        "min_distance": distance if reason is DisabledReason.NEVER else None,
+    }
+
+
+@dataclass(frozen=True, slots=True)
+class Cell:
+    x: float
+    y: float
+    fill: str
+    label: str
+    label_fill: str
+    title: str
+
+
+def render_matrix_svg(
+    matrix: CollisionMatrix,
+    robot_name: str,
+    links: Sequence[str],
+    disabled: Sequence[DisabledPair] | None = None,
+) -> str:
+    """The heat map as SVG text; `links` in display order (e.g. tree order)."""
+    from marm_setup.templating import render_template
+
+    reasons = final_reasons(matrix, disabled)
+    stats = {s.pair: s for s in matrix.stats}
+    label_w = PAD + CHAR * max((len(n) for n in links), default=4)
+    top = 76 + 0.8 * label_w  # summary lines, then the rotated column labels
+    cells = [
+        _cell(a, b, i, j, label_w, top, reasons, stats)
+        for i, a in enumerate(links)
+        for j, b in enumerate(links)
+        if i != j
+    ]
+    size = CELL * len(links)
+    legend_y = top + size + 28
+    return render_template(
+        "report/collision_matrix.svg.j2",
+        robot_name=robot_name,
+        summary=_summary(matrix, reasons),
+        links=list(links),
+        cells=cells,
+        cell=CELL,
+        left=label_w,
+        top=top,
+        legend=_legend(label_w, legend_y),
+        width=max(label_w + size + 30, label_w + 730),
+        height=legend_y + 50,
+    )
+
+
+def render_matrix_html(svg: str, robot_name: str) -> str:
+    """The SVG inside a minimal standalone HTML page."""
+    from marm_setup.templating import render_template
+
+    body = svg.split("?>", 1)[-1].lstrip() if svg.startswith("<?xml") else svg
+    return render_template("report/collision_matrix.html.j2", robot_name=robot_name, svg=body)
+
+
+def _cell(a, b, i, j, left, top, reasons, stats) -> Cell:
+    pair = (a, b) if a < b else (b, a)
+    reason = reasons.get(pair)
+    st = stats.get(pair)
+    rate = st.hits / st.samples if st is not None and st.samples else None
+    x, y = left + j * CELL, top + i * CELL
+    if reason is None:
+        share = rate or 0.0
+        fill = _mix(HEAT_LOW, HEAT_HIGH, share)
+        label = f"{round(100 * share)}" if round(100 * share) >= 1 else "<1"
+        return Cell(x, y, fill, label, "#fff" if share > 0.5 else "#333", _title(pair, None, st, rate))
+    return Cell(x, y, COLORS[reason], LETTERS[reason], "#333", _title(pair, reason, st, rate))
+
+
+def _title(pair, reason, st, rate) -> str:
+    text = f"{pair[0]} / {pair[1]}: {ENABLED if reason is None else reason.value}"
+    if rate is not None:
+        text += f", in collision in {st.hits} of {st.samples} Always-round samples ({100 * rate:.1f} %)"
+    if reason is None and st is not None and not st.hits:
+        text += ", seen colliding in the trials"
+    if reason is DisabledReason.NEVER and st is not None and st.min_distance is not None:
+        text += f", closest {1000 * st.min_distance:.1f} mm"
+    return text
+
+
+def _mix(lo, hi, share: float) -> str:
+    rgb = (round(a + (b - a) * share) for a, b in zip(lo, hi, strict=True))
+    return "#" + "".join(f"{c:02x}" for c in rgb)
+
+
+def _summary(matrix: CollisionMatrix, reasons) -> list[str]:
+    counts = ", ".join(f"{reason} {n}" for reason, n in reason_counts(reasons).items())
+    enabled = sum(1 for s in matrix.stats if reasons.get(s.pair) is None)
+    bound = never_bound(matrix.trials)
+    return [
+        f"{len(matrix.stats)} candidate pairs; disabled: {counts}; enabled (sometimes colliding): {enabled}",
+        f"{matrix.trials} trials, seed {matrix.seed}, Always at >= {matrix.min_collision_fraction:g}"
+        + (f"; a Never pair collides with p < {bound:.2g} (95 %)" if bound else ""),
+        "hit rates: Always-round samples only (the trials stop checking a pair at its first hit)",
+    ]
+
+
+def _legend(x: float, y: float) -> list[dict]:
+    items = [(COLORS[r], f"{LETTERS[r]} {r.value}") for r in DisabledReason]
+    items.append((_mix(HEAT_LOW, HEAT_HIGH, 0.5), "% enabled: Always-round hit rate"))
+    return [{"x": x + k * 100, "y": y, "fill": f, "text": t} for k, (f, t) in enumerate(items)]
+
+
+def format_summary(
+    matrix: CollisionMatrix, robot_name: str, disabled: Sequence[DisabledPair], seconds: float
+) -> str:
+    """The text summary `marm-setup collisions` prints."""
+    reasons = final_reasons(matrix, disabled)
+    counts = ", ".join(f"{reason} {n}" for reason, n in reason_counts(reasons).items())
+    enabled = [s for s in matrix.stats if reasons.get(s.pair) is None]
+    lines = [
+        f"robot {robot_name}: {len(matrix.stats)} candidate pairs (links with collision geometry)",
+        f"disabled {len(reasons)}: {counts}",
+        f"enabled (seen colliding, checked at run time) {len(enabled)}, "
+        "with hits/samples of the Always rounds (the trials stop at a pair's first hit):",
+    ]
+    for s in enabled:
+        hits = f"{s.hits}/{s.samples}" if s.samples else ""
+        seen = "seen in trials" if not s.hits else ""
+        lines.append(f"  {s.link1} / {s.link2}  ({', '.join(x for x in (hits, seen) if x)})")
+    lines.append(
+        f"{matrix.trials} trials, seed {matrix.seed}, Always at >= {matrix.min_collision_fraction:g} "
+        f"of a {ROUND}-sample round, padding {matrix.padding:g} m, {seconds:.2f} s"
+    )
+    if matrix.trials:
+        lines.append(
+            f"Never is statistical: with {matrix.trials} trials and no hit, a pair's collision "
+            f"probability is below 3/N = {never_bound(matrix.trials):.2g} (95 % confidence)"
+        )
+    return "\n".join(lines)

@@ -1,0 +1,254 @@
+"""CollisionScene: coal geometry for every link with collision shapes, built once per robot.
+
+The only module that imports coal (and, through `meshes`, trimesh). Checks run on batches of
+configurations: batched numpy FK, then two vectorised conservative filters (bounding spheres,
+then oriented boxes by the separating-axis test) so that only pairs that may touch reach the
+coal narrow phase.
+
+Mesh geometry becomes a coal BVH (`BVHModelOBBRSS`), which is a *surface*, as in MoveIt's
+FCL: a shape entirely inside a mesh, not touching its triangles, does not collide with it.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from marm_setup.collision.pairs import link_pair
+from marm_setup.robot.kinematics import forward_kinematics, link_index, origin_matrix
+from marm_setup.robot.meshes import load_mesh
+from marm_setup.robot.model import Box, CollisionShape, Cylinder, Mesh, RobotModel, Sphere
+
+Pair = tuple[str, str]
+_EPS = 1e-9
+
+
+@dataclass(frozen=True, eq=False)
+class _Bounds:
+    """Link-frame bounding volumes of all links, row per geometry link: a box and the sphere
+    around it share `center`."""
+
+    center: np.ndarray  # (L, 3)
+    sphere_radius: np.ndarray  # (L,)
+    box_half: np.ndarray  # (L, 3)
+
+
+class CollisionScene:
+    """Coal objects and bounding volumes for `robot`; `padding` [m] pads every link."""
+
+    def __init__(self, robot: RobotModel, padding: float = 0.0):
+        import coal
+
+        self._coal = coal
+        self.robot = robot
+        self.padding = float(padding)
+        self.links: tuple[str, ...] = robot.geometry_links
+        self.candidate_pairs: tuple[Pair, ...] = tuple(itertools.combinations(self.links, 2))
+        self._pair_ids = {pair: i for i, pair in enumerate(self.candidate_pairs)}
+        row = {name: i for i, name in enumerate(self.links)}
+        self._pair_a = np.array([row[a] for a, _ in self.candidate_pairs], dtype=np.intp)
+        self._pair_b = np.array([row[b] for _, b in self.candidate_pairs], dtype=np.intp)
+        fk_index = link_index(robot)
+        self._fk_rows = np.array([fk_index[name] for name in self.links], dtype=np.intp)
+        bvh_cache: dict = {}  # one BVH per mesh file and scale
+        built = [_link_shapes(robot, name, coal, bvh_cache) for name in self.links]
+        self._shapes: tuple[tuple[tuple[object, np.ndarray], ...], ...] = tuple(s for s, _ in built)
+        points = [p for _, p in built]
+        self._bounds = _bounds(points)
+        self._request = coal.CollisionRequest()
+        self._request.security_margin = self.padding
+        self._result = coal.CollisionResult()
+        self._tf = (coal.Transform3s(), coal.Transform3s())
+        self._solvers: dict[tuple[int, int, int, int], object] = {}
+        self._ids_cache: dict[tuple[Pair, ...], np.ndarray] = {}
+        self.narrow_calls = 0
+
+    # -- public API ----------------------------------------------------------------------------
+    def enabled_pairs(self, disabled: Iterable[tuple[str, str]]) -> tuple[Pair, ...]:
+        """Candidate pairs minus `disabled` (what MoveIt checks at run time under an SRDF)."""
+        off = {link_pair(a, b) for a, b in disabled}
+        return tuple(p for p in self.candidate_pairs if p not in off)
+
+    def pair_ids(self, pairs: Sequence[tuple[str, str]]) -> np.ndarray:
+        """Indices of `pairs` (any order inside a pair) into `candidate_pairs`."""
+        key = tuple(pairs)
+        ids = self._ids_cache.get(key)
+        if ids is None:
+            try:
+                ids = np.array([self._pair_ids[link_pair(a, b)] for a, b in key], dtype=np.intp)
+            except KeyError as exc:
+                raise ValueError(f"not a candidate pair (both links need geometry): {exc}") from None
+            if len(self._ids_cache) > 64:
+                self._ids_cache.clear()
+            self._ids_cache[key] = ids
+        return ids
+
+    def link_poses(self, q: np.ndarray) -> np.ndarray:
+        """World poses (N, L, 4, 4) of the geometry links (`self.links` order)."""
+        return forward_kinematics(self.robot, q)[:, self._fk_rows]
+
+    def first_collisions(self, q: np.ndarray, pairs: Sequence[tuple[str, str]]) -> list[Pair | None]:
+        """Per configuration, the first pair of `pairs` (in order) in collision, or None."""
+        pairs = tuple(pairs)
+        ids = self.pair_ids(pairs)
+        poses = self.link_poses(q)
+        maybe = self.maybe_colliding(poses, ids)
+        out: list[Pair | None] = []
+        for n in range(len(poses)):
+            hit = next((k for k in np.flatnonzero(maybe[n]) if self.collide(poses[n], ids[k])), None)
+            out.append(None if hit is None else link_pair(*pairs[hit]))
+        return out
+
+    def collision_counts(self, poses: np.ndarray, ids: np.ndarray) -> np.ndarray:
+        """How many of the configurations in `poses` have each pair of `ids` in collision."""
+        maybe = self.maybe_colliding(poses, ids)
+        counts = np.zeros(len(ids), dtype=np.int64)
+        for n, k in zip(*np.nonzero(maybe), strict=True):
+            counts[k] += self.collide(poses[n], ids[k])
+        return counts
+
+    # -- filters -------------------------------------------------------------------------------
+    def sphere_gaps(self, poses: np.ndarray, ids: np.ndarray) -> np.ndarray:
+        """(N, P) distance between bounding spheres minus padding; > 0 means cannot collide."""
+        b = self._bounds
+        rot, trans = poses[..., :3, :3], poses[..., :3, 3]
+        centers = np.einsum("nlij,lj->nli", rot, b.center) + trans
+        a_rows, b_rows = self._pair_a[ids], self._pair_b[ids]
+        dist = np.linalg.norm(centers[:, a_rows] - centers[:, b_rows], axis=-1)
+        return dist - b.sphere_radius[a_rows] - b.sphere_radius[b_rows] - self.padding
+
+    def maybe_colliding(
+        self, poses: np.ndarray, ids: np.ndarray, gaps: np.ndarray | None = None
+    ) -> np.ndarray:
+        """(N, P) False where bounding spheres or oriented boxes prove a pair apart."""
+        maybe = (self.sphere_gaps(poses, ids) if gaps is None else gaps) <= _EPS
+        n_idx, k_idx = np.nonzero(maybe)
+        if len(n_idx):
+            a_rows, b_rows = self._pair_a[ids[k_idx]], self._pair_b[ids[k_idx]]
+            maybe[n_idx, k_idx] = self._boxes_overlap(
+                poses[n_idx, a_rows], poses[n_idx, b_rows], a_rows, b_rows
+            )
+        return maybe
+
+    def _boxes_overlap(self, pose_a, pose_b, a_rows, b_rows) -> np.ndarray:
+        """Separating-axis test of the padded link boxes, one row per (pose_a, pose_b)."""
+        b, pad = self._bounds, self.padding / 2.0 + _EPS
+        rot_a, rot_b = pose_a[:, :3, :3], pose_b[:, :3, :3]
+        ca = np.einsum("mij,mj->mi", rot_a, b.center[a_rows]) + pose_a[:, :3, 3]
+        cb = np.einsum("mij,mj->mi", rot_b, b.center[b_rows]) + pose_b[:, :3, 3]
+        ea, eb = b.box_half[a_rows] + pad, b.box_half[b_rows] + pad
+        r = np.einsum("mki,mkj->mij", rot_a, rot_b)
+        t = np.einsum("mki,mk->mi", rot_a, cb - ca)
+        abs_r = np.abs(r) + 1e-12
+        apart = np.any(np.abs(t) > ea + np.einsum("mij,mj->mi", abs_r, eb), axis=1)
+        t_b = np.einsum("mij,mi->mj", r, t)
+        apart |= np.any(np.abs(t_b) > np.einsum("mij,mi->mj", abs_r, ea) + eb, axis=1)
+        for i, j in itertools.product(range(3), range(3)):
+            i1, i2, j1, j2 = (i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3
+            ra = ea[:, i1] * abs_r[:, i2, j] + ea[:, i2] * abs_r[:, i1, j]
+            rb = eb[:, j1] * abs_r[:, i, j2] + eb[:, j2] * abs_r[:, i, j1]
+            apart |= np.abs(t[:, i2] * r[:, i1, j] - t[:, i1] * r[:, i2, j]) > ra + rb
+        return ~apart
+
+    # -- narrow phase --------------------------------------------------------------------------
+    def collide(self, poses: np.ndarray, pair_id: int) -> bool:
+        """Exact (coal) check of candidate pair `pair_id` at one configuration's link poses."""
+        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        tf_a, tf_b = self._tf
+        for (ia, (_, la)), (ib, (_, lb)) in itertools.product(
+            enumerate(self._shapes[a]), enumerate(self._shapes[b])
+        ):
+            _set(tf_a, poses[a], la)
+            _set(tf_b, poses[b], lb)
+            self._result.clear()
+            self.narrow_calls += 1
+            if self._solver(a, ia, b, ib)(tf_a, tf_b, self._request, self._result):
+                return True
+        return False
+
+    def distance(self, poses: np.ndarray, pair_id: int) -> float:
+        """Smallest distance [m] between the pair's shapes (0 or less when touching)."""
+        coal = self._coal
+        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        best = np.inf
+        for (ga, la), (gb, lb) in itertools.product(self._shapes[a], self._shapes[b]):
+            tf_a, tf_b = coal.Transform3s(), coal.Transform3s()
+            _set(tf_a, poses[a], la)
+            _set(tf_b, poses[b], lb)
+            result = coal.DistanceResult()
+            coal.distance(ga, tf_a, gb, tf_b, coal.DistanceRequest(), result)
+            best = min(best, float(result.min_distance))
+        return best
+
+    def _solver(self, a: int, ia: int, b: int, ib: int):
+        key = (a, ia, b, ib)
+        solver = self._solvers.get(key)
+        if solver is None:
+            solver = self._coal.ComputeCollision(self._shapes[a][ia][0], self._shapes[b][ib][0])
+            self._solvers[key] = solver
+        return solver
+
+
+def _set(tf, pose: np.ndarray, local: np.ndarray | None) -> None:
+    """Set coal transform `tf` to `pose @ local` (local None: identity)."""
+    if local is not None:
+        pose = pose @ local
+    tf.setRotation(pose[:3, :3])
+    tf.setTranslation(pose[:3, 3])
+
+
+def _link_shapes(robot: RobotModel, name: str, coal, bvh_cache: dict):
+    """((coal geometry, link-from-shape 4x4 or None), ...) and link-frame hull points of `name`."""
+    shapes, points = [], []
+    for i, shape in enumerate(robot.link(name).collisions):
+        element = f"link[{name}]/collision[{i}]"
+        geom, local_points = _coal_geometry(shape, coal, robot.source, element, bvh_cache)
+        local = origin_matrix(shape.origin)
+        points.append(local_points @ local[:3, :3].T + local[:3, 3])
+        shapes.append((geom, None if np.allclose(local, np.eye(4)) else local))
+    return tuple(shapes), np.concatenate(points)
+
+
+def _coal_geometry(shape: CollisionShape, coal, shown: str, element: str, bvh_cache: dict):
+    """A coal geometry for one URDF shape and points whose hull contains it (shape frame)."""
+    geom = shape.geometry
+    if isinstance(geom, Box):
+        half = np.asarray(geom.size) / 2.0
+        return coal.Box(*geom.size), _corners(half)
+    if isinstance(geom, Cylinder):
+        half = np.array([geom.radius, geom.radius, geom.length / 2.0])
+        return coal.Cylinder(geom.radius, geom.length), _corners(half)
+    if isinstance(geom, Sphere):
+        return coal.Sphere(geom.radius), _corners(np.full(3, geom.radius))
+    if isinstance(geom, Mesh):
+        mesh = load_mesh(geom.path, geom.scale, shown=shown, element=f"{element}/mesh")
+        key = (geom.path, geom.scale)
+        if key not in bvh_cache:
+            bvh_cache[key] = _bvh(mesh, coal)
+        return bvh_cache[key], np.asarray(mesh.vertices)
+    raise TypeError(f"unknown geometry {geom!r}")
+
+
+def _corners(half: np.ndarray) -> np.ndarray:
+    return np.array(list(itertools.product(*((-h, h) for h in half))))
+
+
+def _bvh(mesh, coal):
+    model = coal.BVHModelOBBRSS()
+    model.beginModel(len(mesh.faces), len(mesh.vertices))
+    model.addVertices(np.ascontiguousarray(mesh.vertices, dtype=float))
+    model.addTriangles(np.ascontiguousarray(mesh.faces, dtype=np.int32))
+    model.endModel()
+    return model
+
+
+def _bounds(points: Sequence[np.ndarray]) -> _Bounds:
+    """Bounding sphere (centred on the box) and link-frame box of each link's hull points."""
+    lo = np.array([p.min(axis=0) for p in points]).reshape(-1, 3)
+    hi = np.array([p.max(axis=0) for p in points]).reshape(-1, 3)
+    center = (lo + hi) / 2.0
+    radius = np.array([np.linalg.norm(p - c, axis=1).max() for p, c in zip(points, center, strict=True)])
+    return _Bounds(center, radius, (hi - lo) / 2.0)

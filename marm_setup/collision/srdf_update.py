@@ -1,0 +1,166 @@
+"""SRDF `disable_collisions` output: a minimal SRDF, or an in-place update of an existing one.
+
+An update edits the text, not a re-serialised tree: every byte outside the replaced
+`<disable_collisions>` lines stays as it was (comments, groups, attribute order, indentation).
+Entries whose reason is `User` (or not one we compute) are kept where they are; with `keep`,
+every existing entry is kept and only new pairs are added.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from html import escape
+from pathlib import Path
+
+from lxml import etree
+
+from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.errors import InputError
+
+COMPUTED = frozenset(
+    {DisabledReason.ADJACENT, DisabledReason.DEFAULT, DisabledReason.ALWAYS, DisabledReason.NEVER}
+)
+_ELEMENT = re.compile(r"<disable_collisions\b[^>]*?(?:/>|>\s*</disable_collisions\s*>)", re.S)
+_COMMENT = re.compile(r"<!--.*?-->|<!\[CDATA\[.*?\]\]>", re.S)
+
+
+@dataclass(frozen=True, slots=True)
+class SrdfEntry:
+    """One `<disable_collisions>` in an SRDF: `start`/`end` offsets in the text, its raw reason."""
+
+    start: int
+    end: int
+    link1: str
+    link2: str
+    reason: str
+
+    @property
+    def pair(self) -> DisabledPair:
+        """As a DisabledPair; a reason we do not compute counts as `User` (never recomputed)."""
+        try:
+            reason = DisabledReason(self.reason)
+        except ValueError:
+            reason = DisabledReason.USER
+        return DisabledPair.of(self.link1, self.link2, reason)
+
+
+def render_minimal_srdf(robot_name: str, disabled: Iterable[DisabledPair]) -> str:
+    """`<robot name>` with the sorted `disable_collisions` entries."""
+    from marm_setup.templating import render_template
+
+    return render_template(
+        "collision/disable_collisions.srdf.j2", robot_name=robot_name, disabled=sorted(disabled)
+    )
+
+
+def read_srdf_entries(text: str, *, shown: str) -> list[SrdfEntry]:
+    """The `disable_collisions` entries of SRDF `text`, in document order."""
+    try:
+        root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(remove_comments=True))
+    except etree.XMLSyntaxError as exc:
+        raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
+    if root.tag != "robot":
+        raise InputError(f"root element is <{root.tag}>, expected <robot>", path=shown)
+    entries = []
+    for match in _element_matches(text):
+        el = etree.fromstring(match.group(0))
+        link1, link2 = el.get("link1"), el.get("link2")
+        if not link1 or not link2:
+            line = text.count("\n", 0, match.start()) + 1
+            raise InputError("disable_collisions needs link1 and link2", path=shown, element=f"line {line}")
+        entries.append(SrdfEntry(match.start(), match.end(), link1, link2, el.get("reason", "")))
+    if len(entries) != len(root.findall("disable_collisions")):
+        raise InputError(
+            "disable_collisions elements in an unexpected form; cannot edit in place", path=shown
+        )
+    return entries
+
+
+def update_srdf(
+    text: str, disabled: Sequence[DisabledPair], *, keep: bool = False, shown: str
+) -> tuple[str, tuple[DisabledPair, ...]]:
+    """SRDF `text` with its computed entries replaced by `disabled`; also the final disabled set.
+
+    Kept entries (`User`, unknown reasons, or all with `keep`) stay byte for byte; a kept pair
+    wins over a computed one. New entries go, sorted, where the first removed entry was (else
+    before `</robot>`), one per line with that entry's indentation.
+    """
+    entries = read_srdf_entries(text, shown=shown)
+    kept = [e for e in entries if keep or e.pair.reason not in COMPUTED]
+    kept_pairs = {e.pair.pair for e in kept}
+    new = sorted(d for d in {d.pair: d for d in disabled}.values() if d.pair not in kept_pairs)
+    removed = [e for e in entries if e not in kept]
+    newline = "\r\n" if "\r\n" in text else "\n"
+    anchor, indent = _anchor(text, removed, entries, shown)
+    block = "".join(
+        f'{indent}<disable_collisions link1="{escape(d.link1)}" link2="{escape(d.link2)}" '
+        f'reason="{d.reason.value}"/>{newline}'
+        for d in new
+    )
+    edits = [(*_line_span(text, e), "") for e in removed]
+    if edits and edits[0][0] == anchor:
+        edits[0] = (edits[0][0], edits[0][1], block)
+    else:
+        edits.append((anchor, anchor, block if anchor == 0 or text[anchor - 1] == "\n" else newline + block))
+    for start, end, replacement in sorted(edits, reverse=True):
+        text = text[:start] + replacement + text[end:]
+    return text, tuple(sorted([e.pair for e in kept] + new))
+
+
+def _element_matches(text: str):
+    """Regex matches of disable_collisions elements outside comments and CDATA."""
+    hidden = [m.span() for m in _COMMENT.finditer(text)]
+    for match in _ELEMENT.finditer(text):
+        if not any(a <= match.start() < b for a, b in hidden):
+            yield match
+
+
+def _line_span(text: str, entry: SrdfEntry) -> tuple[int, int]:
+    """The span to delete for `entry`: its whole line when it is alone on it, else the element."""
+    line_start = text.rfind("\n", 0, entry.start) + 1
+    line_end = text.find("\n", entry.end)
+    line_end = len(text) if line_end < 0 else line_end + 1
+    if text[line_start : entry.start].strip() or text[entry.end : line_end].strip():
+        return entry.start, entry.end
+    return line_start, line_end
+
+
+def _anchor(text: str, removed: list[SrdfEntry], entries: list[SrdfEntry], shown: str) -> tuple[int, str]:
+    """Where new entries go (a line start) and their indentation."""
+    if removed:
+        start = _line_span(text, removed[0])[0]
+        return start, _indent_at(text, removed[0].start)
+    close = text.rfind("</robot")
+    if close < 0:
+        raise InputError(
+            "<robot/> has no end tag to add disable_collisions before; write <robot ...></robot>", path=shown
+        )
+    line_start = text.rfind("\n", 0, close) + 1
+    if text[line_start:close].strip():  # `</robot>` shares its line: start a new one
+        return close, ""
+    if entries:
+        return line_start, _indent_at(text, entries[-1].start)
+    child = re.search(r"\n([ \t]+)<", text)
+    return line_start, child.group(1) if child else "  "
+
+
+def _indent_at(text: str, offset: int) -> str:
+    line_start = text.rfind("\n", 0, offset) + 1
+    prefix = text[line_start:offset]
+    return prefix if not prefix.strip() else ""
+
+
+def load_srdf_text(path: Path, *, shown: str) -> str:
+    """The SRDF at `path` as text (UTF-8, line endings untouched)."""
+    try:
+        return path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise InputError("file not found", path=shown) from None
+    except IsADirectoryError:
+        raise InputError("is a folder; expected an SRDF file", path=shown) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None

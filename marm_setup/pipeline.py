@@ -1,0 +1,180 @@
+"""The `init` pipeline: infer -> import SRDF -> overlay SPEC -> check -> collision matrix ->
+render -> write. Pure apart from reading SPEC/SRDF and the final atomic write."""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from marm_setup.errors import InputError
+from marm_setup.robot.load import parse_xacro_args
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.model import TARGETS, CollisionSettings, RobotSource, SetupModel
+
+
+@dataclass(frozen=True)
+class InitRequest:
+    urdf: Path
+    out: Path
+    name: str | None = None
+    target: str | None = None
+    spec: Path | None = None
+    from_srdf: Path | None = None
+    trials: int | None = None  # None: the SPEC's collision.trials, else 10000
+    seed: int | None = None  # None: the SPEC's collision.seed, else 0
+    force: bool = False
+    xacro_args: tuple[str, ...] = ()
+    package_paths: tuple[Path, ...] = ()
+
+
+@dataclass(frozen=True)
+class InitResult:
+    model: SetupModel
+    inferred: tuple[str, ...]  # what the setup holds, one line each
+    status_lines: tuple[str, ...]  # one line per written file
+
+
+def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
+    model = build_setup(request, robot)
+    given = bool(model.collision.disabled)
+    trials = model.collision.trials if request.trials is None else request.trials
+    seed = model.collision.seed if request.seed is None else request.seed
+    model = with_collision_matrix(model, robot, trials=trials, seed=seed)
+    lines = describe(model, matrix_given=given)
+    changes = write_package(model, robot, request.out, force=request.force)
+    from marm_setup.render.writer import format_change
+
+    return InitResult(model, tuple(lines), tuple(format_change(c) for c in changes))
+
+
+def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
+    """Inference, then the SRDF import, then the SPEC; checked against the robot."""
+    from marm_setup.setup.checks import check_setup, package_name_problem, ros_package_name
+    from marm_setup.setup.infer import derive_group_settings, fill_group_settings, infer_setup
+
+    if request.name and (problem := package_name_problem(request.name)):
+        raise InputError(problem, element="--name")
+    spec = _read_spec(request.spec)
+    target = _target(request, spec)
+    name = request.name or spec.get("package_name") or ros_package_name(f"{robot.name}_moveit_config")
+    given = bool(spec) or request.from_srdf is not None  # may give the groups inference cannot find
+    model = infer_setup(
+        robot, package_name=str(name), source=_source(request), target=target, arm_required=not given
+    )
+    inferred_groups = bool(model.groups)
+    if request.from_srdf is not None:
+        from marm_setup.setup.srdf import read_srdf, srdf_to_setup
+
+        model = derive_group_settings(srdf_to_setup(read_srdf(request.from_srdf), model), robot)
+        check_setup(model, robot, str(request.from_srdf))
+    if spec:
+        model = _apply_spec(model, spec, request)
+        if not inferred_groups:
+            model = fill_group_settings(model, robot)
+    if not model.groups:
+        raise InputError(
+            "no planning groups: no serial arm from the root to infer, and the SPEC / SRDF gives none",
+            path=str(request.spec or request.from_srdf),
+            element="groups",
+        )
+    check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
+    return model
+
+
+def _read_spec(path: Path | None) -> dict:
+    if path is None:
+        return {}
+    from marm_setup.setup.yaml_io import read_yaml_mapping
+
+    return read_yaml_mapping(path)
+
+
+def _target(request: InitRequest, spec: dict) -> str:
+    target = request.target or spec.get("target") or "ros2"
+    if target not in TARGETS:
+        raise InputError(
+            f"'{target}' is not one of: {', '.join(TARGETS)}", path=str(request.spec), element="target"
+        )
+    return target
+
+
+def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupModel:
+    from marm_setup.setup.infer import merge_spec
+    from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
+
+    merged = merge_spec(setup_to_dict(model), spec)
+    if request.name:
+        merged["package_name"] = request.name
+    if request.target:
+        merged["target"] = request.target
+    merged["robot"] = setup_to_dict(model)["robot"]  # where the robot is comes from the command line
+    return setup_from_dict(merged, str(request.spec))
+
+
+def _source(request: InitRequest) -> RobotSource:
+    """The robot's location relative to the package folder (so the package can move with it)."""
+    out = request.out.resolve()
+    return RobotSource(
+        urdf=_relative(request.urdf, out),
+        xacro_args=tuple(sorted(parse_xacro_args(list(request.xacro_args)).items())),
+        package_paths=tuple(_relative(p, out) for p in request.package_paths),
+    )
+
+
+def _relative(path: Path, base: Path) -> str:
+    return Path(os.path.relpath(Path(path).resolve(), base)).as_posix()
+
+
+def with_collision_matrix(model: SetupModel, robot: RobotModel, *, trials: int, seed: int) -> SetupModel:
+    """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
+    if model.collision.disabled:
+        return model
+    fraction = model.collision.min_collision_fraction
+    disabled = _disabled_pairs(robot, trials=trials, seed=seed, fraction=fraction)
+    settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
+    return dataclasses.replace(model, collision=settings)
+
+
+def _disabled_pairs(robot: RobotModel, *, trials: int, seed: int, fraction: float):
+    from marm_setup.collision.matrix import compute_collision_matrix
+
+    matrix = compute_collision_matrix(robot, trials=trials, seed=seed, min_collision_fraction=fraction)
+    return matrix.disabled
+
+
+def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
+    """What the setup holds; the matrix line says whether it was computed or taken as given."""
+    from marm_setup.collision.pairs import DisabledReason
+    from marm_setup.setup.infer import describe_setup
+
+    counts = {r: sum(1 for d in model.collision.disabled if d.reason is r) for r in DisabledReason}
+    summary = ", ".join(f"{n} {r.value}" for r, n in counts.items() if n)
+    source = (
+        "as given (SRDF / SPEC), not recomputed"
+        if matrix_given
+        else f"{model.collision.trials} trials, seed {model.collision.seed}"
+    )
+    lines = describe_setup(model)
+    lines.append(
+        f"collision matrix: {len(model.collision.disabled)} disabled pairs ({summary or 'none'}); {source}"
+    )
+    return lines
+
+
+def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool):
+    """Render every file and write them atomically; returns the file changes."""
+    from marm_setup.render.writer import apply_writes, check_output_dir, plan_writes
+
+    check_output_dir(out, force=force)
+    rendered = _render(model, robot)
+    changes = plan_writes(rendered, out)
+    apply_writes(changes, out, force=force)
+    return changes
+
+
+def _render(model: SetupModel, robot: RobotModel):
+    from marm_setup.render.package import render_package
+
+    return render_package(model, robot)

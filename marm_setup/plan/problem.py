@@ -1,0 +1,177 @@
+"""What a planning query needs from a config package: a group's joints, named poses, limits, checker.
+
+Read from a `ConfigPackage` (ours or the Setup Assistant's): the SRDF gives groups, named poses,
+passive joints and the disabled pairs; `joint_limits.yaml` (ros1) or `robot_description_planning`
+(ros2) the limits and default scaling factors. Joints outside the group sit at the robot's
+default state (0, or mid-range), as MoveIt's default start state does. Continuous joints are
+wrapped into [-pi, pi), as MoveIt's enforceBounds does (a pose may say 4.0 rad).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from marm_setup.errors import InputError
+from marm_setup.plan.execution import ExecutionOptions, ExecutionReport, fake_execute
+from marm_setup.plan.planner import (
+    PlannerOptions,
+    PlanResult,
+    ValidityChecker,
+    group_space,
+    plan_joint_path,
+)
+from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_config, time_parameterize
+from marm_setup.robot.kinematics import default_configuration, wrap_continuous
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.groups import active_group_joints, groups_by_name
+
+
+@dataclass(frozen=True, eq=False)
+class PlanningProblem:
+    """One group of one package: joints, named poses (full configurations), limits, checker."""
+
+    group: str
+    joint_names: tuple[str, ...]
+    poses: dict[str, np.ndarray]
+    limits: JointLimits  # the hard limits
+    velocity_scaling: float
+    acceleration_scaling: float
+    check: ValidityChecker
+
+
+@dataclass(frozen=True, eq=False)
+class QueryOutcome:
+    """A plan between two poses, its timed trajectory and fake execution (None when planning failed)."""
+
+    plan: PlanResult
+    trajectory: TimedTrajectory | None = None
+    execution: ExecutionReport | None = None
+
+
+def _overlay(robot: RobotModel, q: np.ndarray, values) -> np.ndarray:
+    q = q.copy()
+    names = robot.active_joint_names
+    for joint, value in values:
+        if joint in names and isinstance(value, int | float) and not isinstance(value, bool):
+            q[names.index(joint)] = float(value)
+    return q
+
+
+def initial_configuration(package, robot: RobotModel) -> np.ndarray:
+    """The state a demo starts in: default, then ros2 `initial_positions`, then ros1 `initial` poses."""
+    q = default_configuration(robot)
+    section = package.initial_positions.data if package.initial_positions is not None else None
+    if isinstance(section, dict):
+        values = section.get("initial_positions", section)
+        q = _overlay(robot, q, values.items() if isinstance(values, dict) else ())
+    fake = package.fake_controllers.data if package.fake_controllers is not None else None
+    initial = fake.get("initial") if isinstance(fake, dict) else None
+    states = {(s.group, s.name): s.values for s in (package.srdf.group_states if package.srdf else ())}
+    for entry in initial if isinstance(initial, list) else ():
+        if isinstance(entry, dict):
+            q = _overlay(robot, q, states.get((entry.get("group"), entry.get("pose")), ()))
+    return q
+
+
+def _limits_section(package) -> tuple[dict, float, float]:
+    data = package.joint_limits.data if package.joint_limits is not None else None
+    data = data if isinstance(data, dict) else {}
+    entries = data.get("joint_limits") if isinstance(data.get("joint_limits"), dict) else {}
+    scale_v, scale_a = (
+        _scaling(data.get(f"default_{kind}_scaling_factor")) for kind in ("velocity", "acceleration")
+    )
+    return entries, scale_v, scale_a
+
+
+def _scaling(value) -> float:
+    """A default scaling factor in (0, 1]; 1 (MoveIt's default) when absent or unusable."""
+    usable = isinstance(value, int | float) and not isinstance(value, bool) and 0 < value <= 1
+    return float(value) if usable else 1.0
+
+
+def group_names_with_poses(package) -> tuple[str, ...]:
+    """Groups of the package's SRDF that have at least two named poses, sorted."""
+    srdf = package.srdf
+    if srdf is None:
+        return ()
+    counts: dict[str, int] = {}
+    for state in srdf.group_states:
+        counts[state.group] = counts.get(state.group, 0) + 1
+    return tuple(sorted(g for g, n in counts.items() if n >= 2 and any(x.name == g for x in srdf.groups)))
+
+
+def planning_problem(package, robot: RobotModel, scene, group: str) -> PlanningProblem:
+    """The problem for `group`; InputError (naming the SRDF) for an unknown group or missing limits."""
+    srdf = package.srdf
+    if srdf is None:
+        raise InputError("no readable SRDF", path=package.shown)
+    groups = groups_by_name(srdf.groups)
+    if group not in groups:
+        known = ", ".join(sorted(groups)) or "none"
+        raise InputError(
+            f"unknown group '{group}'; known: {known}",
+            path=package.user_path(package.srdf_path),
+            element="group",
+        )
+    joints = active_group_joints(groups[group], groups, robot, tuple(srdf.passive_joints))
+    if not joints:
+        raise InputError(
+            f"group '{group}' has no active joints",
+            path=package.user_path(package.srdf_path),
+            element=f"group[{group}]",
+        )
+    entries, scale_v, scale_a = _limits_section(package)
+    try:
+        limits = limits_from_config(robot, joints, entries)
+    except ValueError as exc:
+        raise InputError(str(exc), path=_limits_file(package)) from None
+    q_initial = initial_configuration(package, robot)
+    poses = {
+        s.name: wrap_continuous(robot, _overlay(robot, q_initial, s.values))
+        for s in srdf.group_states
+        if s.group == group
+    }
+    pairs = scene.enabled_pairs((p.link1, p.link2) for p in srdf.disabled)
+    return PlanningProblem(
+        group, joints, poses, limits, scale_v, scale_a, lambda q: scene.first_collisions(q, pairs)
+    )
+
+
+def _limits_file(package) -> str:
+    return package.user_path(package.joint_limits.file if package.joint_limits is not None else None)
+
+
+def pose(problem: PlanningProblem, name: str, srdf_path: str | None) -> np.ndarray:
+    """A named pose's full configuration; InputError listing the group's poses."""
+    if name not in problem.poses:
+        known = ", ".join(sorted(problem.poses)) or "none"
+        raise InputError(
+            f"unknown pose '{name}' for group '{problem.group}'; known: {known}",
+            path=srdf_path,
+            element="group_state",
+        )
+    return problem.poses[name]
+
+
+def plan_between(
+    problem: PlanningProblem,
+    robot: RobotModel,
+    q_start: np.ndarray,
+    q_goal: np.ndarray,
+    seed: int = 0,
+    options: PlannerOptions = PlannerOptions(),
+    execution: ExecutionOptions | None = None,
+) -> QueryOutcome:
+    """Plan, time-parameterise within the scaled limits, and fake-execute against the hard limits."""
+    rng = np.random.default_rng(seed)
+    plan = plan_joint_path(robot, problem.check, q_start, q_goal, problem.joint_names, rng, options)
+    if not plan.success:
+        return QueryOutcome(plan)
+    limits = problem.limits.scaled(problem.velocity_scaling, problem.acceleration_scaling)
+    trajectory = time_parameterize(plan.q_path, limits)
+    space = group_space(robot, problem.joint_names, q_start)
+    execution = execution or ExecutionOptions(max_step=options.max_step / 4)
+    report = fake_execute(trajectory, space, problem.limits, problem.check, q_goal[space.index], execution)
+    return QueryOutcome(plan, trajectory, report)

@@ -1,0 +1,152 @@
+"""Time parameterisation of a joint-space polyline within velocity and acceleration limits.
+
+Each segment of the path gets a synchronised trapezoidal (or triangular) velocity profile and
+the robot stops at every waypoint: a polyline has corners, and following it exactly forces
+zero velocity there, so this is the time-optimal exact following of the planned path (no
+corner cutting, hence no motion outside what the planner checked). Collinear waypoints are
+merged first. Pure numpy: toppra/ruckig would only help with smooth paths or blends, which
+would leave the collision-checked polyline.
+
+A `TimedTrajectory` holds JointTrajectory points. Between two points the acceleration is
+constant, (v1 - v0) / dt; points sit at every profile knot, so that model is exact.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from marm_setup.plan.rrt import merge_collinear
+from marm_setup.robot.model import RobotModel
+
+__all__ = [
+    "JointLimits",
+    "TimedTrajectory",
+    "limits_from_config",
+    "merge_collinear",
+    "time_parameterize",
+]
+
+
+@dataclass(frozen=True, eq=False)
+class JointLimits:
+    """Per joint maximum velocity [rad/s or m/s] and acceleration [rad/s^2 or m/s^2]."""
+
+    joint_names: tuple[str, ...]
+    max_velocity: np.ndarray
+    max_acceleration: np.ndarray
+
+    def scaled(self, velocity: float, acceleration: float) -> JointLimits:
+        return JointLimits(
+            self.joint_names, self.max_velocity * velocity, self.max_acceleration * acceleration
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class TimedTrajectory:
+    """JointTrajectory points: times (K,) [s] from start, positions/velocities/accelerations (K, n)."""
+
+    joint_names: tuple[str, ...]
+    times: np.ndarray
+    positions: np.ndarray
+    velocities: np.ndarray
+    accelerations: np.ndarray
+
+    @property
+    def duration(self) -> float:
+        return float(self.times[-1])
+
+    def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Positions, velocities, accelerations (len(t), n) under constant acceleration per interval."""
+        t = np.clip(np.asarray(t, dtype=float), self.times[0], self.times[-1])
+        if len(self.times) == 1:  # a pose to itself: one point, at rest
+            rows = np.zeros(len(t), dtype=int)
+            return self.positions[rows], self.velocities[rows], self.accelerations[rows]
+        k = np.clip(np.searchsorted(self.times, t, side="right") - 1, 0, len(self.times) - 2)
+        dt_seg = np.diff(self.times)
+        acc = np.diff(self.velocities, axis=0) / np.where(dt_seg > 0, dt_seg, 1.0)[:, None]
+        tau = (t - self.times[k])[:, None]
+        q = self.positions[k] + self.velocities[k] * tau + 0.5 * acc[k] * tau**2
+        return q, self.velocities[k] + acc[k] * tau, acc[k]
+
+
+def limits_from_config(
+    robot: RobotModel,
+    joint_names: Sequence[str],
+    joint_limits: Mapping[str, Mapping],
+    default_acceleration: float = 1.0,
+) -> JointLimits:
+    """Limits as MoveIt reads them: `joint_limits.yaml` entries over the URDF's velocity.
+
+    Acceleration falls back to `default_acceleration` where none is given (as MoveIt does);
+    a joint with no velocity limit anywhere raises ValueError.
+    """
+    v_max, a_max = [], []
+    for name in joint_names:
+        entry = joint_limits.get(name)
+        entry = entry if isinstance(entry, Mapping) else {}
+        v = _number(entry, "max_velocity", name) if entry.get("has_velocity_limits", True) else None
+        v = v if v is not None else robot.joint(name).velocity
+        if v is None or v <= 0:
+            raise ValueError(f"no positive velocity limit for joint {name}")
+        a = _number(entry, "max_acceleration", name) if entry.get("has_acceleration_limits", False) else None
+        a_max.append(a if a is not None and a > 0 else default_acceleration)
+        v_max.append(float(v))
+    return JointLimits(tuple(joint_names), np.array(v_max), np.array(a_max))
+
+
+def _number(entry: Mapping, key: str, joint: str) -> float | None:
+    """`entry[key]` as a float (None when absent); ValueError for anything but a finite number."""
+    value = entry.get(key)
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
+        raise ValueError(f"{key} of joint {joint} must be a number, got {value!r}")
+    return float(value)
+
+
+def _segment_knots(d: np.ndarray, limits: JointLimits) -> list[tuple[float, float, float, float]]:
+    """(dt, s, s_dot, s_ddot) knots of a trapezoid in s in [0, 1] for displacement `d`."""
+    moving = np.abs(d) > 0
+    sd_max = np.min(limits.max_velocity[moving] / np.abs(d[moving]))
+    sdd_max = np.min(limits.max_acceleration[moving] / np.abs(d[moving]))
+    if sd_max**2 / sdd_max >= 1.0:  # triangular: never reaches the velocity limit
+        ta = np.sqrt(1.0 / sdd_max)
+        return [(0.0, 0.0, 0.0, sdd_max), (ta, 0.5, sdd_max * ta, -sdd_max), (ta, 1.0, 0.0, 0.0)]
+    ta = sd_max / sdd_max
+    s_a = 0.5 * sdd_max * ta**2
+    tc = (1.0 - 2 * s_a) / sd_max
+    return [
+        (0.0, 0.0, 0.0, sdd_max),
+        (ta, s_a, sd_max, 0.0),
+        (tc, 1.0 - s_a, sd_max, -sdd_max),
+        (ta, 1.0, 0.0, 0.0),
+    ]
+
+
+def time_parameterize(q_path: np.ndarray, limits: JointLimits, max_period_s: float = 0.1) -> TimedTrajectory:
+    """Trapezoidal profile per segment, stopping at waypoints; points every <= max_period_s [s].
+
+    A path that does not move (start = goal) gives one point at t = 0.
+    """
+    q_path = merge_collinear(np.asarray(q_path, dtype=float))
+    times, pos, vel = [0.0], [q_path[0]], [np.zeros(q_path.shape[1])]
+    for q0, q1 in zip(q_path[:-1], q_path[1:], strict=True):
+        d = q1 - q0
+        if not np.any(d):
+            continue
+        knots = _segment_knots(d, limits)
+        for (_, s0, sd0, sdd0), (dt, _, _, _) in zip(knots[:-1], knots[1:], strict=True):
+            if dt <= 1e-12:
+                continue
+            t_start, n = times[-1], max(1, int(np.ceil(dt / max_period_s)))
+            for tau in dt * np.arange(1, n + 1) / n:
+                times.append(t_start + tau)
+                pos.append(q0 + (s0 + sd0 * tau + 0.5 * sdd0 * tau**2) * d)
+                vel.append((sd0 + sdd0 * tau) * d)
+        pos[-1], vel[-1] = q1.copy(), np.zeros_like(q1)
+    t, v = np.array(times), np.array(vel)
+    acc = np.concatenate([np.diff(v, axis=0) / np.diff(t)[:, None], np.zeros((1, v.shape[1]))])
+    return TimedTrajectory(limits.joint_names, t, np.array(pos), v, acc)

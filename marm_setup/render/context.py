@@ -1,0 +1,265 @@
+"""Derived data the package templates need: joint limits, controller wiring, ArbotiX servos, ...
+
+Pure functions of (SetupModel, RobotModel); templates loop over these values and format them.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from pathlib import PurePosixPath
+
+from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
+from marm_setup.setup.model import (
+    DRIVER_ACTION_NS,
+    OMPL_PLANNERS,
+    Controller,
+    GroupState,
+    Kinematics,
+    PlannerDefaults,
+    SetupModel,
+)
+
+# MoveIt 2 / ros2_control: controller type per MoveIt controller type, and its action namespace.
+ROS2_CONTROLLER_TYPES = {
+    "FollowJointTrajectory": "joint_trajectory_controller/JointTrajectoryController",
+    "GripperCommand": "position_controllers/GripperActionController",
+}
+ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == "ros2"}
+# ArbotiX: follow_controller serves `<name>/<action_ns>`; the gripper_controller node `<node>/gripper_action`.
+ARBOTIX_GRIPPER_ACTION_NS = DRIVER_ACTION_NS["ros1", "GripperCommand"]
+
+# Pilz / MoveIt defaults for cartesian limits ([m/s], [m/s^2], [rad/s]).
+CARTESIAN_LIMITS = (
+    ("max_trans_vel", 1.0),
+    ("max_trans_acc", 2.25),
+    ("max_trans_dec", -5.0),
+    ("max_rot_vel", 1.57),
+)
+
+
+@dataclass(frozen=True, slots=True)
+class DescriptionRef:
+    """How launch files find the URDF: `$(find package)/path`, or our package when package is None."""
+
+    package: str | None
+    path: str
+    is_xacro: bool
+    xacro_args: tuple[tuple[str, str], ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class GroupInfo:
+    name: str
+    active_joints: tuple[str, ...]
+    kinematics: Kinematics | None
+    planner: PlannerDefaults
+    initial_pose: GroupState | None
+
+
+@dataclass(frozen=True, slots=True)
+class JointLimit:
+    """One `joint_limits.yaml` entry; velocity in [rad/s] or [m/s], acceleration per [s^2]."""
+
+    joint: str
+    max_velocity: float | None
+    max_acceleration: float | None
+    max_jerk: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class ControllerInfo:
+    controller: Controller
+    ros2_type: str
+    ros2_action_ns: str
+
+    @property
+    def name(self) -> str:
+        return self.controller.name
+
+
+@dataclass(frozen=True, slots=True)
+class ArbotixServo:
+    """An ArbotiX joint: angles in [deg] (revolute only), max_speed in [deg/s]."""
+
+    joint: str
+    id: int
+    min_angle: float | None
+    max_angle: float | None
+    max_speed: float | None
+
+
+@dataclass(frozen=True, slots=True)
+class GripperNode:
+    """An arbotix_controllers gripper_controller node serving `<name>/gripper_action`."""
+
+    name: str
+    joint: str
+    lower: float
+    upper: float
+
+
+@dataclass(frozen=True, slots=True)
+class Ros2ControlJoint:
+    joint: str
+    initial: float
+    mimic: str | None = None
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+def description_ref(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None) -> DescriptionRef:
+    """Where launch files load the URDF from: `package` = (name, path inside it) when known."""
+    urdf = model.robot.urdf
+    is_xacro = urdf.endswith(".xacro")
+    if package is not None:
+        return DescriptionRef(package[0], package[1], is_xacro, model.robot.xacro_args)
+    return DescriptionRef(None, PurePosixPath(urdf).as_posix(), is_xacro, model.robot.xacro_args)
+
+
+def _initial_pose(model: SetupModel, group: str) -> GroupState | None:
+    states = [s for s in model.group_states if s.group == group]
+    named = [s for s in states if s.name == "home"]
+    return (named or states or [None])[0]
+
+
+def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
+    """Per group (model order): active joints, kinematics, OMPL defaults and initial pose."""
+    by_name = groups_by_name(model.groups)
+    kin = {k.group: k for k in model.kinematics}
+    planners = {p.group: p for p in model.planners}
+    return [
+        GroupInfo(
+            name=g.name,
+            active_joints=active_group_joints(g, by_name, robot, model.passive_joints),
+            kinematics=kin.get(g.name),
+            planner=planners.get(g.name, PlannerDefaults(g.name)),
+            initial_pose=_initial_pose(model, g.name),
+        )
+        for g in model.groups
+    ]
+
+
+def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
+    """URDF velocity limits, the setup's default acceleration, then the setup's overrides."""
+    overrides = {o.joint: o for o in model.joint_limits}
+    out = []
+    for name in planning_joints(model.groups, robot, model.passive_joints):
+        joint = robot.joint(name)
+        o = overrides.get(name)
+        velocity = o.max_velocity if o and o.max_velocity is not None else joint.velocity
+        accel = o.max_acceleration if o and o.max_acceleration is not None else model.default_acceleration
+        jerk = o.max_jerk if o else None
+        out.append(JointLimit(name, velocity if velocity else None, accel, jerk))
+    return out
+
+
+def controller_infos(model: SetupModel) -> list[ControllerInfo]:
+    return [
+        ControllerInfo(c, ROS2_CONTROLLER_TYPES[c.type], ROS2_ACTION_NS[c.type])
+        for c in model.controllers
+        if c.type in ROS2_CONTROLLER_TYPES
+    ]
+
+
+def _servo(joint: Joint, servo_id: int, max_speed: float | None) -> ArbotixServo:
+    revolute = joint.type in ("revolute", "continuous")
+    lo, hi = joint.bounds
+    if max_speed is None and revolute and joint.velocity:
+        max_speed = round(math.degrees(joint.velocity), 3)
+    angle = (lambda v: round(math.degrees(v), 3)) if revolute else (lambda v: None)
+    return ArbotixServo(joint.name, servo_id, angle(lo), angle(hi), max_speed)
+
+
+def arbotix_servos(model: SetupModel, robot: RobotModel) -> list[ArbotixServo]:
+    """One servo per active controller joint, in tree order; ids from the setup, else the
+    smallest ids the setup does not use (1, 2, ...)."""
+    given = {a.joint: a for a in model.arbotix_joints}
+    used = {a.id for a in model.arbotix_joints}
+    free = (i for i in itertools.count(1) if i not in used)
+    wanted = {j for c in model.controllers for j in c.joints}
+    joints = [j for j in robot.joints_in_tree_order if j.name in wanted and j.is_active]
+    servos = []
+    for joint in joints:
+        spec = given.get(joint.name)
+        servos.append(_servo(joint, spec.id if spec else next(free), spec.max_speed if spec else None))
+    return servos
+
+
+def gripper_nodes(model: SetupModel, robot: RobotModel) -> list[GripperNode]:
+    """An ArbotiX gripper_controller node per GripperCommand controller (its first active joint)."""
+    nodes = []
+    for c in model.controllers:
+        active = [j for j in c.joints if j in robot.joint_map and robot.joint(j).is_active]
+        if c.type == "GripperCommand" and active:
+            lo, hi = robot.joint(active[0]).bounds
+            nodes.append(GripperNode(c.name, active[0], lo, hi))
+    return nodes
+
+
+def ros2_control_joints(model: SetupModel, robot: RobotModel) -> list[Ros2ControlJoint]:
+    """Controller joints in tree order, mimic joints after their leaders with their factors."""
+    wanted = {j for c in model.controllers for j in c.joints}
+    wanted |= {j.name for j in robot.joints if j.mimic is not None and j.mimic.joint in wanted}
+    out = []
+    for joint in robot.joints_in_tree_order:
+        if joint.name not in wanted or not joint.is_actuated:
+            continue
+        if joint.mimic is not None:
+            m = joint.mimic
+            out.append(Ros2ControlJoint(joint.name, joint.default_position, m.joint, m.multiplier, m.offset))
+        else:
+            out.append(Ros2ControlJoint(joint.name, joint.default_position))
+    return out
+
+
+def trajectory_demo(model: SetupModel, robot: RobotModel) -> dict | None:
+    """The arm controller the demo script drives, with its home and goal positions."""
+    arm = next((c for c in model.controllers if c.type == "FollowJointTrajectory"), None)
+    if arm is None:
+        return None
+    joints = [j for j in arm.joints if j in robot.joint_map and robot.joint(j).is_active]
+    states = [s for s in model.group_states if set(dict(s.values)) & set(joints)]
+    home = next((s for s in states if s.name == "home"), None)
+    goal = next((s for s in states if s is not home), None)
+    base = {j: robot.joint(j).default_position for j in joints}
+    home_q = {**base, **dict(home.values)} if home else base
+    goal_q = {**base, **dict(goal.values)} if goal else {j: v + 0.3 for j, v in base.items()}
+    clamp = {j: robot.joint(j).bounds for j in joints}
+    goal_q = {j: min(max(v, clamp[j][0]), clamp[j][1]) for j, v in goal_q.items()}
+    return {
+        "controller": arm,
+        "joints": joints,
+        "home": [home_q[j] for j in joints],
+        "goal": [goal_q[j] for j in joints],
+        "goal_name": goal.name if goal else "offset",
+    }
+
+
+def fixed_virtual_joints(model: SetupModel):
+    return [vj for vj in model.virtual_joints if vj.type == "fixed"]
+
+
+def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None = None) -> dict:
+    """Everything the templates read, keyed by the names they use."""
+    return {
+        "model": model,
+        "robot": robot,
+        "pkg": model.package_name,
+        "robot_name": model.robot_name,
+        "description": description_ref(model, robot, package),
+        "groups": group_infos(model, robot),
+        "joint_limits": joint_limits(model, robot),
+        "controllers": controller_infos(model),
+        "follow_controllers": [c for c in model.controllers if c.type == "FollowJointTrajectory"],
+        "arbotix_servos": arbotix_servos(model, robot),
+        "gripper_nodes": gripper_nodes(model, robot),
+        "ros2_control_joints": ros2_control_joints(model, robot),
+        "trajectory_demo": trajectory_demo(model, robot),
+        "static_tfs": fixed_virtual_joints(model),
+        "ompl_planners": OMPL_PLANNERS,
+        "cartesian_limits": CARTESIAN_LIMITS,
+        "arbotix_gripper_action_ns": ARBOTIX_GRIPPER_ACTION_NS,
+    }

@@ -1,0 +1,96 @@
+"""render_package: a SetupModel and its robot -> every file of the MoveIt config package, in memory.
+
+Each output file has one template at a mirrored path (`templates/<target>/<path>.j2`, or
+`templates/common/...` for files both targets share); `robot` in a template's file name stands for
+the robot's name in the output path.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from marm_setup.errors import InputError
+from marm_setup.render.context import build_context
+from marm_setup.robot.model import RobotModel
+from marm_setup.robot.ros_packages import package_name
+from marm_setup.setup.model import TARGETS, SetupModel
+from marm_setup.setup.yaml_io import dump_setup
+from marm_setup.templating import RenderedFile, render_template
+
+COMMON_FILES = ("config/robot.srdf",)
+ROS1_FILES = (
+    "CMakeLists.txt",
+    "package.xml",
+    "config/arbotix.yaml",
+    "config/controllers.yaml",
+    "config/fake_controllers.yaml",
+    "config/joint_limits.yaml",
+    "config/kinematics.yaml",
+    "config/ompl_planning.yaml",
+    "launch/arbotix.launch",
+    "launch/demo.launch",
+    "launch/fake_moveit_controller_manager.launch.xml",
+    "launch/move_group.launch",
+    "launch/planning_context.launch",
+    "launch/robot_moveit_controller_manager.launch.xml",
+    "launch/trajectory_execution.launch.xml",
+    "scripts/trajectory_demo.py",
+)
+ROS2_FILES = (
+    "CMakeLists.txt",
+    "package.xml",
+    "config/initial_positions.yaml",
+    "config/moveit.yaml",
+    "config/robot.ros2_control.xacro",
+    "config/robot.urdf.xacro",
+    "config/ros2_controllers.yaml",
+    "launch/demo.launch.xml",
+    "launch/move_group.launch.xml",
+)
+TARGET_FILES = {"ros1": ROS1_FILES, "ros2": ROS2_FILES}
+SETUP_FILE = "marm_setup.yaml"
+
+
+def output_path(template_path: str, robot_name: str) -> str:
+    """`config/robot.srdf` -> `config/marm.srdf` (only the file name's `robot` part is replaced)."""
+    folder, _, name = template_path.rpartition("/")
+    if name.startswith("robot.") or name.startswith("robot_"):
+        name = robot_name + name[len("robot") :]
+    return f"{folder}/{name}" if folder else name
+
+
+def target_templates(target: str) -> list[tuple[str, str]]:
+    """(template name, template path in the package) for one target; common files first."""
+    if target not in TARGET_FILES:
+        raise InputError(f"unknown target '{target}' (valid: {', '.join(TARGETS)})", element="target")
+    common = [(f"common/{p}.j2", p) for p in COMMON_FILES]
+    return common + [(f"{target}/{p}.j2", p) for p in TARGET_FILES[target]]
+
+
+def description_package(urdf: Path) -> tuple[str, str] | None:
+    """(package, path inside it) of the ROS package holding the URDF file, if any."""
+    urdf = urdf.resolve()
+    for folder in list(urdf.parents)[:6]:
+        name = package_name(folder)
+        if name:
+            return name, urdf.relative_to(folder).as_posix()
+    return None
+
+
+def render_package(
+    model: SetupModel, robot: RobotModel, *, description: tuple[str, str] | None = None
+) -> list[RenderedFile]:
+    """Every file of the package for `model.target`, sorted by path.
+
+    `description` is (package, path inside it) of the URDF for launch files; by default it is
+    looked up from the folder of `robot.source` (a package.xml above it), else the URDF is
+    referenced relative to our own package as `model.robot.urdf` gives it.
+    """
+    if description is None and robot.source:
+        description = description_package(Path(robot.source))
+    context = build_context(model, robot, description)
+    files = [RenderedFile(SETUP_FILE, dump_setup(model))]
+    for template, path in target_templates(model.target):
+        content = render_template(template, target=model.target, **context)
+        files.append(RenderedFile(output_path(path, model.robot_name), content))
+    return sorted(files, key=lambda f: f.path)

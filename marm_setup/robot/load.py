@@ -1,0 +1,131 @@
+"""load_robot: URDF/xacro file -> frozen RobotModel (xacro, package map, mesh resolution)."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import logging
+import re
+import sys
+import types
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+
+from lxml import etree
+
+from marm_setup.errors import InputError
+from marm_setup.robot.model import RobotModel
+from marm_setup.robot.ros_packages import PackageMap, find_package, find_packages
+from marm_setup.robot.urdf import parse_urdf
+
+log = logging.getLogger(__name__)
+
+
+def parse_xacro_args(items: Iterable[str]) -> dict[str, str]:
+    """`NAME:=VALUE` strings -> mapping; a malformed item is an InputError."""
+    out: dict[str, str] = {}
+    for item in items:
+        name, sep, value = item.partition(":=")
+        if not sep or not name:
+            raise InputError(f"expected NAME:=VALUE, got '{item}'", element="--xacro-arg")
+        out[name] = value
+    return out
+
+
+def load_robot(
+    path: str | Path,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | Path] = (),
+) -> RobotModel:
+    """Load a `.urdf` or xacro file into a RobotModel; every failure is an InputError."""
+    shown = str(path)
+    file = Path(path)
+    if file.is_dir():
+        raise InputError("is a folder; expected a .urdf or .xacro file", path=shown)
+    if not file.is_file():
+        raise InputError("file not found", path=shown)
+    packages = find_packages(package_paths, near=file)
+    if file.suffix == ".xacro":
+        xml = expand_xacro(file, dict(xacro_args or {}), packages, shown=shown)
+    else:
+        xml = read_text(file, shown=shown)
+    root = parse_xml(xml, shown=shown)
+    return parse_urdf(root, xml, file.parent, packages, shown=shown)
+
+
+def read_text(file: Path, *, shown: str) -> str:
+    """The UTF-8 text of `file`; unreadable or non-UTF-8 content is an InputError."""
+    try:
+        return file.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None
+
+
+def parse_xml(text: str, *, shown: str) -> etree._Element:
+    """Parse XML text; syntax errors become InputError with the line number."""
+    try:
+        parser = etree.XMLParser(remove_comments=True)
+        return etree.fromstring(text.encode("utf-8"), parser)
+    except etree.XMLSyntaxError as exc:
+        raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
+
+
+def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, shown: str) -> str:
+    """Run the real xacro on `file` with `args`, resolving `$(find pkg)` from `packages`."""
+    from xml.parsers.expat import ExpatError
+
+    import xacro
+
+    text = read_text(file, shown=shown).replace("$(find-pkg-share ", "$(find ")
+    captured = io.StringIO()
+    with _ament_index_stub(packages, shown), contextlib.redirect_stderr(captured):
+        try:
+            xacro.init_stacks(str(file))
+            doc = xacro.parse(text, str(file))
+            xacro.process_doc(doc, mappings=args)
+        except InputError:
+            raise
+        except ExpatError as exc:
+            raise InputError(f"malformed XML: {exc}", path=shown, element=f"line {exc.lineno}") from None
+        except Exception as exc:  # xacro raises many types; all are bad input here
+            if isinstance(getattr(exc, "exc", None), InputError):  # ours, wrapped by XacroException
+                raise exc.exc from None
+            raise InputError(_xacro_message(exc), path=shown, element="xacro") from None
+        finally:
+            xacro.substitution_args_context["arg"] = {}
+    if captured.getvalue().strip():
+        log.debug("xacro: %s", captured.getvalue().strip())
+    return doc.toxml()
+
+
+def _xacro_message(exc: Exception) -> str:
+    text = " ".join(str(exc).split())
+    undefined = re.search(r"Undefined substitution argument (\S+)", text)
+    if undefined:
+        return f"undefined xacro arg '{undefined.group(1)}' (pass --xacro-arg NAME:=VALUE)"
+    return text or type(exc).__name__
+
+
+@contextlib.contextmanager
+def _ament_index_stub(packages: PackageMap, shown: str):
+    """Install an `ament_index_python.packages` stand-in that answers from `packages`."""
+
+    def get_package_share_directory(name: str) -> str:
+        return str(find_package(name, packages, path=shown, element=f"$(find {name})"))
+
+    module = types.ModuleType("ament_index_python.packages")
+    module.get_package_share_directory = get_package_share_directory
+    parent = types.ModuleType("ament_index_python")
+    parent.packages = module
+    saved = {k: sys.modules.get(k) for k in ("ament_index_python", "ament_index_python.packages")}
+    sys.modules.update({"ament_index_python": parent, "ament_index_python.packages": module})
+    try:
+        yield
+    finally:
+        for key, value in saved.items():
+            if value is None:
+                sys.modules.pop(key, None)
+            else:
+                sys.modules[key] = value

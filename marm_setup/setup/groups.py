@@ -1,0 +1,75 @@
+"""What a planning group holds (joints, active joints, links), resolved against the robot."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.model import Group
+
+
+def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: frozenset[str]):
+    """(joints, links) of a group and its subgroups, in tree order, duplicates removed."""
+    joints: list[str] = []
+    links: list[str] = []
+    if group.chain is not None:
+        chain = robot.chain(group.chain.base, group.chain.tip) or ()
+        joints += [j.name for j in chain]
+        links += [j.child for j in chain]
+    joints += [j for j in group.joints if j in robot.joint_map]
+    links += [robot.joint(j).child for j in group.joints if j in robot.joint_map]
+    for link in group.links:
+        if link in robot.link_map:
+            links.append(link)
+            parent = robot.parent_joint_of.get(link)
+            if parent is not None:
+                joints.append(parent.name)
+    for sub in group.subgroups:
+        if sub in groups and sub not in seen:
+            sub_joints, sub_links = _expand(groups[sub], groups, robot, seen | {sub})
+            joints += sub_joints
+            links += sub_links
+    return joints, links
+
+
+def _tree_ordered(names: list[str], order: tuple[str, ...]) -> tuple[str, ...]:
+    rank = {name: i for i, name in enumerate(order)}
+    return tuple(sorted(set(names), key=lambda n: rank.get(n, len(rank))))
+
+
+def group_joints(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
+    """Every joint of the group (fixed and mimic included), in tree order."""
+    joints, _ = _expand(group, groups, robot, frozenset({group.name}))
+    return _tree_ordered(joints, tuple(j.name for j in robot.joints_in_tree_order))
+
+
+def group_links(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
+    """Every link of the group, in tree order."""
+    _, links = _expand(group, groups, robot, frozenset({group.name}))
+    return _tree_ordered(links, robot.links_in_tree_order)
+
+
+def active_group_joints(
+    group: Group, groups: Mapping[str, Group], robot: RobotModel, passive: tuple[str, ...] = ()
+) -> tuple[str, ...]:
+    """The group's variables: actuated, non-mimic, non-passive joints, in tree order."""
+    return tuple(
+        name
+        for name in group_joints(group, groups, robot)
+        if robot.joint(name).is_active and name not in passive
+    )
+
+
+def planning_joints(
+    groups: tuple[Group, ...], robot: RobotModel, passive: tuple[str, ...] = ()
+) -> tuple[str, ...]:
+    """Every active joint of any group, sorted by name (the joints that need planning limits)."""
+    by_name = groups_by_name(groups)
+    names: set[str] = set()
+    for group in groups:
+        names.update(active_group_joints(group, by_name, robot, passive))
+    return tuple(sorted(names))
+
+
+def groups_by_name(groups: tuple[Group, ...]) -> dict[str, Group]:
+    return {g.name: g for g in groups}

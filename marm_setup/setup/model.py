@@ -1,0 +1,228 @@
+"""SetupModel: the one source of truth for a robot's MoveIt setup (`marm_setup.yaml`).
+
+Values are frozen dataclasses; collections are tuples (sorted by name where order carries no
+meaning), so equality and output order are deterministic.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from marm_setup.collision.pairs import DisabledPair
+
+TARGETS = ("ros2", "ros1")
+VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
+CONTROLLER_TYPES = ("FollowJointTrajectory", "GripperCommand")
+KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+# The OMPL planner configurations the package defines (name, type): a group's default_planner is one.
+OMPL_PLANNERS = (
+    ("AnytimePathShortening", "geometric::AnytimePathShortening"),
+    ("BKPIECE", "geometric::BKPIECE"),
+    ("EST", "geometric::EST"),
+    ("KPIECE", "geometric::KPIECE"),
+    ("LBKPIECE", "geometric::LBKPIECE"),
+    ("PRM", "geometric::PRM"),
+    ("PRMstar", "geometric::PRMstar"),
+    ("RRT", "geometric::RRT"),
+    ("RRTConnect", "geometric::RRTConnect"),
+    ("RRTstar", "geometric::RRTstar"),
+    ("SBL", "geometric::SBL"),
+    ("TRRT", "geometric::TRRT"),
+)
+# The action namespace each target's driver serves, per controller type, where the driver fixes
+# it: ros2_control's JointTrajectoryController and GripperActionController serve
+# `<name>/follow_joint_trajectory` and `<name>/gripper_cmd`; the ArbotiX gripper_controller node
+# serves `<node>/gripper_action`. (The ArbotiX follow_controller serves the action_name that
+# arbotix.yaml gives it, so a ros1 FollowJointTrajectory controller may use any action_ns.)
+DRIVER_ACTION_NS = {
+    ("ros2", "FollowJointTrajectory"): "follow_joint_trajectory",
+    ("ros2", "GripperCommand"): "gripper_cmd",
+    ("ros1", "GripperCommand"): "gripper_action",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Author:
+    name: str = "marm-setup user"
+    email: str = "user@example.com"
+
+
+@dataclass(frozen=True, slots=True)
+class RobotSource:
+    """Where the URDF is: `urdf` relative to the package dir (or absolute), plus xacro args."""
+
+    urdf: str
+    xacro_args: tuple[tuple[str, str], ...] = ()
+    package_paths: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class VirtualJoint:
+    name: str
+    type: str  # fixed | floating | planar
+    parent_frame: str
+    child_link: str
+
+
+@dataclass(frozen=True, slots=True)
+class Chain:
+    base: str
+    tip: str
+
+
+@dataclass(frozen=True, slots=True)
+class Group:
+    """A planning group: any of a chain, joints, links and subgroups (as the SRDF allows)."""
+
+    name: str
+    chain: Chain | None = None
+    joints: tuple[str, ...] = ()
+    links: tuple[str, ...] = ()
+    subgroups: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class GroupState:
+    """A named pose: joint values in [rad] or [m], in the group's joint order."""
+
+    name: str
+    group: str
+    values: tuple[tuple[str, float], ...]
+
+
+@dataclass(frozen=True, slots=True)
+class EndEffector:
+    name: str
+    group: str
+    parent_link: str
+    parent_group: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class CollisionSettings:
+    """How the self-collision matrix was computed, and its disabled pairs (sorted)."""
+
+    seed: int = 0
+    trials: int = 10000
+    min_collision_fraction: float = 0.95
+    disabled: tuple[DisabledPair, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class Kinematics:
+    """Per-group IK solver settings (`kinematics.yaml`); resolution in [rad], timeout in [s]."""
+
+    group: str
+    solver: str = KDL_PLUGIN
+    search_resolution: float = 0.005
+    timeout: float = 0.05
+    attempts: int = 3  # kept for old files; MoveIt >= 1.0 reads no attempts, so none is rendered
+
+
+@dataclass(frozen=True, slots=True)
+class PlannerDefaults:
+    """Per-group OMPL defaults (`ompl_planning.yaml`)."""
+
+    group: str
+    default_planner: str = "RRTConnect"
+    longest_valid_segment_fraction: float = 0.005
+
+
+@dataclass(frozen=True, slots=True)
+class Controller:
+    """A trajectory controller: MoveIt's and the driver's side share name, action_ns, joints."""
+
+    name: str
+    type: str  # FollowJointTrajectory | GripperCommand
+    action_ns: str
+    joints: tuple[str, ...]
+    group: str | None = None
+    default: bool = True
+
+
+@dataclass(frozen=True, slots=True)
+class ArbotixJoint:
+    """ArbotiX servo settings for one joint; max_speed in [deg/s]."""
+
+    joint: str
+    id: int
+    max_speed: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class JointLimitOverride:
+    """Overrides for `joint_limits.yaml`; None keeps the URDF value (or no limit)."""
+
+    joint: str
+    max_velocity: float | None = None
+    max_acceleration: float | None = None
+    max_jerk: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class CollisionPair:
+    """An SRDF `<enable_collisions>` entry (reason is free text there)."""
+
+    link1: str
+    link2: str
+    reason: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class JointProperty:
+    """An SRDF `<joint_property joint_name property_name value>`."""
+
+    joint: str
+    property: str
+    value: str
+
+
+@dataclass(frozen=True, slots=True)
+class SphereApprox:
+    """One sphere of a `<link_sphere_approximation>`: center in [m] (link frame), radius in [m]."""
+
+    center: tuple[float, float, float]
+    radius: float
+
+
+@dataclass(frozen=True, slots=True)
+class LinkSpheres:
+    link: str
+    spheres: tuple[SphereApprox, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class SrdfExtras:
+    """SRDF elements the setup does not edit, kept verbatim from an imported SRDF."""
+
+    enable_collisions: tuple[CollisionPair, ...] = ()
+    disable_default_collisions: tuple[str, ...] = ()
+    joint_properties: tuple[JointProperty, ...] = ()
+    link_sphere_approximations: tuple[LinkSpheres, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class SetupModel:
+    package_name: str
+    robot_name: str
+    robot: RobotSource
+    target: str = "ros2"
+    author: Author = field(default_factory=Author)
+    virtual_joints: tuple[VirtualJoint, ...] = ()
+    groups: tuple[Group, ...] = ()
+    group_states: tuple[GroupState, ...] = ()
+    end_effectors: tuple[EndEffector, ...] = ()
+    passive_joints: tuple[str, ...] = ()
+    collision: CollisionSettings = field(default_factory=CollisionSettings)
+    kinematics: tuple[Kinematics, ...] = ()
+    planners: tuple[PlannerDefaults, ...] = ()
+    controllers: tuple[Controller, ...] = ()
+    arbotix_joints: tuple[ArbotixJoint, ...] = ()
+    joint_limits: tuple[JointLimitOverride, ...] = ()
+    default_velocity_scaling: float = 0.1
+    default_acceleration_scaling: float = 0.1
+    default_acceleration: float = 1.0  # [rad/s^2] or [m/s^2] where the URDF gives none
+    srdf_extras: SrdfExtras = field(default_factory=SrdfExtras)
+
+    def group(self, name: str) -> Group:
+        return next(g for g in self.groups if g.name == name)

@@ -1,0 +1,263 @@
+"""SRDF in and out: read every srdfdom element with lxml, render ours from the Jinja template.
+
+`read_srdf` gives an `Srdf` value (document order for groups, states, end effectors and
+virtual joints; pairs and other order-free lists sorted), so read -> render -> read is exact.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from os import PathLike
+
+from marm_setup.collision.pairs import DisabledPair, DisabledReason, link_pair
+from marm_setup.errors import InputError
+from marm_setup.setup.model import (
+    Chain,
+    CollisionPair,
+    EndEffector,
+    Group,
+    GroupState,
+    JointProperty,
+    LinkSpheres,
+    SetupModel,
+    SphereApprox,
+    SrdfExtras,
+    VirtualJoint,
+)
+
+TEMPLATE = "common/config/robot.srdf.j2"
+
+
+@dataclass(frozen=True, slots=True)
+class Srdf:
+    """Everything an SRDF holds (srdfdom's elements), as setup-model values."""
+
+    robot_name: str
+    groups: tuple[Group, ...] = ()
+    group_states: tuple[GroupState, ...] = ()
+    end_effectors: tuple[EndEffector, ...] = ()
+    virtual_joints: tuple[VirtualJoint, ...] = ()
+    passive_joints: tuple[str, ...] = ()
+    disabled: tuple[DisabledPair, ...] = ()
+    extras: SrdfExtras = field(default_factory=SrdfExtras)
+
+
+class _Reader:
+    """Attribute access that raises an InputError naming the file and element."""
+
+    def __init__(self, path: str):
+        self.path = path
+
+    def attr(self, elem, name: str, where: str) -> str:
+        value = elem.get(name)
+        if value is None or value == "":
+            raise InputError(f"missing attribute '{name}'", path=self.path, element=where)
+        return value
+
+    def number(self, text: str, where: str) -> float:
+        try:
+            return float(text)
+        except ValueError:
+            raise InputError(f"not a number: '{text}'", path=self.path, element=where) from None
+
+    def fail(self, message: str, where: str) -> InputError:
+        return InputError(message, path=self.path, element=where)
+
+
+def read_srdf(path: str | PathLike) -> Srdf:
+    """Parse an SRDF file (path as the user typed it, for messages)."""
+    from lxml import etree
+
+    shown = str(path)
+    try:
+        root = etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot()
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc}", path=shown) from None
+    except etree.XMLSyntaxError as exc:
+        raise InputError(f"not well-formed XML: {exc}", path=shown) from None
+    return parse_srdf_root(root, shown)
+
+
+def parse_srdf_string(text: str, path: str = "<srdf>") -> Srdf:
+    from lxml import etree
+
+    try:
+        root = etree.fromstring(text.encode(), etree.XMLParser(remove_comments=True))
+    except etree.XMLSyntaxError as exc:
+        raise InputError(f"not well-formed XML: {exc}", path=path) from None
+    return parse_srdf_root(root, path)
+
+
+def parse_srdf_root(root, path: str) -> Srdf:
+    r = _Reader(path)
+    if root.tag != "robot":
+        raise r.fail(f"root element is <{root.tag}>, expected <robot>", "robot")
+    return Srdf(
+        robot_name=root.get("name", ""),
+        groups=tuple(_group(r, e) for e in root.iterchildren("group")),
+        group_states=tuple(_group_state(r, e) for e in root.iterchildren("group_state")),
+        end_effectors=tuple(_end_effector(r, e) for e in root.iterchildren("end_effector")),
+        virtual_joints=tuple(_virtual_joint(r, e) for e in root.iterchildren("virtual_joint")),
+        passive_joints=tuple(r.attr(e, "name", "passive_joint") for e in root.iterchildren("passive_joint")),
+        disabled=_disabled(r, root),
+        extras=SrdfExtras(
+            enable_collisions=_enabled(r, root),
+            disable_default_collisions=tuple(
+                sorted(
+                    {
+                        r.attr(e, "link", "disable_default_collisions")
+                        for e in root.iterchildren("disable_default_collisions")
+                    }
+                )
+            ),
+            joint_properties=tuple(
+                sorted((_joint_property(r, e) for e in root.iterchildren("joint_property")), key=_jp_key)
+            ),
+            link_sphere_approximations=tuple(
+                sorted(
+                    (_link_spheres(r, e) for e in root.iterchildren("link_sphere_approximation")),
+                    key=lambda s: s.link,
+                )
+            ),
+        ),
+    )
+
+
+def _group(r: _Reader, elem) -> Group:
+    name = r.attr(elem, "name", "group")
+    where = f"group[{name}]"
+    chains = [
+        Chain(r.attr(c, "base_link", f"{where}.chain"), r.attr(c, "tip_link", f"{where}.chain"))
+        for c in elem.iterchildren("chain")
+    ]
+    if len(chains) > 1:
+        raise r.fail("more than one <chain> in a group is not supported", where)
+    return Group(
+        name=name,
+        chain=chains[0] if chains else None,
+        joints=tuple(r.attr(j, "name", f"{where}.joint") for j in elem.iterchildren("joint")),
+        links=tuple(r.attr(j, "name", f"{where}.link") for j in elem.iterchildren("link")),
+        subgroups=tuple(r.attr(j, "name", f"{where}.group") for j in elem.iterchildren("group")),
+    )
+
+
+def _group_state(r: _Reader, elem) -> GroupState:
+    name = r.attr(elem, "name", "group_state")
+    where = f"group_state[{name}]"
+    values = []
+    for j in elem.iterchildren("joint"):
+        joint = r.attr(j, "name", f"{where}.joint")
+        text = r.attr(j, "value", f"{where}.joint[{joint}]").split()
+        if len(text) != 1:
+            raise r.fail("multi-DOF joint values are not supported", f"{where}.joint[{joint}]")
+        values.append((joint, r.number(text[0], f"{where}.joint[{joint}]")))
+    return GroupState(name=name, group=r.attr(elem, "group", where), values=tuple(values))
+
+
+def _end_effector(r: _Reader, elem) -> EndEffector:
+    name = r.attr(elem, "name", "end_effector")
+    where = f"end_effector[{name}]"
+    return EndEffector(
+        name=name,
+        group=r.attr(elem, "group", where),
+        parent_link=r.attr(elem, "parent_link", where),
+        parent_group=elem.get("parent_group") or None,
+    )
+
+
+def _virtual_joint(r: _Reader, elem) -> VirtualJoint:
+    name = r.attr(elem, "name", "virtual_joint")
+    where = f"virtual_joint[{name}]"
+    return VirtualJoint(
+        name=name,
+        type=r.attr(elem, "type", where),
+        parent_frame=r.attr(elem, "parent_frame", where),
+        child_link=r.attr(elem, "child_link", where),
+    )
+
+
+def _disabled(r: _Reader, root) -> tuple[DisabledPair, ...]:
+    """`disable_collisions` pairs, canonical and sorted.
+
+    A missing or unknown reason counts as User, as in the Setup Assistant: kept, never recomputed.
+    """
+    known = {m.value for m in DisabledReason}
+    pairs: dict[tuple[str, str], DisabledPair] = {}
+    for e in root.iterchildren("disable_collisions"):
+        a, b = r.attr(e, "link1", "disable_collisions"), r.attr(e, "link2", "disable_collisions")
+        reason = e.get("reason") or DisabledReason.USER.value
+        if reason not in known:
+            reason = DisabledReason.USER.value
+        pairs.setdefault(link_pair(a, b), DisabledPair.of(a, b, reason))
+    return tuple(sorted(pairs.values()))
+
+
+def _enabled(r: _Reader, root) -> tuple[CollisionPair, ...]:
+    pairs: dict[tuple[str, str], CollisionPair] = {}
+    for e in root.iterchildren("enable_collisions"):
+        a, b = link_pair(r.attr(e, "link1", "enable_collisions"), r.attr(e, "link2", "enable_collisions"))
+        pairs.setdefault((a, b), CollisionPair(a, b, e.get("reason", "")))
+    return tuple(pairs[k] for k in sorted(pairs))
+
+
+def _joint_property(r: _Reader, elem) -> JointProperty:
+    return JointProperty(
+        joint=r.attr(elem, "joint_name", "joint_property"),
+        property=r.attr(elem, "property_name", "joint_property"),
+        value=elem.get("value", ""),
+    )
+
+
+def _jp_key(p: JointProperty) -> tuple[str, str]:
+    return (p.joint, p.property)
+
+
+def _link_spheres(r: _Reader, elem) -> LinkSpheres:
+    link = r.attr(elem, "link", "link_sphere_approximation")
+    where = f"link_sphere_approximation[{link}]"
+    spheres = []
+    for s in elem.iterchildren("sphere"):
+        center = [r.number(t, where) for t in r.attr(s, "center", where).split()]
+        if len(center) != 3:
+            raise r.fail("sphere center needs 3 numbers", where)
+        spheres.append(SphereApprox(center=tuple(center), radius=r.number(r.attr(s, "radius", where), where)))
+    return LinkSpheres(link=link, spheres=tuple(spheres))
+
+
+# -- between Srdf and SetupModel ---------------------------------------------------------------
+
+
+def srdf_to_setup(srdf: Srdf, base: SetupModel) -> SetupModel:
+    """Import an SRDF into a setup: its semantic parts replace the base's, the rest is kept."""
+    return dataclasses.replace(
+        base,
+        groups=srdf.groups,
+        group_states=srdf.group_states,
+        end_effectors=srdf.end_effectors,
+        virtual_joints=srdf.virtual_joints,
+        passive_joints=srdf.passive_joints,
+        collision=dataclasses.replace(base.collision, disabled=srdf.disabled),
+        srdf_extras=srdf.extras,
+    )
+
+
+def setup_to_srdf(model: SetupModel, robot_name: str) -> Srdf:
+    """The SRDF a setup renders to, as a value (what `read_srdf` of the rendered file gives)."""
+    return Srdf(
+        robot_name=robot_name,
+        groups=model.groups,
+        group_states=model.group_states,
+        end_effectors=model.end_effectors,
+        virtual_joints=model.virtual_joints,
+        passive_joints=model.passive_joints,
+        disabled=tuple(sorted(model.collision.disabled)),
+        extras=model.srdf_extras,
+    )
+
+
+def render_srdf(model: SetupModel, robot) -> str:
+    """The SRDF text for a setup (`robot` gives the `<robot name>`)."""
+    from marm_setup.templating import render_template
+
+    return render_template(TEMPLATE, model=model, robot=robot)

@@ -1,0 +1,98 @@
+"""kinematics.yaml: groups exist, solver plugin known, KDL on chains only, positive timeout/resolution."""
+
+from __future__ import annotations
+
+from numbers import Real
+
+from marm_setup.findings import Finding, error, warning
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.groups import active_group_joints, group_joints, groups_by_name
+
+KDL = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+KNOWN_SOLVERS = (
+    KDL,
+    "trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin",
+    "pick_ik/PickIkPlugin",
+    "bio_ik/BioIKKinematicsPlugin",
+    "lma_kinematics_plugin/LMAKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedSrvKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedTRACKinematicsPlugin",
+    "srv_kinematics_plugin/SrvKinematicsPlugin",
+)
+CHAIN_ONLY = (
+    KDL,
+    "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
+    "lma_kinematics_plugin/LMAKinematicsPlugin",
+)
+POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
+
+
+def check_kinematics(section, srdf, robot: RobotModel) -> list[Finding]:
+    """Every rule on a kinematics section (`{group: {kinematics_solver: ..., ...}}`)."""
+    data = section.data
+    if not isinstance(data, dict):
+        return [
+            error("kinematics.malformed", section.file, section.element(), "expected a mapping of groups")
+        ]
+    by_name = groups_by_name(srdf.groups)
+    out: list[Finding] = []
+    for group, entry in data.items():
+        where = section.element(group)
+        if group not in by_name:
+            known = ", ".join(sorted(by_name)) or "none"
+            out.append(
+                error(
+                    "kinematics.unknown-group",
+                    section.file,
+                    where,
+                    f"unknown group '{group}' (groups: {known})",
+                )
+            )
+            continue
+        if not isinstance(entry, dict):
+            out.append(error("kinematics.malformed", section.file, where, "expected a mapping"))
+            continue
+        out += _check_entry(section, where, entry, by_name[group], by_name, srdf, robot)
+    return out
+
+
+def _check_entry(section, where, entry, group, by_name, srdf, robot) -> list[Finding]:
+    out: list[Finding] = []
+    solver = entry.get("kinematics_solver")
+    if not isinstance(solver, str) or not solver:
+        out.append(error("kinematics.missing-solver", section.file, where, "no kinematics_solver"))
+    elif solver not in KNOWN_SOLVERS and not solver.endswith("/IKFastKinematicsPlugin"):
+        msg = f"unknown solver plugin '{solver}'"
+        out.append(
+            warning(
+                "kinematics.unknown-solver", section.file, f"{where}.kinematics_solver", msg, _solver_hint()
+            )
+        )
+    elif solver in CHAIN_ONLY and not _is_chain(group, by_name, srdf, robot):
+        msg = f"{solver.split('/')[-1]} needs a serial chain, but group '{group.name}' is not one"
+        hint = "use a chain group, or a solver for general groups (pick_ik, bio_ik, TRAC-IK)"
+        out.append(error("kinematics.kdl-needs-chain", section.file, f"{where}.kinematics_solver", msg, hint))
+    for key in POSITIVE_KEYS:
+        if key in entry:
+            value = entry[key]
+            if isinstance(value, bool) or not isinstance(value, Real) or value <= 0:
+                msg = f"{key} must be a positive number, got {value!r}"
+                out.append(error("kinematics.non-positive", section.file, f"{where}.{key}", msg))
+    return out
+
+
+def _solver_hint() -> str:
+    return "known: " + ", ".join(s.split("/")[0] for s in KNOWN_SOLVERS[:5]) + ", ikfast"
+
+
+def _is_chain(group, by_name, srdf, robot: RobotModel) -> bool:
+    """All the group's joints (fixed and mimic included, as MoveIt counts them) lie on one
+    root-to-tip path, and at least one of them moves: what KDL can solve."""
+    joints = group_joints(group, by_name, robot)
+    if not active_group_joints(group, by_name, robot, tuple(srdf.passive_joints)):
+        return False
+    depth = {name: len(robot.path_to_root(robot.joint(name).child)) for name in joints}
+    deepest = max(joints, key=lambda n: depth[n])
+    on_path = {j.name for j in robot.path_to_root(robot.joint(deepest).child)}
+    return all(name in on_path for name in joints)

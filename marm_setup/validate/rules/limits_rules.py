@@ -1,0 +1,150 @@
+"""joint_limits.yaml: every active group joint, positive limits, not above the URDF, floats in ROS 2."""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+from marm_setup.findings import Finding, error, warning
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.groups import planning_joints
+
+FLAGS = {
+    "max_velocity": "has_velocity_limits",
+    "max_acceleration": "has_acceleration_limits",
+    "max_jerk": "has_jerk_limits",
+    "max_effort": "has_effort_limits",
+}
+NUMERIC_KEYS = (*FLAGS, "min_position", "max_position")
+
+
+def check_joint_limits(section, srdf, robot: RobotModel, target: str) -> list[Finding]:
+    """Every rule on a `robot_description_planning`-style section (`{joint_limits: {...}}`)."""
+    data = section.data
+    limits = data.get("joint_limits") if isinstance(data, dict) else None
+    if not isinstance(limits, dict):
+        return [
+            error(
+                "limits.malformed", section.file, section.element("joint_limits"), "no joint_limits mapping"
+            )
+        ]
+    out = _check_coverage(section, limits, srdf, robot)
+    for joint in sorted(limits, key=str):
+        entry = limits[joint]
+        where = section.element("joint_limits", joint)
+        if joint not in robot.joint_map:
+            out.append(
+                warning(
+                    "limits.unknown-joint",
+                    section.file,
+                    where,
+                    f"unknown joint '{joint}' (MoveIt ignores it)",
+                )
+            )
+            continue
+        if not isinstance(entry, dict):
+            out.append(error("limits.malformed", section.file, where, "expected a mapping"))
+            continue
+        out += _check_entry(section, where, entry, robot.joint(joint), target)
+    if target == "ros2":
+        out += _check_floats(section, data)
+    return out
+
+
+def _check_coverage(section, limits, srdf, robot) -> list[Finding]:
+    wanted = planning_joints(tuple(srdf.groups), robot, tuple(srdf.passive_joints))
+    return [
+        warning(
+            "limits.missing-joint",
+            section.file,
+            section.element("joint_limits", joint),
+            f"no limits for active group joint '{joint}' (MoveIt falls back to the URDF, no acceleration limit)",
+            hint="add an entry with has_velocity_limits/max_velocity and has_acceleration_limits/max_acceleration",
+        )
+        for joint in sorted(set(wanted) - set(limits))
+    ]
+
+
+def _check_entry(section, where, entry: dict, joint, target: str) -> list[Finding]:
+    out: list[Finding] = []
+    for key, flag in FLAGS.items():
+        if not entry.get(flag, False):
+            continue
+        value = entry.get(key)
+        if value is None:
+            out.append(
+                error(
+                    "limits.missing-value",
+                    section.file,
+                    f"{where}.{key}",
+                    f"{flag} is true but {key} is missing",
+                )
+            )
+        elif not _number(value) or not 0 < value < math.inf:  # also nan and .inf
+            out.append(
+                error(
+                    "limits.non-positive",
+                    section.file,
+                    f"{where}.{key}",
+                    f"{key} must be positive, got {value!r}",
+                )
+            )
+    velocity = entry.get("max_velocity")
+    if (
+        entry.get("has_velocity_limits")
+        and _number(velocity)
+        and joint.velocity
+        and velocity > joint.velocity + 1e-9
+    ):
+        msg = f"max_velocity {velocity:g} is above the URDF's {joint.velocity:g}"
+        out.append(warning("limits.above-urdf", section.file, f"{where}.max_velocity", msg))
+    out += _check_positions(section, where, entry, joint)
+    return out
+
+
+def _check_positions(section, where, entry: dict, joint) -> list[Finding]:
+    if not entry.get("has_position_limits", False) or joint.lower is None or joint.upper is None:
+        return []
+    out = []
+    lo, hi = entry.get("min_position"), entry.get("max_position")
+    if _number(lo) and lo < joint.lower - 1e-9:
+        msg = f"min_position {lo:g} is below the URDF's {joint.lower:g}"
+        out.append(warning("limits.above-urdf", section.file, f"{where}.min_position", msg))
+    if _number(hi) and hi > joint.upper + 1e-9:
+        msg = f"max_position {hi:g} is above the URDF's {joint.upper:g}"
+        out.append(warning("limits.above-urdf", section.file, f"{where}.max_position", msg))
+    return out
+
+
+def _number(value) -> bool:
+    return isinstance(value, Real) and not isinstance(value, bool)
+
+
+def _check_floats(section, data: dict) -> list[Finding]:
+    """ROS 2 parameters are typed: an integer where MoveIt declares a double fails at start-up."""
+    out = []
+    for path, value in _walk(data):
+        if isinstance(value, int) and not isinstance(value, bool) and path[-1] in (*NUMERIC_KEYS, *_SCALARS):
+            msg = f"{path[-1]} is the integer {value}; ROS 2 needs a double here"
+            out.append(
+                error("limits.not-float", section.file, section.element(*path), msg, f"write {value}.0")
+            )
+    return out
+
+
+_SCALARS = (
+    "default_velocity_scaling_factor",
+    "default_acceleration_scaling_factor",
+    "max_trans_vel",
+    "max_trans_acc",
+    "max_trans_dec",
+    "max_rot_vel",
+)
+
+
+def _walk(data, path=()):
+    if isinstance(data, dict):
+        for key, value in data.items():
+            yield from _walk(value, (*path, key))
+    else:
+        yield path, data

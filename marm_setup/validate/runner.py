@@ -1,0 +1,261 @@
+"""validate_package: every static check of a MoveIt config package, plus the runtime seam.
+
+Rule families live in `marm_setup/checks/`; this module reads the package (via
+`package_discovery`), loads the robot and the collision scene once, and runs them all. The
+runtime checks (plan between named poses, execute as a fake controller) come from
+`marm_setup.validate.runtime.check_runtime(package, robot, scene)` when `plan` is true.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from marm_setup.errors import InputError
+from marm_setup.findings import Finding, error, sort_findings, warning
+from marm_setup.validate.discovery import ConfigPackage, discover_package
+from marm_setup.validate.rules.controller_rules import (
+    check_arbotix,
+    check_coverage,
+    check_driver_controllers,
+    check_fake_controllers,
+    check_moveit_controllers,
+    moveit_controllers,
+    ros1_driver_controllers,
+    ros2_driver_controllers,
+)
+from marm_setup.validate.rules.kinematics_rules import check_kinematics
+from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml, parse_launch
+from marm_setup.validate.rules.limits_rules import check_joint_limits
+from marm_setup.validate.rules.ompl_rules import check_ompl
+from marm_setup.validate.rules.pose_rules import check_initial_positions, check_pose_values
+from marm_setup.validate.rules.srdf_rules import check_srdf
+
+MATRIX_TRIALS = 1000
+
+
+@dataclass(frozen=True)
+class Validation:
+    """What one validation checked, and what it found."""
+
+    findings: tuple[Finding, ...]
+    package: str  # package.xml <name>
+    target: str  # ros1 | ros2
+    layout: str  # moveit1 | moveit2 | marm_ros2
+    urdf: str  # the robot description, as the user would type it
+    urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro
+    robot: str | None  # the URDF's robot name; None when it did not load
+    planned_pairs: int | None  # pose pairs planned by the runtime checks; None when they did not run
+
+    def describe(self) -> str:
+        """One line: what was validated, against which robot, and whether planning ran."""
+        robot = f"robot '{self.robot}'" if self.robot else "robot (not loaded: URDF checks skipped)"
+        n = self.planned_pairs
+        runtime = "runtime planning skipped" if n is None else f"planned {n} pose pair{'' if n == 1 else 's'}"
+        runtime += " (no group has two usable named poses)" if n == 0 else ""
+        return (
+            f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
+            f"from {self.urdf} ({self.urdf_origin}); {runtime}"
+        )
+
+    def as_dict(self) -> dict:
+        """The json `validated` object (everything but the findings)."""
+        keys = ("package", "target", "layout", "urdf", "urdf_origin", "robot", "planned_pairs")
+        return {key: getattr(self, key) for key in keys}
+
+
+def validate_package(path: str | Path, **options) -> list[Finding]:
+    """Every finding for the package at `path`, sorted by file then element (`validate`'s options)."""
+    return list(validate(path, **options).findings)
+
+
+def validate(
+    path: str | Path,
+    *,
+    urdf: str | Path | None = None,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | Path] = (),
+    plan: bool = True,
+    matrix_trials: int = MATRIX_TRIALS,
+) -> Validation:
+    """Validate the package at `path`: its findings and what was checked.
+
+    Raises InputError (exit 2) only when `path` is not a readable config package at all.
+    """
+    pkg = discover_package(path, urdf=urdf, xacro_args=xacro_args, package_paths=package_paths)
+    findings = list(pkg.problems)
+    findings += check_package_xml(pkg.root, pkg.package_xml)
+    findings += check_launch_files(pkg.root, pkg.name, pkg.launch_files, pkg.target)
+    robot, problems = load_package_robot(pkg)
+    findings += problems
+    if pkg.srdf_path is None:
+        findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
+    pairs = None
+    checked = robot is not None and pkg.srdf is not None
+    if checked:
+        findings += check_static(pkg, robot)
+        scene_findings, pairs = check_with_scene(pkg, robot, plan=plan, matrix_trials=matrix_trials)
+        findings += scene_findings
+    return Validation(
+        findings=tuple(sort_findings(findings)),
+        package=pkg.name,
+        target=pkg.target,
+        layout=pkg.layout,
+        urdf=user_urdf(pkg),
+        urdf_origin=pkg.urdf_origin,
+        robot=robot.name if robot is not None else None,
+        planned_pairs=pairs,
+    )
+
+
+def shown_path(pkg: ConfigPackage, file: Path) -> str:
+    """A file's path for findings: relative to the package (`../x` outside it), never absolute."""
+    return Path(os.path.relpath(Path(file).resolve(), pkg.root)).as_posix()
+
+
+def user_urdf(pkg: ConfigPackage) -> str:
+    """The robot description as the user would type it: as given to --urdf, else `DIR/...`."""
+    if pkg.urdf_origin == "--urdf":
+        return str(pkg.urdf)
+    return os.path.normpath(pkg.user_path(shown_path(pkg, pkg.urdf)))
+
+
+def load_package_robot(pkg: ConfigPackage):
+    """(RobotModel or None, findings): the URDF loads and its meshes resolve."""
+    from marm_setup.robot.load import load_robot
+
+    shown = shown_path(pkg, pkg.urdf) if pkg.urdf_origin != "--urdf" else str(pkg.urdf)
+    if not pkg.urdf.is_file():  # named by marm_setup.yaml or .setup_assistant (--urdf is checked earlier)
+        element = "robot.urdf" if pkg.urdf_origin == "marm_setup.yaml" else "URDF.relative_path"
+        message = f"robot description '{shown}' not found"
+        return None, [
+            error("urdf.missing", pkg.urdf_origin, element, message, "fix the path, or pass --urdf URDF")
+        ]
+    try:
+        return load_robot(pkg.urdf, dict(pkg.xacro_args), pkg.package_paths), []
+    except InputError as exc:
+        rule = "urdf.mesh-missing" if "mesh" in exc.message and "not found" in exc.message else "urdf.load"
+        where = exc.element or ""
+        hint = "pass --package-path DIR for packages outside this folder" if "package" in exc.message else ""
+        return None, [
+            error(rule, shown, where, f"{exc.message} (robot description from {pkg.urdf_origin})", hint)
+        ]
+
+
+def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
+    """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking)."""
+    srdf, file = pkg.srdf, pkg.srdf_path
+    out = check_srdf(srdf, robot, file, pkg.srdf_text)
+    out += check_pose_values(srdf, robot, file)
+    if pkg.initial_positions is not None:
+        out += check_initial_positions(pkg.initial_positions, robot)
+    if pkg.kinematics is not None:
+        out += check_kinematics(pkg.kinematics, srdf, robot)
+    if pkg.joint_limits is not None:
+        out += check_joint_limits(pkg.joint_limits, srdf, robot, pkg.target)
+    if pkg.ompl is not None:
+        out += check_ompl(pkg.ompl, srdf)
+    out += check_controllers(pkg, robot)
+    return out
+
+
+def check_controllers(pkg: ConfigPackage, robot) -> list[Finding]:
+    """MoveIt's controllers vs robot and groups, then vs every driver file the package has."""
+    out: list[Finding] = []
+    if pkg.fake_controllers is not None:
+        out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
+    section = pkg.moveit_controllers
+    if section is None:
+        if pkg.fake_controllers is None:
+            msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
+            out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
+        return out
+    ctrls, problems = moveit_controllers(section)
+    out += problems
+    out += check_moveit_controllers(section, ctrls, robot)
+    out += check_coverage(section, ctrls, pkg.srdf, robot, pkg.alt_moveit_controllers)
+    if pkg.ros2_controllers is not None:
+        driver = ros2_driver_controllers(pkg.ros2_controllers)
+        out += check_driver_controllers(section, pkg.ros2_controllers, driver, ctrls, robot)
+    if pkg.ros_controllers is not None and pkg.ros_controllers.file != section.file:
+        driver = ros1_driver_controllers(pkg.ros_controllers)
+        out += check_driver_controllers(section, pkg.ros_controllers, driver, ctrls, robot)
+    if pkg.arbotix is not None:
+        out += check_arbotix(pkg.arbotix, ctrls, robot, gripper_nodes(pkg))
+    return out
+
+
+def gripper_nodes(pkg: ConfigPackage) -> dict[str, tuple[str, str]]:
+    """ArbotiX `gripper_controller` nodes in the launch files: name -> (file, `joint` param)."""
+    out: dict[str, tuple[str, str]] = {}
+    for rel in pkg.launch_files:
+        tree, _ = parse_launch(pkg.path(rel), rel)
+        if tree is None:
+            continue
+        for node in tree.iter("node"):
+            if (node.get("type") or "").startswith("gripper_controller") and node.get("name"):
+                joint = next((p.get("value", "") for p in node.iter("param") if p.get("name") == "joint"), "")
+                out.setdefault(node.get("name"), (rel, joint))
+    return out
+
+
+def check_with_scene(
+    pkg: ConfigPackage, robot, *, plan: bool, matrix_trials: int
+) -> tuple[list[Finding], int | None]:
+    """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
+    with the number of pose pairs the runtime checks planned (None when they did not run)."""
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.validate.rules.matrix_rules import check_matrix_fresh
+    from marm_setup.validate.rules.pose_rules import check_pose_collisions
+
+    try:
+        scene = CollisionScene(robot)
+    except InputError as exc:
+        return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)], None
+    out = check_pose_collisions(pkg.srdf, robot, scene, pkg.srdf_path, initial_state(pkg))
+    seed, computed = matrix_settings(pkg)
+    trials = matrix_trials if computed is None else min(matrix_trials, computed)
+    out += check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed)
+    if not plan:
+        return out, None
+    runtime, pairs = run_runtime_checks(pkg, robot, scene)
+    return out + runtime, pairs
+
+
+def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
+    """(seed, trials) the package's matrix was computed with (marm_setup.yaml `collision`), else
+    (0, None). Resampling no more than those trials keeps an unchanged URDF's matrix fresh."""
+    data = pkg.marm_setup.data if pkg.marm_setup is not None else None
+    collision = data.get("collision") if isinstance(data, dict) else None
+    collision = collision if isinstance(collision, dict) else {}
+
+    def integer(key):
+        value = collision.get(key)
+        return value if isinstance(value, int) and not isinstance(value, bool) else None
+
+    return integer("seed") or 0, integer("trials")
+
+
+def initial_state(pkg: ConfigPackage) -> dict[str, float]:
+    """Joint values the package's demo starts from (fake controllers' initial poses, or
+    ros2_control's initial_positions.yaml)."""
+    from marm_setup.validate.rules.pose_rules import initial_values
+
+    poses = []
+    fake = pkg.fake_controllers.data if pkg.fake_controllers is not None else None
+    if isinstance(fake, dict) and isinstance(fake.get("initial"), list):
+        poses = [(str(i.get("group")), str(i.get("pose"))) for i in fake["initial"] if isinstance(i, dict)]
+    positions = pkg.initial_positions.data if pkg.initial_positions is not None else None
+    if isinstance(positions, dict):
+        positions = positions.get("initial_positions", positions)
+    return initial_values(pkg.srdf, poses, positions if isinstance(positions, dict) else None)
+
+
+def run_runtime_checks(pkg: ConfigPackage, robot, scene) -> tuple[list[Finding], int]:
+    """The planner's runtime checks, and how many pose pairs they planned."""
+    from marm_setup.validate.runtime import check_runtime
+
+    planned: list[tuple[str, str, str]] = []
+    return list(check_runtime(pkg, robot, scene, planned=planned)), len(planned)

@@ -1,0 +1,74 @@
+"""Runtime validation rules: plan between every two named poses of each group and fake-execute.
+
+Rules (in the SRDF's file): `runtime.pose-skipped` (warning: a named pose cannot be planned
+from, being out of limits or in self-collision, which the pose rules report as errors; plans
+from and to it are skipped), and the errors `runtime.no-plan` (no
+collision-free path between two poses within the budget), `runtime.execution` (the timed
+trajectory breaks a limit, collides between checked states, or misses the goal) and
+`runtime.limits` (the group's limits are unusable).
+"""
+
+from __future__ import annotations
+
+from itertools import permutations
+
+from marm_setup.errors import InputError
+from marm_setup.findings import Finding, error, warning
+from marm_setup.plan.planner import PlannerOptions, state_problem
+from marm_setup.plan.problem import (
+    PlanningProblem,
+    group_names_with_poses,
+    plan_between,
+    planning_problem,
+)
+from marm_setup.robot.model import RobotModel
+
+RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
+
+
+def check_runtime(
+    package,
+    robot: RobotModel,
+    scene,
+    *,
+    seed: int = 0,
+    options: PlannerOptions = RUNTIME_OPTIONS,
+    planned: list[tuple[str, str, str]] | None = None,
+) -> list[Finding]:
+    """Findings for every group with two or more named poses (see the module docstring);
+    `planned`, when given, receives (group, from, to) of every pose pair planned."""
+    findings: list[Finding] = []
+    srdf_file = package.srdf_path or package.shown
+    for group in group_names_with_poses(package):
+        try:
+            problem = planning_problem(package, robot, scene, group)
+        except InputError as exc:
+            findings.append(error("runtime.limits", exc.path or srdf_file, f"group[{group}]", exc.message))
+            continue
+        findings += _check_group(problem, robot, srdf_file, seed, options, planned)
+    return findings
+
+
+def _check_group(
+    problem: PlanningProblem, robot, srdf_file: str, seed: int, options, planned: list | None = None
+) -> list[Finding]:
+    findings, usable = [], []
+    for name in sorted(problem.poses):
+        found = state_problem(robot, problem.check, problem.poses[name], problem.joint_names, "pose")
+        if found is None:
+            usable.append(name)
+            continue
+        element = f"group_state[{name}]"
+        message = f"plans from and to '{name}' skipped: {found[0]}"
+        findings.append(warning("runtime.pose-skipped", srdf_file, element, message))
+    for a, b in permutations(usable, 2):
+        if planned is not None:
+            planned.append((problem.group, a, b))
+        outcome = plan_between(problem, robot, problem.poses[a], problem.poses[b], seed, options)
+        element = f"group[{problem.group}]/{a} -> {b}"
+        if not outcome.plan.success:
+            findings.append(error("runtime.no-plan", srdf_file, element, f"no plan: {outcome.plan.reason}"))
+        elif not outcome.execution.ok:
+            message = "fake execution failed: " + "; ".join(outcome.execution.violations)
+            findings.append(error("runtime.execution", srdf_file, element, message))
+    return findings

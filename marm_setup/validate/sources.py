@@ -1,0 +1,161 @@
+"""Where a config package's robot description and SRDF come from, and which ROS it targets.
+
+`marm_setup.yaml` first, then the MoveIt 2 `config/<robot>.urdf.xacro`, then `.setup_assistant`
+(MoveIt 1 `URDF`/`SRDF` keys and MoveIt 2 lower-case ones); `--urdf` overrides them all.
+`marm` arguments are the parsed marm_setup.yaml (or None).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from marm_setup.errors import InputError, MarmError
+from marm_setup.findings import Finding, error
+from marm_setup.robot.ros_packages import package_name
+
+MARM_MOVEIT_YAML = "config/moveit.yaml"
+
+
+def detect_target(root: Path, marm: Any) -> str:
+    """ros2 for ament packages, ros1 for catkin; falls back on marm_setup.yaml and file names."""
+    xml = root / "package.xml"
+    if xml.is_file():
+        text = xml.read_text(encoding="utf-8", errors="replace")
+        if "ament_cmake" in text or "ament_python" in text:
+            return "ros2"
+        if "catkin" in text:
+            return "ros1"
+    if isinstance(marm, dict) and marm.get("target") in ("ros1", "ros2"):
+        return marm["target"]
+    ros2_files = ("config/moveit_controllers.yaml", "config/ros2_controllers.yaml", MARM_MOVEIT_YAML)
+    return "ros2" if any((root / f).is_file() for f in ros2_files) else "ros1"
+
+
+def _setup_assistant_config(raw: Any) -> dict:
+    if isinstance(raw, dict) and isinstance(raw.get("moveit_setup_assistant_config"), dict):
+        return raw["moveit_setup_assistant_config"]
+    return {}
+
+
+def _sa_entry(raw: Any, key: str) -> dict:
+    config = _setup_assistant_config(raw)
+    entry = config.get(key.upper(), config.get(key.lower()))
+    return entry if isinstance(entry, dict) else {}
+
+
+def find_srdf(root: Path, marm: Any, setup_assistant: Any) -> str | None:
+    candidates: list[str] = []
+    if isinstance(marm, dict) and marm.get("robot_name"):
+        candidates.append(f"config/{marm['robot_name']}.srdf")
+    rel = _sa_entry(setup_assistant, "srdf").get("relative_path")
+    if isinstance(rel, str):
+        candidates.append(rel)
+    candidates += sorted(p.relative_to(root).as_posix() for p in (root / "config").glob("*.srdf"))
+    candidates += sorted(p.relative_to(root).as_posix() for p in (root / "config").glob("*.srdf.xacro"))
+    return next((c for c in candidates if (root / c).is_file()), None)
+
+
+def read_srdf_source(
+    root: Path, rel: str, paths: tuple[Path, ...], problems: list[Finding]
+) -> tuple[Any, str | None]:
+    """(parsed SRDF, its text); a `.srdf.xacro` is expanded by xacro first; failures -> problems."""
+    from marm_setup.setup.srdf import parse_srdf_string
+
+    file = root / rel
+    try:
+        text = _srdf_text(file, rel, paths)
+        return parse_srdf_string(text, rel), text
+    except MarmError as exc:
+        problems.append(error("srdf.parse", rel, exc.element or "", exc.message))
+        return None, None
+
+
+def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...]) -> str:
+    if not rel.endswith(".xacro"):
+        try:
+            return file.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise InputError(f"cannot read: {exc}", path=rel) from None
+    from marm_setup.robot.load import expand_xacro
+    from marm_setup.robot.ros_packages import find_packages
+
+    return expand_xacro(file, {}, find_packages(paths, near=file), shown=rel)
+
+
+def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths):
+    """(path, origin, xacro args) of the robot description; InputError when none can be found."""
+    args = tuple(sorted((xacro_args or {}).items()))
+    if urdf is not None:
+        if not Path(urdf).is_file():
+            raise InputError("file not found", path=str(urdf), element="--urdf")
+        return Path(urdf), "--urdf", args
+    if isinstance(marm, dict) and isinstance(marm.get("robot"), dict):
+        robot = marm["robot"]
+        if isinstance(robot.get("urdf"), str):
+            file = Path(robot["urdf"])
+            file = file if file.is_absolute() else root / file
+            return file, "marm_setup.yaml", args or _marm_xacro_args(robot.get("xacro_args"))
+    name = package_name(root) or root.name
+    robot_name = _srdf_robot_name(root)
+    for candidate in sorted((root / "config").glob("*.urdf.xacro")):
+        if robot_name is None or candidate.name == f"{robot_name}.urdf.xacro":
+            return candidate, "config/<robot>.urdf.xacro", args
+    entry = _sa_entry(setup_assistant, "urdf")
+    if entry.get("package") and entry.get("relative_path"):
+        return _setup_assistant_urdf(entry, paths, shown, args)
+    raise InputError(
+        f"cannot find the robot description of package '{name}' ({_why_no_urdf(root, marm, setup_assistant)})",
+        path=shown,
+        element="--urdf",
+    )
+
+
+def _why_no_urdf(root: Path, marm: Any, setup_assistant: Any) -> str:
+    """Why none of the robot description sources gave a URDF, naming the files that exist."""
+    for rel, data in (("marm_setup.yaml", marm), (".setup_assistant", setup_assistant)):
+        if (root / rel).is_file() and data is None:
+            return f"{rel} is not readable YAML; fix it or pass --urdf URDF"
+    if (root / ".setup_assistant").is_file():
+        return ".setup_assistant gives no URDF package and relative_path; pass --urdf URDF"
+    if (root / "marm_setup.yaml").is_file():
+        return "marm_setup.yaml gives no robot.urdf; pass --urdf URDF"
+    return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro; pass --urdf URDF"
+
+
+def _srdf_robot_name(root: Path) -> str | None:
+    srdfs = sorted((root / "config").glob("*.srdf"))
+    return srdfs[0].name[: -len(".srdf")] if len(srdfs) == 1 else None
+
+
+def _setup_assistant_urdf(entry: dict, paths: tuple[Path, ...], shown: str, args):
+    from marm_setup.robot.ros_packages import find_package, find_packages
+
+    packages = find_packages(paths)
+    where = str(Path(shown) / ".setup_assistant")
+    pkg_dir = find_package(str(entry["package"]), packages, path=where, element="URDF.package")
+    sa_args = _marm_xacro_args(str(entry.get("xacro_args") or "").split())
+    return pkg_dir / str(entry["relative_path"]), ".setup_assistant", args or sa_args
+
+
+def marm_package_paths(root: Path, marm: Any) -> tuple[Path, ...]:
+    """`robot.package_paths` of marm_setup.yaml (relative to the package)."""
+    robot = marm.get("robot") if isinstance(marm, dict) else None
+    items = robot.get("package_paths") if isinstance(robot, dict) else None
+    if not isinstance(items, list):
+        return ()
+    return tuple((root / str(p)).resolve() for p in items if isinstance(p, str))
+
+
+def _marm_xacro_args(value: Any) -> tuple[tuple[str, str], ...]:
+    """xacro args given as a mapping, a list of `NAME:=VALUE` or a list of pairs."""
+    if isinstance(value, dict):
+        return tuple(sorted((str(k), str(v)) for k, v in value.items()))
+    out = []
+    for item in value or ():
+        if isinstance(item, str) and ":=" in item:
+            name, _, val = item.partition(":=")
+            out.append((name, val))
+        elif isinstance(item, (list, tuple)) and len(item) == 2:
+            out.append((str(item[0]), str(item[1])))
+    return tuple(sorted(out))
