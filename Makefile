@@ -26,10 +26,12 @@ demo: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci
 
 lint: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/ruff format --check marm_setup tests benchmarks
 
 bench: $(STAMP)

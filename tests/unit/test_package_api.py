@@ -1,0 +1,34 @@
+"""Each subpackage's public API: every listed name resolves, and the lazy table keeps a light
+module's import from loading the heavy libraries through the package's `__init__`."""
+
+from __future__ import annotations
+
+import importlib
+import subprocess
+import sys
+
+import pytest
+
+PACKAGES = ("robot", "collision", "setup", "render", "plan", "validate")
+
+
+@pytest.mark.parametrize("package", PACKAGES)
+def test_every_public_name_resolves(package):
+    module = importlib.import_module(f"marm_setup.{package}")
+    assert module.__all__, f"marm_setup.{package} names no public API"
+    for name in module.__all__:
+        assert getattr(module, name) is not None, name
+    assert set(module.__all__) <= set(dir(module))
+
+
+def test_unknown_name_is_an_attribute_error():
+    import marm_setup.collision
+
+    with pytest.raises(AttributeError, match="no attribute 'nope'"):
+        marm_setup.collision.nope  # noqa: B018
+
+
+def test_light_module_does_not_load_coal_through_its_package():
+    code = "import sys, marm_setup.collision.pairs; print('coal' in sys.modules, 'trimesh' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "False"]
