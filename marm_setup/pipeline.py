@@ -11,7 +11,7 @@ from pathlib import Path
 from marm_setup.errors import InputError
 from marm_setup.robot.load import parse_xacro_args
 from marm_setup.robot.model import RobotModel
-from marm_setup.setup.model import TARGETS, CollisionSettings, RobotSource, SetupModel
+from marm_setup.setup.model import ROS_DISTROS, TARGETS, CollisionSettings, RobotSource, SetupModel
 
 
 @dataclass(frozen=True)
@@ -20,6 +20,8 @@ class InitRequest:
     out: Path
     name: str | None = None
     target: str | None = None
+    ros_distro: str | None = None  # None: the SPEC's, else env_distro if it fits the target, else the default
+    env_distro: str | None = None  # $ROS_DISTRO of the caller
     spec: Path | None = None
     from_srdf: Path | None = None
     trials: int | None = None  # None: the SPEC's collision.trials, else 10000
@@ -73,6 +75,7 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
         model = _apply_spec(model, spec, request)
         if not inferred_groups:
             model = fill_group_settings(model, robot)
+    model = dataclasses.replace(model, ros_distro=_distro(request, spec, model.target))
     if not model.groups:
         raise InputError(
             "no planning groups: no serial arm from the root to infer, and the SPEC / SRDF gives none",
@@ -98,6 +101,22 @@ def _target(request: InitRequest, spec: dict) -> str:
             f"'{target}' is not one of: {', '.join(TARGETS)}", path=str(request.spec), element="target"
         )
     return target
+
+
+def _distro(request: InitRequest, spec: dict, target: str) -> str:
+    """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
+    else the target's default (noetic for ros1, humble for ros2)."""
+    distros = ROS_DISTROS[target]
+    for given, where in ((request.ros_distro, "--ros-distro"), (spec.get("ros_distro"), "ros_distro")):
+        if given is None:
+            continue
+        if given not in distros:
+            path = None if where == "--ros-distro" else str(request.spec)
+            raise InputError(
+                f"'{given}' is not a {target} distro (valid: {', '.join(distros)})", path=path, element=where
+            )
+        return given
+    return request.env_distro if request.env_distro in distros else distros[0]
 
 
 def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupModel:

@@ -248,6 +248,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "model": model,
         "robot": robot,
         "pkg": model.package_name,
+        "distro": model.distro,
         "robot_name": model.robot_name,
         "description": description_ref(model, robot, package),
         "groups": group_infos(model, robot),

@@ -5,7 +5,7 @@ Checks: unknown joint/link/group names (with close matches), duplicate names, ch
 below its base, subgroup cycles, poses missing a joint of their group or outside its limits,
 end effectors whose parent link is inside their own group, virtual joints not at the root,
 controller action namespaces the target's driver does not serve, package names ROS rejects,
-a robot_name other than the URDF's, numbers that must be positive (fractions in (0, 1]).
+a robot_name other than the URDF's, a ros_distro not of the target, numbers that must be positive (fractions in (0, 1]).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from collections.abc import Iterable
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, group_joints, group_links, groups_by_name
-from marm_setup.setup.model import DRIVER_ACTION_NS, Controller, Group, SetupModel
+from marm_setup.setup.model import DRIVER_ACTION_NS, ROS_DISTROS, Controller, Group, SetupModel
 
 LIMIT_TOLERANCE = 1e-9  # [rad] or [m]: values written with full precision sit on the limit
 MAX_SERVO_ID = 253  # Dynamixel ids on an ArbotiX bus (254 is broadcast)
@@ -70,6 +70,12 @@ def _check_names(c: _Checker) -> None:
         raise c.fail(problem, "package_name")
     if c.model.robot_name != c.robot.name:
         raise c.fail(f"'{c.model.robot_name}' is not the URDF's robot name '{c.robot.name}'", "robot_name")
+    distros = ROS_DISTROS.get(c.model.target, ())
+    if c.model.ros_distro is not None and c.model.ros_distro not in distros:
+        valid = ", ".join(distros)
+        raise c.fail(
+            f"'{c.model.ros_distro}' is not a {c.model.target} distro (valid: {valid})", "ros_distro"
+        )
 
 
 def package_name_problem(name: str) -> str | None:

@@ -11,6 +11,14 @@ from dataclasses import dataclass, field
 from marm_setup.collision.pairs import DisabledPair
 
 TARGETS = ("ros2", "ros1")
+# The ROS distros each target is written for, the target's default first. Humble and Jazzy differ
+# in MoveIt's planning pipeline parameters (DESIGN §4): Humble's PlanningPipeline reads one
+# `planning_plugin` string and `request_adapters` as one space-separated string
+# (moveit2 humble, moveit_ros/planning/planning_pipeline/src/planning_pipeline.cpp l.58-77);
+# Jazzy's reads the `planning_plugins`, `request_adapters` and `response_adapters` lists
+# (moveit2 jazzy, same file, PlanningPipeline::configure, via planning_pipeline_parameters).
+# Rolling writes what Jazzy writes, so it is not a distro of its own here.
+ROS_DISTROS = {"ros1": ("noetic",), "ros2": ("humble", "jazzy")}
 VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
 CONTROLLER_TYPES = ("FollowJointTrajectory", "GripperCommand")
 KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
@@ -207,6 +215,7 @@ class SetupModel:
     robot_name: str
     robot: RobotSource
     target: str = "ros2"
+    ros_distro: str | None = None  # None: the target's default (ROS_DISTROS[target][0])
     author: Author = field(default_factory=Author)
     virtual_joints: tuple[VirtualJoint, ...] = ()
     groups: tuple[Group, ...] = ()
@@ -223,6 +232,11 @@ class SetupModel:
     default_acceleration_scaling: float = 0.1
     default_acceleration: float = 1.0  # [rad/s^2] or [m/s^2] where the URDF gives none
     srdf_extras: SrdfExtras = field(default_factory=SrdfExtras)
+
+    @property
+    def distro(self) -> str:
+        """The ROS distro the package is written for."""
+        return self.ros_distro or ROS_DISTROS.get(self.target, ("",))[0]
 
     def group(self, name: str) -> Group:
         return next(g for g in self.groups if g.name == name)

@@ -441,3 +441,40 @@ def test_negative_seed_is_one_line(tmp_path):
     assert result.exit_code == 2
     assert result.stderr.strip() == "error: --seed: must be >= 0, got -1"
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "env", "expected"),
+    [
+        ([], {}, "humble"),  # the ros2 default
+        ([], {"ROS_DISTRO": "jazzy"}, "jazzy"),  # the shell's distro when it is a ros2 one
+        ([], {"ROS_DISTRO": "noetic"}, "humble"),  # ... and not when it is not
+        (["--ros-distro", "jazzy"], {"ROS_DISTRO": "humble"}, "jazzy"),  # the option wins
+        (["--target", "ros1"], {"ROS_DISTRO": "jazzy"}, "noetic"),
+    ],
+)
+def test_ros_distro_option_env_and_defaults(tmp_path, args, env, expected):
+    out = tmp_path / "pkg"
+    result = runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), *TRIALS, *args], env=env)
+    assert result.exit_code == 0, result.output
+    assert load_setup(out / "marm_setup.yaml").ros_distro == expected
+    moveit = out / "config" / "moveit.yaml"
+    if moveit.exists():
+        ompl = yaml.safe_load(moveit.read_text())["/**"]["ros__parameters"]["ompl"]
+        assert ("planning_plugin" in ompl) == (expected == "humble")
+
+
+def test_a_distro_of_another_target_is_one_line(tmp_path):
+    out = tmp_path / "pkg"
+    result = _init(out, "--target", "ros1", "--ros-distro", "jazzy")
+    assert result.exit_code == 2
+    assert result.stderr.strip() == "error: --ros-distro: 'jazzy' is not a ros1 distro (valid: noetic)"
+    assert not out.exists()
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("target: ros2\nros_distro: noetic\n")
+    result = _init(out, "--setup", str(spec))
+    assert result.exit_code == 2
+    assert (
+        result.stderr.strip()
+        == f"error: {spec}: ros_distro: 'noetic' is not a ros2 distro (valid: humble, jazzy)"
+    )

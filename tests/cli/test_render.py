@@ -118,6 +118,7 @@ def test_switching_target_reports_stale_files(tmp_path):
     pkg = make_package(tmp_path, "ros1")
     setup = pkg / "marm_setup.yaml"
     text = setup.read_text().replace("target: ros1", "target: ros2").replace("gripper_action", "gripper_cmd")
+    text = text.replace("ros_distro: noetic", "ros_distro: jazzy")
     setup.write_text(text)
     result = runner.invoke(app, ["render", str(pkg)])
     assert result.exit_code == 0, result.output
@@ -130,6 +131,14 @@ def test_switching_target_without_the_drivers_action_ns_is_refused(tmp_path):
     pkg = make_package(tmp_path, "ros1")
     setup = pkg / "marm_setup.yaml"
     setup.write_text(setup.read_text().replace("target: ros1", "target: ros2"))
+    before = snapshot(pkg)
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 2  # the distro must change with the target
+    assert (
+        result.stderr.strip()
+        == f"error: {setup}: ros_distro: 'noetic' is not a ros2 distro (valid: humble, jazzy)"
+    )
+    setup.write_text(setup.read_text().replace("ros_distro: noetic", "ros_distro: humble"))
     before = snapshot(pkg)
     result = runner.invoke(app, ["render", str(pkg)])
     assert result.exit_code == 2

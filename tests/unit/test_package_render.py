@@ -25,17 +25,24 @@ from tests.conftest import GOLDENS
 from tests.render_helpers import inferred_marm, marm_robot
 
 TARGETS = ("ros1", "ros2")
+# (target, distro) of each golden tree, tests/goldens/<target>-<distro>/
+DISTROS = (("ros1", "noetic"), ("ros2", "humble"), ("ros2", "jazzy"))
+DEFAULT_DISTRO = {"ros1": "noetic", "ros2": "humble"}
 XML_SUFFIXES = (".xml", ".launch", ".srdf", ".xacro")
 
 
-def marm_model(target: str):
+def golden_dir(target: str, distro: str | None = None) -> Path:
+    return GOLDENS / f"{target}-{distro or DEFAULT_DISTRO[target]}"
+
+
+def marm_model(target: str, distro: str | None = None):
     """The marm setup `init --setup fixtures/marm/marm_setup.yaml --target <target>` builds."""
-    return inferred_marm(target, GOLDENS / target)[0]
+    return inferred_marm(target, golden_dir(target, distro), distro)[0]
 
 
-@functools.lru_cache(maxsize=2)
-def rendered(target: str) -> dict[str, str]:
-    model, robot = inferred_marm(target, GOLDENS / target)
+@functools.lru_cache(maxsize=4)
+def rendered(target: str, distro: str | None = None) -> dict[str, str]:
+    model, robot = inferred_marm(target, golden_dir(target, distro), distro)
     return {f.path: f.content for f in render_package(model, robot)}
 
 
@@ -48,7 +55,7 @@ def expected_paths(target: str) -> list[str]:
     return sorted({output_path(p, "marm") for p in listed} | {"marm_setup.yaml", "config/marm.srdf"})
 
 
-GOLDEN_CASES = [(t, p) for t in TARGETS for p in expected_paths(t)]
+GOLDEN_CASES = [(t, d, p) for t, d in DISTROS for p in expected_paths(t)]
 
 
 @pytest.mark.parametrize("target", TARGETS)
@@ -56,14 +63,16 @@ def test_file_list(target):
     assert sorted(rendered(target)) == expected_paths(target)
 
 
-@pytest.mark.parametrize(("target", "path"), GOLDEN_CASES, ids=[f"{t}/{p}" for t, p in GOLDEN_CASES])
-def test_golden_file(target, path, assert_golden):
-    assert_golden(f"{target}/{path}", rendered(target)[path])
+@pytest.mark.parametrize(
+    ("target", "distro", "path"), GOLDEN_CASES, ids=[f"{t}-{d}/{p}" for t, d, p in GOLDEN_CASES]
+)
+def test_golden_file(target, distro, path, assert_golden):
+    assert_golden(f"{target}-{distro}/{path}", rendered(target, distro)[path])
 
 
-@pytest.mark.parametrize("target", TARGETS)
-def test_render_is_pure_sorted_and_newline_terminated(target):
-    model, robot = inferred_marm(target, GOLDENS / target)
+@pytest.mark.parametrize(("target", "distro"), DISTROS)
+def test_render_is_pure_sorted_and_newline_terminated(target, distro):
+    model, robot = inferred_marm(target, golden_dir(target, distro), distro)
     first, second = render_package(model, robot), render_package(model, robot)
     assert first == second
     assert [f.path for f in first] == sorted(f.path for f in first)
@@ -72,9 +81,9 @@ def test_render_is_pure_sorted_and_newline_terminated(target):
         assert "\r" not in f.content and "/work/" not in f.content, f.path
 
 
-@pytest.mark.parametrize("target", TARGETS)
-def test_every_yaml_and_xml_parses(target):
-    files = rendered(target)
+@pytest.mark.parametrize(("target", "distro"), DISTROS)
+def test_every_yaml_and_xml_parses(target, distro):
+    files = rendered(target, distro)
     for path, content in files.items():
         if path.endswith(".yaml"):
             assert isinstance(yaml.safe_load(content), dict), path
@@ -233,10 +242,6 @@ def test_ros2_moveit_yaml_structure():
     files = rendered("ros2")
     params = load_yaml(files, "config/moveit.yaml")["/**"]["ros__parameters"]
     assert params["planning_pipelines"]["pipeline_names"] == ["ompl", "pilz_industrial_motion_planner"]
-    assert params["ompl"]["planning_plugins"] == ["ompl_interface/OMPLPlanner"]
-    assert params["pilz_industrial_motion_planner"]["planning_plugins"] == [
-        "pilz_industrial_motion_planner/CommandPlanner"
-    ]
     assert set(params["robot_description_kinematics"]) == {"arm"}
     planning = params["robot_description_planning"]
     assert set(planning["cartesian_limits"]) == {
@@ -325,7 +330,7 @@ def test_ros2_launch_description_params_are_typed_str():
 
 
 def test_joint_limit_overrides_and_missing_velocity():
-    model, robot = inferred_marm("ros1", GOLDENS / "ros1")
+    model, robot = inferred_marm("ros1", golden_dir("ros1"))
     model = dataclasses.replace(
         model,
         joint_limits=(JointLimitOverride("joint2", max_velocity=0.5, max_acceleration=2.0, max_jerk=9.0),),

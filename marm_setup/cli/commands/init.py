@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import enum
+import os
 from pathlib import Path
 from typing import Annotated
 
@@ -21,6 +22,14 @@ NameOption = Annotated[
     str | None, typer.Option("--name", help="Package name (default: <robot>_moveit_config).", metavar="PKG")
 ]
 TargetOption = Annotated[Target | None, typer.Option("--target", help="ros2 (default) or ros1.")]
+DistroOption = Annotated[
+    str | None,
+    typer.Option(
+        "--ros-distro",
+        help="noetic (ros1); humble or jazzy (ros2) [default: SPEC's, else $ROS_DISTRO, else noetic / humble].",
+        metavar="DISTRO",
+    ),
+]
 SetupOption = Annotated[
     Path | None,
     typer.Option(
@@ -38,6 +47,7 @@ def init(
     out: OutOption,
     name: NameOption = None,
     target: TargetOption = None,
+    ros_distro: DistroOption = None,
     setup: SetupOption = None,
     from_srdf: FromSrdfOption = None,
     trials: Annotated[
@@ -70,6 +80,8 @@ def init(
         out=out,
         name=name,
         target=target.value if target else None,
+        ros_distro=ros_distro,
+        env_distro=os.environ.get("ROS_DISTRO") or None,
         spec=setup,
         from_srdf=from_srdf,
         trials=trials,
@@ -82,7 +94,9 @@ def init(
     robot = load_robot_from_cli(urdf, xacro_arg, package_path)
     result = run_init(request, robot)
     sources = ["inferred", *(f"{o} {p}" for o, p in (("SRDF", from_srdf), ("SPEC", setup)) if p)]
-    typer.echo(f"setup for robot {robot.name} ({' + '.join(sources)}), target {result.model.target}:")
+    typer.echo(
+        f"setup for robot {robot.name} ({' + '.join(sources)}), target {result.model.target} ({result.model.distro}):"
+    )
     for line in result.inferred:
         typer.echo(f"  {line}")
     for line in result.status_lines:
