@@ -53,7 +53,8 @@ def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
 
 def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
     """Inference, then the SRDF import, then the SPEC; checked against the robot."""
-    from marm_setup.setup.checks import check_setup, package_name_problem, ros_package_name
+    from marm_setup.names import ros_package_name
+    from marm_setup.setup.checks import check_setup, package_name_problem
     from marm_setup.setup.infer import derive_group_settings, fill_group_settings, infer_setup
 
     if request.name and (problem := package_name_problem(request.name)):

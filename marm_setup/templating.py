@@ -7,6 +7,7 @@ output file has one template at a mirrored path; the per-target file lists below
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -48,11 +49,62 @@ def fmt_float(value: float) -> str:
     return f"{mantissa}{e}{exponent}"
 
 
+# Plain scalars a YAML 1.2 reader (yaml-cpp in ROS 2, rclpy's PyYAML reads 1.1) takes for
+# something other than a string: numbers (`1e3`, `0x1F`, `.5`), bools, null, infinities.
+_YAML12_NOT_STRING = re.compile(
+    r"[-+]?(\.[0-9]+|[0-9]+(\.[0-9]*)?)([eE][-+]?[0-9]+)?|0x[0-9a-fA-F]+|0o[0-7]+|[-+]?\.(inf|Inf|INF)"
+    r"|\.(nan|NaN|NAN)|true|True|TRUE|false|False|FALSE|null|Null|NULL|~",
+)
+
+
 def yaml_str(value: object) -> str:
-    """A YAML scalar that parses back as the same string (quotes `on`, `1e3`, `null`, ...)."""
+    """A one-line YAML scalar that parses back as the same string, in YAML 1.1 and 1.2 alike.
+
+    PyYAML's emitter chooses plain or quoted style (`on`, `a: b`, `#x` get quoted); anything it
+    would spread over lines, and plain text YAML 1.2 reads as a number or bool, is double-quoted
+    with escapes instead. The result is checked by parsing it back.
+    """
     text = str(value)
-    dumped = yaml.safe_dump(text, default_flow_style=True, width=10**6).strip()
-    return dumped.removesuffix("\n...").removesuffix("...").strip()
+    dumped = yaml.safe_dump([text], default_flow_style=True, width=2**30, allow_unicode=True)
+    out = dumped.strip()[1:-1]
+    if not out.isprintable() or (out == text and _YAML12_NOT_STRING.fullmatch(text)):
+        out = _double_quoted(text)
+    if yaml.safe_load(f"[{out}]") != [text]:
+        raise ValueError(f"cannot write {text!r} as a YAML string")
+    return out
+
+
+def _double_quoted(text: str) -> str:
+    """A YAML double-quoted scalar: printable characters as they are, the rest as escapes."""
+    out = []
+    for c in text:
+        code = ord(c)
+        if c in '"\\':
+            out.append("\\" + c)
+        elif c.isprintable():
+            out.append(c)
+        else:
+            out.append(
+                f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+            )
+    return '"' + "".join(out) + '"'
+
+
+def py_repr(value: object) -> str:
+    """A Python literal of a string (for generated scripts): `repr`, never a code fragment;
+    double-quoted where that needs no escape (the style ruff and black write)."""
+    literal = repr(str(value))
+    if literal.startswith("'") and '"' not in literal:
+        literal = f'"{literal[1:-1]}"'  # repr single-quotes only text without ' (or with both)
+    return literal
+
+
+def xml_comment(value: object) -> str:
+    """Text safe inside an XML comment: no `--` and no trailing `-` (XML 1.0 §2.5)."""
+    text = str(value)
+    while "--" in text:
+        text = text.replace("--", "- -")
+    return text + " " if text.endswith("-") else text
 
 
 def yaml_bool(value: bool) -> str:
@@ -74,7 +126,9 @@ def environment() -> jinja2.Environment:
             default=False,
         ),
     )
-    env.filters.update(fmt_float=fmt_float, yaml_str=yaml_str, yaml_bool=yaml_bool)
+    env.filters.update(
+        fmt_float=fmt_float, yaml_str=yaml_str, yaml_bool=yaml_bool, py_repr=py_repr, xml_comment=xml_comment
+    )
     return env
 
 

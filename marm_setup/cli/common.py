@@ -37,6 +37,11 @@ def load_robot_from_cli(urdf: Path, xacro_args: list[str] | None, package_paths:
     return load_robot(urdf, parse_xacro_args(xacro_args or []), package_paths or [])
 
 
+def one_line(text: str) -> str:
+    """`text` with control characters (newlines too) escaped, so a message stays one line."""
+    return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)
+
+
 def echo_err(message: str) -> None:
     """Print one line to stderr."""
-    typer.echo(message, err=True)
+    typer.echo(one_line(message), err=True)

@@ -7,9 +7,12 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from dataclasses import dataclass
 from pathlib import PurePosixPath
 
+from marm_setup.errors import InputError
+from marm_setup.names import name_problem
 from marm_setup.robot.model import Joint, RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
 from marm_setup.setup.model import (
@@ -30,6 +33,7 @@ ROS2_CONTROLLER_TYPES = {
 ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == "ros2"}
 # ArbotiX: follow_controller serves `<name>/<action_ns>`; the gripper_controller node `<node>/gripper_action`.
 ARBOTIX_GRIPPER_ACTION_NS = DRIVER_ACTION_NS["ros1", "GripperCommand"]
+XACRO_ARG_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # Pilz / MoveIt defaults for cartesian limits ([m/s], [m/s^2], [rad/s]).
 CARTESIAN_LIMITS = (
@@ -115,8 +119,30 @@ def description_ref(model: SetupModel, robot: RobotModel, package: tuple[str, st
     urdf = model.robot.urdf
     is_xacro = urdf.endswith(".xacro")
     if package is not None:
-        return DescriptionRef(package[0], package[1], is_xacro, model.robot.xacro_args)
-    return DescriptionRef(None, PurePosixPath(urdf).as_posix(), is_xacro, model.robot.xacro_args)
+        ref = DescriptionRef(package[0], package[1], is_xacro, model.robot.xacro_args)
+    else:
+        ref = DescriptionRef(None, PurePosixPath(urdf).as_posix(), is_xacro, model.robot.xacro_args)
+    check_description_ref(ref)
+    return ref
+
+
+def check_description_ref(ref: DescriptionRef) -> None:
+    """Launch files and xacro read these verbatim: no substitution (`$`), quote or space may hide in them."""
+    if ref.package is not None and (problem := name_problem("package", ref.package)):
+        raise InputError(f"the URDF's package: {problem}", element="robot.urdf")
+    if not ref.path.isprintable() or set(ref.path) & set("$'\"`\\"):
+        raise InputError(
+            f"{ref.path!r}: a URDF path that launch files can hold has no control characters, quotes, '$' or '\\'",
+            element="robot.urdf",
+        )
+    for name, value in ref.xacro_args:
+        if not XACRO_ARG_NAME.fullmatch(name):
+            raise InputError(f"{name!r} is not a valid xacro argument name", element="robot.xacro_args")
+        if name_problem("link", value) and value != "":
+            raise InputError(
+                f"{value!r}: launch files pass xacro arguments unquoted (no spaces, quotes, '$' or '\\')",
+                element=f"robot.xacro_args.{name}",
+            )
 
 
 def _initial_pose(model: SetupModel, group: str) -> GroupState | None:

@@ -12,17 +12,17 @@ from __future__ import annotations
 
 import difflib
 import math
-import re
 from collections.abc import Iterable
 
 from marm_setup.errors import InputError
+from marm_setup.names import name_problem
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, group_joints, group_links, groups_by_name
 from marm_setup.setup.model import DRIVER_ACTION_NS, ROS_DISTROS, Controller, Group, SetupModel
+from marm_setup.setup.name_checks import check_setup_names
 
 LIMIT_TOLERANCE = 1e-9  # [rad] or [m]: values written with full precision sit on the limit
 MAX_SERVO_ID = 253  # Dynamixel ids on an ArbotiX bus (254 is broadcast)
-PACKAGE_NAME = re.compile(r"[a-z][a-z0-9_]*")  # REP 144, as catkin and ament require
 
 
 class _Checker:
@@ -51,6 +51,7 @@ class _Checker:
 def check_setup(model: SetupModel, robot: RobotModel, path: str | None = None) -> None:
     """Raise InputError for the first inconsistency between the setup and the robot."""
     c = _Checker(model, robot, path)
+    check_setup_names(model, robot, path)
     _check_names(c)
     _check_duplicates(c)
     _check_virtual_joints(c)
@@ -80,18 +81,7 @@ def _check_names(c: _Checker) -> None:
 
 def package_name_problem(name: str) -> str | None:
     """Why `name` cannot name a ROS package (REP 144), or None."""
-    if PACKAGE_NAME.fullmatch(name):
-        return None
-    return (
-        f"'{name}' is not a valid ROS package name: lowercase letters, digits and '_', "
-        f"starting with a letter (e.g. '{ros_package_name(name)}')"
-    )
-
-
-def ros_package_name(text: str) -> str:
-    """`text` made into a valid package name: lowercase, other characters as '_'."""
-    name = re.sub(r"[^a-z0-9_]+", "_", text.lower()).strip("_")
-    return name if name[:1].isalpha() else f"pkg_{name}".rstrip("_")
+    return name_problem("package", name)
 
 
 def _close(name: str, known: tuple[str, ...]) -> str:

@@ -29,6 +29,7 @@ from marm_setup.validate.rules.controller_rules import (
 from marm_setup.validate.rules.kinematics_rules import check_kinematics
 from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml, parse_launch
 from marm_setup.validate.rules.limits_rules import check_joint_limits
+from marm_setup.validate.rules.name_rules import check_controller_names, check_srdf_names
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.pose_rules import check_initial_positions, check_pose_values
 from marm_setup.validate.rules.srdf_rules import check_srdf
@@ -148,6 +149,7 @@ def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
     """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking)."""
     srdf, file = pkg.srdf, pkg.srdf_path
     out = check_srdf(srdf, robot, file, pkg.srdf_text)
+    out += check_srdf_names(srdf, file)
     out += check_pose_values(srdf, robot, file)
     if pkg.initial_positions is not None:
         out += check_initial_positions(pkg.initial_positions, robot)
@@ -173,7 +175,7 @@ def check_controllers(pkg: ConfigPackage, robot) -> list[Finding]:
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out
     ctrls, problems = moveit_controllers(section)
-    out += problems
+    out += problems + check_controller_names(ctrls, section.file)
     out += check_moveit_controllers(section, ctrls, robot)
     out += check_coverage(section, ctrls, pkg.srdf, robot, pkg.alt_moveit_controllers)
     if pkg.ros2_controllers is not None:

@@ -1,0 +1,188 @@
+"""Hostile names: refused with one line where ROS constrains them, escaped per language where it
+does not, never turned into code (Python, launch substitutions, command-line options)."""
+
+from __future__ import annotations
+
+import ast
+import shutil
+
+import pytest
+import yaml
+from hypothesis import given
+from hypothesis import strategies as st
+from lxml import etree
+
+from marm_setup.names import KINDS, name_problem
+from marm_setup.templating import py_repr, xml_comment, yaml_str
+from tests.conftest import FIXTURES, MARM_URDF
+from tests.helpers import TWO_BOXES
+from tests.reliability.checks import assert_clean_exit, assert_one_line_error, assert_package_parses, run
+
+SPEC = FIXTURES / "marm" / "marm_setup.yaml"
+TRIALS = ("--trials", "50")
+INJECTION = 'x"""; __import__("os").system("touch pwned") #'
+
+
+def _spec(tmp_path, edit) -> str:
+    data = yaml.safe_load(SPEC.read_text())
+    edit(data)
+    path = tmp_path / "spec.yaml"
+    path.write_text(yaml.safe_dump(data))
+    return str(path)
+
+
+def _init(tmp_path, spec: str, *args: str):
+    return run("init", MARM_URDF, "--out", tmp_path / "pkg", "--setup", spec, *TRIALS, *args)
+
+
+@pytest.mark.parametrize(
+    ("kind", "name", "valid"),
+    [
+        ("package", "marm_moveit_config", True),
+        ("package", "Marm", False),
+        ("robot", "L31K-GRIPPER_URDF_SIMPLIFIED_V2", True),
+        ("robot", "my robot", False),
+        ("robot", "2bad", False),
+        ("group", "panda_arm", True),
+        ("group", "a: b", False),
+        ("group", "$(env HOME)", False),
+        ("controller", "arm/follow", True),
+        ("controller", "x --controller-manager /evil", False),
+        ("pose", "all-zeros", True),
+        ("pose", INJECTION, True),
+        ("pose", "a\nb", False),
+        ("pose", "$(env HOME)", False),
+        ("link", "base-link.1", True),
+        ("link", "--help", False),
+        ("joint", "j'1", False),
+        ("frame", "a b", False),
+        ("end effector", "x\x00", False),
+    ],
+)
+def test_one_rule_per_kind(kind, name, valid):
+    assert (name_problem(kind, name) is None) is valid
+
+
+@given(st.sampled_from(KINDS), st.text(max_size=30))
+def test_a_problem_is_one_printable_line(kind, name):
+    problem = name_problem(kind, name)
+    assert problem is None or "\n" not in problem
+
+
+@given(st.text(max_size=40))
+def test_yaml_str_round_trips_as_value_and_key(text):
+    out = yaml_str(text)
+    assert "\n" not in out
+    assert yaml.safe_load(f"- {out}") == [text]
+    assert yaml.safe_load(f"{out}: 1") == {text: 1}
+
+
+@pytest.mark.parametrize("text", ["wait...", "...", "a: b", "1e3", "0x1F", "on", "- x", "#c", "a\nb"])
+def test_yaml_str_keeps_every_character(text):
+    assert yaml.safe_load(yaml_str(text)) == text
+
+
+@given(st.text(max_size=40))
+def test_py_repr_is_one_literal(text):
+    tree = ast.parse(f"X = {py_repr(text)}")
+    assert ast.literal_eval(tree.body[0].value) == text
+
+
+@given(st.text(st.characters(codec="utf-8", exclude_categories=("Cc", "Cs")), max_size=40))
+def test_xml_comment_never_ends_a_comment(text):
+    etree.fromstring(f"<r><!-- {xml_comment(text)} --></r>".encode())
+
+
+def test_pose_name_cannot_inject_python(tmp_path):
+    spec = _spec(tmp_path, lambda d: d["group_states"][1].update(name=INJECTION))
+    result = _init(tmp_path, spec)
+    assert_clean_exit(result, codes=(0,))
+    pkg = tmp_path / "pkg"
+    assert_package_parses(pkg)
+    tree = ast.parse((pkg / "scripts" / "trajectory_demo.py").read_text())
+    consts = {t.id: n.value for n in tree.body if isinstance(n, ast.Assign) for t in n.targets}
+    assert ast.literal_eval(consts["GOAL_NAME"]) == INJECTION
+    imports = [a.name for n in tree.body if isinstance(n, ast.Import | ast.ImportFrom) for a in n.names]
+    assert "os" not in imports and not (tmp_path / "pwned").exists()
+    srdf = etree.parse(str(pkg / "config" / "marm.srdf"))
+    assert srdf.find("group_state[2]").get("name") == INJECTION
+
+
+@pytest.mark.parametrize(
+    ("edit", "fragments"),
+    [
+        (
+            lambda d: d.update(controllers=[_ctl("x --controller-manager /evil")]),
+            ["controllers[x --controller-manager /evil]", "not a valid controller name"],
+        ),
+        (lambda d: d["groups"][0].update(name="$(env HOME)"), ["groups[$(env HOME)]", "group name"]),
+        (lambda d: d["groups"][0].update(name="arm: x"), ["not a valid group name"]),
+        (lambda d: d["groups"][0].update(name="arm\nx"), ["groups[arm\\nx]"]),
+        (lambda d: d["group_states"][0].update(name="$(env HOME)"), ["roslaunch substitution"]),
+        (lambda d: d["group_states"][0].update(name="home\x07"), ["control or invisible character"]),
+        (lambda d: d["end_effectors"][0].update(name="ee\u2028x"), ["end_effectors[ee\\u2028x]"]),
+        (lambda d: d.update(virtual_joints=[_vj("--help")]), ["starts with '-'"]),
+    ],
+)
+def test_unsafe_setup_names_are_one_line_errors(tmp_path, edit, fragments):
+    result = _init(tmp_path, _spec(tmp_path, edit))
+    assert_one_line_error(result, *fragments)
+    assert not (tmp_path / "pkg").exists()
+
+
+def _ctl(name: str) -> dict:
+    return {"name": name, "type": "FollowJointTrajectory", "action_ns": "follow", "joints": ["joint1"]}
+
+
+def _vj(frame: str) -> dict:
+    return {"name": "vj", "type": "fixed", "parent_frame": frame, "child_link": "base_link"}
+
+
+@pytest.mark.parametrize("target", ["ros1", "ros2"])
+def test_names_that_need_escaping_make_parseable_packages(tmp_path, target):
+    def edit(d):
+        d["group_states"][1]["name"] = "wait... <&> 'x' -- \"y\": #z"
+        d["end_effectors"][0]["name"] = "ee -- -"
+        d["virtual_joints"] = [
+            {"name": "v--j-", "type": "fixed", "parent_frame": "w&o<r>l--d", "child_link": "base_link"}
+        ]
+
+    result = _init(tmp_path, _spec(tmp_path, edit), "--target", target)
+    assert_clean_exit(result, codes=(0,))
+    assert_package_parses(tmp_path / "pkg")
+    validated = run("validate", tmp_path / "pkg", "--no-plan")
+    assert_clean_exit(validated, codes=(0,))
+    if target == "ros1":
+        fake = yaml.safe_load((tmp_path / "pkg" / "config" / "fake_controllers.yaml").read_text())
+        assert {"group": "arm", "pose": "home"} in fake["initial"]
+
+
+@pytest.mark.parametrize("robot_name", ["my robot", "2bad", "a:b"])
+def test_robot_names_that_cannot_name_files_or_macros(tmp_path, robot_name):
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(TWO_BOXES.replace('name="test_robot"', f'name="{robot_name}"'))
+    result = run("init", urdf, "--out", tmp_path / "pkg", *TRIALS)
+    assert_one_line_error(result, "robot name")
+    assert not (tmp_path / "pkg").exists()
+
+
+def test_validate_reports_unsafe_names_in_foreign_packages(tmp_path):
+    result = _init(tmp_path, str(SPEC))
+    assert_clean_exit(result, codes=(0,))
+    pkg = tmp_path / "pkg"
+    foreign = tmp_path / "foreign"
+    shutil.copytree(pkg, foreign)
+    (foreign / ".marm_setup").exists() and shutil.rmtree(foreign / ".marm_setup")
+    controllers = foreign / "config" / "controllers.yaml"
+    controllers.write_text(
+        controllers.read_text().replace("name: arm_controller", "name: x --controller-manager /evil")
+    )
+    srdf = foreign / "config" / "marm.srdf"
+    srdf.write_text(srdf.read_text().replace('group_state name="forward"', 'group_state name="$(env HOME)"'))
+    found = run("validate", foreign, "--no-plan", "--format", "json")
+    assert_clean_exit(found)
+    import json
+
+    rules = {(f["rule"], f["element"]) for f in json.loads(found.stdout)["findings"]}
+    assert ("names.invalid", "group_state[$(env HOME)]") in rules
+    assert any(rule == "names.invalid" and "controller_list" in where for rule, where in rules), rules
