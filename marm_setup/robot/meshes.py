@@ -1,12 +1,15 @@
-"""Mesh files -> vertex/face arrays in [m] (trimesh), cached per file and scale.
+"""Mesh files -> vertex/face arrays in [m], cached per file and scale.
 
-Collada files carry a `<unit meter="...">` that trimesh records but does not apply; we apply
+STL (binary and ASCII) is read with numpy: triangle soup, one vertex per corner, as trimesh
+gives with `process=False`; other formats (DAE, OBJ, ...) go through trimesh, imported only
+then (it costs most of a second of start-up). Collada files carry a `<unit meter="...">` that trimesh records but does not apply; we apply
 it, as MoveIt's assimp loader does. Every unreadable mesh is an InputError naming the URDF
 element that uses it.
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -47,10 +50,12 @@ def _load_cached(path: str, scale: tuple[float, float, float]) -> MeshData:
 
 
 def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    import trimesh
-
     if not path.is_file():
         raise _MeshReadError("file not found")
+    if path.suffix.lower() == ".stl":
+        return _read_stl(path.read_bytes())
+    import trimesh
+
     try:
         mesh = trimesh.load(str(path), force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for unreadable files
@@ -60,6 +65,35 @@ def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
     if len(vertices) == 0 or len(faces) == 0:
         raise _MeshReadError("no triangles")
     return vertices.copy(), faces.copy()
+
+
+def _read_stl(data: bytes) -> tuple[np.ndarray, np.ndarray]:
+    """Binary STL when its size matches the triangle count in its header, else ASCII."""
+    if len(data) >= 84:
+        count = int(np.frombuffer(data, dtype="<u4", count=1, offset=80)[0])
+        if count and len(data) == 84 + 50 * count:
+            rows = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
+            return _soup(rows["corners"].reshape(-1, 3).astype(float))
+    try:
+        text = data.decode("utf-8", errors="replace").lower()
+        numbers = [m.split() for m in _STL_VERTEX.findall(text)]
+        corners = np.array(numbers, dtype=float).reshape(-1, 3)
+    except ValueError as exc:
+        raise _MeshReadError(f"bad ASCII STL vertex: {exc}") from None
+    if len(corners) == 0 or len(corners) % 3:
+        raise _MeshReadError("no triangles" if len(corners) == 0 else "incorrect number of vertices")
+    return _soup(corners)
+
+
+_STL_RECORD = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attr", "<u2")])
+_STL_VERTEX = re.compile(r"\bvertex\s+(\S+\s+\S+\s+\S+)")
+
+
+def _soup(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and faces of a triangle soup: face i is corners 3i, 3i+1, 3i+2."""
+    if not len(corners):
+        raise _MeshReadError("no triangles")
+    return corners, np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
 
 
 def _unit_meters(path: Path) -> float:
