@@ -26,6 +26,7 @@ class InitRequest:
     from_srdf: Path | None = None
     trials: int | None = None  # None: the SPEC's collision.trials, else 10000
     seed: int | None = None  # None: the SPEC's collision.seed, else 0
+    jobs: int = 1  # worker processes of the collision matrix (the result does not depend on it)
     force: bool = False
     xacro_args: tuple[str, ...] = ()
     package_paths: tuple[Path, ...] = ()
@@ -38,12 +39,15 @@ class InitResult:
     status_lines: tuple[str, ...]  # one line per written file
 
 
-def run_init(request: InitRequest, robot: RobotModel) -> InitResult:
+def run_init(request: InitRequest, robot: RobotModel, progress=None) -> InitResult:
+    """`progress(done, total)` is called while the matrix samples (see compute_collision_matrix)."""
     model = build_setup(request, robot)
     given = bool(model.collision.disabled)
     trials = model.collision.trials if request.trials is None else request.trials
     seed = model.collision.seed if request.seed is None else request.seed
-    model = with_collision_matrix(model, robot, trials=trials, seed=seed)
+    model = with_collision_matrix(
+        model, robot, trials=trials, seed=seed, jobs=request.jobs, progress=progress
+    )
     lines = describe(model, matrix_given=given)
     changes = write_package(model, robot, request.out, force=request.force)
     from marm_setup.render.writer import format_change
@@ -147,20 +151,26 @@ def _relative(path: Path, base: Path) -> str:
     return Path(os.path.relpath(Path(path).resolve(), base)).as_posix()
 
 
-def with_collision_matrix(model: SetupModel, robot: RobotModel, *, trials: int, seed: int) -> SetupModel:
+def with_collision_matrix(
+    model: SetupModel, robot: RobotModel, *, trials: int, seed: int, jobs: int = 1, progress=None
+) -> SetupModel:
     """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
     if model.collision.disabled:
         return model
     fraction = model.collision.min_collision_fraction
-    disabled = _disabled_pairs(robot, trials=trials, seed=seed, fraction=fraction)
+    disabled = _disabled_pairs(
+        robot, trials=trials, seed=seed, fraction=fraction, jobs=jobs, progress=progress
+    )
     settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
     return dataclasses.replace(model, collision=settings)
 
 
-def _disabled_pairs(robot: RobotModel, *, trials: int, seed: int, fraction: float):
+def _disabled_pairs(robot: RobotModel, *, trials: int, seed: int, fraction: float, jobs: int, progress):
     from marm_setup.collision.matrix import compute_collision_matrix
 
-    matrix = compute_collision_matrix(robot, trials=trials, seed=seed, min_collision_fraction=fraction)
+    matrix = compute_collision_matrix(
+        robot, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs, progress=progress
+    )
     return matrix.disabled
 
 

@@ -42,6 +42,52 @@ def one_line(text: str) -> str:
     return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)
 
 
+COUNT_SUFFIXES = {"k": 1_000, "m": 1_000_000}
+TrialsText = Annotated[
+    str,
+    typer.Option("--trials", help="Random states for the Never phase (10000, 100k, 1M).", metavar="N"),
+]
+JobsOption = Annotated[
+    int | None,
+    typer.Option(
+        "--jobs",
+        help="Worker processes [default: CPU count] (the result does not depend on it).",
+        metavar="N",
+    ),
+]
+
+
+def parse_count(text: str, *, element: str) -> int:
+    """A positive count written `10000`, `10_000`, `100k`, `1M` or `1e5`; else an InputError."""
+    from marm_setup.errors import InputError
+
+    raw = text.strip().lower().replace("_", "")
+    scale = COUNT_SUFFIXES.get(raw[-1:], 1)
+    number = raw[:-1] if scale > 1 else raw
+    try:
+        value = float(number) * scale
+    except ValueError:
+        raise InputError(f"expected a count like 10000, 100k or 1M, got '{text}'", element=element) from None
+    if not 1 <= value <= 1e12:  # also refuses nan and inf
+        raise InputError(f"must be >= 1, got {text}", element=element)
+    if value != int(value):
+        raise InputError(f"must be a whole number, got {text}", element=element)
+    return int(value)
+
+
+def default_jobs(jobs: int | None) -> int:
+    """`jobs`, or the CPUs this process may run on; an InputError below 1."""
+    import os
+
+    from marm_setup.errors import InputError
+
+    if jobs is None:
+        return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    if jobs < 1:
+        raise InputError(f"must be >= 1, got {jobs}", element="--jobs")
+    return jobs
+
+
 def echo_err(message: str) -> None:
     """Print one line to stderr."""
     typer.echo(one_line(message), err=True)

@@ -206,9 +206,13 @@ def _legend(x: float, y: float) -> list[dict]:
 
 
 def format_summary(
-    matrix: CollisionMatrix, robot_name: str, disabled: Sequence[DisabledPair], seconds: float
+    matrix: CollisionMatrix,
+    robot_name: str,
+    disabled: Sequence[DisabledPair],
+    seconds: float,
+    denser_seconds: float | None = None,
 ) -> str:
-    """The text summary `marm-setup collisions` prints."""
+    """The text summary `marm-setup collisions` prints (`denser_seconds`: a 10x denser run)."""
     reasons = final_reasons(matrix, disabled)
     counts = ", ".join(f"{reason} {n}" for reason, n in reason_counts(reasons).items())
     enabled = [s for s in matrix.stats if reasons.get(s.pair) is None]
@@ -231,4 +235,17 @@ def format_summary(
             f"Never is statistical: with {matrix.trials} trials and no hit, a pair's collision "
             f"probability is below 3/N = {never_bound(matrix.trials):.2g} (95 % confidence)"
         )
+    if denser_seconds is not None:
+        lines.append(
+            f"a 10x denser run (--trials {_count_text(10 * matrix.trials)}, bound "
+            f"{never_bound(10 * matrix.trials):.2g}) would take about {denser_seconds:.0f} s here"
+        )
     return "\n".join(lines)
+
+
+def _count_text(n: int) -> str:
+    """100000 -> '100k', 1000000 -> '1M' (as --trials accepts); other counts as digits."""
+    for suffix, scale in (("M", 1_000_000), ("k", 1_000)):
+        if n % scale == 0:
+            return f"{n // scale}{suffix}"
+    return str(n)

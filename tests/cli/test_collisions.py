@@ -62,6 +62,18 @@ def test_same_output_whatever_jobs(tmp_path):
     assert outputs[0] == outputs[1]
 
 
+@pytest.mark.parametrize(("text", "count"), [("2k", 2000), ("1_500", 1500), ("0.002M", 2000), ("2e3", 2000)])
+def test_trials_take_k_and_m_suffixes_and_the_summary_prices_a_denser_run(text, count):
+    result = _run(str(MARM_URDF), "--trials", text)
+    assert result.exit_code == 0, result.output
+    assert f"{count} trials, seed 0" in result.stdout
+    tenfold = f"{count * 10 // 1000}k"
+    assert (
+        f"a 10x denser run (--trials {tenfold}, bound {3 / (10 * count):.2g}) would take about"
+        in result.stdout
+    )
+
+
 def test_json_output(tmp_path):
     path = tmp_path / "toy.urdf"
     path.write_text(TOY, encoding="utf-8")
@@ -136,6 +148,9 @@ def test_padding(tmp_path):
         (["--trials", "0"], "error: --trials: must be >= 1, got 0"),
         (["--min-collision-fraction", "0"], "error: --min-collision-fraction: must be in (0, 1]"),
         (["--jobs", "0"], "error: --jobs: must be >= 1"),
+        (["--trials", "1.5x"], "error: --trials: expected a count like 10000, 100k or 1M, got '1.5x'"),
+        (["--trials", "2.5"], "error: --trials: must be a whole number, got 2.5"),
+        (["--trials", "inf"], "error: --trials: must be >= 1, got inf"),
         (["--seed", "-1"], "error: --seed: must be >= 0, got -1"),
         (["--padding", "-0.1"], "error: --padding: must be >= 0"),
         (["--padding", "nan"], "error: --padding: must be >= 0 and finite, got nan"),

@@ -436,6 +436,31 @@ def test_spec_collision_seed_and_trials_apply_unless_given_on_the_command_line(t
     assert (collision.trials, collision.seed) == (200, 0)
 
 
+def test_jobs_and_suffixed_trials_reach_the_matrix_and_do_not_change_it(tmp_path):
+    texts = []
+    for jobs in ("1", "2"):
+        out = tmp_path / jobs
+        args = ["init", str(MARM_URDF), "--out", str(out), "--trials", "1.2k", "--jobs", jobs]
+        result = runner.invoke(app, args)
+        assert result.exit_code == 0, result.output
+        assert "1200 trials, seed 0" in result.stdout
+        texts.append((out / "config" / "marm.srdf").read_text())
+    assert texts[0] == texts[1]
+    result = runner.invoke(app, ["init", str(MARM_URDF), "--out", str(tmp_path / "o"), "--jobs", "0"])
+    assert result.exit_code == 2 and result.stderr.strip() == "error: --jobs: must be >= 1, got 0"
+
+
+def test_run_init_reports_matrix_progress(tmp_path):
+    from marm_setup.pipeline import InitRequest, run_init
+    from marm_setup.robot.load import load_robot
+
+    calls = []
+    request = InitRequest(urdf=MARM_URDF, out=tmp_path / "o", trials=2500, jobs=2)
+    run_init(request, load_robot(MARM_URDF), lambda done, total: calls.append((done, total)))
+    assert calls[0] == (0, 2500) and calls[-1] == (2500, 2500)
+    assert [d for d, _ in calls] == sorted(d for d, _ in calls)
+
+
 def test_negative_seed_is_one_line(tmp_path):
     result = CliRunner().invoke(app, ["init", str(MARM_URDF), "--out", str(tmp_path / "o"), "--seed", "-1"])
     assert result.exit_code == 2

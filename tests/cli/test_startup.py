@@ -10,6 +10,7 @@ from typer.testing import CliRunner
 from marm_setup import __version__
 from marm_setup.cli.app import app
 from marm_setup.cli.commands import COMMAND_SPECS
+from tests.conftest import MARM_URDF
 
 HEAVY = ("coal", "trimesh", "yourdfpy", "scipy")
 
@@ -34,6 +35,20 @@ def test_help_imports_nothing_heavy():
 
 def test_every_command_help_imports_nothing_heavy():
     assert _heavy_modules_after(*([name, "--help"] for name, _, _ in COMMAND_SPECS)) == ""
+
+
+def test_collisions_on_stl_meshes_loads_no_trimesh_scipy_or_renderer():
+    code = (
+        "import sys\n"
+        "from marm_setup.cli.app import app\n"
+        "from typer.testing import CliRunner\n"
+        f"r = CliRunner().invoke(app, ['collisions', {str(MARM_URDF)!r}, '--trials', '200', '--jobs', '1'])\n"
+        "assert r.exit_code == 0, r.output\n"
+        "names = ('trimesh', 'scipy', 'jinja2', 'marm_setup.render.writer', 'marm_setup.templating')\n"
+        "print(','.join(m for m in names if m in sys.modules))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""
 
 
 def test_version_and_no_args():

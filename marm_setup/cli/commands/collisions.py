@@ -3,20 +3,22 @@
 from __future__ import annotations
 
 import json
-import sys
-import time
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from marm_setup.cli.common import (
+    JobsOption,
     OutputFormat,
     PackagePaths,
+    TrialsText,
     UrdfArg,
     XacroArgs,
+    default_jobs,
     echo_err,
     load_robot_from_cli,
+    parse_count,
 )
 from marm_setup.errors import InputError
 
@@ -27,7 +29,7 @@ def collisions(
     urdf: UrdfArg,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
-    trials: Annotated[int, typer.Option("--trials", help="Random states for the Never phase.")] = 10000,
+    trials: TrialsText = "10000",
     min_collision_fraction: Annotated[
         float,
         typer.Option(
@@ -35,9 +37,7 @@ def collisions(
         ),
     ] = 0.95,
     seed: Annotated[int, typer.Option("--seed", help="Random seed (same seed, same output).")] = 0,
-    jobs: Annotated[
-        int, typer.Option("--jobs", help="Worker processes (the result does not depend on it).")
-    ] = 1,
+    jobs: JobsOption = None,
     padding: Annotated[
         float, typer.Option("--padding", help="Treat pairs closer than this [m] as colliding.")
     ] = 0.0,
@@ -75,9 +75,12 @@ def collisions(
 
     Seeded and deterministic (same seed, same bytes, whatever --jobs). Never is statistical: with N trials and no hit, a pair collides with probability below 3/N (95 %). Meshes are surfaces, as in MoveIt: a shape entirely inside a mesh, not touching it, does not collide.
     """
-    _check_options(trials, min_collision_fraction, seed, jobs, padding, srdf, keep, report)
+    count = parse_count(trials, element="--trials")
+    jobs = default_jobs(jobs)
+    _check_options(min_collision_fraction, seed, padding, srdf, keep, report)
     if default_pose is not None and srdf is None:
         raise InputError("needs --srdf (the SRDF holding the pose)", element="--default-pose")
+    from marm_setup.cli.progress import SamplingProgress
     from marm_setup.collision.matrix import compute_collision_matrix
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.collision.srdf_update import load_srdf_text, read_srdf_entries
@@ -91,12 +94,11 @@ def collisions(
         None if default_pose is None else _pose_configuration(robot, srdf_text, default_pose, str(srdf))
     )
     scene = CollisionScene(robot, padding)
-    started = time.perf_counter()
-    with _progress_bar() as progress:
+    with SamplingProgress() as progress:
         matrix = compute_collision_matrix(
             robot,
             scene,
-            trials=trials,
+            trials=count,
             seed=seed,
             min_collision_fraction=min_collision_fraction,
             check_default=default,
@@ -105,11 +107,10 @@ def collisions(
             jobs=jobs,
             progress=progress,
         )
-    seconds = time.perf_counter() - started
     disabled = _write_srdf(robot.name, matrix, srdf, srdf_text, output, keep)
     if report is not None:
         _write_report(report, matrix, robot, disabled)
-    _print_result(matrix, robot.name, disabled, seconds, format)
+    _print_result(matrix, robot.name, disabled, progress, format)
 
 
 def _pose_configuration(robot, srdf_text: str, name: str, shown: str):
@@ -129,15 +130,11 @@ def _pose_configuration(robot, srdf_text: str, name: str, shown: str):
     return q
 
 
-def _check_options(trials, fraction, seed, jobs, padding, srdf, keep, report) -> None:
-    if trials < 1:  # with no trials every pair not yet seen colliding would be called Never
-        raise InputError(f"must be >= 1, got {trials}", element="--trials")
+def _check_options(fraction, seed, padding, srdf, keep, report) -> None:
     if seed < 0:
         raise InputError(f"must be >= 0, got {seed}", element="--seed")
     if not 0.0 < fraction <= 1.0:
         raise InputError(f"must be in (0, 1], got {fraction}", element="--min-collision-fraction")
-    if jobs < 1:
-        raise InputError(f"must be >= 1, got {jobs}", element="--jobs")
     if not 0.0 <= padding < float("inf"):  # also refuses nan, which would disable every pair
         raise InputError(f"must be >= 0 and finite, got {padding}", element="--padding")
     if keep and srdf is None:
@@ -148,6 +145,8 @@ def _check_options(trials, fraction, seed, jobs, padding, srdf, keep, report) ->
 
 def _write_srdf(robot_name, matrix, srdf, srdf_text, output, keep):
     """Write the SRDF the options ask for; return the final disabled pairs."""
+    if srdf is None and output is None:
+        return matrix.disabled  # nothing to write: no Jinja, no writer imported
     from marm_setup.collision.srdf_update import render_minimal_srdf, update_srdf
     from marm_setup.render.writer import write_text_atomic
 
@@ -174,41 +173,11 @@ def _write_report(report: Path, matrix, robot, disabled) -> None:
     echo_err(f"wrote {report}")
 
 
-def _print_result(matrix, robot_name, disabled, seconds, format: OutputFormat) -> None:
+def _print_result(matrix, robot_name, disabled, progress, format: OutputFormat) -> None:
     from marm_setup.collision.report import describe_matrix, format_summary
 
     if format is OutputFormat.json:
         typer.echo(json.dumps(describe_matrix(matrix, robot_name, disabled), indent=2))
     else:
-        typer.echo(format_summary(matrix, robot_name, disabled, seconds))
-
-
-class _progress_bar:
-    """A rich progress bar on stderr while sampling; a no-op callback when stderr is not a TTY."""
-
-    def __enter__(self):
-        self._progress = None
-        if not sys.stderr.isatty():
-            return None
-        from rich.console import Console
-        from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
-
-        self._progress = Progress(
-            TextColumn("sampling"),
-            BarColumn(),
-            TaskProgressColumn(),
-            TimeRemainingColumn(),
-            console=Console(stderr=True),
-            transient=True,
-        )
-        self._progress.start()
-        task = self._progress.add_task("sampling", total=None)
-
-        def update(done: int, total: int) -> None:
-            self._progress.update(task, completed=done, total=total)
-
-        return update
-
-    def __exit__(self, *exc) -> None:
-        if self._progress is not None:
-            self._progress.stop()
+        seconds = progress.finished - progress.started
+        typer.echo(format_summary(matrix, robot_name, disabled, seconds, progress.denser_seconds()))

@@ -9,7 +9,15 @@ from typing import Annotated
 
 import typer
 
-from marm_setup.cli.common import PackagePaths, UrdfArg, XacroArgs, load_robot_from_cli
+from marm_setup.cli.common import (
+    JobsOption,
+    PackagePaths,
+    UrdfArg,
+    XacroArgs,
+    default_jobs,
+    load_robot_from_cli,
+    parse_count,
+)
 
 
 class Target(str, enum.Enum):
@@ -51,11 +59,10 @@ def init(
     setup: SetupOption = None,
     from_srdf: FromSrdfOption = None,
     trials: Annotated[
-        int | None,
+        str | None,
         typer.Option(
             "--trials",
-            help="Random states for the Never pairs [default: SPEC's, else 10000].",
-            min=1,
+            help="Random states for the Never pairs (10000, 100k, 1M) [default: SPEC's, else 10000].",
             metavar="N",
         ),
     ] = None,
@@ -63,11 +70,13 @@ def init(
         int | None,
         typer.Option("--seed", help="Seed of the collision sampling [default: SPEC's, else 0].", metavar="S"),
     ] = None,
+    jobs: JobsOption = None,
     force: Annotated[bool, typer.Option("--force", help="Write into an existing non-empty DIR.")] = False,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package."""
+    from marm_setup.cli.progress import SamplingProgress
     from marm_setup.errors import InputError
     from marm_setup.pipeline import InitRequest, run_init
     from marm_setup.render.writer import check_output_dir
@@ -84,15 +93,17 @@ def init(
         env_distro=os.environ.get("ROS_DISTRO") or None,
         spec=setup,
         from_srdf=from_srdf,
-        trials=trials,
+        trials=None if trials is None else parse_count(trials, element="--trials"),
         seed=seed,
+        jobs=default_jobs(jobs),
         force=force,
         xacro_args=tuple(xacro_arg or ()),
         package_paths=tuple(package_path or ()),
     )
     check_output_dir(out, force=force, shown=str(out))
     robot = load_robot_from_cli(urdf, xacro_arg, package_path)
-    result = run_init(request, robot)
+    with SamplingProgress() as progress:
+        result = run_init(request, robot, progress)
     sources = ["inferred", *(f"{o} {p}" for o, p in (("SRDF", from_srdf), ("SPEC", setup)) if p)]
     typer.echo(
         f"setup for robot {robot.name} ({' + '.join(sources)}), target {result.model.target} ({result.model.distro}):"
