@@ -1,4 +1,5 @@
-"""What a valid name is, per kind: the one definition setup checks, imports and validate share.
+"""Names: what a valid name is, per kind (the one definition setup checks, imports and validate
+share), and the one "did you mean" of every message about an unknown name.
 
 ROS constrains some kinds and we follow it there:
 - package: REP 144 (`[a-z][a-z0-9_]*`), as catkin and ament require.
@@ -17,8 +18,11 @@ substitution), '\\' and a leading '-' (an option on a command line).
 
 from __future__ import annotations
 
+import difflib
 import re
+from collections.abc import Iterable
 
+FEW = 8  # at most this many valid names are listed when none is close to an unknown one
 MAX_NAME = 200  # characters: a robot name becomes a file name, and file names stop at 255 bytes
 
 _ROS_SEGMENT = r"[A-Za-z_][A-Za-z0-9_]*"
@@ -94,3 +98,21 @@ def _free_name_problem(kind: str, name: str) -> str | None:
 
 def is_valid_name(kind: str, name: object) -> bool:
     return name_problem(kind, name) is None
+
+
+def did_you_mean(name: str, known: Iterable[str], *, few: float = FEW) -> str:
+    """`did you mean 'a', 'b'?` for up to three close names, else `known: a, b` when there are
+    at most `few` (0: never list them), else ''."""
+    names = sorted(set(known))
+    close = difflib.get_close_matches(str(name), names, n=3, cutoff=0.6)
+    if close:
+        quoted = ", ".join(f"'{c}'" for c in close)
+        return f"did you mean {quoted}?"
+    if len(names) <= few:
+        return f"known: {', '.join(names) or 'none'}"
+    return ""
+
+
+def with_hint(message: str, hint: str) -> str:
+    """A one-line message with its hint in parentheses (`unknown joint 'x' (did you mean 'y'?)`)."""
+    return f"{message} ({hint})" if hint else message

@@ -72,10 +72,11 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
     )
     inferred_groups = bool(model.groups)
     if request.from_srdf is not None:
+        from marm_setup.setup.rules import srdf_element
         from marm_setup.setup.srdf import read_srdf, srdf_to_setup
 
         model = derive_group_settings(srdf_to_setup(read_srdf(request.from_srdf), model), robot)
-        check_setup(model, robot, str(request.from_srdf))
+        check_setup(model, robot, str(request.from_srdf), srdf_element)
     if spec:
         model = _apply_spec(model, spec, request)
         if not inferred_groups:

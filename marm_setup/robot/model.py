@@ -10,6 +10,9 @@ Vec3 = tuple[float, float, float]
 
 FIXED_TYPES = ("fixed",)
 ACTUATED_TYPES = ("revolute", "continuous", "prismatic")
+# [rad] or [m]: the slack of every comparison with a joint limit (a value written at full
+# precision sits on its limit).
+LIMIT_TOLERANCE = 1e-9
 
 
 @dataclass(frozen=True, slots=True)
@@ -112,6 +115,13 @@ class Joint:
         if self.soft_upper is not None:
             hi = min(hi, self.soft_upper)
         return (lo, hi)
+
+    def within_limits(self, value: float) -> bool:
+        """`value` lies within the bounds (continuous and non-moving joints take any value)."""
+        if self.type == "continuous" or not self.is_actuated:
+            return True
+        lo, hi = self.bounds
+        return lo - LIMIT_TOLERANCE <= value <= hi + LIMIT_TOLERANCE
 
     @property
     def default_position(self) -> float:

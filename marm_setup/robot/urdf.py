@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import math
 from pathlib import Path
 
 from lxml import etree
 
 from marm_setup.errors import InputError
+from marm_setup.names import did_you_mean, with_hint
 from marm_setup.robot.model import (
     Box,
     CollisionShape,
@@ -227,7 +227,10 @@ def _check_tree(links: tuple[Link, ...], joints: tuple[Joint, ...], ctx: _Ctx) -
     for joint in joints:
         for role, link in (("parent", joint.parent), ("child", joint.child)):
             if link not in names:
-                raise ctx.error(f"joint[{joint.name}]/{role}", f"unknown link '{link}'{_close(link, names)}")
+                raise ctx.error(
+                    f"joint[{joint.name}]/{role}",
+                    with_hint(f"unknown link '{link}'", did_you_mean(link, names, few=0)),
+                )
         if joint.child in parent_of:
             raise ctx.error(f"joint[{joint.name}]/child", f"link '{joint.child}' already has a parent joint")
         parent_of[joint.child] = joint.parent
@@ -266,8 +269,3 @@ def _check_mimics(joints: tuple[Joint, ...], ctx: _Ctx) -> None:
                 f"joint[{joint.name}]/mimic",
                 f"follows '{leader.name}', a {leader.type} joint; a mimic must follow a moving joint",
             )
-
-
-def _close(name: str, names: set[str]) -> str:
-    close = difflib.get_close_matches(name, sorted(names), n=3)
-    return f"; did you mean {', '.join(close)}?" if close else ""

@@ -8,8 +8,9 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.setup.model import Group
 
 
-def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: frozenset[str]):
-    """(joints, links) of a group and its subgroups, in tree order, duplicates removed."""
+def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: set[str]):
+    """(joints, links) of a group and its subgroups; each subgroup expanded once (`seen` grows),
+    so cycles end and diamond-shaped subgroups stay linear."""
     joints: list[str] = []
     links: list[str] = []
     if group.chain is not None:
@@ -26,7 +27,8 @@ def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: 
                 joints.append(parent.name)
     for sub in group.subgroups:
         if sub in groups and sub not in seen:
-            sub_joints, sub_links = _expand(groups[sub], groups, robot, seen | {sub})
+            seen.add(sub)
+            sub_joints, sub_links = _expand(groups[sub], groups, robot, seen)
             joints += sub_joints
             links += sub_links
     return joints, links
@@ -39,13 +41,13 @@ def _tree_ordered(names: list[str], order: tuple[str, ...]) -> tuple[str, ...]:
 
 def group_joints(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
     """Every joint of the group (fixed and mimic included), in tree order."""
-    joints, _ = _expand(group, groups, robot, frozenset({group.name}))
+    joints, _ = _expand(group, groups, robot, {group.name})
     return _tree_ordered(joints, tuple(j.name for j in robot.joints_in_tree_order))
 
 
 def group_links(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
     """Every link of the group, in tree order."""
-    _, links = _expand(group, groups, robot, frozenset({group.name}))
+    _, links = _expand(group, groups, robot, {group.name})
     return _tree_ordered(links, robot.links_in_tree_order)
 
 

@@ -242,16 +242,17 @@ def srdf_to_setup(srdf: Srdf, base: SetupModel) -> SetupModel:
     )
 
 
-def setup_to_srdf(model: SetupModel, robot_name: str) -> Srdf:
-    """The SRDF a setup renders to, as a value (what `read_srdf` of the rendered file gives)."""
+def setup_to_srdf(model: SetupModel) -> Srdf:
+    """The SRDF a setup renders to, as a value (pairs in the setup's order: `read_srdf` of the
+    rendered file gives them sorted)."""
     return Srdf(
-        robot_name=robot_name,
+        robot_name=model.robot_name,
         groups=model.groups,
         group_states=model.group_states,
         end_effectors=model.end_effectors,
         virtual_joints=model.virtual_joints,
         passive_joints=model.passive_joints,
-        disabled=tuple(sorted(model.collision.disabled)),
+        disabled=model.collision.disabled,
         extras=model.srdf_extras,
     )
 

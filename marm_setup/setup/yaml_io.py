@@ -8,7 +8,6 @@ mappings. Load: unknown keys and wrong types are InputErrors naming the key path
 from __future__ import annotations
 
 import dataclasses
-import difflib
 import enum
 import math
 import types
@@ -21,6 +20,7 @@ import yaml
 
 from marm_setup.collision.pairs import DisabledPair
 from marm_setup.errors import InputError
+from marm_setup.names import did_you_mean, with_hint
 from marm_setup.setup.model import (
     CONTROLLER_TYPES,
     OMPL_PLANNERS,
@@ -210,9 +210,8 @@ def _load_enum(hint, data, ctx: _Ctx, where: str):
 def _check_choice(cls, name: str, value, ctx: _Ctx, where: str) -> None:
     allowed = CHOICES.get((cls, name))
     if allowed is not None and value not in allowed:
-        close = difflib.get_close_matches(str(value), allowed, n=1, cutoff=0.5)
-        hint = f" (did you mean '{close[0]}'?)" if close else ""
-        raise ctx.fail(f"'{value}' is not one of: {', '.join(allowed)}{hint}", where)
+        message = f"'{value}' is not one of: {', '.join(allowed)}"
+        raise ctx.fail(with_hint(message, did_you_mean(str(value), allowed, few=0)), where)
 
 
 # -- helpers -------------------------------------------------------------------------------------
@@ -254,10 +253,7 @@ def _join(where: str, key: str) -> str:
 
 
 def _unknown_key(key, valid: list[str]) -> str:
-    close = difflib.get_close_matches(str(key), valid, n=1, cutoff=0.5)
-    if close:
-        return f"unknown key '{key}' (did you mean '{close[0]}'?)"
-    return f"unknown key '{key}' (valid: {', '.join(valid)})"
+    return with_hint(f"unknown key '{key}'", did_you_mean(str(key), valid, few=math.inf))
 
 
 def _kind(value) -> str:

@@ -31,7 +31,7 @@ from marm_setup.validate.rules.launch_rules import check_launch_files, check_pac
 from marm_setup.validate.rules.limits_rules import check_joint_limits
 from marm_setup.validate.rules.name_rules import check_controller_names, check_srdf_names
 from marm_setup.validate.rules.ompl_rules import check_ompl
-from marm_setup.validate.rules.pose_rules import check_initial_positions, check_pose_values
+from marm_setup.validate.rules.pose_rules import check_initial_positions
 from marm_setup.validate.rules.srdf_rules import check_srdf
 
 MATRIX_TRIALS = 1000
@@ -150,7 +150,6 @@ def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
     srdf, file = pkg.srdf, pkg.srdf_path
     out = check_srdf(srdf, robot, file, pkg.srdf_text)
     out += check_srdf_names(srdf, file)
-    out += check_pose_values(srdf, robot, file)
     if pkg.initial_positions is not None:
         out += check_initial_positions(pkg.initial_positions, robot)
     if pkg.kinematics is not None:

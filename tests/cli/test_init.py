@@ -3,6 +3,7 @@ one stderr line with exit 2 and leaves DIR as it was; golden marm setup and SRDF
 
 from __future__ import annotations
 
+import json
 import re
 
 import pytest
@@ -112,11 +113,11 @@ HOME = {"joint1": 0, "joint2": 0, "joint3": 0, "joint4": 0, "joint5": 0, "joint6
 BAD_SPECS = {
     "unknown joint": (
         {"groups": [{"name": "gripper", "joints": ["finger_joint1", "finger_jiont2"]}]},
-        "groups[gripper].joints[1]: unknown joint 'finger_jiont2' (close: finger_joint2, finger_joint1)",
+        "groups[gripper].joints[1]: unknown joint 'finger_jiont2' (did you mean 'finger_joint2', 'finger_joint1'?)",
     ),
     "unknown link": (
         {"end_effectors": [{"name": "robot_gripper", "group": "gripper", "parent_link": "grasp_frame"}]},
-        "end_effectors[robot_gripper].parent_link: unknown link 'grasp_frame' (close: grasping_frame)",
+        "end_effectors[robot_gripper].parent_link: unknown link 'grasp_frame' (did you mean 'grasping_frame'?)",
     ),
     "chain tip not below base": (
         {"groups": [{"name": "arm", "chain": {"base": "link3", "tip": "link1"}}]},
@@ -124,15 +125,15 @@ BAD_SPECS = {
     ),
     "subgroup cycle": (
         {"groups": [{"name": "a", "subgroups": ["b"]}, {"name": "b", "subgroups": ["a"]}]},
-        "groups[a].subgroups: subgroup cycle: a -> b -> a",
+        "groups[a].subgroups: subgroups form a cycle: a -> b -> a",
     ),
     "unknown subgroup": (
         {"groups": [{"name": "both", "subgroups": ["arm", "grippr"]}]},
-        "groups[both].subgroups[1]: unknown group 'grippr' (close: gripper)",
+        "groups[both].subgroups[1]: unknown group 'grippr' (did you mean 'gripper'?)",
     ),
     "pose missing a joint": (
         {"group_states": [{"name": "forward", "group": "arm", "values": {"joint1": 0, "joint2": 0.4}}]},
-        "group_states[forward].values: missing joint(s) of group 'arm': joint3, joint4, joint5, joint6",
+        "group_states[forward].values: no value for joint(s) joint3, joint4, joint5, joint6 of group 'arm'",
     ),
     "pose outside limits": (
         {"group_states": [{"name": "forward", "group": "arm", "values": {**HOME, "joint2": 3.0}}]},
@@ -140,7 +141,7 @@ BAD_SPECS = {
     ),
     "pose joint not in group": (
         {"group_states": [{"name": "forward", "group": "arm", "values": {**HOME, "finger_joint1": 0.01}}]},
-        "group_states[forward].values.finger_joint1: joint 'finger_joint1' is not in group 'arm'",
+        "group_states[forward].values.finger_joint1: joint 'finger_joint1' is not part of group 'arm'",
     ),
     "pose of unknown group": (
         {"group_states": [{"name": "up", "group": "manipulator", "values": HOME}]},
@@ -153,11 +154,11 @@ BAD_SPECS = {
             ]
         },
         "end_effectors[robot_gripper].parent_link: parent link 'gripper_finger_link1' is inside the end "
-        "effector's own group 'gripper'",
+        "effector's own group 'gripper' (use the link it is attached to)",
     ),
     "duplicate group": (
         {"groups": [ARM_CHAIN, ARM_CHAIN]},
-        "groups[arm]: duplicate name 'arm'",
+        "groups[arm]: group 'arm' defined 2 times",
     ),
     "duplicate pose": (
         {"group_states": [{"name": "home", "group": "arm", "values": HOME}] * 2},
@@ -230,7 +231,7 @@ BAD_SPECS = {
                 {"name": "virtual_joint", "type": "fixed", "parent_frame": "world", "child_link": "link1"}
             ]
         },
-        "virtual_joints[virtual_joint].child_link: child link 'link1' is not the robot's root link 'base_link' "
+        "virtual_joints[virtual_joint].child_link: child link 'link1' is not the URDF's root link 'base_link' "
         "(MoveIt skips such a virtual joint)",
     ),
     "robot name not the URDF's": (
@@ -293,7 +294,7 @@ def test_model_check_errors_are_one_line_and_leave_dir_unchanged(case, tmp_path)
     [
         (
             "<robot name='marm'><group name='arm'><joint name='joint9'/></group></robot>",
-            "groups[arm].joints[0]: unknown joint 'joint9'",
+            "group[arm].joint: unknown joint 'joint9'",
         ),
         ("<robot name='marm'><group name='arm'>", "not well-formed XML"),
     ],
@@ -503,3 +504,33 @@ def test_a_distro_of_another_target_is_one_line(tmp_path):
         result.stderr.strip()
         == f"error: {spec}: ros_distro: 'noetic' is not a ros2 distro (valid: humble, jazzy)"
     )
+
+
+CYCLE = '<group name="a"><group name="b"/></group><group name="b"><group name="a"/></group>'
+
+
+def test_one_subgroup_cycle_rule_for_validate_init_and_render(tmp_path):
+    """The same SRDF cycle: a validate finding, and the one-line error of init --from-srdf (SRDF
+    element names) and of render (marm_setup.yaml key paths), with one message."""
+    from tests.validate_helpers import generate_marm
+
+    pkg = generate_marm(tmp_path, "ros1")
+    srdf = pkg / "config" / "marm.srdf"
+    srdf.write_text(srdf.read_text().replace('<robot name="marm">', f'<robot name="marm">{CYCLE}', 1))
+    message = "subgroups form a cycle: a -> b -> a"
+
+    doc = json.loads(runner.invoke(app, ["validate", str(pkg), "--no-plan", "--format", "json"]).stdout)
+    cycles = [(f["rule"], f["element"], f["message"]) for f in doc["findings"] if "cycle" in f["message"]]
+    assert cycles == [
+        ("srdf.subgroup-cycle", "group[a]", message),
+        ("srdf.subgroup-cycle", "group[b]", "subgroups form a cycle: b -> a -> b"),
+    ]
+
+    result = _init(tmp_path / "out", "--from-srdf", str(srdf))
+    assert (result.exit_code, result.stderr) == (2, f"error: {srdf}: group[a]: {message}\n")
+
+    setup = pkg / "marm_setup.yaml"
+    groups = "groups:\n- name: a\n  subgroups: [b]\n- name: b\n  subgroups: [a]\n"
+    setup.write_text(setup.read_text().replace("groups:\n", groups, 1))
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert (result.exit_code, result.stderr) == (2, f"error: {setup}: groups[a].subgroups: {message}\n")

@@ -43,7 +43,7 @@ class _Named:
 
 def test_our_srdf_reads_back_as_the_model(marm, marm_model):
     text = render_srdf(marm_model, marm)
-    assert parse_srdf_string(text) == setup_to_srdf(marm_model, "marm")
+    assert parse_srdf_string(text) == setup_to_srdf(marm_model)
     root = etree.fromstring(text.encode())
     tags = [e.tag for e in root if isinstance(e.tag, str)]
     order = ["group", "group_state", "end_effector", "virtual_joint", "disable_collisions"]

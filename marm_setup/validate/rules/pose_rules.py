@@ -1,4 +1,7 @@
-"""Named poses (`group_state`): every group joint given, within limits, collision-free."""
+"""Named poses (`group_state`) collision-free, and ros2_control's initial positions.
+
+A pose's values (group, joints, limits) are checked by the shared rules in `setup.rules`.
+"""
 
 from __future__ import annotations
 
@@ -8,49 +11,7 @@ import numpy as np
 
 from marm_setup.findings import Finding, error
 from marm_setup.robot.model import RobotModel
-from marm_setup.setup.groups import active_group_joints, group_joints, groups_by_name
-
-LIMIT_TOL = 1e-9  # [rad] or [m]
-
-
-def check_pose_values(srdf, robot: RobotModel, file: str) -> list[Finding]:
-    """Group exists, joints exist and belong to the group, all active joints given, within bounds."""
-    by_name = groups_by_name(srdf.groups)
-    out: list[Finding] = []
-    for state in srdf.group_states:
-        where = f"group_state[{state.name}]"
-        if state.group not in by_name:
-            out.append(error("pose.unknown-group", file, where, f"unknown group '{state.group}'"))
-            continue
-        group = by_name[state.group]
-        members = set(group_joints(group, by_name, robot))
-        given = dict(state.values)
-        for joint, value in state.values:
-            out += _check_value(joint, value, members, state.group, robot, file, where)
-        active = active_group_joints(group, by_name, robot, tuple(srdf.passive_joints))
-        missing = [j for j in active if j not in given]
-        if missing:
-            msg = f"no value for joint(s) {', '.join(missing)} of group '{state.group}'"
-            out.append(error("pose.missing-joint", file, where, msg, "give every joint of the group"))
-    return out
-
-
-def _check_value(joint, value, members, group, robot, file, where) -> list[Finding]:
-    elem = f"{where}.joint[{joint}]"
-    if joint not in robot.joint_map:
-        return [error("pose.unknown-joint", file, elem, f"unknown joint '{joint}'")]
-    if joint not in members:
-        return [
-            error("pose.joint-not-in-group", file, elem, f"joint '{joint}' is not part of group '{group}'")
-        ]
-    j = robot.joint(joint)
-    if j.type == "continuous" or not j.is_actuated:
-        return []
-    lo, hi = j.bounds
-    if lo - LIMIT_TOL <= value <= hi + LIMIT_TOL:
-        return []
-    msg = f"value {value:g} is outside the limits [{lo:g}, {hi:g}]"
-    return [error("pose.out-of-limits", file, elem, msg, f"use a value in [{lo:g}, {hi:g}]")]
+from marm_setup.setup.groups import group_joints, groups_by_name
 
 
 def pose_configuration(state, robot: RobotModel, base: Mapping[str, float] | None = None) -> np.ndarray:
@@ -145,9 +106,8 @@ def check_initial_positions(section, robot: RobotModel) -> list[Finding]:
             out.append(error("pose.initial-unknown-joint", section.file, where, f"unknown joint '{joint}'"))
         elif isinstance(value, bool) or not isinstance(value, (int, float)):
             out.append(error("pose.initial-malformed", section.file, where, f"not a number: {value!r}"))
-        elif robot.joint(joint).is_actuated and robot.joint(joint).type != "continuous":
+        elif not robot.joint(joint).within_limits(value):
             lo, hi = robot.joint(joint).bounds
-            if not lo - LIMIT_TOL <= value <= hi + LIMIT_TOL:
-                msg = f"initial position {value:g} is outside the limits [{lo:g}, {hi:g}]"
-                out.append(error("pose.initial-out-of-limits", section.file, where, msg))
+            msg = f"initial position {value:g} is outside the limits [{lo:g}, {hi:g}]"
+            out.append(error("pose.initial-out-of-limits", section.file, where, msg))
     return out

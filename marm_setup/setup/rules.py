@@ -1,0 +1,293 @@
+"""The semantic rules of an SRDF against its URDF, one set for every entry point.
+
+Groups, named poses, end effectors, virtual and passive joints and disabled pairs of an SRDF
+and of a SetupModel are the same values (`Srdf`), so one rule serves both: `check_setup` (init,
+render) raises the first error, `validate` reports every finding. Only the element naming
+differs: key paths of `marm_setup.yaml` (`groups[arm].chain.tip`, `setup_element`) or SRDF
+elements (`group[arm].chain`, `srdf_element`).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+
+from marm_setup.findings import Finding, error, warning
+from marm_setup.names import did_you_mean
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.groups import active_group_joints, group_joints, group_links, groups_by_name
+from marm_setup.setup.model import VIRTUAL_JOINT_TYPES, EndEffector, Group, GroupState
+from marm_setup.setup.srdf import Srdf
+
+
+@dataclass(frozen=True, slots=True)
+class Where:
+    """An element, whatever the file: `kind` (`group`, `group_state`, ...), its name, the path
+    inside it (`("chain", "tip")`, `("joints", 1)`) and, for unnamed list items, its index."""
+
+    kind: str
+    name: str = ""
+    part: tuple[str | int, ...] = ()
+    index: int | None = None
+
+
+Style = Callable[[Where], str]
+
+_SETUP_LISTS = {
+    "robot": "robot_name",
+    "group": "groups",
+    "group_state": "group_states",
+    "end_effector": "end_effectors",
+    "virtual_joint": "virtual_joints",
+    "passive_joint": "passive_joints",
+    "disable_collisions": "collision.disabled",
+}
+_SRDF_GROUP_PARTS = {"chain": ".chain", "joints": ".joint", "links": ".link", "subgroups": ".group"}
+
+
+def setup_element(w: Where) -> str:
+    """`marm_setup.yaml` key paths: `groups[arm].joints[1]`, `group_states[home].values.joint1`."""
+    head = _SETUP_LISTS[w.kind]
+    if w.kind != "robot":
+        head += f"[{w.name if w.index is None else w.index}]"
+    return head + "".join(f"[{p}]" if isinstance(p, int) else f".{p}" for p in w.part)
+
+
+def srdf_element(w: Where) -> str:
+    """SRDF element names: `group[arm].joint`, `group_state[home].joint[joint1]`."""
+    if w.kind == "robot":
+        return "robot"
+    head = f"{w.kind}[{w.name}]"
+    if w.kind == "group" and w.part and (w.part[0] != "subgroups" or len(w.part) > 1):
+        return head + _SRDF_GROUP_PARTS[str(w.part[0])]
+    if w.kind == "group_state" and len(w.part) > 1:
+        return f"{head}.joint[{w.part[1]}]"
+    return head
+
+
+class _Rules:
+    """Finding makers bound to one file, robot and style."""
+
+    def __init__(self, srdf: Srdf, robot: RobotModel, file: str, style: Style):
+        self.srdf, self.robot, self.file, self.style = srdf, robot, file, style
+        self.groups = groups_by_name(srdf.groups)
+
+    def error(self, rule: str, where: Where, message: str, hint: str = "") -> Finding:
+        return error(rule, self.file, self.style(where), message, hint)
+
+    def warning(self, rule: str, where: Where, message: str, hint: str = "") -> Finding:
+        return warning(rule, self.file, self.style(where), message, hint)
+
+    def unknown(self, rule: str, kind: str, name: str, known: Iterable[str], where: Where) -> list[Finding]:
+        """[the unknown-name finding] when `name` is not in `known`, else []."""
+        known = tuple(known)
+        if name in known:
+            return []
+        return [self.error(rule, where, f"unknown {kind} '{name}'", did_you_mean(name, known))]
+
+    def link(self, name: str, where: Where) -> list[Finding]:
+        return self.unknown("srdf.unknown-link", "link", name, self.robot.link_map, where)
+
+    def joint(self, name: str, where: Where, rule: str = "srdf.unknown-joint") -> list[Finding]:
+        return self.unknown(rule, "joint", name, self.robot.joint_map, where)
+
+    def group(self, name: str, where: Where, rule: str, kind: str = "group") -> list[Finding]:
+        return self.unknown(rule, kind, name, self.groups, where)
+
+
+def check_semantics(srdf: Srdf, robot: RobotModel, file: str, style: Style = srdf_element) -> list[Finding]:
+    """Every rule, in a fixed order (the setup check raises the first error)."""
+    r = _Rules(srdf, robot, file, style)
+    out = check_robot_name(r)
+    out += check_duplicate_groups(r)
+    out += check_virtual_joints(r)
+    out += check_groups(r)
+    out += check_subgroup_cycles(r)
+    out += check_group_states(r)
+    out += check_end_effectors(r)
+    out += check_passive_joints(r)
+    out += check_disabled_links(r)
+    return out
+
+
+def check_robot_name(r: _Rules) -> list[Finding]:
+    if r.srdf.robot_name == r.robot.name:
+        return []
+    msg = f"'{r.srdf.robot_name}' is not the URDF's robot name '{r.robot.name}'"
+    return [r.error("srdf.robot-name", Where("robot"), msg)]
+
+
+def check_duplicate_groups(r: _Rules) -> list[Finding]:
+    counts = Counter(g.name for g in r.srdf.groups)
+    return [
+        r.error("srdf.duplicate-group", Where("group", name), f"group '{name}' defined {n} times")
+        for name, n in counts.items()
+        if n > 1
+    ]
+
+
+def check_virtual_joints(r: _Rules) -> list[Finding]:
+    out: list[Finding] = []
+    for vj in r.srdf.virtual_joints:
+        if vj.type not in VIRTUAL_JOINT_TYPES:
+            where = Where("virtual_joint", vj.name, ("type",))
+            msg = f"unknown type '{vj.type}'"
+            out.append(
+                r.error("srdf.virtual-joint-type", where, msg, did_you_mean(vj.type, VIRTUAL_JOINT_TYPES))
+            )
+        where = Where("virtual_joint", vj.name, ("child_link",))
+        missing = r.link(vj.child_link, where)
+        out += missing
+        if not missing and vj.child_link != r.robot.root:
+            msg = f"child link '{vj.child_link}' is not the URDF's root link '{r.robot.root}'"
+            out.append(r.error("srdf.virtual-joint-child", where, msg, "MoveIt skips such a virtual joint"))
+    return out
+
+
+def check_groups(r: _Rules) -> list[Finding]:
+    """Names exist, chains run down the tree; a group that holds nothing is a warning."""
+    out: list[Finding] = []
+    for group in r.srdf.groups:
+        found = _check_group(r, group)
+        if not found and not group_links(group, r.groups, r.robot):
+            found.append(
+                r.warning("srdf.empty-group", Where("group", group.name), "group has no links or joints")
+            )
+        out += found
+    return out
+
+
+def _check_group(r: _Rules, group: Group) -> list[Finding]:
+    def at(*part: str | int) -> Where:
+        return Where("group", group.name, part)
+
+    out: list[Finding] = []
+    if group.chain is not None:
+        base, tip = group.chain.base, group.chain.tip
+        missing = r.link(base, at("chain", "base")) + r.link(tip, at("chain", "tip"))
+        out += missing
+        if not missing and (base == tip or r.robot.chain(base, tip) is None):
+            msg = f"chain tip '{tip}' is not below base '{base}'"
+            out.append(r.error("srdf.chain-invalid", at("chain", "tip"), msg))
+    for i, joint in enumerate(group.joints):
+        out += r.joint(joint, at("joints", i))
+    for i, link in enumerate(group.links):
+        out += r.link(link, at("links", i))
+    for i, sub in enumerate(group.subgroups):
+        out += r.group(sub, at("subgroups", i), "srdf.unknown-subgroup")
+    return out
+
+
+def check_subgroup_cycles(r: _Rules) -> list[Finding]:
+    """A group that (through subgroups) contains itself: one finding per group on a cycle."""
+    edges = {g.name: tuple(g.subgroups) for g in r.srdf.groups}
+    out = []
+    for start in sorted(edges):
+        cycle = subgroup_cycle(start, edges)
+        if cycle:
+            msg = f"subgroups form a cycle: {' -> '.join(cycle)}"
+            out.append(r.error("srdf.subgroup-cycle", Where("group", start, ("subgroups",)), msg))
+    return out
+
+
+def subgroup_cycle(start: str, edges: Mapping[str, Iterable[str]]) -> tuple[str, ...] | None:
+    """A path of subgroup edges from `start` back to itself, or None; each group is visited once
+    (iterative, so diamond-shaped subgroup graphs stay linear)."""
+    parent: dict[str, str | None] = {start: None}
+    stack = [start]
+    while stack:
+        node = stack.pop()
+        for nxt in edges.get(node, ()):
+            if nxt == start:
+                path = [node]
+                while (up := parent[path[-1]]) is not None:
+                    path.append(up)
+                return (*reversed(path), start)
+            if nxt not in parent:
+                parent[nxt] = node
+                stack.append(nxt)
+    return None
+
+
+def check_group_states(r: _Rules) -> list[Finding]:
+    """Group exists, joints exist and belong to it, every active joint given, within limits."""
+    out: list[Finding] = []
+    for state in r.srdf.group_states:
+        unknown = r.group(state.group, Where("group_state", state.name, ("group",)), "pose.unknown-group")
+        out += unknown or _check_state(r, state)
+    return out
+
+
+def _check_state(r: _Rules, state: GroupState) -> list[Finding]:
+    group = r.groups[state.group]
+    members = set(group_joints(group, r.groups, r.robot))
+    out: list[Finding] = []
+    for joint, value in state.values:
+        where = Where("group_state", state.name, ("values", joint))
+        out += r.joint(joint, where, "pose.unknown-joint") or _check_value(r, state, joint, value, members)
+    given = {joint for joint, _ in state.values}
+    active = active_group_joints(group, r.groups, r.robot, tuple(r.srdf.passive_joints))
+    missing = [j for j in active if j not in given]
+    if missing:
+        msg = f"no value for joint(s) {', '.join(missing)} of group '{state.group}'"
+        out.append(r.error("pose.missing-joint", Where("group_state", state.name, ("values",)), msg))
+    return out
+
+
+def _check_value(r: _Rules, state: GroupState, joint: str, value: float, members: set[str]) -> list[Finding]:
+    where = Where("group_state", state.name, ("values", joint))
+    if joint not in members:
+        msg = f"joint '{joint}' is not part of group '{state.group}'"
+        return [r.error("pose.joint-not-in-group", where, msg)]
+    j = r.robot.joint(joint)
+    if j.within_limits(value):
+        return []
+    lo, hi = j.bounds
+    return [r.error("pose.out-of-limits", where, f"value {value:g} is outside the limits [{lo:g}, {hi:g}]")]
+
+
+def check_end_effectors(r: _Rules) -> list[Finding]:
+    out: list[Finding] = []
+    for ee in r.srdf.end_effectors:
+        out += _check_end_effector(r, ee)
+    return out
+
+
+def _check_end_effector(r: _Rules, ee: EndEffector) -> list[Finding]:
+    def at(part: str) -> Where:
+        return Where("end_effector", ee.name, (part,))
+
+    out = r.group(ee.group, at("group"), "srdf.ee-unknown-group")
+    out += r.link(ee.parent_link, at("parent_link"))
+    if ee.parent_group is not None:
+        out += r.group(ee.parent_group, at("parent_group"), "srdf.ee-unknown-parent-group", "parent group")
+    if out:
+        return out
+    if ee.parent_link in group_links(r.groups[ee.group], r.groups, r.robot):
+        msg = f"parent link '{ee.parent_link}' is inside the end effector's own group '{ee.group}'"
+        out.append(
+            r.error("srdf.ee-parent-in-group", at("parent_link"), msg, "use the link it is attached to")
+        )
+    if ee.parent_group is not None and ee.parent_link not in group_links(
+        r.groups[ee.parent_group], r.groups, r.robot
+    ):
+        msg = f"parent link '{ee.parent_link}' is not in parent group '{ee.parent_group}'"
+        out.append(r.error("srdf.ee-parent-not-in-parent-group", at("parent_link"), msg))
+    return out
+
+
+def check_passive_joints(r: _Rules) -> list[Finding]:
+    out: list[Finding] = []
+    for i, joint in enumerate(r.srdf.passive_joints):
+        out += r.joint(joint, Where("passive_joint", joint, index=i))
+    return out
+
+
+def check_disabled_links(r: _Rules) -> list[Finding]:
+    out: list[Finding] = []
+    for i, pair in enumerate(r.srdf.disabled):
+        name = f"{pair.link1} {pair.link2}"
+        out += r.link(pair.link1, Where("disable_collisions", name, ("link1",), i))
+        out += r.link(pair.link2, Where("disable_collisions", name, ("link2",), i))
+    return out
