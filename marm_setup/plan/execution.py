@@ -15,6 +15,7 @@ import numpy as np
 
 from marm_setup.plan.planner import GroupSpace, ValidityChecker
 from marm_setup.plan.timing import JointLimits, TimedTrajectory
+from marm_setup.robot.model import LIMIT_TOLERANCE
 
 
 @dataclass(frozen=True, slots=True)
@@ -89,7 +90,7 @@ def _limits(traj, space, limits, t, q, v, a, slack) -> list[str]:
         _first_over(a, limits.max_acceleration, t, names, "acceleration", slack),
         _first_over(traj.accelerations, limits.max_acceleration, traj.times, names, "acceleration", slack),
     ]
-    low, high = q < space.lower - 1e-9, q > space.upper + 1e-9
+    low, high = q < space.lower - LIMIT_TOLERANCE, q > space.upper + LIMIT_TOLERANCE
     if (low | high).any():
         k, j = np.argwhere(low | high)[0]
         lo, hi = space.lower[j], space.upper[j]

@@ -18,7 +18,7 @@ import numpy as np
 
 from marm_setup.plan.rrt import interpolate, rrt_connect, shortcut, verify_path
 from marm_setup.robot.kinematics import bounds
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot.model import LIMIT_TOLERANCE, RobotModel
 
 Pair = tuple[str, str]
 ValidityChecker = Callable[[np.ndarray], Sequence[Pair | None]]
@@ -158,7 +158,7 @@ class _Checker:
 
 def _limit_reason(space: GroupSpace, q: np.ndarray, what: str) -> str | None:
     for name, v, lo, hi in zip(space.joint_names, q, space.lower, space.upper, strict=True):
-        if not lo - 1e-9 <= v <= hi + 1e-9:
+        if not lo - LIMIT_TOLERANCE <= v <= hi + LIMIT_TOLERANCE:
             return f"{what} out of limits: {name} = {v:.6g} not in [{lo:.6g}, {hi:.6g}]"
     return None
 

@@ -6,7 +6,7 @@ import math
 from numbers import Real
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot.model import LIMIT_TOLERANCE, RobotModel
 from marm_setup.setup.groups import planning_joints
 
 FLAGS = {
@@ -94,7 +94,7 @@ def _check_entry(section, where, entry: dict, joint, target: str) -> list[Findin
         entry.get("has_velocity_limits")
         and _number(velocity)
         and joint.velocity
-        and velocity > joint.velocity + 1e-9
+        and velocity > joint.velocity + LIMIT_TOLERANCE
     ):
         msg = f"max_velocity {velocity:g} is above the URDF's {joint.velocity:g}"
         out.append(warning("limits.above-urdf", section.file, f"{where}.max_velocity", msg))
@@ -107,10 +107,10 @@ def _check_positions(section, where, entry: dict, joint) -> list[Finding]:
         return []
     out = []
     lo, hi = entry.get("min_position"), entry.get("max_position")
-    if _number(lo) and lo < joint.lower - 1e-9:
+    if _number(lo) and lo < joint.lower - LIMIT_TOLERANCE:
         msg = f"min_position {lo:g} is below the URDF's {joint.lower:g}"
         out.append(warning("limits.above-urdf", section.file, f"{where}.min_position", msg))
-    if _number(hi) and hi > joint.upper + 1e-9:
+    if _number(hi) and hi > joint.upper + LIMIT_TOLERANCE:
         msg = f"max_position {hi:g} is above the URDF's {joint.upper:g}"
         out.append(warning("limits.above-urdf", section.file, f"{where}.max_position", msg))
     return out
