@@ -13,6 +13,7 @@ FIXTURES = ROOT / "fixtures"
 MARM_URDF = FIXTURES / "marm" / "urdf" / "marm.urdf.xacro"
 GOLDENS = Path(__file__).resolve().parent / "goldens"
 REALWORLD = ROOT.parent / "shared" / "realworld"
+REALWORLD2 = ROOT.parent / "shared" / "realworld2"
 
 settings.register_profile("ci", derandomize=True, deadline=None, max_examples=25)
 settings.register_profile("dev", deadline=None, max_examples=50)
@@ -25,6 +26,14 @@ def pytest_addoption(parser):
 def realworld(*parts: str) -> Path:
     """A path under ../shared/realworld, skipping the test when it is absent."""
     path = REALWORLD.joinpath(*parts)
+    if not path.exists():
+        pytest.skip(f"{path} not present")
+    return path
+
+
+def realworld2(*parts: str) -> Path:
+    """A path under ../shared/realworld2 (vendor packages), skipping the test when it is absent."""
+    path = REALWORLD2.joinpath(*parts)
     if not path.exists():
         pytest.skip(f"{path} not present")
     return path

@@ -22,6 +22,7 @@ from marm_setup.validate.rules.controller_rules import (
     check_driver_controllers,
     check_fake_controllers,
     check_moveit_controllers,
+    check_ros2_namespace,
     moveit_controllers,
     ros1_driver_controllers,
     ros2_driver_controllers,
@@ -175,6 +176,8 @@ def check_controllers(pkg: ConfigPackage, robot) -> list[Finding]:
         return out
     ctrls, problems = moveit_controllers(section)
     out += problems + check_controller_names(ctrls, section.file)
+    if pkg.target == "ros2" and pkg.layout == "moveit2":
+        out += check_ros2_namespace(section)
     out += check_moveit_controllers(section, ctrls, robot)
     out += check_coverage(section, ctrls, pkg.srdf, robot, pkg.alt_moveit_controllers)
     if pkg.ros2_controllers is not None:

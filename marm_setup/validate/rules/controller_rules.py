@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.validate.rules.controller_selection import select_controllers
 
 MOVEIT_TYPES = ("FollowJointTrajectory", "GripperCommand")
 # driver controller type suffix -> (MoveIt type, the action namespace that driver serves)
@@ -20,6 +21,20 @@ DRIVER_TYPES = {
     "GripperActionController": ("GripperCommand", "gripper_cmd"),
     "ParallelGripperCommandController": ("GripperCommand", "gripper_cmd"),
 }
+
+# driver controller types whose `joints` / `joint` name URDF joints (ros2_controllers, ros_control)
+JOINT_DRIVER_TYPES = frozenset(
+    {
+        *DRIVER_TYPES,
+        "JointGroupPositionController",
+        "JointGroupVelocityController",
+        "JointGroupEffortController",
+        "ForwardCommandController",
+        "JointPositionController",
+        "JointVelocityController",
+        "JointEffortController",
+    }
+)
 
 
 @dataclass(frozen=True, slots=True)
@@ -31,18 +46,33 @@ class MoveItController:
     joints: tuple[str, ...]
     element: str
 
+    @property
+    def action(self) -> str:
+        """The action MoveIt connects to: `name/action_ns`, or `name` when action_ns is empty
+        (`getActionName` in moveit_simple_controller_manager's action_based_controller_handle.h);
+        an empty name gives `/action_ns`, the ROS-Industrial convention."""
+        return f"{self.name}/{self.action_ns}" if self.action_ns else self.name
 
-def moveit_controllers(section) -> tuple[list[MoveItController], list[Finding]]:
-    """Controllers from a ros1 `controller_list` or a ros2 `controller_names` section."""
+
+# MoveIt 1 moveit_simple_controller_manager.cpp (constructor, ~l.75) skips an entry unless it
+# has all four keys; `name` may be empty. MoveIt 2's initialize() reads `<name>.action_ns`,
+# `<name>.type` and a non-empty `<name>.joints` under `moveit_simple_controller_manager`.
+REQUIRED_KEYS = ("name", "joints", "action_ns", "type")
+# moveit_fake_controller_manager.cpp (MoveIt 1, constructor): only name and joints.
+FAKE_KEYS = ("name", "joints")
+
+
+def moveit_controllers(
+    section, required: tuple[str, ...] = REQUIRED_KEYS
+) -> tuple[list[MoveItController], list[Finding]]:
+    """Controllers from a ros1 `controller_list` or a ros2 `controller_names` section, as
+    MoveIt's simple controller manager reads them; entries it would skip are findings."""
     data = section.data if isinstance(section.data, dict) else {}
     if isinstance(data.get("controller_list"), list):
         items = [(section.element(f"controller_list[{i}]"), c) for i, c in enumerate(data["controller_list"])]
     elif isinstance(data.get("controller_names"), list):
         names = [str(n) for n in data["controller_names"]]
-        items = [(section.element(n), data.get(n, {"name": n}) or {}) for n in names]
-        items = [
-            (where, {"name": where.rsplit(".", 1)[-1], **c}) for where, c in items if isinstance(c, dict)
-        ]
+        items = [(section.element(n), {"name": n, **_mapping(data.get(n))}) for n in names]
     else:
         return [], [
             error(
@@ -54,17 +84,34 @@ def moveit_controllers(section) -> tuple[list[MoveItController], list[Finding]]:
         ]
     out, problems = [], []
     for where, entry in items:
-        ctrl = _controller(entry, where)
-        if ctrl is None:
-            problems.append(error("controller.malformed", section.file, where, "needs name, type and joints"))
+        missing = _missing_keys(entry, required)
+        if missing:
+            problems.append(_skipped(section.file, where, missing))
         else:
-            out.append(ctrl)
+            out.append(_controller(entry, where))
     return out, problems
 
 
-def _controller(entry, where: str) -> MoveItController | None:
-    if not isinstance(entry, dict) or not entry.get("name") or not isinstance(entry.get("joints"), list):
-        return None
+def _missing_keys(entry, required: tuple[str, ...]) -> list[str]:
+    if not isinstance(entry, dict):
+        return list(required)
+    missing = [k for k in required if k not in entry or entry[k] is None]
+    if "joints" not in missing and (not isinstance(entry["joints"], list) or not entry["joints"]):
+        missing.append("joints")
+    return missing
+
+
+def _skipped(file: str, where: str, missing: list[str]) -> Finding:
+    if missing == ["action_ns"]:
+        msg = "no action_ns: MoveIt skips this controller (an empty action_ns is allowed)"
+        return error(
+            "controller.missing-action-ns", file, where, msg, "add action_ns: follow_joint_trajectory"
+        )
+    msg = f"MoveIt skips this controller: a key it needs is missing or empty ({', '.join(missing)})"
+    return error("controller.malformed", file, where, msg)
+
+
+def _controller(entry: dict, where: str) -> MoveItController:
     default = entry.get("default", False)
     return MoveItController(
         name=str(entry["name"]),
@@ -74,6 +121,24 @@ def _controller(entry, where: str) -> MoveItController | None:
         joints=tuple(str(j) for j in entry["joints"]),
         element=where,
     )
+
+
+SIMPLE_MANAGER = "moveit_simple_controller_manager"
+
+
+def check_ros2_namespace(section) -> list[Finding]:
+    """MoveIt 2: the simple controller manager reads `moveit_simple_controller_manager.controller_names`
+    (moveit2 moveit_simple_controller_manager.cpp, `initialize`: PARAM_BASE_NAME prefix, "No
+    controller_names specified" otherwise), and MoveItConfigsBuilder.trajectory_execution loads
+    the file's keys as they are: top-level `controller_names` give MoveIt no controllers.
+    Ros2ControlManager asks ros2_control for its controllers instead and needs no list."""
+    data = section.data if isinstance(section.data, dict) else {}
+    manager = str(data.get("moveit_controller_manager", ""))
+    if section.prefix or "controller_names" not in data or "Ros2ControlManager" in manager:
+        return []
+    msg = f"controller_names is not under '{SIMPLE_MANAGER}': MoveIt 2 finds no controllers"
+    hint = f"indent controller_names and the controllers under '{SIMPLE_MANAGER}:'"
+    return [error("controller.no-namespace", section.file, "controller_names", msg, hint)]
 
 
 # -- MoveIt side -------------------------------------------------------------------------------
@@ -99,16 +164,7 @@ def _check_type(section, c: MoveItController) -> list[Finding]:
             f"type '{c.type}' is not one MoveIt's simple controller manager knows ({', '.join(MOVEIT_TYPES)})"
         )
         return [error("controller.unknown-type", section.file, c.element, msg)]
-    if not c.action_ns:
-        return [
-            error(
-                "controller.missing-action-ns",
-                section.file,
-                c.element,
-                f"controller '{c.name}' has no action_ns",
-            )
-        ]
-    if _implausible(c.type, c.action_ns):
+    if c.action_ns and _implausible(c.type, c.action_ns):
         msg = f"action_ns '{c.action_ns}' is implausible for a {c.type} controller"
         hint = (
             "follow_joint_trajectory"
@@ -127,29 +183,39 @@ def _implausible(type_: str, action_ns: str) -> bool:
 
 
 def check_coverage(section, ctrls, srdf, robot: RobotModel, alternatives=()) -> list[Finding]:
-    """Each active group joint is in exactly one default controller (else: uncovered / ambiguous)."""
+    """Every active group joint is in some controller, and each group's joints can be executed
+    by MoveIt's own controller selection (see `controller_selection`)."""
     out: list[Finding] = []
+    covered = {j for c in ctrls for j in c.joints}
     for joint, groups in sorted(_group_joints(srdf, robot).items()):
-        holders = [c for c in ctrls if joint in c.joints]
-        defaults = [c for c in holders if c.default]
-        where = section.element(f"joint[{joint}]")
-        label = f"joint '{joint}' (group {', '.join(groups)})"
-        if len(defaults) > 1:
-            names = ", ".join(c.name for c in defaults)
-            out.append(
-                error(
-                    "controller.multiple-defaults",
-                    section.file,
-                    where,
-                    f"{label} is in several default controllers: {names}",
-                )
-            )
-        elif not holders:
-            out.append(_uncovered(section, where, label, joint, alternatives))
-        elif not defaults:
-            msg = f"{label} is only in non-default controllers ({', '.join(c.name for c in holders)})"
-            out.append(warning("controller.no-default", section.file, where, msg, "set default: true on one"))
+        if joint not in covered:
+            label = f"joint '{joint}' (group {', '.join(groups)})"
+            out.append(_uncovered(section, section.element(f"joint[{joint}]"), label, joint, alternatives))
+    by_name = groups_by_name(srdf.groups)
+    for group in srdf.groups:
+        joints = active_group_joints(group, by_name, robot, tuple(srdf.passive_joints))
+        if joints and set(joints) <= covered:
+            out += _check_selection(section, group.name, joints, ctrls)
     return out
+
+
+def _check_selection(section, group: str, joints, ctrls) -> list[Finding]:
+    where = section.element(f"group[{group}]")
+    pick = select_controllers(joints, ctrls)
+    if pick is None:
+        msg = (
+            f"no set of controllers without shared joints covers group '{group}': MoveIt cannot "
+            "execute its motions ('Unable to identify any set of controllers')"
+        )
+        return [error("controller.no-combination", section.file, where, msg)]
+    if pick.tied:
+        options = " or ".join("+".join(repr(n) for n in o) for o in (pick.chosen, *pick.tied))
+        msg = (
+            f"MoveIt picks arbitrarily between {options} for group '{group}' (same defaults and joint count)"
+        )
+        hint = "set default: true on the one to use"
+        return [warning("controller.ambiguous", section.file, where, msg, hint)]
+    return []
 
 
 def _uncovered(section, where, label, joint, alternatives) -> Finding:
@@ -228,7 +294,9 @@ def check_driver_controllers(moveit_section, section, driver, ctrls, robot: Robo
             )
         ]
     out: list[Finding] = []
-    for _name, (_type, joints, where) in sorted(driver.items()):
+    for _name, (dtype, joints, where) in sorted(driver.items()):
+        if dtype.rsplit("/", 1)[-1] not in JOINT_DRIVER_TYPES:
+            continue  # e.g. a twist controller's `joint` names a Cartesian frame, not a URDF joint
         for joint in joints or ():
             if joint not in robot.joint_map:
                 out.append(error("controller.unknown-joint", section.file, where, f"unknown joint '{joint}'"))
@@ -252,8 +320,8 @@ def _check_against_driver(moveit_section, section, driver, c: MoveItController) 
     if c.type in MOVEIT_TYPES and c.type != expected_type:
         msg = f"MoveIt expects a {c.type} action but '{c.name}' is a {dtype}"
         out.append(error("controller.driver-type", file, where, msg))
-    elif c.action_ns and c.action_ns != served_ns:
-        msg = f"{dtype} serves '{c.name}/{served_ns}', MoveIt uses action_ns '{c.action_ns}'"
+    elif c.action != f"{c.name}/{served_ns}":
+        msg = f"{dtype} serves '{c.name}/{served_ns}', MoveIt connects to '{c.action}'"
         out.append(error("controller.driver-action", file, where, msg, f"set action_ns: {served_ns}"))
     if djoints is None:
         msg = f"'{c.name}' names no joints ({dtype} needs them; MoveIt's has {list(c.joints)})"
@@ -303,8 +371,8 @@ def _check_arbotix_follow(section, c: MoveItController, drivers: dict) -> list[F
         ]
     out = []
     action = entry.get("action_name", "follow_joint_trajectory")
-    expected = f"{c.name}/{c.action_ns}"
-    if c.action_ns and action != expected:
+    expected = c.action
+    if action != expected:
         msg = f"action_name '{action}' differs from MoveIt's '{expected}'"
         out.append(
             error(
@@ -342,7 +410,7 @@ def _check_gripper_node(section, c: MoveItController, nodes: dict[str, tuple[str
 
 def check_fake_controllers(section, srdf, robot: RobotModel) -> list[Finding]:
     """Joints exist, every group's active joints are covered, `initial` poses exist."""
-    ctrls, out = moveit_controllers(section)
+    ctrls, out = moveit_controllers(section, FAKE_KEYS)
     out += check_moveit_controllers(section, ctrls, robot, real=False)
     covered = {j for c in ctrls for j in c.joints}
     for joint, groups in sorted(_group_joints(srdf, robot).items()):

@@ -1,0 +1,173 @@
+"""Controller rules follow MoveIt's real reading and selection (keep-one-thing / break-one-thing).
+
+Each case writes a small controllers file shaped like a real package's (ROS-Industrial's
+`name: ""`, the dual panda's several defaults, Motoman's non-default sub-controllers) for the
+real panda robot of ../shared/realworld.
+"""
+
+from __future__ import annotations
+
+import pytest
+import yaml
+
+from marm_setup.validate.discovery import ConfigSection, discover_package
+from marm_setup.validate.rules.controller_rules import (
+    check_coverage,
+    check_driver_controllers,
+    check_moveit_controllers,
+    check_ros2_namespace,
+    moveit_controllers,
+    ros2_driver_controllers,
+)
+from tests.validate_helpers import panda
+
+ARM = [f"panda_joint{i}" for i in range(1, 8)]
+
+
+@pytest.fixture(scope="module")
+def panda1():
+    from marm_setup.validate.runner import load_package_robot
+
+    good = panda("ros1")
+    pkg = discover_package(good.path, package_paths=good.package_paths)
+    robot, problems = load_package_robot(pkg)
+    assert not problems
+    return pkg.srdf, robot
+
+
+def section(text: str, prefix: str = "") -> ConfigSection:
+    data = yaml.safe_load(text)
+    if prefix:
+        data = data[prefix]
+    return ConfigSection("config/controllers.yaml", data, prefix)
+
+
+def findings(text: str, panda1, prefix: str = ""):
+    srdf, robot = panda1
+    sec = section(text, prefix)
+    ctrls, out = moveit_controllers(sec)
+    out += check_moveit_controllers(sec, ctrls, robot)
+    out += check_coverage(sec, ctrls, srdf, robot)
+    return ctrls, out
+
+
+def entry(name, joints, default=None, action_ns="follow_joint_trajectory"):
+    item = {"name": name, "action_ns": action_ns, "type": "FollowJointTrajectory", "joints": joints}
+    if default is not None:
+        item["default"] = default
+    return item
+
+
+def dump(*entries) -> str:
+    return yaml.safe_dump({"controller_list": list(entries)})
+
+
+HAND = entry("hand_controller", ["panda_finger_joint1"], True)
+
+
+def test_empty_name_is_the_ros_industrial_convention(panda1):
+    """fanuc_cr7ia_moveit_config/config/controllers.yaml: `name: ""`, action_ns joint_trajectory_action."""
+    ctrls, out = findings(dump(entry("", ARM, action_ns="joint_trajectory_action"), HAND), panda1)
+    assert out == []
+    assert ctrls[0].action == "/joint_trajectory_action"
+
+
+def test_a_missing_key_makes_moveit_skip_the_controller(panda1):
+    arm = entry("arm_controller", ARM, True)
+    del arm["type"]
+    _, out = findings(dump(arm, HAND), panda1)
+    rules = sorted({f.rule for f in out if f.is_error})
+    assert rules == ["controller.malformed", "controller.uncovered-joint"]
+
+
+def test_missing_action_ns_is_an_error_but_an_empty_one_is_not(panda1):
+    arm = entry("arm_controller", ARM, True)
+    del arm["action_ns"]
+    _, out = findings(dump(arm, HAND), panda1)
+    assert "controller.missing-action-ns" in {f.rule for f in out}
+    _, out = findings(dump(entry("arm_controller", ARM, True, action_ns=""), HAND), panda1)
+    assert out == []
+
+
+def test_several_defaults_on_different_joints_are_fine(panda1):
+    """dual_panda_moveit_config: every controller default, one of them spanning both arms."""
+    both = entry("both_controller", [*ARM, "panda_finger_joint1"], True)
+    _, out = findings(dump(entry("arm_controller", ARM, True), both, HAND), panda1)
+    assert out == []
+
+
+def test_non_default_controllers_are_used_directly(panda1):
+    """motoman_sda10f / ur5e: no `default` anywhere; a single matching option is used as it is."""
+    _, out = findings(dump(entry("arm_controller", ARM), entry("hand", ["panda_finger_joint1"])), panda1)
+    assert out == []
+
+
+def test_two_equal_options_are_an_ambiguity_warning(panda1):
+    _, out = findings(dump(entry("a", ARM, True), entry("b", ARM, True), HAND), panda1)
+    assert [(f.rule, f.severity, f.element) for f in out] == [
+        ("controller.ambiguous", "warning", "group[panda_arm]"),
+        ("controller.ambiguous", "warning", "group[panda_arm_hand]"),
+    ]
+    _, out = findings(dump(entry("a", ARM, True), entry("b", ARM, False), HAND), panda1)
+    assert out == []  # the default breaks the tie
+
+
+def test_overlapping_controllers_cannot_be_combined(panda1):
+    _, out = findings(dump(entry("a", ARM[:4], True), entry("b", ARM[3:], True), HAND), panda1)
+    assert {(f.rule, f.element) for f in out if f.is_error} == {
+        ("controller.no-combination", "group[panda_arm]"),
+        ("controller.no-combination", "group[panda_arm_hand]"),
+    }
+
+
+MC2 = """
+moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager
+controller_names: [panda_arm_controller]
+panda_arm_controller:
+  action_ns: follow_joint_trajectory
+  type: FollowJointTrajectory
+  default: true
+  joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4, panda_joint5, panda_joint6, panda_joint7]
+"""
+
+
+def test_ros2_controllers_outside_the_simple_manager_namespace():
+    assert [f.rule for f in check_ros2_namespace(section(MC2))] == ["controller.no-namespace"]
+    nested = "moveit_simple_controller_manager:\n" + "".join(f"  {line}\n" for line in MC2.splitlines())
+    assert check_ros2_namespace(section(nested, "moveit_simple_controller_manager")) == []
+    ros2_control = MC2.replace(
+        "moveit_simple_controller_manager/MoveItSimpleControllerManager", "x/Ros2ControlManager"
+    )
+    assert check_ros2_namespace(section(ros2_control)) == []
+
+
+KORTEX_R2C = """
+controller_manager:
+  ros__parameters:
+    joint_trajectory_controller:
+      type: joint_trajectory_controller/JointTrajectoryController
+    twist_controller:
+      type: picknik_twist_controller/PicknikTwistController
+joint_trajectory_controller:
+  ros__parameters:
+    joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4, panda_joint5, panda_joint6, panda_joint7]
+twist_controller:
+  ros__parameters:
+    joint: tcp
+"""
+
+
+def test_a_driver_controller_of_unknown_type_names_no_urdf_joints(panda1):
+    """ros2_kortex: the twist controller's `joint: tcp` is a Cartesian frame."""
+    _, robot = panda1
+    driver_section = ConfigSection("config/ros2_controllers.yaml", yaml.safe_load(KORTEX_R2C))
+    driver = ros2_driver_controllers(driver_section)
+    moveit = section(dump(entry("joint_trajectory_controller", ARM, True)))
+    ctrls, _ = moveit_controllers(moveit)
+    assert check_driver_controllers(moveit, driver_section, driver, ctrls, robot) == []
+    broken = KORTEX_R2C.replace("joints: [panda_joint1,", "joints: [tcp,")
+    driver_section = ConfigSection("config/ros2_controllers.yaml", yaml.safe_load(broken))
+    found = check_driver_controllers(
+        moveit, driver_section, ros2_driver_controllers(driver_section), ctrls, robot
+    )
+    assert "controller.unknown-joint" in {f.rule for f in found}
