@@ -1,4 +1,11 @@
-"""Collision-matrix freshness: a pair the SRDF marks Never must not collide in a quick resample.
+"""Collision-matrix freshness: a pair the SRDF marks Never should not collide in a quick resample.
+
+A hit is a WARNING with its evidence (hit rate, one colliding configuration, the command that
+recomputes the matrix), never an error: MoveIt never checks a disabled pair whatever its reason
+label (srdfdom `model.cpp` loadDisabledCollisions keeps only link1/link2 for the allowed
+collision matrix; the reason is informational), authors disable touching pairs on purpose (a
+gripper linkage), and a pair that collides at the default state is what the Setup Assistant
+itself would label Default (compute_default_collisions.cpp, phase "default state").
 
 The resample uses the matrix computation's own sampler (`collision_matrix.trial_samples`) and
 the seed in marm_setup.yaml (else 0), so its states are a prefix of the ones `init`/`collisions`
@@ -12,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from marm_setup.collision.pairs import DisabledReason
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, warning
 from marm_setup.robot.model import RobotModel
 
 DEFAULT_TRIALS = 1000
@@ -44,10 +51,11 @@ def _stale(pair, n: int, q: np.ndarray, robot: RobotModel, scene, file: str, tri
     state = ", ".join(
         f"{name}={value:.3f}" for name, value in zip(robot.active_joint_names, q[row], strict=True)
     )
-    return error(
+    return warning(
         "matrix.stale",
         file,
         f"disable_collisions[{pair[0]} {pair[1]}]",
-        f"marked Never but collides in {n} of {trials} random states, e.g. {state}",
+        f"marked Never but collides in {n} of {trials} random states ({100 * n / trials:.1f} %), "
+        f"e.g. {state}; MoveIt never checks this pair",
         hint="recompute the matrix for this URDF (marm-setup collisions URDF --srdf SRDF)",
     )
