@@ -9,6 +9,7 @@ from dataclasses import asdict, dataclass
 ERROR = "error"
 WARNING = "warning"
 SEVERITIES = (ERROR, WARNING)
+INTERNAL = "internal.error"  # a crash inside validate itself (exit 2), never the package's fault
 
 _COLOURS = {ERROR: "\x1b[31m", WARNING: "\x1b[33m"}
 _BOLD = "\x1b[1m"

@@ -13,8 +13,8 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from marm_setup.errors import InputError
-from marm_setup.findings import Finding, error, sort_findings, warning
+from marm_setup.errors import InputError, MarmError
+from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
 from marm_setup.validate.discovery import ConfigPackage, discover_package
 from marm_setup.validate.rules.controller_rules import (
     check_arbotix,
@@ -50,6 +50,7 @@ class Validation:
     urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro
     robot: str | None  # the URDF's robot name; None when it did not load
     planned_pairs: int | None  # pose pairs planned by the runtime checks; None when they did not run
+    skipped: tuple[str, ...] = ()  # rule families that did not run, each with why
 
     def describe(self) -> str:
         """One line: what was validated, against which robot, and whether planning ran."""
@@ -57,15 +58,28 @@ class Validation:
         n = self.planned_pairs
         runtime = "runtime planning skipped" if n is None else f"planned {n} pose pair{'' if n == 1 else 's'}"
         runtime += " (no group has two usable named poses)" if n == 0 else ""
+        skipped = "".join(f"; skipped {s}" for s in self.skipped)
         return (
             f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
-            f"from {self.urdf} ({self.urdf_origin}); {runtime}"
+            f"from {self.urdf} ({self.urdf_origin}); {runtime}{skipped}"
         )
 
     def as_dict(self) -> dict:
         """The json `validated` object (everything but the findings)."""
         keys = ("package", "target", "layout", "urdf", "urdf_origin", "robot", "planned_pairs")
-        return {key: getattr(self, key) for key in keys}
+        return {**{key: getattr(self, key) for key in keys}, "skipped": list(self.skipped)}
+
+
+def guarded(family: str, fn, *args, **kwargs) -> list[Finding]:
+    """`fn(*args)`'s findings; a crash in one rule family becomes one finding of its own (exit 2)
+    instead of stopping the others."""
+    try:
+        return list(fn(*args, **kwargs))
+    except MarmError as exc:  # a file the family needed could not be read
+        return [error(f"{family}.unreadable", exc.path or "", exc.element or "", exc.message)]
+    except Exception as exc:  # noqa: BLE001 - a bug in one family must not hide the rest
+        msg = f"the {family} rules crashed ({type(exc).__name__}: {exc}); the other rules ran"
+        return [error(INTERNAL, "", family, msg, "please report this with the package")]
 
 
 def validate_package(path: str | Path, **options) -> list[Finding]:
@@ -88,15 +102,14 @@ def validate(
     """
     pkg = discover_package(path, urdf=urdf, xacro_args=xacro_args, package_paths=package_paths)
     findings = list(pkg.problems)
-    findings += check_package_xml(pkg.root, pkg.package_xml)
-    findings += check_launch_files(pkg.root, pkg.name, pkg.launch_files, pkg.target)
+    findings += guarded("package", check_package_xml, pkg.root, pkg.package_xml)
+    findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch_files, pkg.target)
     robot, problems = load_package_robot(pkg)
     findings += problems
     if pkg.srdf_path is None:
         findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
     pairs = None
-    checked = robot is not None and pkg.srdf is not None
-    if checked:
+    if robot is not None and pkg.srdf is not None:
         findings += check_static(pkg, robot)
         scene_findings, pairs = check_with_scene(pkg, robot, plan=plan, matrix_trials=matrix_trials)
         findings += scene_findings
@@ -109,7 +122,19 @@ def validate(
         urdf_origin=pkg.urdf_origin,
         robot=robot.name if robot is not None else None,
         planned_pairs=pairs,
+        skipped=skipped_families(pkg, robot),
     )
+
+
+def skipped_families(pkg: ConfigPackage, robot) -> tuple[str, ...]:
+    """What did not run or ran on less than the whole file, each with why (for the summary)."""
+    out = [f"the rules on {f.file} ({f.message})" for f in pkg.problems if f.rule == "yaml.parse"]
+    if robot is None:
+        out.append("every rule needing the robot (its URDF did not load)")
+    elif pkg.srdf is None:
+        why = "no SRDF found" if pkg.srdf_path is None else f"{pkg.srdf_path} could not be read"
+        out.append(f"the SRDF, pose, kinematics, limits, OMPL, controller and collision rules ({why})")
+    return tuple(out)
 
 
 def shown_path(pkg: ConfigPackage, file: Path) -> str:
@@ -147,19 +172,20 @@ def load_package_robot(pkg: ConfigPackage):
 
 
 def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
-    """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking)."""
+    """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking), each
+    family on its own: one that fails leaves the others running."""
     srdf, file = pkg.srdf, pkg.srdf_path
-    out = check_srdf(srdf, robot, file, pkg.srdf_text)
-    out += check_srdf_names(srdf, file)
+    out = guarded("srdf", check_srdf, srdf, robot, file, pkg.srdf_text)
+    out += guarded("names", check_srdf_names, srdf, file)
     if pkg.initial_positions is not None:
-        out += check_initial_positions(pkg.initial_positions, robot)
+        out += guarded("pose", check_initial_positions, pkg.initial_positions, robot)
     if pkg.kinematics is not None:
-        out += check_kinematics(pkg.kinematics, srdf, robot)
+        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot)
     if pkg.joint_limits is not None:
-        out += check_joint_limits(pkg.joint_limits, srdf, robot, pkg.target)
+        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
     if pkg.ompl is not None:
-        out += check_ompl(pkg.ompl, srdf)
-    out += check_controllers(pkg, robot)
+        out += guarded("ompl", check_ompl, pkg.ompl, srdf)
+    out += guarded("controller", check_controllers, pkg, robot)
     return out
 
 
@@ -218,14 +244,17 @@ def check_with_scene(
         scene = CollisionScene(robot)
     except InputError as exc:
         return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)], None
-    out = check_pose_collisions(pkg.srdf, robot, scene, pkg.srdf_path, initial_state(pkg))
+    out = guarded("pose", check_pose_collisions, pkg.srdf, robot, scene, pkg.srdf_path, initial_state(pkg))
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
-    out += check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed)
+    out += guarded(
+        "matrix", check_matrix_fresh, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed
+    )
     if not plan:
         return out, None
-    runtime, pairs = run_runtime_checks(pkg, robot, scene)
-    return out + runtime, pairs
+    planned: list = []
+    out += guarded("runtime", run_runtime_checks, pkg, robot, scene, planned)
+    return out, len(planned)
 
 
 def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
@@ -257,9 +286,8 @@ def initial_state(pkg: ConfigPackage) -> dict[str, float]:
     return initial_values(pkg.srdf, poses, positions if isinstance(positions, dict) else None)
 
 
-def run_runtime_checks(pkg: ConfigPackage, robot, scene) -> tuple[list[Finding], int]:
-    """The planner's runtime checks, and how many pose pairs they planned."""
+def run_runtime_checks(pkg: ConfigPackage, robot, scene, planned: list) -> list[Finding]:
+    """The planner's runtime checks; `planned` receives each pose pair planned."""
     from marm_setup.validate.runtime import check_runtime
 
-    planned: list[tuple[str, str, str]] = []
-    return list(check_runtime(pkg, robot, scene, planned=planned)), len(planned)
+    return list(check_runtime(pkg, robot, scene, planned=planned))

@@ -44,6 +44,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         "urdf_origin": "config/<robot>.urdf.xacro",
         "robot": "panda",
         "planned_pairs": None,
+        "skipped": [],
     }
     assert (doc["errors"], doc["warnings"]) == (1, 1)
 
@@ -172,3 +173,72 @@ def test_a_package_with_one_pose_per_group_says_why_nothing_was_planned(tmp_path
     assert result.stdout.splitlines()[-2].endswith(
         "; planned 0 pose pairs (no group has two usable named poses)"
     )
+
+
+def test_json_is_printed_even_when_the_package_cannot_be_read(tmp_path):
+    result = runner.invoke(app, ["validate", str(tmp_path / "nope"), "--format", "json"])
+    assert result.exit_code == 2
+    (finding,) = json.loads(result.stdout)["findings"]
+    assert finding["rule"] == "input.unreadable"
+    assert result.stderr.startswith("error: ")
+
+
+def test_a_crashing_rule_family_is_a_finding_of_its_own_and_exit_2(tmp_path, monkeypatch):
+    """A bug in one family (simulated: the OMPL rules raise) leaves the others running; json
+    still prints JSON and the exit code says validate itself failed."""
+    from marm_setup.validate import runner as validate_runner
+
+    def crash(*_args):
+        raise KeyError("boom")
+
+    monkeypatch.setattr(validate_runner, "check_ompl", crash)
+    good = panda("ros1")
+    args = ["validate", str(good.path), "--no-plan", "--format", "json"]
+    result = runner.invoke(app, [*args, "--package-path", str(good.package_paths[0])])
+    assert result.exit_code == 2
+    rules = [f["rule"] for f in json.loads(result.stdout)["findings"]]
+    assert "internal.error" in rules and "pose.collision" in rules  # the other families ran
+
+
+def test_json_survives_a_crash_outside_the_rules(tmp_path, monkeypatch):
+    from marm_setup.validate import runner as validate_runner
+
+    def crash(*_args, **_kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(validate_runner, "discover_package", crash)
+    result = runner.invoke(app, ["validate", str(tmp_path), "--format", "json"])
+    assert result.exit_code == 2
+    (finding,) = json.loads(result.stdout)["findings"]
+    assert finding["rule"] == "internal.error" and "boom" in finding["message"]
+    assert "Traceback" not in result.stdout
+
+
+def test_a_self_pair_is_accepted_as_srdfdom_does(tmp_path):
+    """`<disable_collisions link1="a" link2="a"/>` crashed the matrix rules (a traceback)."""
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    pair = '<disable_collisions link1="panda_link1" link2="panda_link1" reason="Never"/>'
+    replace_text(pkg, "config/panda.srdf", "</robot>", f"{pair}</robot>")
+    args = [
+        "validate",
+        str(pkg),
+        "--no-plan",
+        "--format",
+        "json",
+        "--package-path",
+        str(good.package_paths[0]),
+    ]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 1  # the panda's one real error (the transport pose)
+    rules = {f["rule"] for f in json.loads(result.stdout)["findings"]}
+    assert rules == {"pose.collision", "launch.missing-file"}
+
+
+def test_the_summary_says_what_was_skipped_and_why(tmp_path):
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, "config/joint_limits.yaml", "joint_limits:", "joint_limits: [")
+    args = ["validate", str(pkg), "--no-plan", "--package-path", str(good.package_paths[0])]
+    summary = runner.invoke(app, args).stdout.splitlines()[-2]
+    assert "; skipped the rules on config/joint_limits.yaml (malformed YAML" in summary

@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from marm_setup.cli.common import OutputFormat, PackagePaths, XacroArgs
+from marm_setup.cli.common import OutputFormat, PackagePaths, XacroArgs, echo_err
 
 
 def validate(
@@ -28,22 +28,53 @@ def validate(
     """Validate a config package: SRDF vs URDF, poses, collision matrix, kinematics, limits,
     controllers, OMPL, launch files. Exit 0 clean, 1 with errors (or warnings with --strict),
     2 when the package cannot be read."""
-    from marm_setup.findings import count, format_json, format_text
+    from marm_setup.findings import INTERNAL, count, format_json, format_text
     from marm_setup.robot.load import parse_xacro_args
-    from marm_setup.validate.runner import validate as run_validation
 
-    result = run_validation(
-        package,
+    as_json = format is OutputFormat.json
+    options = dict(
         urdf=urdf,
         xacro_args=parse_xacro_args(xacro_arg or []),
         package_paths=package_path or [],
         plan=not no_plan,
     )
-    if format is OutputFormat.json:
+    result = _run_for_json(package, options) if as_json else _run(package, options)
+    if isinstance(result, int):
+        raise typer.Exit(result)
+    if as_json:
         typer.echo(format_json(result.findings, checked=result.as_dict()), nl=False)
     else:
         text = format_text(result.findings, color=sys.stdout.isatty(), checked=result.describe())
         typer.echo(text, nl=False)
     errors, warnings = count(result.findings)
+    if any(f.rule == INTERNAL for f in result.findings):
+        raise typer.Exit(2)
     if errors or (strict and warnings):
         raise typer.Exit(1)
+
+
+def _run(package: Path, options: dict):
+    from marm_setup.validate.runner import validate as run_validation
+
+    return run_validation(package, **options)
+
+
+def _run_for_json(package: Path, options: dict):
+    """The validation, or (after printing a JSON document with the one finding) exit code 2:
+    `--format json` always prints JSON, whatever goes wrong."""
+    from marm_setup.errors import MarmError
+    from marm_setup.findings import INTERNAL, error, format_json
+
+    try:
+        return _run(package, options)
+    except MarmError as exc:
+        finding = error("input.unreadable", exc.path or str(package), exc.element or "", exc.message)
+        echo_err(f"error: {exc}")
+    except Exception as exc:  # noqa: BLE001 - a bug still gives a JSON document (and exit 2)
+        import traceback
+
+        message = f"validate crashed ({type(exc).__name__}: {exc})"
+        finding = error(INTERNAL, str(package), "", message, "please report this with the package")
+        echo_err(traceback.format_exc().rstrip())
+    typer.echo(format_json([finding]), nl=False)
+    return 2

@@ -33,7 +33,11 @@ def check_matrix_fresh(
     from marm_setup.collision.matrix import trial_samples
 
     geometry = set(scene.links)
-    never = [p.pair for p in srdf.disabled if p.reason is DisabledReason.NEVER and set(p.pair) <= geometry]
+    never = [
+        p.pair
+        for p in srdf.disabled
+        if p.reason is DisabledReason.NEVER and p.pair[0] != p.pair[1] and set(p.pair) <= geometry
+    ]  # a self-pair (link1 == link2) is accepted by srdfdom and means nothing to check
     if not never or trials <= 0:
         return []
     q = trial_samples(robot, seed, trials)
