@@ -62,6 +62,12 @@ class GroupInfo:
     planner: PlannerDefaults
     initial_pose: GroupState | None
 
+    @property
+    def projection_joints(self) -> tuple[str, ...]:
+        """OMPL's projection for KPIECE, BKPIECE, LBKPIECE, EST, SBL: the first two active joints,
+        as the Setup Assistant writes it; a one-joint group gets none."""
+        return self.active_joints[:2] if len(self.active_joints) >= 2 else ()
+
 
 @dataclass(frozen=True, slots=True)
 class JointLimit:
@@ -168,6 +174,20 @@ def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
     ]
 
 
+def start_positions(model: SetupModel, robot: RobotModel) -> dict[str, float]:
+    """The state both targets' demos start in: each joint's default, overlaid in group order by
+    each group's initial pose (ros1's fake controllers `initial`, ros2's initial_positions.yaml);
+    mimic joints follow their leaders."""
+    q = {j.name: j.default_position for j in robot.joints if j.is_actuated}
+    for group in model.groups:
+        pose = _initial_pose(model, group.name)
+        q.update((name, value) for name, value in (pose.values if pose else ()) if name in q)
+    for joint in robot.joints:
+        if joint.mimic is not None and joint.name in q and joint.mimic.joint in q:
+            q[joint.name] = joint.mimic.multiplier * q[joint.mimic.joint] + joint.mimic.offset
+    return q
+
+
 def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
     """URDF velocity limits, the setup's default acceleration, then the setup's overrides."""
     overrides = {o.joint: o for o in model.joint_limits}
@@ -226,18 +246,20 @@ def gripper_nodes(model: SetupModel, robot: RobotModel) -> list[GripperNode]:
 
 
 def ros2_control_joints(model: SetupModel, robot: RobotModel) -> list[Ros2ControlJoint]:
-    """Controller joints in tree order, mimic joints after their leaders with their factors."""
+    """Controller joints in tree order, mimic joints after their leaders with their factors; each
+    starts at the demo's start state."""
     wanted = {j for c in model.controllers for j in c.joints}
     wanted |= {j.name for j in robot.joints if j.mimic is not None and j.mimic.joint in wanted}
+    start = start_positions(model, robot)
     out = []
     for joint in robot.joints_in_tree_order:
         if joint.name not in wanted or not joint.is_actuated:
             continue
         if joint.mimic is not None:
             m = joint.mimic
-            out.append(Ros2ControlJoint(joint.name, joint.default_position, m.joint, m.multiplier, m.offset))
+            out.append(Ros2ControlJoint(joint.name, start[joint.name], m.joint, m.multiplier, m.offset))
         else:
-            out.append(Ros2ControlJoint(joint.name, joint.default_position))
+            out.append(Ros2ControlJoint(joint.name, start[joint.name]))
     return out
 
 
@@ -264,10 +286,6 @@ def trajectory_demo(model: SetupModel, robot: RobotModel) -> dict | None:
     }
 
 
-def fixed_virtual_joints(model: SetupModel):
-    return [vj for vj in model.virtual_joints if vj.type == "fixed"]
-
-
 def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None = None) -> dict:
     """Everything the templates read, keyed by the names they use."""
     return {
@@ -285,7 +303,8 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "gripper_nodes": gripper_nodes(model, robot),
         "ros2_control_joints": ros2_control_joints(model, robot),
         "trajectory_demo": trajectory_demo(model, robot),
-        "static_tfs": fixed_virtual_joints(model),
+        # the Setup Assistant's demo publishes an identity TF for every virtual joint, whatever its type
+        "static_tfs": model.virtual_joints,
         "ompl_planners": OMPL_PLANNERS,
         "cartesian_limits": CARTESIAN_LIMITS,
         "arbotix_gripper_action_ns": ARBOTIX_GRIPPER_ACTION_NS,

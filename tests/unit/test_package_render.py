@@ -389,3 +389,61 @@ def test_xacro_args_reach_both_targets():
             xacro_ns = "{http://www.ros.org/wiki/xacro}"
             args = {a.get("name"): a.get("default") for a in wrapper.iter(f"{xacro_ns}arg")}
             assert args["with_gripper"] == "true"
+
+
+def _with_home(target: str, values: dict[str, float]):
+    from marm_setup.setup.model import GroupState
+
+    model = marm_model(target)
+    states = tuple(
+        GroupState(s.name, s.group, tuple((j, values.get(j, v)) for j, v in s.values))
+        if s.name == "home"
+        else s
+        for s in model.group_states
+    )
+    gripper = GroupState("open", "gripper", (("finger_joint1", values["finger_joint1"]),))
+    return dataclasses.replace(model, group_states=(*states, gripper))
+
+
+def test_ros2_starts_at_the_pose_ros1_starts_at():
+    home = {"joint2": 0.3, "joint3": -0.5, "finger_joint1": 0.01}
+    ros1 = {f.path: f.content for f in render_package(_with_home("ros1", home), marm_robot())}
+    ros2 = {f.path: f.content for f in render_package(_with_home("ros2", home), marm_robot())}
+    poses = {(s.group, s.name): dict(s.values) for s in _with_home("ros1", home).group_states}
+    start = {}
+    for entry in load_yaml(ros1, "config/fake_controllers.yaml")["initial"]:
+        start.update(poses[entry["group"], entry["pose"]])
+    initial = load_yaml(ros2, "config/initial_positions.yaml")["initial_positions"]
+    assert {j: initial[j] for j in start} == start
+    assert initial["joint2"] == 0.3 and initial["finger_joint2"] == -0.01  # the mimic follows its leader
+
+
+def test_every_virtual_joint_type_gets_a_static_tf():
+    from marm_setup.setup.model import VirtualJoint
+
+    for target, launch in (("ros1", "launch/demo.launch"), ("ros2", "launch/demo.launch.xml")):
+        model = dataclasses.replace(
+            marm_model(target), virtual_joints=(VirtualJoint("base_joint", "floating", "odom", "base_link"),)
+        )
+        files = {f.path: f.content for f in render_package(model, marm_robot())}
+        nodes = etree.fromstring(files[launch].encode()).iter("node")
+        args = [n.get("args") for n in nodes if n.get("pkg") == "tf2_ros"]
+        assert len(args) == 1 and "odom" in args[0] and "base_link" in args[0], args
+
+
+@pytest.mark.parametrize(("target", "distro"), DISTROS)
+def test_ompl_projection_evaluator_for_groups_of_two_or_more_joints(target, distro):
+    files = rendered(target, distro)
+    if target == "ros1":
+        ompl = load_yaml(files, "config/ompl_planning.yaml")
+    else:
+        ompl = load_yaml(files, "config/moveit.yaml")["/**"]["ros__parameters"]["ompl"]
+    assert ompl["arm"]["projection_evaluator"] == "joints(joint1,joint2)"
+    assert "projection_evaluator" not in ompl["gripper"]  # one active joint (finger_joint2 mimics it)
+
+
+@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+def test_ros2_publishes_the_planning_scene_for_rviz(distro):
+    params = load_yaml(rendered("ros2", distro), "config/moveit.yaml")["/**"]["ros__parameters"]
+    for flag in ("planning_scene", "geometry_updates", "state_updates", "transforms_updates"):
+        assert params[f"publish_{flag}"] is True
