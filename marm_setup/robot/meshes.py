@@ -2,9 +2,10 @@
 
 STL (binary and ASCII) is read with numpy: triangle soup, one vertex per corner, as trimesh
 gives with `process=False`; other formats (DAE, OBJ, ...) go through trimesh, imported only
-then (it costs most of a second of start-up). Collada files carry a `<unit meter="...">` that trimesh records but does not apply; we apply
-it, as MoveIt's assimp loader does. Every unreadable mesh is an InputError naming the URDF
-element that uses it.
+then (it costs most of a second of start-up). Collada files carry a `<unit meter="...">` that
+trimesh records (`mesh.units`) but does not apply; we convert to meters with trimesh, as
+MoveIt's assimp loader applies the unit. Every unreadable mesh is an InputError naming the
+URDF element that uses it.
 """
 
 from __future__ import annotations
@@ -43,7 +44,7 @@ class _MeshReadError(Exception):
 @lru_cache(maxsize=256)
 def _load_cached(path: str, scale: tuple[float, float, float]) -> MeshData:
     vertices, faces = _read(Path(path))
-    vertices = vertices * _unit_meters(Path(path)) * np.asarray(scale)
+    vertices = vertices * np.asarray(scale)
     vertices.setflags(write=False)
     faces.setflags(write=False)
     return MeshData(vertices, faces)
@@ -58,6 +59,8 @@ def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
 
     try:
         mesh = trimesh.load(str(path), force="mesh", process=False)
+        if mesh.units is not None:  # declared by the file (Collada <unit>); never guessed
+            mesh.convert_units("meters")
     except Exception as exc:  # trimesh raises many types for unreadable files
         raise _MeshReadError(" ".join(str(exc).split()) or type(exc).__name__) from None
     vertices = np.asarray(getattr(mesh, "vertices", ()), dtype=float).reshape(-1, 3)
@@ -95,19 +98,3 @@ def _soup(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         raise _MeshReadError("no triangles")
     return corners, np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
 
-
-def _unit_meters(path: Path) -> float:
-    """The Collada `<asset><unit meter>` factor; 1 for other formats or when absent."""
-    if path.suffix.lower() != ".dae":
-        return 1.0
-    from lxml import etree
-
-    try:
-        root = etree.parse(str(path), etree.XMLParser(huge_tree=True)).getroot()
-    except etree.XMLSyntaxError as exc:
-        raise _MeshReadError(f"malformed Collada XML: {exc.msg}") from None
-    unit = root.find("{*}asset/{*}unit")
-    try:
-        return float(unit.get("meter")) if unit is not None and unit.get("meter") else 1.0
-    except ValueError:
-        raise _MeshReadError(f"bad <unit meter='{unit.get('meter')}'>") from None

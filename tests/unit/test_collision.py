@@ -123,17 +123,23 @@ def test_mesh_cache_and_scale(tmp_path):
     np.testing.assert_allclose(np.ptp(scaled.vertices, axis=0), [2.0, 1.0, 0.5])
 
 
-def test_collada_unit_is_applied(tmp_path):
+@pytest.mark.parametrize(
+    ("unit", "size"),
+    [(None, 100.0), ('<unit meter="0.001" name="millimeter"/>', 0.1), ('<unit meter="0.0254"/>', 2.54)],
+)
+def test_collada_unit_is_applied(tmp_path, unit, size):
+    """A Collada `<unit meter>` scales the vertices to [m] (MoveIt's assimp loader applies it)."""
     import trimesh
 
-    dae = tmp_path / "cube.dae"
-    dae.write_bytes(trimesh.exchange.dae.export_collada(trimesh.creation.box(extents=(100, 100, 100))))
-    text = dae.read_text(encoding="utf-8")
+    text = trimesh.exchange.dae.export_collada(trimesh.creation.box(extents=(100, 100, 100))).decode()
     assert "<unit" not in text and "<asset>" in text
-    text = text.replace("<asset>", '<asset><unit meter="0.001" name="millimeter"/>', 1)
-    (tmp_path / "mm.dae").write_text(text, encoding="utf-8")
-    mesh = load_mesh(str(tmp_path / "mm.dae"))
-    np.testing.assert_allclose(np.ptp(mesh.vertices, axis=0), [0.1, 0.1, 0.1])
+    if unit:
+        text = text.replace("<asset>", f"<asset>{unit}", 1)
+    (tmp_path / "cube.dae").write_text(text, encoding="utf-8")
+    mesh = load_mesh(str(tmp_path / "cube.dae"))
+    np.testing.assert_allclose(np.ptp(mesh.vertices, axis=0), [size] * 3)
+    scaled = load_mesh(str(tmp_path / "cube.dae"), (2.0, 1.0, 1.0))  # the URDF scale comes on top
+    np.testing.assert_allclose(np.ptp(scaled.vertices, axis=0), [2 * size, size, size])
 
 
 def test_unreadable_mesh_is_an_input_error(tmp_path):
