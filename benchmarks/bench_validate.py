@@ -12,7 +12,7 @@ from pathlib import Path
 
 from marm_setup.validate.discovery import discover_package
 from marm_setup.validate.rules.matrix_rules import check_matrix_fresh
-from marm_setup.validate.runner import check_static, load_package_robot, run_runtime_checks, validate_package
+from marm_setup.validate.runner import check_static, load_package_robot, run_runtime_checks, validate
 
 ROOT = Path(__file__).resolve().parent.parent
 REALWORLD = ROOT.parent / "shared" / "realworld"
@@ -34,8 +34,8 @@ def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
     scene, t_scene = timed(lambda: CollisionScene(robot))
     _, t_matrix = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path))
     _, t_runtime = timed(lambda: run_runtime_checks(pkg, robot, scene))
-    found, t_total = timed(lambda: validate_package(path, package_paths=package_paths))
-    _, t_noplan = timed(lambda: validate_package(path, package_paths=package_paths, plan=False))
+    found, t_total = timed(lambda: validate(path, package_paths=package_paths).findings)
+    _, t_noplan = timed(lambda: validate(path, package_paths=package_paths, plan=False))
     print(
         f"{path.parent.name}/{path.name}: discover+SRDF {t_discover:.2f} s, robot {t_robot:.2f} s, "
         f"static rules {t_static:.3f} s, scene {t_scene:.2f} s, matrix (1000 states) {t_matrix:.2f} s, "

@@ -29,12 +29,6 @@ class ConflictError(MarmError):
     """A refused overwrite of a hand-edited file."""
 
 
-class ValidationFailed(MarmError):
-    """Validation found errors (the inputs themselves were readable)."""
-
-    exit_code = 1
-
-
 class PlanningFailed(MarmError):
     """The planner could not produce a valid trajectory."""
 

@@ -9,8 +9,13 @@ from pathlib import Path
 import yaml
 
 from marm_setup.findings import Finding
-from marm_setup.validate.runner import validate_package
+from marm_setup.validate.runner import validate
 from tests.conftest import MARM_URDF, realworld
+
+
+def validate_package(path: Path, **options) -> list[Finding]:
+    """Every finding `validate` reports for the package at `path`, sorted by file then element."""
+    return list(validate(path, **options).findings)
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ N + k, and the result does not depend on `jobs` (chunks are the same, only who r
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -254,17 +254,3 @@ def _never_distances(scene, q, never: list[Pair], closest) -> dict[Pair, float]:
             pair_id = int(scene.pair_ids((pair,))[0])
             out[pair] = min(scene.distance(poses[i], pair_id) for _, i in closest[pair])
     return out
-
-
-def merge_user_pairs(
-    matrix: CollisionMatrix, existing: Iterable[DisabledPair], keep: bool = False
-) -> tuple[DisabledPair, ...]:
-    """The computed pairs plus `User` pairs from `existing` (all of `existing` when `keep`).
-
-    A kept pair wins over a computed one for the same links; the result is sorted.
-    """
-    kept = {d.pair: d for d in existing if keep or d.reason is DisabledReason.USER}
-    out = dict(kept)
-    for d in matrix.disabled:
-        out.setdefault(d.pair, d)
-    return tuple(sorted(out.values()))

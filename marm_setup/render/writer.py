@@ -15,12 +15,13 @@ import tempfile
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Literal
 
 from marm_setup.errors import ConflictError, InputError
 from marm_setup.templating import RenderedFile
 
 MANIFEST = ".marm_setup/manifest.json"
-STATUSES = ("new", "identical", "update", "conflict")
+Status = Literal["new", "identical", "update", "conflict"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -28,7 +29,7 @@ class FileChange:
     """What writing one rendered file would do: status is new | identical | update | conflict."""
 
     path: str
-    status: str
+    status: Status
     content: str
 
     @property
@@ -62,7 +63,7 @@ def _manifest_text(files: dict[str, str]) -> str:
     return json.dumps(body, indent=2, sort_keys=False) + "\n"
 
 
-def _status(path: Path, new: bytes, recorded: str | None) -> str:
+def _status(path: Path, new: bytes, recorded: str | None) -> Status:
     if not path.is_file():
         return "new"
     old = path.read_bytes()

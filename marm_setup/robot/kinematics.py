@@ -85,17 +85,6 @@ def link_index(robot: RobotModel) -> dict[str, int]:
     return {name: i for i, name in enumerate(robot.links_in_tree_order)}
 
 
-def joint_values(robot: RobotModel, q: np.ndarray) -> dict[str, np.ndarray]:
-    """Values (N,) of every actuated joint, mimic joints as `multiplier * leader + offset`."""
-    q = np.atleast_2d(np.asarray(q, dtype=float))
-    values = {name: q[:, i] for i, name in enumerate(robot.active_joint_names)}
-    for joint in robot.joints:
-        if joint.is_actuated and joint.mimic is not None:
-            mimic = joint.mimic
-            values[joint.name] = mimic.multiplier * values[mimic.joint] + mimic.offset
-    return values
-
-
 def forward_kinematics(robot: RobotModel, q: np.ndarray) -> np.ndarray:
     """World poses (N, n_links, 4, 4) of every link for a batch of configurations."""
     q = np.atleast_2d(np.asarray(q, dtype=float))
@@ -140,10 +129,3 @@ def sample_configurations(robot: RobotModel, rng: np.random.Generator, n: int) -
     """`n` configurations uniform within the bounds; row i depends only on the rng stream."""
     lower, upper = bounds(robot)
     return lower + rng.random((n, len(lower))) * (upper - lower)
-
-
-def within_bounds(robot: RobotModel, q: np.ndarray, tol: float = 1e-9) -> np.ndarray:
-    """Boolean per configuration: every active joint inside its bounds (+- tol)."""
-    lower, upper = bounds(robot)
-    q = np.atleast_2d(q)
-    return np.all((q >= lower - tol) & (q <= upper + tol), axis=1)

@@ -97,4 +97,3 @@ def _soup(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if not len(corners):
         raise _MeshReadError("no triangles")
     return corners, np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
-

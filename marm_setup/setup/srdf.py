@@ -1,4 +1,4 @@
-"""SRDF in and out: read every srdfdom element with lxml, render ours from the Jinja template.
+"""SRDF in: read every srdfdom element with lxml (ours is rendered from the package templates).
 
 `read_srdf` gives an `Srdf` value (document order for groups, states, end effectors and
 virtual joints; pairs and other order-free lists sorted), so read -> render -> read is exact.
@@ -25,8 +25,6 @@ from marm_setup.setup.model import (
     SrdfExtras,
     VirtualJoint,
 )
-
-TEMPLATE = "common/config/robot.srdf.j2"
 
 
 @dataclass(frozen=True, slots=True)
@@ -255,10 +253,3 @@ def setup_to_srdf(model: SetupModel) -> Srdf:
         disabled=model.collision.disabled,
         extras=model.srdf_extras,
     )
-
-
-def render_srdf(model: SetupModel, robot) -> str:
-    """The SRDF text for a setup (`robot` gives the `<robot name>`)."""
-    from marm_setup.templating import render_template
-
-    return render_template(TEMPLATE, model=model, robot=robot)

@@ -1,4 +1,4 @@
-"""validate_package: every static check of a MoveIt config package, plus the runtime seam.
+"""validate: every static check of a MoveIt config package, plus the runtime seam.
 
 Rule families live in `marm_setup/checks/`; this module reads the package (via
 `package_discovery`), loads the robot and the collision scene once, and runs them all. The
@@ -80,11 +80,6 @@ def guarded(family: str, fn, *args, **kwargs) -> list[Finding]:
     except Exception as exc:  # noqa: BLE001 - a bug in one family must not hide the rest
         msg = f"the {family} rules crashed ({type(exc).__name__}: {exc}); the other rules ran"
         return [error(INTERNAL, "", family, msg, "please report this with the package")]
-
-
-def validate_package(path: str | Path, **options) -> list[Finding]:
-    """Every finding for the package at `path`, sorted by file then element (`validate`'s options)."""
-    return list(validate(path, **options).findings)
 
 
 def validate(

@@ -48,15 +48,19 @@ def _held_state(model, package, robot):
     import pinocchio as pin
 
     from marm_setup.plan.problem import initial_configuration
-    from marm_setup.robot.kinematics import joint_values
     from marm_setup.validate.discovery import discover_package
 
     q = pin.neutral(model)
-    values = joint_values(robot, initial_configuration(discover_package(package), robot))
+    values = dict(
+        zip(robot.active_joint_names, initial_configuration(discover_package(package), robot), strict=True)
+    )
+    for joint in robot.joints:
+        if joint.is_actuated and joint.mimic is not None:
+            values[joint.name] = joint.mimic.multiplier * values[joint.mimic.joint] + joint.mimic.offset
     for name, value in values.items():
         joint = model.joints[model.getJointId(name)] if model.existJointName(name) else None
         if joint is not None and joint.nq == 1:
-            q[joint.idx_q] = value[0]
+            q[joint.idx_q] = value
     return q
 
 

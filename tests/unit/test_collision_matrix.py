@@ -11,10 +11,9 @@ from marm_setup.collision.matrix import (
     CHUNK,
     CollisionMatrix,
     compute_collision_matrix,
-    merge_user_pairs,
     trial_samples,
 )
-from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.collision.pairs import DisabledReason
 from marm_setup.collision.scene import CollisionScene
 from marm_setup.robot.load import load_robot
 from tests.collision_robots import TOY
@@ -161,22 +160,6 @@ def test_adjacent_pairs_are_joined_through_geometry_less_links_only(marm, toy_ma
     adjacent = [d.pair for d in toy_matrix.disabled if d.reason is A]
     assert all(_joined_through_geometry_less_links(toy, a, b) for a, b in adjacent)
     assert _tree_path(toy, "base", "tip") == ["base", "hub", "hub2", "tip"]
-
-
-def test_merge_user_pairs(toy_matrix):
-    existing = [
-        DisabledPair.of("post", "slider_c", U),  # a User pair wins over the computed "enabled"
-        DisabledPair.of("far", "slider_a", U),  # ... and over a computed Never
-        DisabledPair.of("block", "slider_c", N),  # an old computed pair: replaced
-        DisabledPair.of("gone", "link", N),
-    ]
-    merged = {d.pair: d.reason for d in merge_user_pairs(toy_matrix, existing)}
-    assert merged[("post", "slider_c")] is U and merged[("far", "slider_a")] is U
-    assert merged[("block", "slider_c")] is N and ("gone", "link") not in merged
-    kept = {d.pair: d.reason for d in merge_user_pairs(toy_matrix, existing, keep=True)}
-    assert kept[("gone", "link")] is N
-    out = merge_user_pairs(toy_matrix, existing)
-    assert list(out) == sorted(out) and len({d.pair for d in out}) == len(out)
 
 
 def test_shared_panda_agrees_with_its_shipped_srdf():

@@ -10,9 +10,11 @@ from lxml import etree
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
+from marm_setup.render.package import render_package
 from marm_setup.setup.infer import infer_setup
 from marm_setup.setup.model import CollisionPair, GroupState, RobotSource, SetupModel
-from marm_setup.setup.srdf import parse_srdf_string, read_srdf, render_srdf, setup_to_srdf, srdf_to_setup
+from marm_setup.setup.srdf import parse_srdf_string, read_srdf, setup_to_srdf, srdf_to_setup
+from marm_setup.templating import render_template
 from tests.conftest import realworld
 
 FORWARD = (
@@ -41,9 +43,16 @@ class _Named:
         self.name = name
 
 
+def render_srdf(model: SetupModel, robot) -> str:
+    """The SRDF template alone: `robot` needs only a `name` (the panda has no RobotModel here)."""
+    return render_template("common/config/robot.srdf.j2", model=model, robot=robot)
+
+
 def test_our_srdf_reads_back_as_the_model(marm, marm_model):
-    text = render_srdf(marm_model, marm)
-    assert parse_srdf_string(text) == setup_to_srdf(marm_model)
+    [text] = [f.content for f in render_package(marm_model, marm) if f.path == "config/marm.srdf"]
+    assert parse_srdf_string(text) == dataclasses.replace(
+        setup_to_srdf(marm_model), disabled=tuple(sorted(marm_model.collision.disabled))
+    )
     root = etree.fromstring(text.encode())
     tags = [e.tag for e in root if isinstance(e.tag, str)]
     order = ["group", "group_state", "end_effector", "virtual_joint", "disable_collisions"]

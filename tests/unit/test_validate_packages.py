@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from marm_setup.validate.runner import validate_package
-from tests.validate_helpers import generate_marm, panda
+from tests.validate_helpers import generate_marm, panda, validate_package
 
 
 @pytest.mark.parametrize("target", ["ros1", "ros2"])

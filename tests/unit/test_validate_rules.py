@@ -750,8 +750,8 @@ def test_own_matrix_is_fresh_for_its_urdf_whatever_the_seed_and_trials(tmp_path)
     from typer.testing import CliRunner
 
     from marm_setup.cli.app import app
-    from marm_setup.validate.runner import validate_package
     from tests.conftest import MARM_URDF
+    from tests.validate_helpers import validate_package
 
     out = tmp_path / "pkg"
     args = ["init", str(MARM_URDF), "--out", str(out), "--trials", "200", "--seed", "7"]
