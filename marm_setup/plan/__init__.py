@@ -13,6 +13,6 @@ __all__, __getattr__, __dir__ = lazy_api(
         "planner": "PlannerOptions plan_joint_path",
         "timing": "time_parameterize",
         "execution": "fake_execute",
-        "trajectory_io": "write_trajectory load_trajectory",
+        "trajectory_io": "write_trajectory",
     },
 )
