@@ -1,4 +1,4 @@
-"""SRDF in: read every srdfdom element with lxml (ours is rendered from the package templates).
+"""SRDF values: read every srdfdom element with lxml; `setup_to_srdf` is what a setup renders to.
 
 `read_srdf` gives an `Srdf` value (document order for groups, states, end effectors and
 virtual joints; pairs and other order-free lists sorted), so read -> render -> read is exact.
