@@ -286,6 +286,16 @@ def trajectory_demo(model: SetupModel, robot: RobotModel) -> dict | None:
     }
 
 
+def rviz_view(model: SetupModel, robot: RobotModel) -> dict:
+    """The RViz config's MotionPlanning group (the first with an IK solver: an arm, else the first
+    group) and fixed frame (the first virtual joint's parent, else the root link)."""
+    solved = {k.group for k in model.kinematics}
+    groups = [g.name for g in model.groups]
+    group = next((g for g in groups if g in solved), groups[0] if groups else "")
+    frame = model.virtual_joints[0].parent_frame if model.virtual_joints else robot.root
+    return {"group": group, "fixed_frame": frame}
+
+
 def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None = None) -> dict:
     """Everything the templates read, keyed by the names they use."""
     return {
@@ -305,6 +315,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "trajectory_demo": trajectory_demo(model, robot),
         # the Setup Assistant's demo publishes an identity TF for every virtual joint, whatever its type
         "static_tfs": model.virtual_joints,
+        "rviz": rviz_view(model, robot),
         "ompl_planners": OMPL_PLANNERS,
         "cartesian_limits": CARTESIAN_LIMITS,
         "arbotix_gripper_action_ns": ARBOTIX_GRIPPER_ACTION_NS,

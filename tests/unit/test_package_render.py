@@ -447,3 +447,27 @@ def test_ros2_publishes_the_planning_scene_for_rviz(distro):
     params = load_yaml(rendered("ros2", distro), "config/moveit.yaml")["/**"]["ros__parameters"]
     for flag in ("planning_scene", "geometry_updates", "state_updates", "transforms_updates"):
         assert params[f"publish_{flag}"] is True
+
+
+@pytest.mark.parametrize(("target", "distro"), DISTROS)
+def test_rviz_config_shows_motion_planning_for_the_arm_and_the_demo_loads_it(target, distro):
+    files = rendered(target, distro)
+    path = "launch/moveit.rviz" if target == "ros1" else "config/moveit.rviz"
+    config = load_yaml(files, path)["Visualization Manager"]
+    displays = {d["Class"].rsplit("/", 1)[-1]: d for d in config["Displays"]}
+    assert {"Grid", "RobotModel", "TF", "MotionPlanning"} <= set(displays)
+    assert displays["MotionPlanning"]["Planning Request"]["Planning Group"] == "arm"
+    assert config["Global Options"]["Fixed Frame"] == "world"  # the virtual joint's parent
+    prefix = "rviz" if target == "ros1" else "rviz_default_plugins"
+    assert displays["Grid"]["Class"] == f"{prefix}/Grid"
+    if target == "ros1":
+        rviz = etree.fromstring(files["launch/moveit_rviz.launch"].encode())
+        assert rviz.find("node").get("args") == "$(arg command_args)"
+        assert "-d $(arg rviz_config)" in files["launch/moveit_rviz.launch"]
+        demo = etree.fromstring(files["launch/demo.launch"].encode())
+        include = next(i for i in demo.iter("include") if "moveit_rviz.launch" in i.get("file"))
+        assert include.find("arg[@name='rviz_config']").get("value").endswith("/launch/moveit.rviz")
+    else:
+        demo = etree.fromstring(files["launch/demo.launch.xml"].encode())
+        node = next(n for n in demo.iter("node") if n.get("exec") == "rviz2")
+        assert node.get("args") == "-d $(find-pkg-share marm_moveit_config)/config/moveit.rviz"
