@@ -14,10 +14,16 @@ from pathlib import PurePosixPath
 from marm_setup.errors import InputError
 from marm_setup.names import name_problem
 from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.setup.domain import (
+    ARBOTIX_GRIPPER_ACTION_NS,
+    FOLLOW_JOINT_TRAJECTORY,
+    GRIPPER_COMMAND,
+    OMPL_PLANNERS,
+    ROS2_ACTION_NS,
+    ROS2_CONTROLLER_TYPES,
+)
 from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
 from marm_setup.setup.model import (
-    DRIVER_ACTION_NS,
-    OMPL_PLANNERS,
     Controller,
     GroupState,
     Kinematics,
@@ -25,14 +31,6 @@ from marm_setup.setup.model import (
     SetupModel,
 )
 
-# MoveIt 2 / ros2_control: controller type per MoveIt controller type, and its action namespace.
-ROS2_CONTROLLER_TYPES = {
-    "FollowJointTrajectory": "joint_trajectory_controller/JointTrajectoryController",
-    "GripperCommand": "position_controllers/GripperActionController",
-}
-ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == "ros2"}
-# ArbotiX: follow_controller serves `<name>/<action_ns>`; the gripper_controller node `<node>/gripper_action`.
-ARBOTIX_GRIPPER_ACTION_NS = DRIVER_ACTION_NS["ros1", "GripperCommand"]
 XACRO_ARG_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # Pilz / MoveIt defaults for cartesian limits ([m/s], [m/s^2], [rad/s]).
@@ -239,7 +237,7 @@ def gripper_nodes(model: SetupModel, robot: RobotModel) -> list[GripperNode]:
     nodes = []
     for c in model.controllers:
         active = [j for j in c.joints if j in robot.joint_map and robot.joint(j).is_active]
-        if c.type == "GripperCommand" and active:
+        if c.type == GRIPPER_COMMAND and active:
             lo, hi = robot.joint(active[0]).bounds
             nodes.append(GripperNode(c.name, active[0], lo, hi))
     return nodes
@@ -265,7 +263,7 @@ def ros2_control_joints(model: SetupModel, robot: RobotModel) -> list[Ros2Contro
 
 def trajectory_demo(model: SetupModel, robot: RobotModel) -> dict | None:
     """The arm controller the demo script drives, with its home and goal positions."""
-    arm = next((c for c in model.controllers if c.type == "FollowJointTrajectory"), None)
+    arm = next((c for c in model.controllers if c.type == FOLLOW_JOINT_TRAJECTORY), None)
     if arm is None:
         return None
     joints = [j for j in arm.joints if j in robot.joint_map and robot.joint(j).is_active]
@@ -308,7 +306,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "groups": group_infos(model, robot),
         "joint_limits": joint_limits(model, robot),
         "controllers": controller_infos(model),
-        "follow_controllers": [c for c in model.controllers if c.type == "FollowJointTrajectory"],
+        "follow_controllers": [c for c in model.controllers if c.type == FOLLOW_JOINT_TRAJECTORY],
         "arbotix_servos": arbotix_servos(model, robot),
         "gripper_nodes": gripper_nodes(model, robot),
         "ros2_control_joints": ros2_control_joints(model, robot),

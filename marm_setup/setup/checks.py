@@ -17,7 +17,8 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
 from marm_setup.robot.model import RobotModel
-from marm_setup.setup.model import DRIVER_ACTION_NS, ROS_DISTROS, Controller, SetupModel
+from marm_setup.setup.domain import DRIVER_ACTION_NS
+from marm_setup.setup.model import ROS_DISTROS, Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
 from marm_setup.setup.rules import Style, check_semantics, setup_element
 from marm_setup.setup.srdf import setup_to_srdf

@@ -14,9 +14,14 @@ from dataclasses import dataclass
 
 from marm_setup.errors import InputError
 from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.setup.domain import (
+    DRIVER_ACTION_NS,
+    FOLLOW_JOINT_TRAJECTORY,
+    FOLLOW_JOINT_TRAJECTORY_NS,
+    GRIPPER_COMMAND,
+)
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.model import (
-    DRIVER_ACTION_NS,
     ArbotixJoint,
     Chain,
     Controller,
@@ -171,8 +176,8 @@ def _controllers(model: SetupModel, robot: RobotModel) -> tuple[Controller, ...]
         if group.subgroups or not joints:
             continue
         gripper = group.name in ee_groups
-        kind = "GripperCommand" if gripper else "FollowJointTrajectory"
-        action_ns = DRIVER_ACTION_NS.get((model.target, kind), "follow_joint_trajectory")
+        kind = GRIPPER_COMMAND if gripper else FOLLOW_JOINT_TRAJECTORY
+        action_ns = DRIVER_ACTION_NS.get((model.target, kind), FOLLOW_JOINT_TRAJECTORY_NS)
         joints = joints[:1] if gripper else joints
         out.append(Controller(f"{group.name}_controller", kind, action_ns, joints, group.name))
     return tuple(out)

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from marm_setup.collision.pairs import DisabledPair
+from marm_setup.setup.domain import DEFAULT_PLANNER, KDL_PLUGIN
 
 TARGETS = ("ros2", "ros1")
 # The ROS distros each target is written for, the target's default first. Humble and Jazzy differ
@@ -19,34 +20,6 @@ TARGETS = ("ros2", "ros1")
 # (moveit2 jazzy, same file, PlanningPipeline::configure, via planning_pipeline_parameters).
 # Rolling writes what Jazzy writes, so it is not a distro of its own here.
 ROS_DISTROS = {"ros1": ("noetic",), "ros2": ("humble", "jazzy")}
-VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
-CONTROLLER_TYPES = ("FollowJointTrajectory", "GripperCommand")
-KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
-# The OMPL planner configurations the package defines (name, type): a group's default_planner is one.
-OMPL_PLANNERS = (
-    ("AnytimePathShortening", "geometric::AnytimePathShortening"),
-    ("BKPIECE", "geometric::BKPIECE"),
-    ("EST", "geometric::EST"),
-    ("KPIECE", "geometric::KPIECE"),
-    ("LBKPIECE", "geometric::LBKPIECE"),
-    ("PRM", "geometric::PRM"),
-    ("PRMstar", "geometric::PRMstar"),
-    ("RRT", "geometric::RRT"),
-    ("RRTConnect", "geometric::RRTConnect"),
-    ("RRTstar", "geometric::RRTstar"),
-    ("SBL", "geometric::SBL"),
-    ("TRRT", "geometric::TRRT"),
-)
-# The action namespace each target's driver serves, per controller type, where the driver fixes
-# it: ros2_control's JointTrajectoryController and GripperActionController serve
-# `<name>/follow_joint_trajectory` and `<name>/gripper_cmd`; the ArbotiX gripper_controller node
-# serves `<node>/gripper_action`. (The ArbotiX follow_controller serves the action_name that
-# arbotix.yaml gives it, so a ros1 FollowJointTrajectory controller may use any action_ns.)
-DRIVER_ACTION_NS = {
-    ("ros2", "FollowJointTrajectory"): "follow_joint_trajectory",
-    ("ros2", "GripperCommand"): "gripper_cmd",
-    ("ros1", "GripperCommand"): "gripper_action",
-}
 
 
 @dataclass(frozen=True, slots=True)
@@ -132,7 +105,7 @@ class PlannerDefaults:
     """Per-group OMPL defaults (`ompl_planning.yaml`)."""
 
     group: str
-    default_planner: str = "RRTConnect"
+    default_planner: str = DEFAULT_PLANNER
     longest_valid_segment_fraction: float = 0.005
 
 

@@ -21,11 +21,9 @@ import yaml
 from marm_setup.collision.pairs import DisabledPair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
+from marm_setup.setup.domain import MOVEIT_CONTROLLER_TYPES, OMPL_PLANNER_NAMES, VIRTUAL_JOINT_TYPES
 from marm_setup.setup.model import (
-    CONTROLLER_TYPES,
-    OMPL_PLANNERS,
     TARGETS,
-    VIRTUAL_JOINT_TYPES,
     Controller,
     PlannerDefaults,
     SetupModel,
@@ -38,8 +36,8 @@ HEADER = "# marm-setup: this robot's MoveIt setup. Edit it, then run `marm-setup
 CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (SetupModel, "target"): TARGETS,
     (VirtualJoint, "type"): VIRTUAL_JOINT_TYPES,
-    (Controller, "type"): CONTROLLER_TYPES,
-    (PlannerDefaults, "default_planner"): tuple(name for name, _ in OMPL_PLANNERS),
+    (Controller, "type"): MOVEIT_CONTROLLER_TYPES,
+    (PlannerDefaults, "default_planner"): OMPL_PLANNER_NAMES,
 }
 # Keys that name a list item in key paths (`groups[arm]`), tried in order.
 ITEM_KEYS = ("name", "group", "joint", "link")

@@ -12,7 +12,6 @@ import yaml
 from lxml import etree
 
 from marm_setup.errors import InputError
-from marm_setup.render.context import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
 from marm_setup.render.package import (
     ROS1_FILES,
     ROS2_FILES,
@@ -20,6 +19,7 @@ from marm_setup.render.package import (
     output_path,
     render_package,
 )
+from marm_setup.setup.domain import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
 from marm_setup.setup.model import ArbotixJoint, JointLimitOverride, RobotSource
 from tests.conftest import GOLDENS
 from tests.render_helpers import inferred_marm, marm_robot

@@ -11,30 +11,18 @@ from dataclasses import dataclass
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
+from marm_setup.setup.domain import (
+    ARBOTIX_GRIPPER_ACTION_NS,
+    DRIVER_CONTROLLERS,
+    FOLLOW_JOINT_TRAJECTORY,
+    FOLLOW_JOINT_TRAJECTORY_NS,
+    GRIPPER_CMD_NS,
+    GRIPPER_COMMAND,
+    JOINT_DRIVER_CONTROLLERS,
+    MOVEIT_CONTROLLER_TYPES,
+)
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.validate.rules.controller_selection import select_controllers
-
-MOVEIT_TYPES = ("FollowJointTrajectory", "GripperCommand")
-# driver controller type suffix -> (MoveIt type, the action namespace that driver serves)
-DRIVER_TYPES = {
-    "JointTrajectoryController": ("FollowJointTrajectory", "follow_joint_trajectory"),
-    "GripperActionController": ("GripperCommand", "gripper_cmd"),
-    "ParallelGripperCommandController": ("GripperCommand", "gripper_cmd"),
-}
-
-# driver controller types whose `joints` / `joint` name URDF joints (ros2_controllers, ros_control)
-JOINT_DRIVER_TYPES = frozenset(
-    {
-        *DRIVER_TYPES,
-        "JointGroupPositionController",
-        "JointGroupVelocityController",
-        "JointGroupEffortController",
-        "ForwardCommandController",
-        "JointPositionController",
-        "JointVelocityController",
-        "JointEffortController",
-    }
-)
 
 
 @dataclass(frozen=True, slots=True)
@@ -105,7 +93,7 @@ def _skipped(file: str, where: str, missing: list[str]) -> Finding:
     if missing == ["action_ns"]:
         msg = "no action_ns: MoveIt skips this controller (an empty action_ns is allowed)"
         return error(
-            "controller.missing-action-ns", file, where, msg, "add action_ns: follow_joint_trajectory"
+            "controller.missing-action-ns", file, where, msg, f"add action_ns: {FOLLOW_JOINT_TRAJECTORY_NS}"
         )
     msg = f"MoveIt skips this controller: a key it needs is missing or empty ({', '.join(missing)})"
     return error("controller.malformed", file, where, msg)
@@ -159,17 +147,15 @@ def check_moveit_controllers(section, ctrls, robot: RobotModel, real: bool = Tru
 
 
 def _check_type(section, c: MoveItController) -> list[Finding]:
-    if c.type not in MOVEIT_TYPES:
-        msg = (
-            f"type '{c.type}' is not one MoveIt's simple controller manager knows ({', '.join(MOVEIT_TYPES)})"
-        )
+    if c.type not in MOVEIT_CONTROLLER_TYPES:
+        msg = f"type '{c.type}' is not one MoveIt's simple controller manager knows ({', '.join(MOVEIT_CONTROLLER_TYPES)})"
         return [error("controller.unknown-type", section.file, c.element, msg)]
     if c.action_ns and _implausible(c.type, c.action_ns):
         msg = f"action_ns '{c.action_ns}' is implausible for a {c.type} controller"
         hint = (
-            "follow_joint_trajectory"
-            if c.type == "FollowJointTrajectory"
-            else "gripper_cmd (ros2_control) or gripper_action (ArbotiX)"
+            FOLLOW_JOINT_TRAJECTORY_NS
+            if c.type == FOLLOW_JOINT_TRAJECTORY
+            else f"{GRIPPER_CMD_NS} (ros2_control) or {ARBOTIX_GRIPPER_ACTION_NS} (ArbotiX)"
         )
         return [warning("controller.action-ns", section.file, c.element, msg, f"usually {hint}")]
     return []
@@ -177,9 +163,9 @@ def _check_type(section, c: MoveItController) -> list[Finding]:
 
 def _implausible(type_: str, action_ns: str) -> bool:
     """A trajectory controller on a gripper namespace, or a gripper on a trajectory namespace."""
-    if type_ == "FollowJointTrajectory":
+    if type_ == FOLLOW_JOINT_TRAJECTORY:
         return "gripper" in action_ns
-    return "follow_joint_trajectory" in action_ns
+    return FOLLOW_JOINT_TRAJECTORY_NS in action_ns
 
 
 def check_coverage(section, ctrls, srdf, robot: RobotModel, alternatives=()) -> list[Finding]:
@@ -295,7 +281,7 @@ def check_driver_controllers(moveit_section, section, driver, ctrls, robot: Robo
         ]
     out: list[Finding] = []
     for _name, (dtype, joints, where) in sorted(driver.items()):
-        if dtype.rsplit("/", 1)[-1] not in JOINT_DRIVER_TYPES:
+        if dtype.rsplit("/", 1)[-1] not in JOINT_DRIVER_CONTROLLERS:
             continue  # e.g. a twist controller's `joint` names a Cartesian frame, not a URDF joint
         for joint in joints or ():
             if joint not in robot.joint_map:
@@ -313,11 +299,11 @@ def _check_against_driver(moveit_section, section, driver, c: MoveItController) 
         return [error("controller.driver-missing", moveit_section.file, c.element, msg)]
     dtype, djoints, where = driver[c.name]
     suffix = dtype.rsplit("/", 1)[-1]
-    if suffix not in DRIVER_TYPES:
+    if suffix not in DRIVER_CONTROLLERS:
         return []  # a driver type we do not know: no claim either way
-    expected_type, served_ns = DRIVER_TYPES[suffix]
+    expected_type, served_ns = DRIVER_CONTROLLERS[suffix]
     out = []
-    if c.type in MOVEIT_TYPES and c.type != expected_type:
+    if c.type in MOVEIT_CONTROLLER_TYPES and c.type != expected_type:
         msg = f"MoveIt expects a {c.type} action but '{c.name}' is a {dtype}"
         out.append(error("controller.driver-type", file, where, msg))
     elif c.action != f"{c.name}/{served_ns}":
@@ -349,9 +335,9 @@ def check_arbotix(
             )
     drivers = _mapping(data.get("controllers"))
     for c in ctrls:
-        if c.type == "GripperCommand":
+        if c.type == GRIPPER_COMMAND:
             out += _check_gripper_node(section, c, gripper_nodes)
-        elif c.type == "FollowJointTrajectory":
+        elif c.type == FOLLOW_JOINT_TRAJECTORY:
             out += _check_arbotix_follow(section, c, drivers)
     return out
 
@@ -370,7 +356,7 @@ def _check_arbotix_follow(section, c: MoveItController, drivers: dict) -> list[F
             )
         ]
     out = []
-    action = entry.get("action_name", "follow_joint_trajectory")
+    action = entry.get("action_name", FOLLOW_JOINT_TRAJECTORY_NS)
     expected = c.action
     if action != expected:
         msg = f"action_name '{action}' differs from MoveIt's '{expected}'"

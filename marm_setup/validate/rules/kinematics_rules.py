@@ -6,25 +6,9 @@ from numbers import Real
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
+from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KINEMATICS_PLUGINS
 from marm_setup.setup.groups import active_group_joints, group_joints, groups_by_name
 
-KDL = "kdl_kinematics_plugin/KDLKinematicsPlugin"
-KNOWN_SOLVERS = (
-    KDL,
-    "trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin",
-    "pick_ik/PickIkPlugin",
-    "bio_ik/BioIKKinematicsPlugin",
-    "lma_kinematics_plugin/LMAKinematicsPlugin",
-    "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
-    "cached_ik_kinematics_plugin/CachedSrvKinematicsPlugin",
-    "cached_ik_kinematics_plugin/CachedTRACKinematicsPlugin",
-    "srv_kinematics_plugin/SrvKinematicsPlugin",
-)
-CHAIN_ONLY = (
-    KDL,
-    "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
-    "lma_kinematics_plugin/LMAKinematicsPlugin",
-)
 POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
 
 
@@ -62,14 +46,14 @@ def _check_entry(section, where, entry, group, by_name, srdf, robot) -> list[Fin
     solver = entry.get("kinematics_solver")
     if not isinstance(solver, str) or not solver:
         out.append(error("kinematics.missing-solver", section.file, where, "no kinematics_solver"))
-    elif solver not in KNOWN_SOLVERS and not solver.endswith("/IKFastKinematicsPlugin"):
+    elif solver not in KINEMATICS_PLUGINS and not solver.endswith(IKFAST_PLUGIN_SUFFIX):
         msg = f"unknown solver plugin '{solver}'"
         out.append(
             warning(
                 "kinematics.unknown-solver", section.file, f"{where}.kinematics_solver", msg, _solver_hint()
             )
         )
-    elif solver in CHAIN_ONLY and not _is_chain(group, by_name, srdf, robot):
+    elif solver in CHAIN_ONLY_PLUGINS and not _is_chain(group, by_name, srdf, robot):
         msg = f"{solver.split('/')[-1]} needs a serial chain, but group '{group.name}' is not one"
         hint = "use a chain group, or a solver for general groups (pick_ik, bio_ik, TRAC-IK)"
         out.append(error("kinematics.kdl-needs-chain", section.file, f"{where}.kinematics_solver", msg, hint))
@@ -83,7 +67,7 @@ def _check_entry(section, where, entry, group, by_name, srdf, robot) -> list[Fin
 
 
 def _solver_hint() -> str:
-    return "known: " + ", ".join(s.split("/")[0] for s in KNOWN_SOLVERS[:5]) + ", ikfast"
+    return "known: " + ", ".join(s.split("/")[0] for s in KINEMATICS_PLUGINS[:5]) + ", ikfast"
 
 
 def _is_chain(group, by_name, srdf, robot: RobotModel) -> bool:

@@ -1,0 +1,104 @@
+"""MoveIt's tables, in one place: controller types and the actions their drivers serve, kinematics
+solver plugins, OMPL planner configurations, virtual joint types.
+
+Setup (model, inference, checks), render and validate all read these; nothing else spells them.
+"""
+
+from __future__ import annotations
+
+# srdfdom's virtual joint types (srdfdom model.cpp loadVirtualJoints accepts these three).
+VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
+
+# -- controllers ---------------------------------------------------------------------------------
+
+FOLLOW_JOINT_TRAJECTORY = "FollowJointTrajectory"
+GRIPPER_COMMAND = "GripperCommand"
+# The controller types MoveIt's simple controller manager knows (moveit_simple_controller_manager
+# moveit_simple_controller_manager.cpp: FollowJointTrajectory and GripperCommand handles).
+MOVEIT_CONTROLLER_TYPES = (FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND)
+
+# Action namespaces the drivers serve: ros2_control's JointTrajectoryController
+# `<name>/follow_joint_trajectory`, its GripperActionController `<name>/gripper_cmd`, the ArbotiX
+# gripper_controller node `<node>/gripper_action`. (The ArbotiX follow_controller serves the
+# action_name that arbotix.yaml gives it, so a ros1 FollowJointTrajectory controller may use any.)
+FOLLOW_JOINT_TRAJECTORY_NS = "follow_joint_trajectory"
+GRIPPER_CMD_NS = "gripper_cmd"
+ARBOTIX_GRIPPER_ACTION_NS = "gripper_action"
+
+# ros2_control / ros_control controller class (the type's last part) -> (MoveIt controller type,
+# the action namespace it serves).
+DRIVER_CONTROLLERS = {
+    "JointTrajectoryController": (FOLLOW_JOINT_TRAJECTORY, FOLLOW_JOINT_TRAJECTORY_NS),
+    "GripperActionController": (GRIPPER_COMMAND, GRIPPER_CMD_NS),
+    "ParallelGripperCommandController": (GRIPPER_COMMAND, GRIPPER_CMD_NS),
+}
+# Driver controller classes whose `joints` / `joint` parameters name URDF joints.
+JOINT_DRIVER_CONTROLLERS = frozenset(
+    {
+        *DRIVER_CONTROLLERS,
+        "JointGroupPositionController",
+        "JointGroupVelocityController",
+        "JointGroupEffortController",
+        "ForwardCommandController",
+        "JointPositionController",
+        "JointVelocityController",
+        "JointEffortController",
+    }
+)
+# The ros2_control controller we generate for each MoveIt controller type.
+ROS2_CONTROLLER_TYPES = {
+    FOLLOW_JOINT_TRAJECTORY: "joint_trajectory_controller/JointTrajectoryController",
+    GRIPPER_COMMAND: "position_controllers/GripperActionController",
+}
+# (target, MoveIt controller type) -> the action namespace that target's driver serves, where the
+# driver fixes it.
+DRIVER_ACTION_NS = {
+    **{
+        ("ros2", kind): DRIVER_CONTROLLERS[plugin.rsplit("/", 1)[-1]][1]
+        for kind, plugin in ROS2_CONTROLLER_TYPES.items()
+    },
+    ("ros1", GRIPPER_COMMAND): ARBOTIX_GRIPPER_ACTION_NS,
+}
+ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == "ros2"}
+
+# -- kinematics solvers --------------------------------------------------------------------------
+
+KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+KINEMATICS_PLUGINS = (
+    KDL_PLUGIN,
+    "trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin",
+    "pick_ik/PickIkPlugin",
+    "bio_ik/BioIKKinematicsPlugin",
+    "lma_kinematics_plugin/LMAKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedSrvKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedTRACKinematicsPlugin",
+    "srv_kinematics_plugin/SrvKinematicsPlugin",
+)
+IKFAST_PLUGIN_SUFFIX = "/IKFastKinematicsPlugin"  # generated per robot: `<robot>_<group>_ikfast_plugin/...`
+# Solvers that need the group to be a chain.
+CHAIN_ONLY_PLUGINS = (
+    KDL_PLUGIN,
+    "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
+    "lma_kinematics_plugin/LMAKinematicsPlugin",
+)
+
+# -- OMPL ----------------------------------------------------------------------------------------
+
+DEFAULT_PLANNER = "RRTConnect"
+# The OMPL planner configurations the package defines (name, type): a group's default_planner is one.
+OMPL_PLANNERS = (
+    ("AnytimePathShortening", "geometric::AnytimePathShortening"),
+    ("BKPIECE", "geometric::BKPIECE"),
+    ("EST", "geometric::EST"),
+    ("KPIECE", "geometric::KPIECE"),
+    ("LBKPIECE", "geometric::LBKPIECE"),
+    ("PRM", "geometric::PRM"),
+    ("PRMstar", "geometric::PRMstar"),
+    ("RRT", "geometric::RRT"),
+    (DEFAULT_PLANNER, "geometric::RRTConnect"),
+    ("RRTstar", "geometric::RRTstar"),
+    ("SBL", "geometric::SBL"),
+    ("TRRT", "geometric::TRRT"),
+)
+OMPL_PLANNER_NAMES = tuple(name for name, _ in OMPL_PLANNERS)
