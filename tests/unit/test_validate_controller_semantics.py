@@ -7,10 +7,9 @@ real panda robot of ../shared/realworld.
 
 from __future__ import annotations
 
-import pytest
 import yaml
 
-from marm_setup.validate.discovery import ConfigSection, discover_package
+from marm_setup.validate.discovery import ConfigSection
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
     check_driver_controllers,
@@ -19,20 +18,8 @@ from marm_setup.validate.rules.controller_rules import (
     moveit_controllers,
     ros2_driver_controllers,
 )
-from tests.validate_helpers import panda
 
 ARM = [f"panda_joint{i}" for i in range(1, 8)]
-
-
-@pytest.fixture(scope="module")
-def panda1():
-    from marm_setup.validate.runner import load_package_robot
-
-    good = panda("ros1")
-    pkg = discover_package(good.path, package_paths=good.package_paths)
-    robot, problems = load_package_robot(pkg)
-    assert not problems
-    return pkg.srdf, robot
 
 
 def section(text: str, prefix: str = "") -> ConfigSection:

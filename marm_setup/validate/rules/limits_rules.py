@@ -1,4 +1,14 @@
-"""joint_limits.yaml: every active group joint, positive limits, not above the URDF, floats in ROS 2."""
+"""joint_limits.yaml: every active group joint, positive limits, not above the URDF, floats in ROS 2.
+
+What MoveIt reads: MoveIt 2 `moveit_ros/planning/robot_model_loader/src/robot_model_loader.cpp`
+(`configure`, the `_planning/joint_limits/<joint>/` loop) gets max/min_position, max_velocity,
+has_velocity_limits, max_acceleration, has_acceleration_limits in that order, each as a typed
+parameter: an integer where it reads a double throws ParameterTypeException, which it logs as
+an error and which skips the rest of that joint's keys. MoveIt 1's robot_model_loader.cpp
+(same loop, `nh.getParam`) reads them in the same order: a max_acceleration sets
+has_acceleration_limits, and a later `has_acceleration_limits: false` clears it again, so
+`max_acceleration: 0` beside it (the Setup Assistant's own default) is never used.
+"""
 
 from __future__ import annotations
 
@@ -16,6 +26,17 @@ FLAGS = {
     "max_effort": "has_effort_limits",
 }
 NUMERIC_KEYS = (*FLAGS, "min_position", "max_position")
+# Values are written rounded (2.0944 for the URDF's 2.0943951): "above the URDF" means above
+# it by more than this fraction of the limit.
+ROUNDING = 1e-4
+
+
+def _above(value: float, limit: float) -> bool:
+    return value > limit + max(LIMIT_TOLERANCE, ROUNDING * abs(limit))
+
+
+def _below(value: float, limit: float) -> bool:
+    return value < limit - max(LIMIT_TOLERANCE, ROUNDING * abs(limit))
 
 
 def check_joint_limits(section, srdf, robot: RobotModel, target: str) -> list[Finding]:
@@ -94,7 +115,7 @@ def _check_entry(section, where, entry: dict, joint, target: str) -> list[Findin
         entry.get("has_velocity_limits")
         and _number(velocity)
         and joint.velocity
-        and velocity > joint.velocity + LIMIT_TOLERANCE
+        and _above(velocity, joint.velocity)
     ):
         msg = f"max_velocity {velocity:g} is above the URDF's {joint.velocity:g}"
         out.append(warning("limits.above-urdf", section.file, f"{where}.max_velocity", msg))
@@ -107,10 +128,10 @@ def _check_positions(section, where, entry: dict, joint) -> list[Finding]:
         return []
     out = []
     lo, hi = entry.get("min_position"), entry.get("max_position")
-    if _number(lo) and lo < joint.lower - LIMIT_TOLERANCE:
+    if _number(lo) and _below(lo, joint.lower):
         msg = f"min_position {lo:g} is below the URDF's {joint.lower:g}"
         out.append(warning("limits.above-urdf", section.file, f"{where}.min_position", msg))
-    if _number(hi) and hi > joint.upper + LIMIT_TOLERANCE:
+    if _number(hi) and _above(hi, joint.upper):
         msg = f"max_position {hi:g} is above the URDF's {joint.upper:g}"
         out.append(warning("limits.above-urdf", section.file, f"{where}.max_position", msg))
     return out
@@ -121,15 +142,29 @@ def _number(value) -> bool:
 
 
 def _check_floats(section, data: dict) -> list[Finding]:
-    """ROS 2 parameters are typed: an integer where MoveIt declares a double fails at start-up."""
+    """ROS 2 parameters are typed: an integer where MoveIt reads a double is an error it logs,
+    losing the joint's later keys; only a warning when the value's has_* flag is false (nothing
+    after max_acceleration is lost then but that false flag, which is the URDF's default)."""
     out = []
     for path, value in _walk(data):
         if isinstance(value, int) and not isinstance(value, bool) and path[-1] in (*NUMERIC_KEYS, *_SCALARS):
             msg = f"{path[-1]} is the integer {value}; ROS 2 needs a double here"
+            unused = _flag_off(data, path)
+            make = warning if unused else error
+            msg += f" (MoveIt 2 logs an error; harmless while {FLAGS[path[-1]]} is false)" if unused else ""
             out.append(
-                error("limits.not-float", section.file, section.element(*path), msg, f"write {value}.0")
+                make("limits.not-float", section.file, section.element(*path), msg, f"write {value}.0")
             )
     return out
+
+
+def _flag_off(data: dict, path: tuple) -> bool:
+    """The value at `path` is a limit whose has_* flag in the same entry is explicitly false."""
+    flag = FLAGS.get(path[-1])
+    entry = data
+    for key in path[:-1]:
+        entry = entry.get(key) if isinstance(entry, dict) else None
+    return flag is not None and isinstance(entry, dict) and entry.get(flag) is False
 
 
 _SCALARS = (

@@ -1,0 +1,67 @@
+"""joint_limits rules read values as MoveIt does (keep-one-thing / break-one-thing on a small
+copy of the real panda joint_limits.yaml, for the real panda robot)."""
+
+from __future__ import annotations
+
+import yaml
+
+from marm_setup.validate.discovery import ConfigSection
+from marm_setup.validate.rules.limits_rules import check_joint_limits
+
+# config/joint_limits.yaml of the shared MoveIt 1 panda package (two joints of it)
+PANDA_LIMITS = """
+default_velocity_scaling_factor: 0.1
+default_acceleration_scaling_factor: 0.1
+joint_limits:
+  panda_joint1:
+    has_velocity_limits: true
+    max_velocity: 2.1750
+    has_acceleration_limits: true
+    max_acceleration: 3.75
+  panda_joint2:
+    has_velocity_limits: true
+    max_velocity: 2.1750
+    has_acceleration_limits: true
+    max_acceleration: 1.875
+"""
+
+
+def found(text: str, panda1, target: str = "ros1"):
+    srdf, robot = panda1
+    section = ConfigSection("config/joint_limits.yaml", yaml.safe_load(text))
+    return [
+        (f.rule, f.severity, f.element)
+        for f in check_joint_limits(section, srdf, robot, target)
+        if f.rule != "limits.missing-joint"  # the copy holds two joints only
+    ]
+
+
+def test_the_copy_is_clean(panda1):
+    assert found(PANDA_LIMITS, panda1) == []
+
+
+def test_a_rounded_value_is_not_above_the_urdf(panda1):
+    """2.3926 for the URDF's 2.3925 (as 2.0944 for 2.0943951): rounding, not a higher limit."""
+    assert found(PANDA_LIMITS.replace("2.1750", "2.3926", 1), panda1) == []
+    assert found(PANDA_LIMITS.replace("2.1750", "2.4", 1), panda1) == [
+        ("limits.above-urdf", "warning", "joint_limits.panda_joint1.max_velocity")
+    ]
+
+
+SA_DEFAULT = "has_acceleration_limits: false\n    max_acceleration: 0"
+
+
+def test_zero_acceleration_without_acceleration_limits_is_the_setup_assistant_default(panda1):
+    text = PANDA_LIMITS.replace("has_acceleration_limits: true\n    max_acceleration: 3.75", SA_DEFAULT)
+    assert found(text, panda1) == []
+    # in ROS 2 the integer 0 only makes MoveIt log an error: a warning, not an error
+    assert found(text, panda1, "ros2") == [
+        ("limits.not-float", "warning", "joint_limits.panda_joint1.max_acceleration")
+    ]
+    broken = PANDA_LIMITS.replace("max_acceleration: 3.75", "max_acceleration: 0")
+    assert found(broken, panda1) == [
+        ("limits.non-positive", "error", "joint_limits.panda_joint1.max_acceleration")
+    ]
+    assert ("limits.not-float", "error", "joint_limits.panda_joint1.max_acceleration") in found(
+        broken, panda1, "ros2"
+    )
