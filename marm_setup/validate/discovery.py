@@ -47,8 +47,9 @@ from typing import Any
 import yaml
 
 from marm_setup.errors import InputError
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import package_name
+from marm_setup.validate.roslaunch_yaml import SubstitutionError, load_ros_yaml, subst_contexts, substitute
 from marm_setup.validate.sources import (
     MARM_MOVEIT_YAML,
     detect_target,
@@ -154,6 +155,9 @@ def discover_package(
     paths = (root, *user_paths, *marm_package_paths(root, marm_data), root.parent)
     target = detect_target(root, marm_data)
     urdf_path, origin, args = find_urdf(root, shown, urdf, xacro_args, marm_data, setup_assistant, paths)
+    launch_files = _launch_files(root)
+    if target == "ros1":
+        _prepare_substitutions(reader, root, launch_files, paths)
     moveit_yaml = reader.raw(MARM_MOVEIT_YAML) if target == "ros2" else None
     sections = _read_sections(reader, target, moveit_yaml)
     srdf, srdf_text = read_srdf_source(root, srdf_rel, paths, problems) if srdf_rel else (None, None)
@@ -172,7 +176,7 @@ def discover_package(
         srdf=srdf,
         srdf_text=srdf_text,
         marm_setup=marm,
-        launch_files=_launch_files(root),
+        launch_files=launch_files,
         problems=tuple(problems),
         **sections,
     )
@@ -182,12 +186,15 @@ def discover_package(
 
 
 class _YamlReader:
-    """Reads YAML files under `root` once, recording parse failures as findings."""
+    """Reads YAML files under `root` once, as roslaunch would (rosparam's angle tags; the
+    substitutions of a `subst_value` load), recording failures as findings."""
 
     def __init__(self, root: Path, problems: list[Finding]):
         self.root = root
         self.problems = problems
         self.cache: dict[str, Any] = {}
+        self.contexts: dict[str, tuple[dict[str, str], str]] = {}
+        self.find = lambda _name: None
 
     def raw(self, rel: str) -> Any:
         if rel not in self.cache:
@@ -199,20 +206,42 @@ class _YamlReader:
         if not file.is_file():
             return None
         try:
-            data = yaml.safe_load(file.read_text(encoding="utf-8"))
+            data = load_ros_yaml(self._text(rel, file.read_text(encoding="utf-8")))
         except yaml.YAMLError as exc:
             mark = getattr(exc, "problem_mark", None)
             where = f"line {mark.line + 1}" if mark is not None else ""
             self.problems.append(error("yaml.parse", rel, where, f"malformed YAML: {_yaml_msg(exc)}"))
+            return None
+        except SubstitutionError as exc:
+            msg = f"cannot evaluate {exc} (loaded with subst_value): its rules were skipped"
+            self.problems.append(warning("yaml.substitution", rel, "", msg))
             return None
         except (OSError, UnicodeDecodeError) as exc:
             self.problems.append(error("yaml.parse", rel, "", f"cannot read: {exc}"))
             return None
         return {} if data is None else data
 
+    def _text(self, rel: str, text: str) -> str:
+        if rel not in self.contexts:
+            return text
+        args, dirname = self.contexts[rel]
+        return substitute(text, args, self.find, dirname)
+
     def section(self, rel: str) -> ConfigSection | None:
         data = self.raw(rel)
         return None if data is None else ConfigSection(rel, data)
+
+
+def _prepare_substitutions(reader: _YamlReader, root: Path, launch_files, paths) -> None:
+    """Tell the reader which files roslaunch loads with `subst_value`, and their launch args."""
+    from marm_setup.robot.ros_packages import find_packages
+
+    try:
+        packages = find_packages(paths)
+    except InputError:
+        packages = {}
+    reader.find = lambda name: str(packages[name]) if name in packages else None
+    reader.contexts = subst_contexts(root, launch_files, reader.find)
 
 
 def _yaml_msg(exc: yaml.YAMLError) -> str:

@@ -1,0 +1,226 @@
+"""YAML as ROS 1's roslaunch loads it: rosparam's angle tags and `subst_value` substitutions.
+
+- rosparam (`ros_comm/tools/rosparam/src/rosparam/__init__.py`, `construct_angle_radians` /
+  `construct_angle_degrees` and the resolvers at the end of the module) adds the tags
+  `!radians EXPR` (an arithmetic expression, `pi` allowed) and `!degrees NUMBER`, and reads the
+  plain scalars `rad(EXPR)` and `deg(NUMBER)` the same way: all become radians.
+- roslaunch (`tools/roslaunch/src/roslaunch/xmlloader.py` `_rosparam_tag`, then
+  `loader.py` `load_rosparam`) runs `resolve_args` over a file's whole text before parsing it
+  when the `<rosparam>` has `subst_value="true"`: `$(arg x)` takes the including launch file's
+  arg value (or default), `$(find pkg)` the package folder, `$(env X)` / `$(optenv X d)` the
+  environment, `$(dirname)` the launch file's folder. `$(eval ...)` is evaluated too (Debian's
+  roslaunch 1.15 refuses it inside a file's text; newer ones and authors use it), never flagged.
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+import operator
+import os
+import re
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import yaml
+
+SUBST = re.compile(r"\$\((arg|find|env|optenv|dirname|eval|anon)\b\s*([^()]*(?:\([^()]*\)[^()]*)*)\)")
+
+
+class SubstitutionError(ValueError):
+    """A substitution roslaunch could not resolve (unknown arg, package or variable)."""
+
+
+class RosparamLoader(yaml.SafeLoader):
+    """PyYAML's safe loader plus rosparam's angle tags and `deg()` / `rad()` scalars."""
+
+
+def _radians(loader: RosparamLoader, node: yaml.Node) -> float:
+    text = str(loader.construct_scalar(node)).strip()
+    if text.startswith("rad(") and text.endswith(")"):
+        text = text[4:-1]
+    return arithmetic(text)
+
+
+def _degrees(loader: RosparamLoader, node: yaml.Node) -> float:
+    text = str(loader.construct_scalar(node)).strip()
+    if text.startswith("deg(") and text.endswith(")"):
+        text = text[4:-1]
+    try:
+        return float(text) * math.pi / 180.0
+    except ValueError:
+        raise yaml.constructor.ConstructorError(
+            None, None, f"invalid degree value: {text}", node.start_mark
+        ) from None
+
+
+RosparamLoader.add_constructor("!radians", _radians)
+RosparamLoader.add_constructor("!degrees", _degrees)
+RosparamLoader.add_implicit_resolver("!degrees", re.compile(r"^deg\([^\)]*\)$"), ["d"])
+RosparamLoader.add_implicit_resolver("!radians", re.compile(r"^rad\([^\)]*\)$"), ["r"])
+
+_OPS: dict[type, Callable] = {
+    ast.Add: operator.add,
+    ast.Sub: operator.sub,
+    ast.Mult: operator.mul,
+    ast.Div: operator.truediv,
+    ast.Pow: operator.pow,
+    ast.USub: operator.neg,
+    ast.UAdd: operator.pos,
+}
+
+
+def arithmetic(text: str) -> float:
+    """The value of `2*pi/3`-style expressions (numbers, pi, + - * / **), as rosparam evaluates them."""
+    try:
+        return float(_arith(ast.parse(text.strip(), mode="eval").body))
+    except (SyntaxError, ValueError, KeyError, TypeError, ZeroDivisionError):
+        raise yaml.YAMLError(f"invalid radian expression: {text}") from None
+
+
+def _arith(node: ast.AST) -> float:
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+        return node.value
+    if isinstance(node, ast.Name) and node.id == "pi":
+        return math.pi
+    if isinstance(node, ast.BinOp):
+        return _OPS[type(node.op)](_arith(node.left), _arith(node.right))
+    if isinstance(node, ast.UnaryOp):
+        return _OPS[type(node.op)](_arith(node.operand))
+    raise ValueError("not arithmetic")
+
+
+def load_ros_yaml(text: str) -> Any:
+    """Parse YAML text the way rosparam does (angle tags and scalars become radians)."""
+    return yaml.load(text, Loader=RosparamLoader)  # noqa: S506 - a SafeLoader subclass
+
+
+def substitute(
+    text: str,
+    args: Mapping[str, str],
+    find: Callable[[str], str | None],
+    dirname: str = "",
+    environ: Mapping[str, str] | None = None,
+) -> str:
+    """`text` with roslaunch's substitutions resolved; SubstitutionError names the first that fails."""
+    environ = os.environ if environ is None else environ
+
+    def one(match: re.Match) -> str:
+        command, rest = match.group(1), match.group(2).strip()
+        return _resolve(command, rest, args, find, dirname, environ)
+
+    previous = None
+    while previous != text and "$(" in text:  # an arg's value may hold substitutions itself
+        previous, text = text, SUBST.sub(one, text)
+    return text
+
+
+def _resolve(command, rest, args, find, dirname, environ) -> str:
+    words = rest.split()
+    if command == "arg":
+        if not words or words[0] not in args:
+            raise SubstitutionError(f"$(arg {rest}): no such arg in the launch file that loads it")
+        return str(args[words[0]])
+    if command == "find":
+        folder = find(words[0]) if words else None
+        if folder is None:
+            raise SubstitutionError(f"$(find {rest}): unknown package")
+        return str(folder)
+    if command == "env":
+        if not words or words[0] not in environ:
+            raise SubstitutionError(f"$(env {rest}): variable not set")
+        return environ[words[0]]
+    if command == "optenv":
+        return environ.get(words[0], " ".join(words[1:])) if words else ""
+    if command == "dirname":
+        return dirname
+    if command == "anon":
+        return f"{words[0] if words else ''}_anon"
+    return _eval(rest, args)
+
+
+def _eval(expression: str, args: Mapping[str, str]) -> str:
+    """roslaunch's `$(eval ...)` (substitution_args.py `_eval`): Python with `arg()` and the args."""
+    if "__" in expression:
+        raise SubstitutionError("$(eval ...) may not contain double underscores")
+    names: dict[str, Any] = {name: _auto(value) for name, value in args.items()}
+    names.update(arg=lambda name: _auto(args[name]), true=True, false=False)
+    try:
+        return str(eval(expression, {"__builtins__": {}}, names))  # noqa: S307 - roslaunch's own semantics
+    except Exception as exc:  # noqa: BLE001 - any failure of the expression is the author's
+        raise SubstitutionError(f"$(eval {expression}): {exc}") from None
+
+
+def _auto(value: str) -> Any:
+    """roslaunch's `convert_value(value, 'auto')`: int, float, bool, else the string."""
+    for cast in (int, float):
+        try:
+            return cast(value)
+        except ValueError:
+            pass
+    lowered = value.strip().lower()
+    return {"true": True, "false": False}.get(lowered, value)
+
+
+# -- which launch file loads a YAML file with subst_value, and with which args ----------------
+
+
+def subst_contexts(
+    root, launch_files: tuple[str, ...], find: Callable[[str], str | None]
+) -> dict[str, tuple[dict[str, str], str]]:
+    """Package YAML files (relative paths) that a launch file loads with `subst_value="true"`,
+    each with (that launch file's args, the launch file's folder); the first launch file (sorted)
+    that loads a file wins."""
+    out: dict[str, tuple[dict[str, str], str]] = {}
+    for rel in launch_files:
+        tree = _parse(root / rel)
+        if tree is None:
+            continue
+        dirname = str((root / rel).parent)
+        args = launch_args(tree, find, dirname)
+        for elem in tree.iter("rosparam"):
+            if (elem.get("subst_value") or "").strip().lower() not in ("true", "1"):
+                continue
+            target = _loaded_file(elem.get("file"), args, find, dirname, root)
+            if target is not None:
+                out.setdefault(target, (args, dirname))
+    return out
+
+
+def launch_args(tree, find: Callable[[str], str | None], dirname: str) -> dict[str, str]:
+    """A launch file's own args (value, else default), substitutions inside them resolved where
+    they can be; an arg without either is left out (whoever includes the file must pass it)."""
+    raw = {}
+    for elem in tree.iter("arg"):
+        parent = elem.getparent()
+        if elem.get("name") and getattr(parent, "tag", None) != "include":
+            value = elem.get("value", elem.get("default"))
+            if value is not None:
+                raw.setdefault(elem.get("name"), value)
+    out = {}
+    for name, value in raw.items():
+        try:
+            out[name] = substitute(value, raw, find, dirname)
+        except SubstitutionError:
+            continue
+    return out
+
+
+def _loaded_file(attr, args, find, dirname, root) -> str | None:
+    if not attr:
+        return None
+    try:
+        path = os.path.normpath(substitute(attr, args, find, dirname))
+    except SubstitutionError:
+        return None
+    rel = os.path.relpath(path, root)
+    return None if rel.startswith("..") else rel.replace(os.sep, "/")
+
+
+def _parse(path):
+    from lxml import etree
+
+    try:
+        return etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot()
+    except (etree.XMLSyntaxError, OSError):
+        return None
