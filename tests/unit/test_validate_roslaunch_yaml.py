@@ -107,3 +107,20 @@ def test_subst_value_yaml_takes_the_launch_args(tmp_path):
     replace_text(pkg, CONTEXT, 'default="2.1750"', 'default="9.0"')
     found = [(f.rule, f.element) for f in run(pkg, good, matrix_trials=0) if f.file == LIMITS]
     assert found == [("limits.above-urdf", "joint_limits.panda_joint1.max_velocity")]
+
+
+def test_args_passed_with_pass_all_args_are_defined(tmp_path):
+    """trajectory_execution.launch.xml includes `$(dirname)/$(arg moveit_controller_manager)_...`
+    with pass_all_args: the included file may use the includer's args without declaring them
+    (roslaunch xmlloader.py `_include_tag`)."""
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    fake = "launch/fake_moveit_controller_manager.launch.xml"
+    replace_text(pkg, fake, '<arg name="fake_execution_type" default="interpolate" />', "")
+    assert [f for f in run(pkg, good, matrix_trials=0) if f.rule == "launch.undefined-arg"] == []
+    # the same use in a file nobody includes that way is still undefined
+    replace_text(
+        pkg, "launch/demo.launch", "</launch>", '<param name="x" value="$(arg fake_type)"/></launch>'
+    )
+    found = [f.file for f in run(pkg, good, matrix_trials=0) if f.rule == "launch.undefined-arg"]
+    assert found == ["launch/demo.launch"]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import fnmatch
+import os
 import re
 from pathlib import Path
 
@@ -36,12 +38,48 @@ def check_launch_files(root: Path, package: str, files: tuple[str, ...], target:
         if tree is not None:
             parsed[rel] = tree
     shared_args = set().union(*(_defined_args(t) for t in parsed.values())) if target == "ros2" else set()
+    passed = passed_args(parsed, root, package)
     for rel, tree in parsed.items():
         out += check_paths(tree, rel, root, package)
-        out += check_args(tree, rel, _defined_args(tree) | shared_args)
+        out += check_args(tree, rel, _defined_args(tree) | shared_args | passed.get(rel, set()))
         if target == "ros2":
             out += check_description_types(tree, rel)
     return out
+
+
+def passed_args(parsed: dict, root: Path, package: str) -> dict[str, set[str]]:
+    """Args each file receives through `<include pass_all_args="true">` from files of this
+    package (transitively): roslaunch's xmlloader.py `_include_tag` adds every arg of the
+    including context to the child's, so the child may use them without declaring them."""
+    edges: list[tuple[str, str]] = []
+    for rel, tree in parsed.items():
+        for inc in tree.iter("include"):
+            if (inc.get("pass_all_args") or "").strip().lower() in ("true", "1"):
+                pattern = _include_pattern(inc.get("file") or "", root, rel, package)
+                edges += [(rel, child) for child in parsed if pattern and fnmatch.fnmatchcase(child, pattern)]
+    out: dict[str, set[str]] = {}
+    changed = True
+    while changed:  # a fixpoint: a child passes on what it received
+        changed = False
+        for parent, child in edges:
+            given = _defined_args(parsed[parent]) | out.get(parent, set())
+            if not given <= out.get(child, set()):
+                out[child] = out.get(child, set()) | given
+                changed = True
+    return out
+
+
+def _include_pattern(text: str, root: Path, rel: str, package: str) -> str | None:
+    """The package-relative path (a glob where it holds a substitution, as in
+    `$(dirname)/$(arg moveit_controller_manager)_moveit_controller_manager.launch.xml`) that
+    an include's `file` names, or None when it is outside this package."""
+    m = FIND.match(text.strip())
+    if m is None or (m.group(3) != "dirname" and m.group(2) != package):
+        return None
+    base = (root / rel).parent if m.group(3) == "dirname" else root
+    tail = re.sub(r"\$\([^)]*\)", "*", text.strip()[m.end() :]).lstrip("/")
+    path = os.path.normpath(os.path.relpath(base / tail, root))
+    return None if path.startswith("..") else path.replace(os.sep, "/")
 
 
 def _elements(tree):
