@@ -116,7 +116,12 @@ def test_args_passed_with_pass_all_args_are_defined(tmp_path):
     good = panda("ros1")
     pkg = copy_package(good, tmp_path)
     fake = "launch/fake_moveit_controller_manager.launch.xml"
-    replace_text(pkg, fake, '<arg name="fake_execution_type" default="interpolate" />', "")
+    replace_text(
+        pkg,
+        fake,
+        '<arg name="fake_execution_type" default="interpolate" />',
+        '<param name="execution_type" value="$(arg fake_execution_type)"/>',
+    )
     assert [f for f in run(pkg, good, matrix_trials=0) if f.rule == "launch.undefined-arg"] == []
     # the same use in a file nobody includes that way is still undefined
     replace_text(
