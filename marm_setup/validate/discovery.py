@@ -39,6 +39,7 @@ config package at all raises `InputError` (exit 2).
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -49,7 +50,14 @@ import yaml
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import package_name
-from marm_setup.validate.roslaunch_yaml import SubstitutionError, load_ros_yaml, subst_contexts, substitute
+from marm_setup.validate.roslaunch_yaml import (
+    SubstitutionError,
+    launch_srdf,
+    load_ros_yaml,
+    loaded_files,
+    subst_contexts,
+    substitute,
+)
 from marm_setup.validate.sources import (
     MARM_MOVEIT_YAML,
     detect_target,
@@ -57,6 +65,7 @@ from marm_setup.validate.sources import (
     find_urdf,
     marm_package_paths,
     read_srdf_source,
+    srdf_robot_name,
 )
 
 YAML_NAMES = {
@@ -134,6 +143,7 @@ def discover_package(
     path: str | Path,
     *,
     urdf: str | Path | None = None,
+    srdf: str | Path | None = None,
     xacro_args: Mapping[str, str] | None = None,
     package_paths: Iterable[str | Path] = (),
 ) -> ConfigPackage:
@@ -148,19 +158,24 @@ def discover_package(
     marm_data = marm.data if marm is not None else None
     setup_assistant = reader.raw(".setup_assistant")
     pkg_xml = "package.xml" if (root / "package.xml").is_file() else None
-    srdf_rel = find_srdf(root, marm_data, setup_assistant)
-    if pkg_xml is None and srdf_rel is None:
-        raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
     user_paths = tuple(Path(p).resolve() for p in package_paths)
     paths = (root, *user_paths, *marm_package_paths(root, marm_data), root.parent)
     target = detect_target(root, marm_data)
-    urdf_path, origin, args = find_urdf(root, shown, urdf, xacro_args, marm_data, setup_assistant, paths)
     launch_files = _launch_files(root)
-    if target == "ros1":
-        _prepare_substitutions(reader, root, launch_files, paths)
+    _prepare_launch(reader, root, launch_files, paths, target)
+    srdf_rel, srdf_args = _srdf_choice(root, srdf, marm_data, setup_assistant, reader, problems)
+    if pkg_xml is None and srdf_rel is None:
+        raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
+    robot_name = srdf_robot_name(root, srdf_rel)
+    urdf_path, origin, args = find_urdf(
+        root, shown, urdf, xacro_args, marm_data, setup_assistant, paths, robot_name
+    )
     moveit_yaml = reader.raw(MARM_MOVEIT_YAML) if target == "ros2" else None
     sections = _read_sections(reader, target, moveit_yaml)
-    srdf, srdf_text = read_srdf_source(root, srdf_rel, paths, problems) if srdf_rel else (None, None)
+    srdf_xacro_args = {**dict(srdf_args), **dict(xacro_args or {})}
+    parsed, srdf_text = (
+        read_srdf_source(root, srdf_rel, paths, problems, srdf_xacro_args) if srdf_rel else (None, None)
+    )
     return ConfigPackage(
         root=root,
         shown=shown,
@@ -173,13 +188,38 @@ def discover_package(
         package_paths=paths,
         package_xml=pkg_xml,
         srdf_path=srdf_rel,
-        srdf=srdf,
+        srdf=parsed,
         srdf_text=srdf_text,
         marm_setup=marm,
         launch_files=launch_files,
         problems=tuple(problems),
         **sections,
     )
+
+
+def _srdf_choice(root, given, marm_data, setup_assistant, reader, problems):
+    """(relative SRDF path or None, its xacro args): `--srdf` when given, else `find_srdf`."""
+    if given is None:
+        return find_srdf(root, marm_data, setup_assistant, reader.launch_srdf, problems)
+    if not Path(given).is_file():
+        raise InputError("file not found", path=str(given), element="--srdf")
+    return Path(os.path.relpath(Path(given).resolve(), root)).as_posix(), ()
+
+
+def _prepare_launch(reader, root: Path, launch_files, paths, target: str) -> None:
+    """What the ROS 1 launch files load: subst_value files and their args, rosparam files, the SRDF."""
+    if target != "ros1":
+        return
+    from marm_setup.robot.ros_packages import find_packages
+
+    try:
+        packages = find_packages(paths)
+    except InputError:
+        packages = {}
+    reader.find = lambda name: str(packages[name]) if name in packages else None
+    reader.contexts = subst_contexts(root, launch_files, reader.find)
+    reader.loaded = tuple(loaded_files(root, launch_files, reader.find))
+    reader.launch_srdf = launch_srdf(root, launch_files, reader.find)
 
 
 # -- YAML --------------------------------------------------------------------------------------
@@ -195,6 +235,8 @@ class _YamlReader:
         self.cache: dict[str, Any] = {}
         self.contexts: dict[str, tuple[dict[str, str], str]] = {}
         self.find = lambda _name: None
+        self.loaded: tuple[str, ...] = ()  # files the launch files load with <rosparam file=...>
+        self.launch_srdf: tuple[str, tuple[tuple[str, str], ...]] | None = None
 
     def raw(self, rel: str) -> Any:
         if rel not in self.cache:
@@ -232,18 +274,6 @@ class _YamlReader:
         return None if data is None else ConfigSection(rel, data)
 
 
-def _prepare_substitutions(reader: _YamlReader, root: Path, launch_files, paths) -> None:
-    """Tell the reader which files roslaunch loads with `subst_value`, and their launch args."""
-    from marm_setup.robot.ros_packages import find_packages
-
-    try:
-        packages = find_packages(paths)
-    except InputError:
-        packages = {}
-    reader.find = lambda name: str(packages[name]) if name in packages else None
-    reader.contexts = subst_contexts(root, launch_files, reader.find)
-
-
 def _yaml_msg(exc: yaml.YAMLError) -> str:
     problem = getattr(exc, "problem", None)
     return str(problem) if problem else str(exc).splitlines()[0]
@@ -265,7 +295,10 @@ def _read_sections(reader: _YamlReader, target: str, moveit_yaml: Any) -> dict[s
 
 
 def _first(reader: _YamlReader, names: tuple[str, ...]) -> ConfigSection | None:
-    for rel in names:
+    """The first of `names` that exists, else a file of the same name in a sub-folder that a
+    launch file loads (e.g. `config/7dof/joint_limits.yaml`)."""
+    basenames = {Path(n).name for n in names}
+    for rel in (*names, *(f for f in reader.loaded if Path(f).name in basenames)):
         section = reader.section(rel)
         if section is not None:
             return section

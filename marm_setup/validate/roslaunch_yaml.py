@@ -1,4 +1,5 @@
-"""YAML as ROS 1's roslaunch loads it: rosparam's angle tags and `subst_value` substitutions.
+"""What ROS 1's roslaunch loads: YAML with rosparam's angle tags and `subst_value`
+substitutions, the rosparam files and the SRDF (with its xacro args) that launch files name.
 
 - rosparam (`ros_comm/tools/rosparam/src/rosparam/__init__.py`, `construct_angle_radians` /
   `construct_angle_degrees` and the resolvers at the end of the module) adds the tags
@@ -172,12 +173,7 @@ def subst_contexts(
     each with (that launch file's args, the launch file's folder); the first launch file (sorted)
     that loads a file wins."""
     out: dict[str, tuple[dict[str, str], str]] = {}
-    for rel in launch_files:
-        tree = _parse(root / rel)
-        if tree is None:
-            continue
-        dirname = str((root / rel).parent)
-        args = launch_args(tree, find, dirname)
+    for _rel, tree, args, dirname in _launch_trees(root, launch_files, find):
         for elem in tree.iter("rosparam"):
             if (elem.get("subst_value") or "").strip().lower() not in ("true", "1"):
                 continue
@@ -224,3 +220,63 @@ def _parse(path):
         return etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot()
     except (etree.XMLSyntaxError, OSError):
         return None
+
+
+# -- what the launch files load: rosparam files and the SRDF (with its xacro args) -------------
+
+
+def loaded_files(root, launch_files: tuple[str, ...], find: Callable[[str], str | None]) -> list[str]:
+    """Package files (relative paths) that `<rosparam file=...>` elements load, in launch order."""
+    out: list[str] = []
+    for _rel, tree, args, dirname in _launch_trees(root, launch_files, find):
+        for elem in tree.iter("rosparam"):
+            target = _loaded_file(elem.get("file"), args, find, dirname, root)
+            if target is not None and target not in out:
+                out.append(target)
+    return out
+
+
+def launch_srdf(
+    root, launch_files: tuple[str, ...], find: Callable[[str], str | None]
+) -> tuple[str, tuple[tuple[str, str], ...]] | None:
+    """The SRDF a launch file sets as `*_semantic` (MoveIt 1 planning_context.launch): from
+    `textfile=`, or from `command="xacro FILE a:=b ..."` with those xacro args (launch args
+    substituted); the first launch file (sorted) that sets one wins."""
+    for _rel, tree, args, dirname in _launch_trees(root, launch_files, find):
+        for elem in tree.iter("param"):
+            name = elem.get("name") or ""
+            if not name.endswith("_semantic"):
+                continue
+            if elem.get("textfile"):
+                target = _loaded_file(elem.get("textfile"), args, find, dirname, root)
+                if target is not None:
+                    return target, ()
+            found = _xacro_command(elem.get("command"), args, find, dirname, root)
+            if found is not None:
+                return found
+    return None
+
+
+def _xacro_command(command, args, find, dirname, root):
+    if not command:
+        return None
+    try:
+        # `$(find xacro)/xacro`: the tool's own package need not be on the package path
+        text = substitute(command, args, lambda name: find(name) or f"/{name}", dirname)
+        words = text.replace("'", " ").replace('"', " ").split()
+    except SubstitutionError:
+        return None
+    files = [w for w in words if w.endswith(".xacro") or w.endswith(".srdf")]
+    if not files:
+        return None
+    target = _loaded_file(files[-1], {}, find, dirname, root)
+    mappings = tuple(tuple(w.split(":=", 1)) for w in words if ":=" in w and not w.startswith("__"))
+    return (target, tuple(sorted(mappings))) if target is not None else None
+
+
+def _launch_trees(root, launch_files, find):
+    for rel in launch_files:
+        tree = _parse(root / rel)
+        if tree is not None:
+            dirname = str((root / rel).parent)
+            yield rel, tree, launch_args(tree, find, dirname), dirname

@@ -86,6 +86,7 @@ def validate(
     path: str | Path,
     *,
     urdf: str | Path | None = None,
+    srdf: str | Path | None = None,
     xacro_args: Mapping[str, str] | None = None,
     package_paths: Iterable[str | Path] = (),
     plan: bool = True,
@@ -95,7 +96,7 @@ def validate(
 
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
-    pkg = discover_package(path, urdf=urdf, xacro_args=xacro_args, package_paths=package_paths)
+    pkg = discover_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
     findings = list(pkg.problems)
     findings += guarded("package", check_package_xml, pkg.root, pkg.package_xml)
     findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch_files, pkg.target)

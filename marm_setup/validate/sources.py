@@ -44,34 +44,67 @@ def _sa_entry(raw: Any, key: str) -> dict:
     return entry if isinstance(entry, dict) else {}
 
 
-def find_srdf(root: Path, marm: Any, setup_assistant: Any) -> str | None:
-    candidates: list[str] = []
+SRDF_GLOBS = ("config/*.srdf", "srdf/*.srdf", "config/*.srdf.xacro", "srdf/*.srdf.xacro")
+
+
+def find_srdf(root: Path, marm: Any, setup_assistant: Any, launch=None, problems=None):
+    """(relative SRDF path or None, its xacro args): marm_setup.yaml's, `.setup_assistant`'s,
+    the one a launch file sets as `*_semantic` (with the xacro args it passes), then the first of
+    `config/*.srdf`, `srdf/*.srdf` and their `.srdf.xacro` forms. A `.setup_assistant` naming a
+    missing SRDF is an error in `problems`: the Setup Assistant cannot load the package."""
+    candidates: list[tuple[str, tuple]] = []
     if isinstance(marm, dict) and marm.get("robot_name"):
-        candidates.append(f"config/{marm['robot_name']}.srdf")
+        candidates.append((f"config/{marm['robot_name']}.srdf", ()))
     rel = _sa_entry(setup_assistant, "srdf").get("relative_path")
     if isinstance(rel, str):
-        candidates.append(rel)
-    candidates += sorted(p.relative_to(root).as_posix() for p in (root / "config").glob("*.srdf"))
-    candidates += sorted(p.relative_to(root).as_posix() for p in (root / "config").glob("*.srdf.xacro"))
-    return next((c for c in candidates if (root / c).is_file()), None)
+        if (root / rel).is_file():
+            candidates.append((rel, ()))
+        elif problems is not None:
+            problems.append(_missing_sa_srdf(setup_assistant, rel))
+    if launch is not None:
+        candidates.append(launch)
+    for pattern in SRDF_GLOBS:
+        candidates += [(p.relative_to(root).as_posix(), ()) for p in sorted(root.glob(pattern))]
+    return next(((c, a) for c, a in candidates if (root / c).is_file()), (None, ()))
+
+
+def _missing_sa_srdf(setup_assistant: Any, rel: str) -> Finding:
+    key = "SRDF" if "SRDF" in _setup_assistant_config(setup_assistant) else "srdf"
+    msg = f"names the SRDF '{rel}', which does not exist: the Setup Assistant cannot load this package"
+    return error("srdf.missing", ".setup_assistant", f"{key}.relative_path", msg, "fix the path")
+
+
+def srdf_robot_name(root: Path, rel: str | None) -> str | None:
+    """The `<robot name>` of the SRDF (what MoveItConfigsBuilder and launch files pair a URDF by)."""
+    if rel is None:
+        return None
+    from lxml import etree
+
+    try:
+        for _event, elem in etree.iterparse(str(root / rel), events=("start",)):
+            return elem.get("name") or None
+    except (etree.XMLSyntaxError, OSError):
+        return None
+    return None
 
 
 def read_srdf_source(
-    root: Path, rel: str, paths: tuple[Path, ...], problems: list[Finding]
+    root: Path, rel: str, paths: tuple[Path, ...], problems: list[Finding], args: dict | None = None
 ) -> tuple[Any, str | None]:
-    """(parsed SRDF, its text); a `.srdf.xacro` is expanded by xacro first; failures -> problems."""
+    """(parsed SRDF, its text); a `.srdf.xacro` is expanded by xacro (with `args`) first;
+    failures -> problems."""
     from marm_setup.setup.srdf import parse_srdf_string
 
     file = root / rel
     try:
-        text = _srdf_text(file, rel, paths)
+        text = _srdf_text(file, rel, paths, args or {})
         return parse_srdf_string(text, rel), text
     except MarmError as exc:
         problems.append(error("srdf.parse", rel, exc.element or "", exc.message))
         return None, None
 
 
-def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...]) -> str:
+def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...], args: dict) -> str:
     if not rel.endswith(".xacro"):
         try:
             return file.read_text(encoding="utf-8")
@@ -80,11 +113,14 @@ def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...]) -> str:
     from marm_setup.robot.load import expand_xacro
     from marm_setup.robot.ros_packages import find_packages
 
-    return expand_xacro(file, {}, find_packages(paths, near=file), shown=rel)
+    return expand_xacro(file, args, find_packages(paths, near=file), shown=rel)
 
 
-def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths):
-    """(path, origin, xacro args) of the robot description; InputError when none can be found."""
+def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths, robot_name=None):
+    """(path, origin, xacro args) of the robot description; InputError when none can be found.
+
+    The MoveIt 2 `config/<robot>.urdf.xacro` is picked by the SRDF's robot name, as
+    MoveItConfigsBuilder(robot_name) pairs `config/<robot_name>.urdf.xacro` with its SRDF."""
     args = tuple(sorted((xacro_args or {}).items()))
     if urdf is not None:
         if not Path(urdf).is_file():
@@ -97,10 +133,10 @@ def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths):
             file = file if file.is_absolute() else root / file
             return file, "marm_setup.yaml", args or _marm_xacro_args(robot.get("xacro_args"))
     name = package_name(root) or root.name
-    robot_name = _srdf_robot_name(root)
-    for candidate in sorted((root / "config").glob("*.urdf.xacro")):
-        if robot_name is None or candidate.name == f"{robot_name}.urdf.xacro":
-            return candidate, "config/<robot>.urdf.xacro", args
+    xacros = sorted((root / "config").glob("*.urdf.xacro"))
+    named = [c for c in xacros if c.name == f"{robot_name}.urdf.xacro"]
+    if named or (len(xacros) == 1 and robot_name is None):
+        return (named or xacros)[0], "config/<robot>.urdf.xacro", args
     entry = _sa_entry(setup_assistant, "urdf")
     if entry.get("package") and entry.get("relative_path"):
         return _setup_assistant_urdf(entry, paths, shown, args)
@@ -121,11 +157,6 @@ def _why_no_urdf(root: Path, marm: Any, setup_assistant: Any) -> str:
     if (root / "marm_setup.yaml").is_file():
         return "marm_setup.yaml gives no robot.urdf; pass --urdf URDF"
     return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro; pass --urdf URDF"
-
-
-def _srdf_robot_name(root: Path) -> str | None:
-    srdfs = sorted((root / "config").glob("*.srdf"))
-    return srdfs[0].name[: -len(".srdf")] if len(srdfs) == 1 else None
 
 
 def _setup_assistant_urdf(entry: dict, paths: tuple[Path, ...], shown: str, args):

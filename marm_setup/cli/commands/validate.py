@@ -17,6 +17,10 @@ def validate(
         Path | None,
         typer.Option("--urdf", help="Robot description to use instead of the one the package names."),
     ] = None,
+    srdf: Annotated[
+        Path | None,
+        typer.Option("--srdf", help="SRDF (or .srdf.xacro) to use instead of the one the package names."),
+    ] = None,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
     no_plan: Annotated[
@@ -34,6 +38,7 @@ def validate(
     as_json = format is OutputFormat.json
     options = dict(
         urdf=urdf,
+        srdf=srdf,
         xacro_args=parse_xacro_args(xacro_arg or []),
         package_paths=package_path or [],
         plan=not no_plan,
