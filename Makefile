@@ -27,11 +27,13 @@ demo: $(STAMP)
 test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
+	$(BIN)/mypy
 	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci
 
 lint: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
+	$(BIN)/mypy
 	$(BIN)/ruff format --check marm_setup tests benchmarks
 
 bench: $(STAMP)
@@ -42,4 +44,4 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_validate.py
 
 clean:
-	rm -rf $(VENV) demo_out .pytest_cache .ruff_cache .hypothesis
+	rm -rf $(VENV) demo_out .pytest_cache .ruff_cache .mypy_cache .hypothesis

@@ -34,7 +34,14 @@ from pathlib import Path
 import numpy as np
 
 from marm_setup.collision.scene import CollisionScene
-from marm_setup.plan.planner import PlannerOptions, group_space, path_length, plan_joint_path, state_problem
+from marm_setup.plan.planner import (
+    PlanFound,
+    PlannerOptions,
+    group_space,
+    path_length,
+    plan_joint_path,
+    state_problem,
+)
 from marm_setup.plan.problem import planning_problem
 from marm_setup.robot.load import load_robot
 from marm_setup.validate.discovery import discover_package
@@ -110,8 +117,9 @@ def run_ours(robot, problem, item: Query, seed: int) -> Run:
         robot, problem.check, item.q_start, item.q_goal, problem.joint_names, rng, OPTIONS
     )
     total = time.perf_counter() - t0
-    length = path_length(result.q_path) if result.success else np.nan
-    return Run(result.success, result.search_time_s, length, total - result.search_time_s)
+    found = isinstance(result, PlanFound)
+    length = path_length(result.q_path) if isinstance(result, PlanFound) else np.nan
+    return Run(found, result.search_time_s, length, total - result.search_time_s)
 
 
 def _ompl_setup(robot, problem, item: Query, batched: bool):

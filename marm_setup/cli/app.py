@@ -7,9 +7,8 @@ trimesh, scipy) inside its body, so `marm-setup --help` stays fast.
 from __future__ import annotations
 
 import functools
-import sys
 from collections.abc import Callable
-from typing import Annotated, TypeVar
+from typing import Annotated, ParamSpec, TypeVar
 
 import typer
 
@@ -26,14 +25,15 @@ app = typer.Typer(
     rich_markup_mode=None,  # plain help: rendering it with rich costs ~130 ms of imports
 )
 
-F = TypeVar("F", bound=Callable)
+P = ParamSpec("P")
+R = TypeVar("R")
 
 
-def handle_errors(fn: F) -> F:
+def handle_errors(fn: Callable[P, R]) -> Callable[P, R]:
     """Turn a MarmError into one `error: ...` line on stderr and its exit code."""
 
     @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
+    def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
         try:
             return fn(*args, **kwargs)
         except MarmError as exc:
@@ -73,4 +73,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    main()

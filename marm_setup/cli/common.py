@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import enum
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
+
+if TYPE_CHECKING:
+    from marm_setup.robot.model import RobotModel
 
 UrdfArg = Annotated[
     Path, typer.Argument(help="Robot description: .urdf, .xacro or .urdf.xacro.", metavar="URDF")
@@ -30,7 +33,9 @@ class OutputFormat(str, enum.Enum):
     json = "json"
 
 
-def load_robot_from_cli(urdf: Path, xacro_args: list[str] | None, package_paths: list[Path] | None):
+def load_robot_from_cli(
+    urdf: Path, xacro_args: list[str] | None, package_paths: list[Path] | None
+) -> RobotModel:
     """Load a robot from command-line options (the import stays out of --help)."""
     from marm_setup.robot.load import load_robot, parse_xacro_args
 

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from rich.progress import Progress, TaskID
 
 
 class SamplingProgress:
@@ -13,14 +17,14 @@ class SamplingProgress:
     def __init__(self) -> None:
         self.started = time.perf_counter()
         self.marks: list[tuple[float, int]] = []  # (time, trials done) at each progress call
-        self._bar = None
-        self._task = None
+        self._bar: Progress | None = None
+        self._task: TaskID | None = None
 
     def __enter__(self) -> SamplingProgress:
         self.started = time.perf_counter()
         return self
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, *exc: object) -> None:
         self.finished = time.perf_counter()
         if self._bar is not None:
             self._bar.stop()
@@ -29,7 +33,7 @@ class SamplingProgress:
         self.marks.append((time.perf_counter(), done))
         if self._bar is None and sys.stderr.isatty():
             self._start_bar()
-        if self._bar is not None:
+        if self._bar is not None and self._task is not None:
             self._bar.update(self._task, completed=done, total=total)
 
     def _start_bar(self) -> None:
@@ -38,9 +42,9 @@ class SamplingProgress:
         from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
 
         columns = (TextColumn("sampling"), BarColumn(), TaskProgressColumn(), TimeRemainingColumn())
-        self._bar = Progress(*columns, console=Console(stderr=True), transient=True)
-        self._bar.start()
-        self._task = self._bar.add_task("sampling", total=None)
+        bar = Progress(*columns, console=Console(stderr=True), transient=True)
+        bar.start()
+        self._bar, self._task = bar, bar.add_task("sampling", total=None)
 
     def denser_seconds(self, factor: int = 10) -> float | None:
         """Seconds a run with `factor` times the trials would take: this run plus the extra

@@ -100,7 +100,7 @@ def compute_collision_matrix(
     reasons.update(dict.fromkeys(never, DisabledReason.NEVER))
     distances = _never_distances(scene, q, never, closest)
     stats = tuple(
-        PairStats(*p, reasons.get(p), *counts.get(p, (0, 0)), p in seen, distances.get(p))
+        PairStats(p[0], p[1], reasons.get(p), *counts.get(p, (0, 0)), p in seen, distances.get(p))
         for p in scene.candidate_pairs
     )
     return CollisionMatrix(

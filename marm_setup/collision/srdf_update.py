@@ -62,7 +62,7 @@ def read_srdf_entries(text: str, *, shown: str) -> list[SrdfEntry]:
     except etree.XMLSyntaxError as exc:
         raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
     if root.tag != "robot":
-        raise InputError(f"root element is <{root.tag}>, expected <robot>", path=shown)
+        raise InputError(f"root element is <{root.tag!s}>, expected <robot>", path=shown)
     entries = []
     for match in _element_matches(text):
         el = etree.fromstring(match.group(0))

@@ -25,6 +25,8 @@ ValidityChecker = Callable[[np.ndarray], Sequence[Pair | None]]
 
 __all__ = [
     "GroupSpace",
+    "PlanFailed",
+    "PlanFound",
     "PlanResult",
     "PlannerOptions",
     "ValidityChecker",
@@ -51,20 +53,29 @@ class PlannerOptions:
 
 
 @dataclass(frozen=True, eq=False)
-class PlanResult:
-    """A path of waypoints (M, n_group) from start to goal in the group's joints, or a reason."""
+class PlanFound:
+    """A path of waypoints (M, n_group) from start to goal in the group's joints."""
 
     joint_names: tuple[str, ...]
-    q_path: np.ndarray | None
-    reason: str | None = None
-    colliding_pair: Pair | None = None
+    q_path: np.ndarray
     iterations: int = 0
     planning_time_s: float = 0.0  # everything: checks, search, shortcutting, verification
     search_time_s: float = 0.0  # up to the first path (what OMPL's solve() measures)
 
-    @property
-    def success(self) -> bool:
-        return self.q_path is not None
+
+@dataclass(frozen=True, eq=False)
+class PlanFailed:
+    """Why there is no path; `colliding_pair` when the start or goal state is in collision."""
+
+    joint_names: tuple[str, ...]
+    reason: str
+    colliding_pair: Pair | None = None
+    iterations: int = 0
+    planning_time_s: float = 0.0
+    search_time_s: float = 0.0
+
+
+PlanResult = PlanFound | PlanFailed
 
 
 @dataclass(frozen=True, eq=False)
@@ -163,16 +174,18 @@ def _limit_reason(space: GroupSpace, q: np.ndarray, what: str) -> str | None:
     return None
 
 
-def _endpoint_failure(space: GroupSpace, checker: _Checker, q_start, q_goal) -> PlanResult | None:
+def _endpoint_failure(
+    space: GroupSpace, checker: _Checker, q_start: np.ndarray, q_goal: np.ndarray
+) -> PlanFailed | None:
     for q, what in ((q_start, "start"), (q_goal, "goal")):
         reason = _limit_reason(space, q, what)
         if reason:
-            return PlanResult(space.joint_names, None, reason)
+            return PlanFailed(space.joint_names, reason)
     hits = checker._hits(np.array([q_start, q_goal]))
     for hit, what in zip(hits, ("start", "goal"), strict=True):
         if hit is not None:
-            return PlanResult(
-                space.joint_names, None, f"{what} in collision: {hit[0]} - {hit[1]}", tuple(hit)
+            return PlanFailed(
+                space.joint_names, f"{what} in collision: {hit[0]} - {hit[1]}", (hit[0], hit[1])
             )
     return None
 
@@ -187,7 +200,7 @@ def state_problem(
     if reason:
         return reason, None
     hit = check(q[None, :])[0]
-    return None if hit is None else (f"{what} in collision: {hit[0]} - {hit[1]}", tuple(hit))
+    return None if hit is None else (f"{what} in collision: {hit[0]} - {hit[1]}", (hit[0], hit[1]))
 
 
 def plan_joint_path(
@@ -202,7 +215,7 @@ def plan_joint_path(
     """Plan from `q_start` to `q_goal` (full configurations) moving only `joint_names`.
 
     Joints outside the group stay at `q_start`'s values; only the group's values of `q_goal`
-    are used. Returns waypoints in the group's joints, or a reason (never a bare None).
+    are used. Returns waypoints in the group's joints, or why there are none.
     """
     t0 = time.perf_counter()
     space = group_space(robot, joint_names, q_start)
@@ -214,12 +227,10 @@ def plan_joint_path(
     q_path, iterations = rrt_connect(checker, qs, qg, rng, t0)
     if q_path is None:
         reason = f"no path within budget ({iterations} iterations, {time.perf_counter() - t0:.2f} s)"
-        return PlanResult(space.joint_names, None, reason, None, iterations, time.perf_counter() - t0)
+        return PlanFailed(space.joint_names, reason, None, iterations, time.perf_counter() - t0)
     t_search = time.perf_counter() - t0
     q_path = verify_path(checker, shortcut(checker, q_path, rng), rng, t0)
     if q_path is None:
         reason = f"no path verified within budget ({time.perf_counter() - t0:.2f} s)"
-        return PlanResult(
-            space.joint_names, None, reason, None, iterations, time.perf_counter() - t0, t_search
-        )
-    return PlanResult(space.joint_names, q_path, None, None, iterations, time.perf_counter() - t0, t_search)
+        return PlanFailed(space.joint_names, reason, None, iterations, time.perf_counter() - t0, t_search)
+    return PlanFound(space.joint_names, q_path, iterations, time.perf_counter() - t0, t_search)

@@ -16,8 +16,9 @@ import numpy as np
 from marm_setup.errors import InputError
 from marm_setup.plan.execution import ExecutionOptions, ExecutionReport, fake_execute
 from marm_setup.plan.planner import (
+    PlanFailed,
+    PlanFound,
     PlannerOptions,
-    PlanResult,
     ValidityChecker,
     group_space,
     plan_joint_path,
@@ -42,12 +43,12 @@ class PlanningProblem:
 
 
 @dataclass(frozen=True, eq=False)
-class QueryOutcome:
-    """A plan between two poses, its timed trajectory and fake execution (None when planning failed)."""
+class Executed:
+    """A plan between two poses, its timed trajectory and its fake execution."""
 
-    plan: PlanResult
-    trajectory: TimedTrajectory | None = None
-    execution: ExecutionReport | None = None
+    plan: PlanFound
+    trajectory: TimedTrajectory
+    execution: ExecutionReport
 
 
 def _overlay(robot: RobotModel, q: np.ndarray, values) -> np.ndarray:
@@ -78,7 +79,8 @@ def initial_configuration(package, robot: RobotModel) -> np.ndarray:
 def _limits_section(package) -> tuple[dict, float, float]:
     data = package.joint_limits.data if package.joint_limits is not None else None
     data = data if isinstance(data, dict) else {}
-    entries = data.get("joint_limits") if isinstance(data.get("joint_limits"), dict) else {}
+    entries = data.get("joint_limits")
+    entries = entries if isinstance(entries, dict) else {}
     scale_v, scale_a = (
         _scaling(data.get(f"default_{kind}_scaling_factor")) for kind in ("velocity", "acceleration")
     )
@@ -163,15 +165,15 @@ def plan_between(
     seed: int = 0,
     options: PlannerOptions = PlannerOptions(),
     execution: ExecutionOptions | None = None,
-) -> QueryOutcome:
+) -> Executed | PlanFailed:
     """Plan, time-parameterise within the scaled limits, and fake-execute against the hard limits."""
     rng = np.random.default_rng(seed)
     plan = plan_joint_path(robot, problem.check, q_start, q_goal, problem.joint_names, rng, options)
-    if not plan.success:
-        return QueryOutcome(plan)
+    if isinstance(plan, PlanFailed):
+        return plan
     limits = problem.limits.scaled(problem.velocity_scaling, problem.acceleration_scaling)
     trajectory = time_parameterize(plan.q_path, limits)
     space = group_space(robot, problem.joint_names, q_start)
     execution = execution or ExecutionOptions(max_step=options.max_step / 4)
     report = fake_execute(trajectory, space, problem.limits, problem.check, q_goal[space.index], execution)
-    return QueryOutcome(plan, trajectory, report)
+    return Executed(plan, trajectory, report)

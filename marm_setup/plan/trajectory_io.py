@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from os import PathLike
 from pathlib import Path
 
@@ -10,7 +11,7 @@ import yaml
 from marm_setup.plan.timing import TimedTrajectory
 
 
-def _round(values) -> list[float]:
+def _round(values: Iterable[float]) -> list[float]:
     return [float(round(float(x), 9)) + 0.0 for x in values]
 
 

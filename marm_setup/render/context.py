@@ -152,7 +152,7 @@ def check_description_ref(ref: DescriptionRef) -> None:
 def _initial_pose(model: SetupModel, group: str) -> GroupState | None:
     states = [s for s in model.group_states if s.group == group]
     named = [s for s in states if s.name == "home"]
-    return (named or states or [None])[0]
+    return (named or states)[0] if states else None
 
 
 def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:

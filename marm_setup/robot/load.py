@@ -8,7 +8,7 @@ import logging
 import re
 import sys
 import types
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 
 from lxml import etree
@@ -90,8 +90,9 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
         except ExpatError as exc:
             raise InputError(f"malformed XML: {exc}", path=shown, element=f"line {exc.lineno}") from None
         except Exception as exc:  # xacro raises many types; all are bad input here
-            if isinstance(getattr(exc, "exc", None), InputError):  # ours, wrapped by XacroException
-                raise exc.exc from None
+            inner = getattr(exc, "exc", None)
+            if isinstance(inner, InputError):  # ours, wrapped by XacroException
+                raise inner from None
             raise InputError(_xacro_message(exc), path=shown, element="xacro") from None
         finally:
             xacro.substitution_args_context["arg"] = {}
@@ -109,16 +110,16 @@ def _xacro_message(exc: Exception) -> str:
 
 
 @contextlib.contextmanager
-def _ament_index_stub(packages: PackageMap, shown: str):
+def _ament_index_stub(packages: PackageMap, shown: str) -> Iterator[None]:
     """Install an `ament_index_python.packages` stand-in that answers from `packages`."""
 
     def get_package_share_directory(name: str) -> str:
         return str(find_package(name, packages, path=shown, element=f"$(find {name})"))
 
     module = types.ModuleType("ament_index_python.packages")
-    module.get_package_share_directory = get_package_share_directory
+    module.__dict__["get_package_share_directory"] = get_package_share_directory
     parent = types.ModuleType("ament_index_python")
-    parent.packages = module
+    parent.__dict__["packages"] = module
     saved = {k: sys.modules.get(k) for k in ("ament_index_python", "ament_index_python.packages")}
     sys.modules.update({"ament_index_python": parent, "ament_index_python.packages": module})
     try:

@@ -59,12 +59,14 @@ def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
 
     try:
         mesh = trimesh.load(str(path), force="mesh", process=False)
-        if mesh.units is not None:  # declared by the file (Collada <unit>); never guessed
+        if isinstance(mesh, trimesh.Trimesh) and mesh.units is not None:  # Collada <unit>; never guessed
             mesh.convert_units("meters")
     except Exception as exc:  # trimesh raises many types for unreadable files
         raise _MeshReadError(" ".join(str(exc).split()) or type(exc).__name__) from None
-    vertices = np.asarray(getattr(mesh, "vertices", ()), dtype=float).reshape(-1, 3)
-    faces = np.asarray(getattr(mesh, "faces", ()), dtype=np.int64).reshape(-1, 3)
+    if not isinstance(mesh, trimesh.Trimesh):
+        raise _MeshReadError("no triangles")
+    vertices = np.asarray(mesh.vertices, dtype=float).reshape(-1, 3)
+    faces = np.asarray(mesh.faces, dtype=np.int64).reshape(-1, 3)
     if len(vertices) == 0 or len(faces) == 0:
         raise _MeshReadError("no triangles")
     return vertices.copy(), faces.copy()

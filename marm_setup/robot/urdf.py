@@ -22,6 +22,7 @@ from marm_setup.robot.model import (
     Origin,
     RobotModel,
     Sphere,
+    Vec3,
 )
 from marm_setup.robot.ros_packages import PackageMap, resolve_uri
 
@@ -44,7 +45,7 @@ def parse_urdf(
     """Convert a parsed `<robot>` element; checks names, tree shape and limits."""
     ctx = _Ctx(shown, base_dir, packages)
     if root.tag != "robot":
-        raise ctx.error(f"<{root.tag}>", "root element must be <robot>")
+        raise ctx.error(f"<{root.tag!s}>", "root element must be <robot>")
     links = tuple(_parse_link(el, ctx) for el in root.findall("link"))
     joints = tuple(_parse_joint(el, ctx) for el in root.findall("joint"))
     _check_unique(links, "link", ctx)
@@ -61,7 +62,9 @@ def parse_urdf(
     )
 
 
-def _floats(text: str | None, n: int, element: str, ctx: _Ctx, default=None) -> tuple[float, ...]:
+def _floats(
+    text: str | None, n: int, element: str, ctx: _Ctx, default: tuple[float, ...] | None = None
+) -> tuple[float, ...]:
     if text is None:
         if default is None:
             raise ctx.error(element, "missing value")
@@ -75,6 +78,11 @@ def _floats(text: str | None, n: int, element: str, ctx: _Ctx, default=None) -> 
     if not all(math.isfinite(v) for v in values):
         raise ctx.error(element, f"expected finite numbers, got '{text}'")
     return values
+
+
+def _vec3(text: str | None, element: str, ctx: _Ctx, default: Vec3 | None = None) -> Vec3:
+    x, y, z = _floats(text, 3, element, ctx, default)
+    return (x, y, z)
 
 
 def _sizes(el: etree._Element, keys: tuple[str, ...], element: str, ctx: _Ctx) -> tuple[float, ...]:
@@ -94,8 +102,8 @@ def _origin(el: etree._Element | None, element: str, ctx: _Ctx) -> Origin:
         return Origin()
     zero = (0.0, 0.0, 0.0)
     return Origin(
-        xyz=_floats(el.get("xyz"), 3, f"{element}/origin@xyz", ctx, zero),
-        rpy=_floats(el.get("rpy"), 3, f"{element}/origin@rpy", ctx, zero),
+        xyz=_vec3(el.get("xyz"), f"{element}/origin@xyz", ctx, zero),
+        rpy=_vec3(el.get("rpy"), f"{element}/origin@rpy", ctx, zero),
     )
 
 
@@ -116,9 +124,10 @@ def _parse_link(el: etree._Element, ctx: _Ctx) -> Link:
 
 
 def _geometry(el: etree._Element, element: str, ctx: _Ctx) -> Geometry:
-    element = f"{element}/{el.tag}"
+    element = f"{element}/{el.tag!s}"
     if el.tag == "box":
-        return Box(_sizes(el, ("size",), element, ctx))
+        x, y, z = _sizes(el, ("size",), element, ctx)
+        return Box((x, y, z))
     if el.tag == "cylinder":
         return Cylinder(*_sizes(el, ("radius", "length"), element, ctx))
     if el.tag == "sphere":
@@ -128,7 +137,7 @@ def _geometry(el: etree._Element, element: str, ctx: _Ctx) -> Geometry:
         if not uri:
             raise ctx.error(element, "missing filename")
         path = resolve_uri(uri, ctx.base_dir, ctx.packages, path=ctx.shown, element=element)
-        scale = _floats(el.get("scale"), 3, f"{element}@scale", ctx, (1.0, 1.0, 1.0))
+        scale = _vec3(el.get("scale"), f"{element}@scale", ctx, (1.0, 1.0, 1.0))
         return Mesh(uri=uri, path=str(path), scale=scale)
     raise ctx.error(element, "unknown geometry; expected box, cylinder, sphere or mesh")
 
@@ -147,18 +156,18 @@ def _parse_joint(el: etree._Element, ctx: _Ctx) -> Joint:
     jtype = el.get("type")
     if jtype not in JOINT_TYPES:
         raise ctx.error(element, f"unknown type '{jtype}'; expected one of {', '.join(JOINT_TYPES)}")
-    parent, child = el.find("parent"), el.find("child")
-    if parent is None or child is None or not parent.get("link") or not child.get("link"):
+    parent, child = (e.get("link") if e is not None else None for e in (el.find("parent"), el.find("child")))
+    if not parent or not child:
         raise ctx.error(element, "needs <parent link=...> and <child link=...>")
     limit, safety, mimic = el.find("limit"), el.find("safety_controller"), el.find("mimic")
     axis = el.find("axis")
     joint = Joint(
         name=name,
         type=jtype,
-        parent=parent.get("link"),
-        child=child.get("link"),
+        parent=parent,
+        child=child,
         origin=_origin(el.find("origin"), element, ctx),
-        axis=_floats(None if axis is None else axis.get("xyz"), 3, f"{element}/axis", ctx, (1.0, 0.0, 0.0)),
+        axis=_vec3(None if axis is None else axis.get("xyz"), f"{element}/axis", ctx, (1.0, 0.0, 0.0)),
         lower=_attr(limit, "lower", f"{element}/limit", ctx),
         upper=_attr(limit, "upper", f"{element}/limit", ctx),
         velocity=_attr(limit, "velocity", f"{element}/limit", ctx),
@@ -177,15 +186,16 @@ def _check_limits(joint: Joint, limit: etree._Element | None, ctx: _Ctx) -> Join
     if joint.type in ("revolute", "prismatic"):
         if limit is None:
             raise ctx.error(element, f"a {joint.type} joint needs <limit>")
+        lower, upper = joint.lower or 0.0, joint.upper or 0.0
         if joint.lower is None or joint.upper is None:
-            joint = _replace_limits(joint, joint.lower or 0.0, joint.upper or 0.0)
-        if joint.lower > joint.upper:
-            raise ctx.error(element, f"lower {joint.lower} > upper {joint.upper}")
+            joint = _replace_limits(joint, lower, upper)
+        if lower > upper:
+            raise ctx.error(element, f"lower {lower} > upper {upper}")
         lo, hi = joint.bounds
         if lo > hi:
             raise ctx.error(
                 f"joint[{joint.name}]/safety_controller",
-                f"soft limits leave no range inside [{joint.lower}, {joint.upper}]",
+                f"soft limits leave no range inside [{lower}, {upper}]",
             )
     if joint.velocity is not None and joint.velocity < 0:
         raise ctx.error(element, f"negative velocity {joint.velocity}")
@@ -199,18 +209,19 @@ def _replace_limits(joint: Joint, lower: float, upper: float) -> Joint:
 def _mimic(el: etree._Element | None, element: str, ctx: _Ctx) -> Mimic | None:
     if el is None:
         return None
-    if not el.get("joint"):
+    leader = el.get("joint")
+    if not leader:
         raise ctx.error(f"{element}/mimic", "missing joint")
     multiplier = _attr(el, "multiplier", f"{element}/mimic", ctx)
     offset = _attr(el, "offset", f"{element}/mimic", ctx)
     return Mimic(
-        joint=el.get("joint"),
+        joint=leader,
         multiplier=1.0 if multiplier is None else multiplier,
         offset=0.0 if offset is None else offset,
     )
 
 
-def _check_unique(items, kind: str, ctx: _Ctx) -> None:
+def _check_unique(items: tuple[Link, ...] | tuple[Joint, ...], kind: str, ctx: _Ctx) -> None:
     seen: set[str] = set()
     for item in items:
         if item.name in seen:

@@ -95,7 +95,7 @@ def infer_arm(robot: RobotModel) -> ArmGuess:
     arm_links = {j.child for j in robot.chain(last_link, tip) or ()} | {last_link}
     below = robot.subtree_joints(last_link)
     gripper_joints = tuple(j.name for j in below if j.is_actuated)
-    gripper_links = ()
+    gripper_links: tuple[str, ...] = ()
     if gripper_joints:
         gripper_links = tuple(link for link in robot.subtree_links(last_link) if link not in arm_links)
     return ArmGuess(Chain(robot.root, tip), last_link, gripper_joints, gripper_links)
@@ -104,7 +104,8 @@ def infer_arm(robot: RobotModel) -> ArmGuess:
 def _serial_path(robot: RobotModel) -> list[Joint]:
     """Joints from the root while exactly one child joint leads to something that moves."""
     moving = _moving_subtrees(robot)
-    path, link = [], robot.root
+    path: list[Joint] = []
+    link = robot.root
     while True:
         children = [j for j in robot.child_joints_of[link] if j.is_actuated or moving[j.child]]
         if len(children) != 1:
@@ -218,7 +219,7 @@ def _merge_items(old: list, new: list) -> list:
     (duplicates in the SPEC are kept, so the model checks report them)."""
     if not all(_item_key(i) is not None for i in (*old, *new)):
         return new
-    first_new: dict[str, int] = {}
+    first_new: dict[str | None, int] = {}
     for index, item in enumerate(new):
         first_new.setdefault(_item_key(item), index)
     used = {first_new[_item_key(o)] for o in old if _item_key(o) in first_new}

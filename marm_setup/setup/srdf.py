@@ -219,7 +219,8 @@ def _link_spheres(r: _Reader, elem) -> LinkSpheres:
         center = [r.number(t, where) for t in r.attr(s, "center", where).split()]
         if len(center) != 3:
             raise r.fail("sphere center needs 3 numbers", where)
-        spheres.append(SphereApprox(center=tuple(center), radius=r.number(r.attr(s, "radius", where), where)))
+        x, y, z = center
+        spheres.append(SphereApprox(center=(x, y, z), radius=r.number(r.attr(s, "radius", where), where)))
     return LinkSpheres(link=link, spheres=tuple(spheres))
 
 

@@ -70,8 +70,9 @@ def _dump_value(value, hint):
     return value
 
 
-def _dump_dataclass(obj) -> dict:
-    hints = _hints(type(obj))
+def _dump_dataclass(obj: typing.Any) -> dict:
+    cls: type = type(obj)
+    hints = _hints(cls)
     out = {}
     for f in dataclasses.fields(obj):
         value = getattr(obj, f.name)

@@ -12,7 +12,7 @@ config package at all raises `InputError` (exit 2).
 - `target`: `ros1` (catkin, MoveIt 1) or `ros2` (ament, MoveIt 2).
 - `layout`: `moveit1` (one YAML per concern), `moveit2` (MoveIt 2 Setup Assistant files) or
   `marm_ros2` (our single `config/moveit.yaml`).
-- `urdf` (Path | None), `urdf_origin` (`--urdf`, `marm_setup.yaml`, `.setup_assistant` or
+- `urdf` (Path), `urdf_origin` (`--urdf`, `marm_setup.yaml`, `.setup_assistant` or
   `config/<robot>.urdf.xacro`), `xacro_args` (tuple of (name, value)), `package_paths`
   (tuple of Path for `$(find ...)`: this package first, so `$(find <itself>)` is this copy,
   then the user's, then marm_setup.yaml's `robot.package_paths`, then the folder holding this
@@ -106,7 +106,7 @@ class ConfigPackage:
     name: str
     target: str
     layout: str
-    urdf: Path | None
+    urdf: Path  # discovery fails (InputError) when there is none
     urdf_origin: str
     xacro_args: tuple[tuple[str, str], ...] = ()
     package_paths: tuple[Path, ...] = ()

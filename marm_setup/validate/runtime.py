@@ -14,7 +14,7 @@ from itertools import permutations
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error, warning
-from marm_setup.plan.planner import PlannerOptions, state_problem
+from marm_setup.plan.planner import PlanFailed, PlannerOptions, state_problem
 from marm_setup.plan.problem import (
     PlanningProblem,
     group_names_with_poses,
@@ -66,8 +66,8 @@ def _check_group(
             planned.append((problem.group, a, b))
         outcome = plan_between(problem, robot, problem.poses[a], problem.poses[b], seed, options)
         element = f"group[{problem.group}]/{a} -> {b}"
-        if not outcome.plan.success:
-            findings.append(error("runtime.no-plan", srdf_file, element, f"no plan: {outcome.plan.reason}"))
+        if isinstance(outcome, PlanFailed):
+            findings.append(error("runtime.no-plan", srdf_file, element, f"no plan: {outcome.reason}"))
         elif not outcome.execution.ok:
             message = "fake execution failed: " + "; ".join(outcome.execution.violations)
             findings.append(error("runtime.execution", srdf_file, element, message))

@@ -12,6 +12,8 @@ from hypothesis import strategies as st
 
 from marm_setup.collision.scene import CollisionScene
 from marm_setup.plan.planner import (
+    PlanFailed,
+    PlanFound,
     PlannerOptions,
     discretize_path,
     group_space,
@@ -53,7 +55,7 @@ def full(robot, **values) -> np.ndarray:
 
 
 def assert_valid_path(robot, result, q_start, q_goal, check, options=OPTIONS):
-    assert result.success, result.reason
+    assert isinstance(result, PlanFound), result.reason
     space = group_space(robot, result.joint_names, q_start)
     np.testing.assert_array_equal(result.q_path[0], q_start[space.index])
     np.testing.assert_array_equal(result.q_path[-1], q_goal[space.index])
@@ -103,7 +105,7 @@ def test_start_in_collision_names_the_pair(robot):
     result = plan_joint_path(
         robot, wall_checker(robot), full(robot), full(robot, joint1=1.0), ARM, np.random.default_rng(0)
     )
-    assert not result.success and result.q_path is None
+    assert isinstance(result, PlanFailed)
     assert result.reason == "start in collision: link1 - link3"
     assert result.colliding_pair == ("link1", "link3")
 
@@ -113,6 +115,7 @@ def test_goal_out_of_limits_names_the_joint(robot):
     result = plan_joint_path(
         robot, wall_checker(robot), full(robot, joint1=1.0), q_goal, ARM, np.random.default_rng(0)
     )
+    assert isinstance(result, PlanFailed)
     assert result.reason == "goal out of limits: joint2 = 3 not in [-2.35, 2.35]"
 
 
@@ -130,7 +133,7 @@ def test_walled_off_goal_fails_within_the_budget(robot):
         np.random.default_rng(0),
         options,
     )
-    assert not result.success
+    assert isinstance(result, PlanFailed)
     assert result.reason.startswith("no path within budget (50 iterations")
 
 
@@ -209,6 +212,6 @@ def test_marm_gripper_plans_over_the_leader_of_its_mimic_joint(robot, marm_scene
     found = state_problem(robot, check, q_start, ("finger_joint1",))
     assert found is None or "collision" in found[0]
     result = plan_joint_path(robot, check, q_start, q_goal, ("finger_joint1",), np.random.default_rng(0))
-    assert result.success, result.reason
+    assert isinstance(result, PlanFound), result.reason
     assert calls and all(c.shape[1] == len(robot.active_joint_names) for c in calls)
     assert "finger_joint2" not in robot.active_joint_names  # FK moves it with its leader

@@ -90,9 +90,9 @@ def collisions(
     if srdf is not None:
         srdf_text = load_srdf_text(srdf, shown=str(srdf))
         read_srdf_entries(srdf_text, shown=str(srdf))  # fail on a bad SRDF before the long part
-    default_q = (
-        None if default_pose is None else _pose_configuration(robot, srdf_text, default_pose, str(srdf))
-    )
+    default_q = None
+    if default_pose is not None and srdf_text is not None:  # --default-pose needs --srdf (checked above)
+        default_q = _pose_configuration(robot, srdf_text, default_pose, str(srdf))
     scene = CollisionScene(robot, padding)
     with SamplingProgress() as progress:
         matrix = compute_collision_matrix(

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from marm_setup.cli.common import PackagePaths
+
+if TYPE_CHECKING:
+    from marm_setup.plan.problem import Executed, PlanningProblem
 
 PackageDir = Annotated[
     Path, typer.Argument(help="MoveIt config package folder (ours or the Setup Assistant's).", metavar="DIR")
@@ -34,6 +37,7 @@ def plan(
     """Plan a collision-free, time-parameterised joint trajectory between named poses."""
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.errors import InputError, PlanningFailed
+    from marm_setup.plan.planner import PlanFailed
     from marm_setup.plan.problem import plan_between, planning_problem, pose
     from marm_setup.plan.trajectory_io import write_trajectory
     from marm_setup.robot.load import load_robot
@@ -42,16 +46,14 @@ def plan(
     if seed < 0:
         raise InputError(f"must be >= 0, got {seed}", element="--seed")
     package = discover_package(package_dir, urdf=urdf, package_paths=package_path or ())
-    if package.urdf is None:
-        raise InputError("no robot description found; pass --urdf", path=str(package_dir))
     robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
     problem = planning_problem(package, robot, CollisionScene(robot), group)
     srdf_shown = package.user_path(package.srdf_path)
     q_start, q_goal = pose(problem, from_pose, srdf_shown), pose(problem, to_pose, srdf_shown)
     outcome = plan_between(problem, robot, q_start, q_goal, seed)
     where = f"group[{group}]/{from_pose} -> {to_pose}"
-    if not outcome.plan.success:
-        raise PlanningFailed(f"no plan: {outcome.plan.reason}", path=srdf_shown, element=where)
+    if isinstance(outcome, PlanFailed):
+        raise PlanningFailed(f"no plan: {outcome.reason}", path=srdf_shown, element=where)
     if not outcome.execution.ok:
         message = "fake execution failed: " + "; ".join(outcome.execution.violations)
         raise PlanningFailed(message, path=srdf_shown, element=where)
@@ -62,7 +64,7 @@ def plan(
         typer.echo(f"wrote {output}")
 
 
-def _summary(problem, outcome) -> str:
+def _summary(problem: PlanningProblem, outcome: Executed) -> str:
     """The indented summary lines of a successful, fake-executed plan."""
     from marm_setup.plan.planner import path_length
 

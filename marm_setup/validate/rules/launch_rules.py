@@ -114,7 +114,8 @@ def check_paths(tree, rel: str, root: Path, package: str) -> list[Finding]:
 def _referenced(text: str, root: Path, launch_dir: Path, package: str):
     """(absolute path, path as written) for each resolvable path into this package in `text`."""
     for m in FIND.finditer(text):
-        tail = PATH_TAIL.match(text, m.end()).group(0)
+        tail_match = PATH_TAIL.match(text, m.end())
+        tail = tail_match.group(0) if tail_match else ""
         if "$(" in tail or not tail.strip("/"):
             continue
         if m.group(3) == "dirname":
