@@ -36,14 +36,14 @@ class RosparamLoader(yaml.SafeLoader):
     """PyYAML's safe loader plus rosparam's angle tags and `deg()` / `rad()` scalars."""
 
 
-def _radians(loader: RosparamLoader, node: yaml.Node) -> float:
+def _radians(loader: RosparamLoader, node: yaml.ScalarNode) -> float:
     text = str(loader.construct_scalar(node)).strip()
     if text.startswith("rad(") and text.endswith(")"):
         text = text[4:-1]
     return arithmetic(text)
 
 
-def _degrees(loader: RosparamLoader, node: yaml.Node) -> float:
+def _degrees(loader: RosparamLoader, node: yaml.ScalarNode) -> float:
     text = str(loader.construct_scalar(node)).strip()
     if text.startswith("deg(") and text.endswith(")"):
         text = text[4:-1]
@@ -186,7 +186,7 @@ def subst_contexts(
 def launch_args(tree, find: Callable[[str], str | None], dirname: str) -> dict[str, str]:
     """A launch file's own args (value, else default), substitutions inside them resolved where
     they can be; an arg without either is left out (whoever includes the file must pass it)."""
-    raw = {}
+    raw: dict[str, str] = {}
     for elem in tree.iter("arg"):
         parent = elem.getparent()
         if elem.get("name") and getattr(parent, "tag", None) != "include":

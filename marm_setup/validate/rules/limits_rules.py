@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from numbers import Real
+from typing import Any, TypeGuard
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import LIMIT_TOLERANCE, RobotModel
@@ -137,7 +138,7 @@ def _check_positions(section, where, entry: dict, joint) -> list[Finding]:
     return out
 
 
-def _number(value) -> bool:
+def _number(value: object) -> TypeGuard[float]:
     return isinstance(value, Real) and not isinstance(value, bool)
 
 
@@ -161,7 +162,7 @@ def _check_floats(section, data: dict) -> list[Finding]:
 def _flag_off(data: dict, path: tuple) -> bool:
     """The value at `path` is a limit whose has_* flag in the same entry is explicitly false."""
     flag = FLAGS.get(path[-1])
-    entry = data
+    entry: Any = data
     for key in path[:-1]:
         entry = entry.get(key) if isinstance(entry, dict) else None
     return flag is not None and isinstance(entry, dict) and entry.get(flag) is False
