@@ -12,13 +12,7 @@ import yaml
 from lxml import etree
 
 from marm_setup.errors import InputError
-from marm_setup.render.package import (
-    ROS1_FILES,
-    ROS2_FILES,
-    description_package,
-    output_path,
-    render_package,
-)
+from marm_setup.render.package import description_package, render_package
 from marm_setup.setup.domain import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
 from marm_setup.setup.model import ArbotixJoint, JointLimitOverride, RobotSource
 from tests.conftest import GOLDENS
@@ -50,17 +44,63 @@ def load_yaml(files: dict[str, str], path: str):
     return yaml.safe_load(files[path])
 
 
-def expected_paths(target: str) -> list[str]:
-    listed = ROS1_FILES if target == "ros1" else ROS2_FILES
-    return sorted({output_path(p, "marm") for p in listed} | {"marm_setup.yaml", "config/marm.srdf"})
+# THE LIST OF GENERATED FILES: every file the marm package must have, per golden tree, written
+# out here rather than taken from marm_setup's own tables, so a file that stops being generated
+# (or a new one nobody reviewed) fails test_file_list. A new generated file goes here, and its
+# golden under tests/goldens/<tree>/ (`pytest --update-goldens` writes it once, failing).
+ROS1_PACKAGE = (
+    "CMakeLists.txt",
+    "config/arbotix.yaml",
+    "config/controllers.yaml",
+    "config/fake_controllers.yaml",
+    "config/joint_limits.yaml",
+    "config/kinematics.yaml",
+    "config/marm.srdf",
+    "config/ompl_planning.yaml",
+    "launch/arbotix.launch",
+    "launch/demo.launch",
+    "launch/fake_moveit_controller_manager.launch.xml",
+    "launch/marm_moveit_controller_manager.launch.xml",
+    "launch/move_group.launch",
+    "launch/moveit.rviz",
+    "launch/moveit_rviz.launch",
+    "launch/planning_context.launch",
+    "launch/trajectory_execution.launch.xml",
+    "marm_setup.yaml",
+    "package.xml",
+    "scripts/trajectory_demo.py",
+)
+ROS2_PACKAGE = (
+    "CMakeLists.txt",
+    "config/initial_positions.yaml",
+    "config/marm.ros2_control.xacro",
+    "config/marm.srdf",
+    "config/marm.urdf.xacro",
+    "config/moveit.rviz",
+    "config/moveit.yaml",
+    "config/ros2_controllers.yaml",
+    "launch/demo.launch.xml",
+    "launch/move_group.launch.xml",
+    "marm_setup.yaml",
+    "package.xml",
+)
+EXPECTED_FILES = {"ros1-noetic": ROS1_PACKAGE, "ros2-humble": ROS2_PACKAGE, "ros2-jazzy": ROS2_PACKAGE}
 
 
-GOLDEN_CASES = [(t, d, p) for t, d in DISTROS for p in expected_paths(t)]
+def expected_paths(target: str, distro: str | None = None) -> list[str]:
+    return sorted(EXPECTED_FILES[f"{target}-{distro or DEFAULT_DISTRO[target]}"])
 
 
-@pytest.mark.parametrize("target", TARGETS)
-def test_file_list(target):
-    assert sorted(rendered(target)) == expected_paths(target)
+GOLDEN_CASES = [(t, d, p) for t, d in DISTROS for p in expected_paths(t, d)]
+
+
+@pytest.mark.parametrize(("target", "distro"), DISTROS)
+def test_file_list(target, distro):
+    assert sorted(EXPECTED_FILES) == sorted(f"{t}-{d}" for t, d in DISTROS)
+    assert sorted(rendered(target, distro)) == expected_paths(target, distro)
+    tree = golden_dir(target, distro)
+    on_disk = sorted(p.relative_to(tree).as_posix() for p in tree.rglob("*") if p.is_file())
+    assert [p for p in on_disk if not p.endswith(".obtained")] == expected_paths(target, distro)
 
 
 @pytest.mark.parametrize(
