@@ -7,11 +7,16 @@ import dataclasses
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.robot.load import parse_xacro_args
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.model import ROS_DISTROS, TARGETS, CollisionSettings, RobotSource, SetupModel
+
+if TYPE_CHECKING:
+    from marm_setup.port.importer import Ported
+    from marm_setup.validate.runner import Validation
 
 
 @dataclass(frozen=True)
@@ -53,6 +58,104 @@ def run_init(request: InitRequest, robot: RobotModel, progress=None) -> InitResu
     from marm_setup.render.writer import format_change
 
     return InitResult(model, tuple(lines), tuple(format_change(c) for c in changes))
+
+
+@dataclass(frozen=True)
+class PortInitRequest:
+    """`init --from-package PKG --out DIR`: port PKG into a new package for `target`."""
+
+    package: Path
+    out: Path
+    name: str | None = None
+    target: str | None = None  # None: ros2
+    ros_distro: str | None = None  # None: env_distro if it fits the target, else the default
+    env_distro: str | None = None
+    force: bool = False
+    package_paths: tuple[Path, ...] = ()
+    plan: bool = True  # validate's runtime checks on the new package
+    jobs: int = 1
+
+
+@dataclass(frozen=True)
+class PortResult:
+    ported: Ported  # its model is the one before the collision matrix
+    model: SetupModel
+    status_lines: tuple[str, ...]
+    validation: Validation  # of the new package
+
+
+def run_port(request: PortInitRequest, progress=None) -> PortResult:
+    """Read the package, port it, check the setup, render and write it, then validate the result."""
+    from marm_setup.port.importer import PortRequest, port_package
+    from marm_setup.render.writer import check_output_dir, format_change
+    from marm_setup.setup.checks import check_setup
+    from marm_setup.validate.discovery import discover_package
+    from marm_setup.validate.runner import validate
+
+    check_output_dir(request.out, force=request.force, shown=str(request.out))
+    pkg = discover_package(request.package, package_paths=request.package_paths)
+    robot = _package_robot(pkg)
+    target = request.target or "ros2"
+    if target not in TARGETS:
+        raise InputError(f"'{target}' is not one of: {', '.join(TARGETS)}", element="--target")
+    distro = _distro(
+        InitRequest(Path(), request.out, ros_distro=request.ros_distro, env_distro=request.env_distro),
+        {},
+        target,
+    )
+    ported = port_package(
+        pkg, robot, PortRequest(request.out, target, distro, request.name, tuple(request.package_paths))
+    )
+    check_setup(ported.model, robot, pkg.user_path(pkg.srdf_path))
+    model = with_collision_matrix(
+        ported.model,
+        robot,
+        trials=ported.model.collision.trials,
+        seed=ported.model.collision.seed,
+        jobs=request.jobs,
+        progress=progress,
+    )
+    changes = write_package(model, robot, request.out, force=request.force)
+    validation = validate(request.out, plan=request.plan)
+    ported = _with_validation_notes(ported, pkg, validation, request.package_paths)
+    return PortResult(ported, model, tuple(format_change(c) for c in changes), validation)
+
+
+def _with_validation_notes(ported, pkg, validation, package_paths):
+    """One report line per validation error of the new package, saying whether the source
+    package has the same error (the port carried it as it was) or the port made it."""
+    from marm_setup.port.report import PortItem
+    from marm_setup.validate.runner import validate
+
+    errors = [f for f in validation.findings if f.is_error]
+    if not errors:
+        return ported
+    source = validate(pkg.root, package_paths=package_paths, plan=False)
+    before = {(f.rule, f.message) for f in source.findings if f.is_error}  # elements differ per layout
+    items = []
+    for f in errors:
+        why = (
+            "the source package has the same error: the port carried the setting as it was; fix it in marm_setup.yaml"
+            if (f.rule, f.message) in before
+            else "new in the port: please report it"
+        )
+        items.append(PortItem("todo", f"validate {f.rule}", f"{f.file}: {f.element}", f"{f.message}; {why}"))
+    return dataclasses.replace(ported, items=(*ported.items, *items))
+
+
+def _package_robot(pkg) -> RobotModel:
+    """The package's robot; its load failure is the one error line."""
+    from marm_setup.validate.runner import load_package_robot
+
+    robot, problems = load_package_robot(pkg)
+    if robot is None:
+        f = problems[0]
+        raise InputError(
+            f.message + (f" ({f.hint})" if getattr(f, "hint", "") else ""),
+            path=f.file,
+            element=f.element or None,
+        )
+    return robot
 
 
 def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:

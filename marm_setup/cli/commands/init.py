@@ -11,8 +11,8 @@ import typer
 
 from marm_setup.cli.common import (
     JobsOption,
+    OutputFormat,
     PackagePaths,
-    UrdfArg,
     XacroArgs,
     default_jobs,
     load_robot_from_cli,
@@ -50,9 +50,25 @@ FromSrdfOption = Annotated[
 ]
 
 
+FromPackageOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--from-package",
+        help="Port an existing MoveIt config package (MoveIt 1 or 2, any layout) instead of a URDF.",
+        metavar="PKG",
+    ),
+]
+OptionalUrdfArg = Annotated[
+    Path | None,
+    typer.Argument(
+        help="Robot description: .urdf, .xacro or .urdf.xacro (not with --from-package).", metavar="URDF"
+    ),
+]
+
+
 def init(
-    urdf: UrdfArg,
     out: OutOption,
+    urdf: OptionalUrdfArg = None,
     name: NameOption = None,
     target: TargetOption = None,
     ros_distro: DistroOption = None,
@@ -74,13 +90,32 @@ def init(
     force: Annotated[bool, typer.Option("--force", help="Write into an existing non-empty DIR.")] = False,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
+    from_package: FromPackageOption = None,
+    no_plan: Annotated[
+        bool, typer.Option("--no-plan", help="With --from-package: validate without the planning checks.")
+    ] = False,
+    format: Annotated[
+        OutputFormat, typer.Option("--format", help="With --from-package: the port report as text or json.")
+    ] = OutputFormat.text,
 ) -> None:
-    """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package."""
+    """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package;
+    or, with --from-package, port an existing config package and report every setting."""
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.errors import InputError
     from marm_setup.pipeline import InitRequest, run_init
     from marm_setup.render.writer import check_output_dir
 
+    if from_package is not None:
+        given = [o for o, v in (("URDF", urdf), ("--setup", setup), ("--from-srdf", from_srdf)) if v]
+        if given:
+            raise InputError(
+                f"--from-package takes the robot from the package: drop {', '.join(given)}",
+                element="--from-package",
+            )
+        _port(from_package, out, name, target, ros_distro, force, package_path, jobs, not no_plan, format)
+        return
+    if urdf is None:
+        raise InputError("give the robot's URDF, or --from-package PKG", element="URDF")
     if seed is not None and seed < 0:
         raise InputError(f"must be >= 0, got {seed}", element="--seed")
 
@@ -112,3 +147,36 @@ def init(
         typer.echo(f"  {line}")
     for line in result.status_lines:
         typer.echo(line)
+
+
+def _port(package, out, name, target, ros_distro, force, package_path, jobs, plan, format) -> None:
+    """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
+    from marm_setup.cli.port_report import format_port_json, format_port_text
+    from marm_setup.cli.progress import SamplingProgress
+    from marm_setup.findings import count, format_text
+    from marm_setup.pipeline import PortInitRequest, run_port
+
+    request = PortInitRequest(
+        package=package,
+        out=out,
+        name=name,
+        target=target.value if target else None,
+        ros_distro=ros_distro,
+        env_distro=os.environ.get("ROS_DISTRO") or None,
+        force=force,
+        package_paths=tuple(package_path or ()),
+        plan=plan,
+        jobs=default_jobs(jobs),
+    )
+    with SamplingProgress() as progress:
+        result = run_port(request, progress)
+    validation = result.validation
+    if format is OutputFormat.json:
+        typer.echo(format_port_json(result), nl=False)
+    else:
+        typer.echo(format_port_text(result), nl=False)
+        for line in result.status_lines:
+            typer.echo(line)
+        typer.echo(format_text(validation.findings, color=False, checked=validation.describe()), nl=False)
+    if count(validation.findings)[0]:
+        raise typer.Exit(1)

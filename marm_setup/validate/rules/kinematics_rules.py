@@ -53,7 +53,7 @@ def _check_entry(section, where, entry, group, by_name, srdf, robot) -> list[Fin
                 "kinematics.unknown-solver", section.file, f"{where}.kinematics_solver", msg, _solver_hint()
             )
         )
-    elif solver in CHAIN_ONLY_PLUGINS and not _is_chain(group, by_name, srdf, robot):
+    elif solver in CHAIN_ONLY_PLUGINS and not is_chain(group, by_name, srdf, robot):
         msg = f"{solver.split('/')[-1]} needs a serial chain, but group '{group.name}' is not one"
         hint = "use a chain group, or a solver for general groups (pick_ik, bio_ik, TRAC-IK)"
         out.append(error("kinematics.kdl-needs-chain", section.file, f"{where}.kinematics_solver", msg, hint))
@@ -70,7 +70,7 @@ def _solver_hint() -> str:
     return "known: " + ", ".join(s.split("/")[0] for s in KINEMATICS_PLUGINS[:5]) + ", ikfast"
 
 
-def _is_chain(group, by_name, srdf, robot: RobotModel) -> bool:
+def is_chain(group, by_name, srdf, robot: RobotModel) -> bool:
     """All the group's joints (fixed and mimic included, as MoveIt counts them) lie on one
     root-to-tip path, and at least one of them moves: what KDL can solve."""
     joints = group_joints(group, by_name, robot)

@@ -1,0 +1,62 @@
+"""Printing a port: the report (text grouped by status, or one JSON document) plus the new
+package's validation summary."""
+
+from __future__ import annotations
+
+import json
+
+from marm_setup.cli.common import one_line
+
+HEADINGS = {
+    "carried": "carried over",
+    "changed": "changed on the way (and why)",
+    "dropped": "dropped (and why)",
+    "todo": "still to do by hand",
+}
+
+
+def format_port_text(result) -> str:
+    """The port report as text: a summary line, then the items under one heading per status."""
+    from marm_setup.port.report import STATUSES, counts
+
+    ported = result.ported
+    n = counts(ported.items)
+    lines = [
+        f"ported {ported.source} ({ported.source_target}, {ported.source_layout} layout) to "
+        f"{result.model.target} ({result.model.distro}): " + ", ".join(f"{n[s]} {s}" for s in STATUSES)
+    ]
+    for status in STATUSES:
+        items = [i for i in ported.items if i.status == status]
+        if items:
+            lines.append(f"{HEADINGS[status]}:")
+            lines += [one_line(f"  {_item(i)}") for i in items]
+    return "\n".join(lines) + "\n"
+
+
+def _item(item) -> str:
+    source = f" [{item.source}]" if item.source else ""
+    detail = f": {item.detail}" if item.detail else ""
+    return f"{item.setting}{detail}{source}"
+
+
+def format_port_json(result) -> str:
+    """One JSON document: the port (source, target, counts, items), the files written and the
+    new package's validation (its summary and findings)."""
+    from marm_setup.findings import format_json
+    from marm_setup.port.report import counts
+
+    ported, validation = result.ported, result.validation
+    doc = {
+        "port": {
+            "source": ported.source,
+            "source_target": ported.source_target,
+            "source_layout": ported.source_layout,
+            "target": result.model.target,
+            "ros_distro": result.model.distro,
+            "counts": counts(ported.items),
+            "items": [i.as_dict() for i in ported.items],
+        },
+        "files": list(result.status_lines),
+        "validation": json.loads(format_json(validation.findings, checked=validation.as_dict())),
+    }
+    return json.dumps(doc, indent=2) + "\n"

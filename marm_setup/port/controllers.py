@@ -1,0 +1,249 @@
+"""Porting the controller wiring: MoveIt's controller list (ros1 `controller_list`, ros2
+`controller_names`) and the driver side (ros_control `ros_controllers.yaml`, ros2_control
+`ros2_controllers.yaml`, ArbotiX `arbotix.yaml`), read with validate's own readers."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+from marm_setup.port.report import PortLog, where
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.domain import (
+    DRIVER_ACTION_NS,
+    DRIVER_CONTROLLERS,
+    FOLLOW_JOINT_TRAJECTORY,
+    GRIPPER_COMMAND,
+    MOVEIT_CONTROLLER_TYPES,
+    ROS2_CONTROLLER_TYPES,
+)
+from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.model import ArbotixJoint, Controller, SetupModel
+from marm_setup.validate.discovery import ConfigPackage, ConfigSection
+from marm_setup.validate.rules.controller_rules import (
+    MoveItController,
+    moveit_controllers,
+    ros1_driver_controllers,
+    ros2_driver_controllers,
+)
+
+# What the new package's driver side is, per target (templates/<target>/config).
+TARGET_DRIVER = {
+    "ros2": "ros2_controllers.yaml (ros2_control, mock_components/GenericSystem hardware)",
+    "ros1": "arbotix.yaml (ArbotiX driver)",
+}
+TARGET_DRIVER_TYPES = {
+    **{("ros2", kind): plugin for kind, plugin in ROS2_CONTROLLER_TYPES.items()},
+    ("ros1", FOLLOW_JOINT_TRAJECTORY): "ArbotiX follow_controller",
+    ("ros1", GRIPPER_COMMAND): "arbotix_controllers gripper_controller node",
+}
+STATE_PUBLISHERS = ("JointStateBroadcaster", "JointStateController")
+
+
+def port_controllers(
+    pkg: ConfigPackage, model: SetupModel, robot: RobotModel, log: PortLog
+) -> tuple[Controller, ...]:
+    """MoveIt's controllers, fitted to the target's driver; every entry reported."""
+    section = pkg.moveit_controllers
+    if section is None:
+        log.changed(
+            "controllers", "", "no MoveIt controller list: one controller per group is written, as init does"
+        )
+        return ()
+    found, problems = moveit_controllers(section)
+    for f in problems:
+        log.dropped(f"controllers ({f.element})", where(f.file, f.element), f.message)
+    out: list[Controller] = []
+    for c in found:
+        ported = _controller(c, section.file, model, robot, {o.name for o in out}, log)
+        if ported is not None:
+            out.append(ported)
+    return tuple(out)
+
+
+def _controller(
+    c: MoveItController, file: str, model: SetupModel, robot: RobotModel, taken: set[str], log: PortLog
+) -> Controller | None:
+    src = where(file, c.element)
+    setting = f"controllers[{c.name}]"
+    if c.type not in MOVEIT_CONTROLLER_TYPES:
+        log.dropped(
+            setting,
+            src,
+            f"type {c.type}: marm-setup writes {' and '.join(MOVEIT_CONTROLLER_TYPES)} controllers only",
+        )
+        return None
+    joints = tuple(j for j in c.joints if _commandable(robot, j))
+    for j in sorted(set(c.joints) - set(joints)):
+        log.dropped(
+            f"{setting}.joints[{j}]", src, "not an actuated, non-mimic joint of the URDF: nothing to command"
+        )
+    if not joints:
+        log.dropped(setting, src, "no joint left to command")
+        return None
+    group = _group_of(joints, model, robot)
+    name = c.name or f"{group or 'robot'}_controller"
+    if name in taken:
+        log.dropped(setting, src, f"a second controller named {name!r}")
+        return None
+    if name != c.name:
+        log.changed(
+            f"{setting}.name", src, f"an empty name is renamed {name!r}: the target's driver needs a name"
+        )
+    kind = _kind(c.type, joints, model.target, setting, src, log)
+    action_ns = _action_ns(c, kind, model.target, setting, src, log)
+    log.carried(setting, src, f"{kind} on {', '.join(joints)} (default: {str(c.default).lower()})")
+    return Controller(name, kind, action_ns, joints, group, c.default)
+
+
+def _kind(kind: str, joints: tuple[str, ...], target: str, setting: str, src: str, log: PortLog) -> str:
+    """ros2_control's GripperActionController drives one joint (`joint`): a GripperCommand
+    controller of several joints becomes a JointTrajectoryController over all of them."""
+    if target == "ros2" and kind == GRIPPER_COMMAND and len(joints) > 1:
+        log.changed(
+            f"{setting}.type",
+            src,
+            f"GripperCommand -> FollowJointTrajectory: ros2_control's GripperActionController drives one joint, "
+            f"a JointTrajectoryController drives all {len(joints)}",
+        )
+        return FOLLOW_JOINT_TRAJECTORY
+    return kind
+
+
+def _commandable(robot: RobotModel, joint: str) -> bool:
+    j = robot.joint_map.get(joint)
+    return j is not None and j.is_actuated and j.mimic is None
+
+
+def _group_of(joints: tuple[str, ...], model: SetupModel, robot: RobotModel) -> str | None:
+    """The first group whose active joints are exactly the controller's (or hold them all)."""
+    by_name = groups_by_name(model.groups)
+    active = {g.name: set(active_group_joints(g, by_name, robot, model.passive_joints)) for g in model.groups}
+    return next((g for g, js in active.items() if js == set(joints)), None)
+
+
+def _action_ns(c: MoveItController, kind: str, target: str, setting: str, src: str, log: PortLog) -> str:
+    served = DRIVER_ACTION_NS.get((target, kind))
+    if served is not None and c.action_ns != served:
+        log.changed(
+            f"{setting}.action_ns",
+            src,
+            f"{c.action_ns!r} -> {served!r}: the {target} driver's {kind} controller serves <name>/{served}",
+        )
+        return served
+    if not c.action_ns:
+        log.changed(f"{setting}.action_ns", src, "empty -> 'follow_joint_trajectory' (the ArbotiX driver's)")
+        return "follow_joint_trajectory"
+    return c.action_ns
+
+
+# -- driver side ---------------------------------------------------------------------------------
+
+
+def report_driver(pkg: ConfigPackage, controllers: tuple[Controller, ...], target: str, log: PortLog) -> None:
+    """What becomes of the source driver's controllers (ros_control / ros2_control)."""
+    by_name = {c.name: c for c in controllers}
+    for section, reader in (
+        (pkg.ros2_controllers, ros2_driver_controllers),
+        (pkg.ros_controllers, ros1_driver_controllers),
+    ):
+        if section is None:
+            continue
+        for name, (kind, _, element) in reader(section).items():
+            src = where(section.file, element)
+            _driver_item(name, kind, by_name.get(name), target, src, section, log)
+
+
+def _driver_item(
+    name: str, kind: str, ours: Controller | None, target: str, src: str, section: ConfigSection, log: PortLog
+) -> None:
+    setting = f"driver.{name}"
+    suffix = kind.rpartition("/")[2]
+    if suffix in STATE_PUBLISHERS:
+        log.carried(setting, src, f"{kind}: the new package publishes joint states its own way")
+        return
+    if ours is None:
+        log.dropped(
+            setting,
+            src,
+            f"{kind}: no MoveIt controller of that name uses it; add it to {TARGET_DRIVER[target]} by hand",
+        )
+        return
+    new = TARGET_DRIVER_TYPES[target, ours.type]
+    if kind == new:
+        log.carried(setting, src, kind)
+    else:
+        log.changed(setting, src, f"{kind} -> {new} in {TARGET_DRIVER[target]}")
+    params = _driver_params(section, name)
+    if params:
+        log.todo(
+            f"{setting} parameters",
+            src,
+            f"{', '.join(params)}: not carried (the new driver file has its own); set gains/tolerances on the real hardware by hand",
+        )
+    if suffix not in DRIVER_CONTROLLERS and kind != new:
+        log.todo(setting, src, f"{kind} is not a trajectory or gripper action controller: check {new} fits")
+
+
+def _driver_params(section: ConfigSection, name: str) -> list[str]:
+    data = section.data if isinstance(section.data, dict) else {}
+    entry = data.get(name) if isinstance(data.get(name), dict) else {}
+    entry = entry.get("ros__parameters", entry) if isinstance(entry, dict) else {}
+    return sorted(str(k) for k in entry if k not in ("type", "joints", "joint"))
+
+
+# -- ArbotiX ---------------------------------------------------------------------------------------
+
+
+def port_arbotix(
+    pkg: ConfigPackage, robot: RobotModel, target: str, log: PortLog
+) -> tuple[ArbotixJoint, ...]:
+    """Servo ids and speeds of `arbotix.yaml` (ros1 only); the rest of the file reported."""
+    section = pkg.arbotix
+    if section is None:
+        return ()
+    data = section.data if isinstance(section.data, dict) else {}
+    if target != "ros1":
+        log.dropped(
+            "arbotix",
+            section.file,
+            "ROS 2 has no ArbotiX driver: the new package drives ros2_control mock hardware; "
+            "write your hardware interface by hand",
+        )
+        return ()
+    out = []
+    joints = data["joints"] if isinstance(data.get("joints"), dict) else {}
+    for joint, entry in joints.items():
+        src = where(section.file, section.element("joints", joint))
+        servo = _servo(str(joint), entry, robot, src, log)
+        if servo is not None:
+            out.append(servo)
+    for key in sorted(k for k in data if k not in ("joints", "controllers")):
+        log.changed(
+            f"arbotix.{key}", where(section.file, key), f"{data[key]!r}: the template's value is written"
+        )
+    return tuple(out)
+
+
+def _servo(joint: str, entry: Any, robot: RobotModel, src: str, log: PortLog) -> ArbotixJoint | None:
+    entry = entry if isinstance(entry, dict) else {}
+    servo_id = entry.get("id")
+    if joint not in robot.joint_map or not isinstance(servo_id, int) or isinstance(servo_id, bool):
+        log.dropped(f"arbotix_joints[{joint}]", src, "not a URDF joint with an integer servo id")
+        return None
+    speed = entry.get("max_speed")
+    speed = float(speed) if isinstance(speed, int | float) and not isinstance(speed, bool) else None
+    derived = robot.joint(joint).velocity
+    if speed is not None and derived and math.isclose(speed, round(math.degrees(derived), 3), abs_tol=1e-3):
+        speed = None  # the URDF's velocity, which the template writes anyway
+    log.carried(f"arbotix_joints[{joint}]", src, f"id {servo_id}" + (f", max_speed {speed}" if speed else ""))
+    for key in sorted(k for k in entry if k not in ("id", "max_speed", "min_angle", "max_angle")):
+        log.dropped(
+            f"arbotix_joints[{joint}].{key}", src, f"{entry[key]!r}: marm_setup.yaml has no place for it"
+        )
+    return ArbotixJoint(joint, servo_id, speed)
+
+
+def with_controllers(model: SetupModel, controllers: tuple[Controller, ...]) -> SetupModel:
+    return dataclasses.replace(model, controllers=controllers)

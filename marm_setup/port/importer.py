@@ -1,0 +1,242 @@
+"""port_package: a MoveIt config package (any layout, as validate's discovery reads it) and its
+robot -> a SetupModel for the target, plus the port report of every setting."""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from marm_setup.errors import InputError
+from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver
+from marm_setup.port.package import (
+    port_author,
+    read_files,
+    report_leftovers,
+    report_marm_setup,
+    report_metadata,
+    report_pipelines,
+    robot_source,
+)
+from marm_setup.port.report import PortItem, PortLog, where
+from marm_setup.port.settings import port_joint_limits, port_kinematics, port_planners
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.groups import planning_joints
+from marm_setup.setup.model import EndEffector, GroupState, Kinematics, SetupModel, VirtualJoint
+from marm_setup.validate.discovery import ConfigPackage
+
+DROPPABLE = re.compile(r"(virtual_joints|end_effectors|group_states)\[(.+?)\]")
+
+
+@dataclass(frozen=True)
+class PortRequest:
+    """Where the new package goes and what it is written for (target and distro resolved)."""
+
+    out: Path
+    target: str
+    ros_distro: str
+    name: str | None = None
+    package_paths: tuple[Path, ...] = ()  # the user's --package-path folders
+
+
+@dataclass(frozen=True)
+class Ported:
+    model: SetupModel
+    items: tuple[PortItem, ...]
+    source: str  # the package folder as the user typed it
+    source_target: str  # ros1 | ros2
+    source_layout: str  # moveit1 | moveit2 | marm_ros2
+
+
+def port_package(pkg: ConfigPackage, robot: RobotModel, request: PortRequest) -> Ported:
+    """The setup the package holds, fitted to `request.target`; every setting reported."""
+    if pkg.srdf is None:
+        raise InputError("no readable SRDF: nothing to port", path=pkg.user_path(pkg.srdf_path or "config"))
+    log = PortLog()
+    model = _base(pkg, robot, request, log)
+    model = _with_srdf(pkg, model, log)
+    model = _without_srdf_errors(model, robot, pkg.srdf_path or "", log)
+    model = _with_settings(pkg, model, robot, log)
+    model = _with_controllers(pkg, model, robot, log)
+    report_pipelines(pkg, request.target, log)
+    _report_runtime_files(pkg, log)
+    report_leftovers(pkg, read_files(pkg), log)
+    return Ported(model, tuple(log.items), pkg.shown, pkg.target, pkg.layout)
+
+
+def _base(pkg: ConfigPackage, robot: RobotModel, request: PortRequest, log: PortLog) -> SetupModel:
+    from marm_setup.setup.yaml_io import setup_from_dict
+
+    name = request.name or pkg.name
+    report_metadata(pkg, name, request.target, log)
+    source = robot_source(pkg, request.out, request.package_paths, log)
+    kept = report_marm_setup(pkg, log)
+    given = setup_from_dict(
+        {"package_name": name, "robot_name": robot.name, "robot": {"urdf": "-"}, **kept},
+        pkg.user_path("marm_setup.yaml"),
+    )
+    return dataclasses.replace(
+        given,
+        robot_name=pkg.srdf.robot_name or robot.name,
+        robot=source,
+        target=request.target,
+        ros_distro=request.ros_distro,
+        author=port_author(pkg, log),
+    )
+
+
+def _with_srdf(pkg: ConfigPackage, model: SetupModel, log: PortLog) -> SetupModel:
+    from marm_setup.setup.srdf import srdf_to_setup
+
+    srdf, file = pkg.srdf, pkg.srdf_path or ""
+    if srdf.robot_name and srdf.robot_name != model.robot_name:
+        log.changed("robot_name", file, f"{srdf.robot_name}")
+    for kind, items in (
+        ("groups", srdf.groups),
+        ("group_states", srdf.group_states),
+        ("end_effectors", srdf.end_effectors),
+        ("virtual_joints", srdf.virtual_joints),
+    ):
+        for item in items:
+            log.carried(f"{kind}[{item.name}]", where(file, kind), _srdf_detail(item))
+    if srdf.passive_joints:
+        log.carried("passive_joints", file, ", ".join(srdf.passive_joints))
+    log.carried(
+        "collision.disabled", where(file, "disable_collisions"), f"{len(srdf.disabled)} pairs, as given"
+    )
+    extras = srdf.extras
+    for kind in (
+        "enable_collisions",
+        "disable_default_collisions",
+        "joint_properties",
+        "link_sphere_approximations",
+    ):
+        n = len(getattr(extras, kind))
+        if n:
+            log.carried(f"srdf_extras.{kind}", file, f"{n} entries")
+    return srdf_to_setup(srdf, model)
+
+
+def _without_srdf_errors(model: SetupModel, robot: RobotModel, file: str, log: PortLog) -> SetupModel:
+    """Drop the virtual joints, end effectors and group states MoveIt fails on or skips (the SRDF
+    rules of setup/rules.py that init and validate share), each with a report line: the new
+    package must load, and the source never had them working."""
+    from marm_setup.setup.rules import check_semantics, setup_element
+    from marm_setup.setup.srdf import setup_to_srdf
+
+    drop: dict[tuple[str, str], str] = {}
+    for f in check_semantics(setup_to_srdf(model), robot, file, setup_element):
+        m = DROPPABLE.match(f.element)
+        if f.is_error and m:
+            drop.setdefault((m[1], m[2]), f.message)
+    if not drop:
+        return model
+    for (kind, name), message in drop.items():
+        log.dropped(f"{kind}[{name}]", where(file, kind), f"{message}; MoveIt fails on or skips it")
+
+    def kept(items: tuple) -> tuple:
+        return tuple(i for i in items if (kind_of[type(i)], i.name) not in drop)
+
+    kind_of = {VirtualJoint: "virtual_joints", EndEffector: "end_effectors", GroupState: "group_states"}
+    return dataclasses.replace(
+        model,
+        virtual_joints=kept(model.virtual_joints),
+        end_effectors=kept(model.end_effectors),
+        group_states=kept(model.group_states),
+    )
+
+
+def _srdf_detail(item: Any) -> str:
+    if hasattr(item, "values"):
+        return f"group {item.group}, {len(item.values)} joints"
+    if hasattr(item, "parent_link"):
+        return f"group {item.group} on {item.parent_link}"
+    if hasattr(item, "child_link"):
+        return f"{item.type} {item.parent_frame} -> {item.child_link}"
+    return ""
+
+
+def _with_settings(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
+    names = [g.name for g in model.groups]
+    kinematics = _without_unsolvable(port_kinematics(pkg.kinematics, names, log), pkg, robot, log)
+    planning = planning_joints(model.groups, robot, model.passive_joints)
+    overrides, scaling = port_joint_limits(pkg.joint_limits, robot, planning, model.default_acceleration, log)
+    planners = port_planners(pkg.ompl, names, log)
+    return dataclasses.replace(
+        model,
+        kinematics=kinematics,
+        joint_limits=overrides,
+        planners=planners,
+        default_velocity_scaling=scaling.get("default_velocity_scaling", model.default_velocity_scaling),
+        default_acceleration_scaling=scaling.get(
+            "default_acceleration_scaling", model.default_acceleration_scaling
+        ),
+    )
+
+
+def _without_unsolvable(
+    kinematics: tuple[Kinematics, ...], pkg: ConfigPackage, robot: RobotModel, log: PortLog
+) -> tuple[Kinematics, ...]:
+    """Drop chain-only solvers (KDL, LMA, cached KDL) on groups that are no chain: MoveIt cannot
+    initialise them there, so the group had no IK solver (validate's kinematics rule)."""
+    from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS
+    from marm_setup.setup.groups import groups_by_name
+    from marm_setup.validate.rules.kinematics_rules import is_chain
+
+    section = pkg.kinematics
+    by_name = groups_by_name(pkg.srdf.groups)
+    kept = []
+    for k in kinematics:
+        if k.solver in CHAIN_ONLY_PLUGINS and not is_chain(by_name[k.group], by_name, pkg.srdf, robot):
+            log.changed(
+                f"kinematics[{k.group}].kinematics_solver",
+                where(section.file, section.element(k.group)) if section is not None else "",
+                f"{k.solver} is not written: it needs a serial chain and '{k.group}' is none, so MoveIt "
+                "could not load it (the group had no IK); pick a general solver (pick_ik, bio_ik, TRAC-IK) by hand",
+            )
+        else:
+            kept.append(k)
+    return tuple(kept)
+
+
+def _with_controllers(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
+    from marm_setup.setup.infer import derive_group_settings
+
+    derived = derive_group_settings(model, robot)
+    controllers = port_controllers(pkg, model, robot, log) or derived.controllers
+    if not pkg.moveit_controllers:
+        for c in controllers:
+            log.changed(
+                f"controllers[{c.name}]", "", f"written for group {c.group} ({c.type}), as init infers it"
+            )
+    report_driver(pkg, controllers, model.target, log)
+    arbotix = port_arbotix(pkg, robot, model.target, log)
+    if model.target == "ros1" and not arbotix:
+        model = dataclasses.replace(model, controllers=controllers)
+        arbotix = derive_group_settings(model, robot).arbotix_joints
+        ids = ", ".join(f"{a.joint}={a.id}" for a in arbotix)
+        log.todo(
+            "arbotix_joints",
+            "",
+            f"ros1 packages drive an ArbotiX bus: servo ids assigned ({ids}); check them",
+        )
+    if model.target == "ros2":
+        log.todo(
+            "ros2_control hardware",
+            "",
+            "the new package drives mock_components/GenericSystem: put your robot's hardware plugin in "
+            f"config/{model.robot_name}.ros2_control.xacro",
+        )
+    return dataclasses.replace(model, controllers=controllers, arbotix_joints=arbotix)
+
+
+def _report_runtime_files(pkg: ConfigPackage, log: PortLog) -> None:
+    """Fake controllers and initial positions: the new package writes its own from the setup."""
+    for section, what in (
+        (pkg.fake_controllers, "fake controllers (one per group) and their initial poses"),
+        (pkg.initial_positions, "initial positions (each group's 'home' pose, else its first)"),
+    ):
+        if section is not None:
+            log.changed(section.file, section.file, f"the new package writes its own {what}")
