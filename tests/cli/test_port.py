@@ -1,0 +1,108 @@
+"""`marm-setup init --from-package`: a package we generated ports back to the same
+`marm_setup.yaml` (every target and distro); bad input is one error line; the report in text and
+JSON accounts for every setting."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from typer.testing import CliRunner
+
+from marm_setup.cli.app import app
+from tests.conftest import FIXTURES, MARM_URDF
+
+runner = CliRunner()
+SPEC = FIXTURES / "marm" / "marm_setup.yaml"
+TARGETS = [("ros1", "noetic"), ("ros2", "humble"), ("ros2", "jazzy")]
+
+
+def _generate(out, target: str, distro: str):
+    args = ["init", str(MARM_URDF), "--out", str(out), "--setup", str(SPEC), "--trials", "300"]
+    result = runner.invoke(app, [*args, "--target", target, "--ros-distro", distro])
+    assert result.exit_code == 0, result.output
+
+
+def _port(src, out, *args):
+    return runner.invoke(app, ["init", "--from-package", str(src), "--out", str(out), "--no-plan", *args])
+
+
+@pytest.mark.parametrize(("target", "distro"), TARGETS)
+def test_round_trip_reproduces_marm_setup_yaml(tmp_path, target, distro):
+    """Read back from the rendered files (SRDF, kinematics, limits, OMPL, controllers, ArbotiX)."""
+    _generate(tmp_path / "a", target, distro)
+    result = _port(tmp_path / "a", tmp_path / "b", "--target", target, "--ros-distro", distro)
+    assert result.exit_code == 0, result.output
+    original = (tmp_path / "a" / "marm_setup.yaml").read_text()
+    assert (tmp_path / "b" / "marm_setup.yaml").read_text() == original
+    assert "no findings" in result.stdout
+
+
+def test_round_trip_reads_the_files_not_just_marm_setup_yaml(tmp_path):
+    """A hand edit of kinematics.yaml reaches the new setup (the files are read, the yaml only
+    for what no file holds)."""
+    _generate(tmp_path / "a", "ros1", "noetic")
+    kin = tmp_path / "a" / "config" / "kinematics.yaml"
+    kin.write_text(
+        kin.read_text().replace("kinematics_solver_timeout: 0.05", "kinematics_solver_timeout: 0.2")
+    )
+    result = _port(tmp_path / "a", tmp_path / "b", "--target", "ros1")
+    assert result.exit_code == 0, result.output
+    assert "timeout: 0.2" in (tmp_path / "b" / "marm_setup.yaml").read_text()
+    assert "kinematics[arm].kinematics_solver_timeout: 0.2" in result.stdout
+
+
+def test_ros1_to_ros2_changes_the_gripper_action_and_says_why(tmp_path):
+    _generate(tmp_path / "a", "ros1", "noetic")
+    result = _port(
+        tmp_path / "a", tmp_path / "b", "--target", "ros2", "--ros-distro", "jazzy", "--format", "json"
+    )
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.stdout)
+    items = doc["port"]["items"]
+    action = [i for i in items if i["setting"] == "controllers[gripper_controller].action_ns"]
+    assert action and action[0]["status"] == "changed"
+    assert "'gripper_action' -> 'gripper_cmd'" in action[0]["detail"]
+    arbotix = [i for i in items if i["setting"] == "arbotix"]
+    assert arbotix[0]["status"] == "dropped" and "no ArbotiX driver" in arbotix[0]["detail"]
+    assert doc["port"]["counts"]["changed"] == sum(1 for i in items if i["status"] == "changed")
+    assert doc["validation"]["errors"] == 0
+    assert doc["port"]["target"] == "ros2" and doc["port"]["ros_distro"] == "jazzy"
+
+
+def test_every_source_file_is_accounted_for(tmp_path):
+    """Nothing dropped silently: each file of the source package is read or has a report line."""
+    _generate(tmp_path / "a", "ros1", "noetic")
+    (tmp_path / "a" / "config" / "sensors_3d.yaml").write_text("sensors: []\n")
+    result = _port(tmp_path / "a", tmp_path / "b", "--format", "json")
+    doc = json.loads(result.stdout)
+    sources = " ".join(i["source"] for i in doc["port"]["items"])
+    files = [p.relative_to(tmp_path / "a").as_posix() for p in (tmp_path / "a").rglob("*") if p.is_file()]
+    assert [f for f in files if f not in sources] == []
+    sensors = [i for i in doc["port"]["items"] if i["source"] == "config/sensors_3d.yaml"]
+    assert sensors[0]["status"] == "dropped"
+
+
+def test_from_package_with_a_urdf_is_one_error_line(tmp_path):
+    result = runner.invoke(
+        app, ["init", str(MARM_URDF), "--from-package", str(tmp_path), "--out", str(tmp_path / "o")]
+    )
+    assert result.exit_code == 2
+    assert result.stderr.strip().splitlines() == [
+        "error: --from-package: --from-package takes the robot from the package: drop URDF"
+    ]
+
+
+def test_not_a_package_is_one_error_line_and_writes_nothing(tmp_path):
+    (tmp_path / "empty").mkdir()
+    result = _port(tmp_path / "empty", tmp_path / "out")
+    assert result.exit_code == 2
+    assert len(result.stderr.strip().splitlines()) == 1 and "not a MoveIt config package" in result.stderr
+    assert "Traceback" not in result.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_init_without_urdf_or_package_is_one_error_line(tmp_path):
+    result = runner.invoke(app, ["init", "--out", str(tmp_path / "o")])
+    assert result.exit_code == 2
+    assert "give the robot's URDF, or --from-package PKG" in result.stderr
