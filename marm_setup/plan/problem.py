@@ -27,6 +27,7 @@ from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_con
 from marm_setup.robot.kinematics import default_configuration, wrap_continuous
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.start_state import package_start_values
 
 
 @dataclass(frozen=True, eq=False)
@@ -61,19 +62,8 @@ def _overlay(robot: RobotModel, q: np.ndarray, values) -> np.ndarray:
 
 
 def initial_configuration(package, robot: RobotModel) -> np.ndarray:
-    """The state a demo starts in: default, then ros2 `initial_positions`, then ros1 `initial` poses."""
-    q = default_configuration(robot)
-    section = package.initial_positions.data if package.initial_positions is not None else None
-    if isinstance(section, dict):
-        values = section.get("initial_positions", section)
-        q = _overlay(robot, q, values.items() if isinstance(values, dict) else ())
-    fake = package.fake_controllers.data if package.fake_controllers is not None else None
-    initial = fake.get("initial") if isinstance(fake, dict) else None
-    states = {(s.group, s.name): s.values for s in (package.srdf.group_states if package.srdf else ())}
-    for entry in initial if isinstance(initial, list) else ():
-        if isinstance(entry, dict):
-            q = _overlay(robot, q, states.get((entry.get("group"), entry.get("pose")), ()))
-    return q
+    """The active configuration the package's demo starts in (`setup.start_state`)."""
+    return _overlay(robot, default_configuration(robot), package_start_values(package, robot).items())
 
 
 def _limits_section(package) -> tuple[dict, float, float]:

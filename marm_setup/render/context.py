@@ -30,6 +30,8 @@ from marm_setup.setup.model import (
     PlannerDefaults,
     SetupModel,
 )
+from marm_setup.setup.srdf import setup_to_srdf
+from marm_setup.setup.start_state import initial_pose_values
 
 XACRO_ARG_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
@@ -174,12 +176,12 @@ def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
 
 def start_positions(model: SetupModel, robot: RobotModel) -> dict[str, float]:
     """The state both targets' demos start in: each joint's default, overlaid in group order by
-    each group's initial pose (ros1's fake controllers `initial`, ros2's initial_positions.yaml);
-    mimic joints follow their leaders."""
+    each group's initial pose as ros1's fake controllers apply their `initial` list
+    (`setup.start_state`), which ros2's initial_positions.yaml then writes out; mimic joints
+    follow their leaders."""
     q = {j.name: j.default_position for j in robot.joints if j.is_actuated}
-    for group in model.groups:
-        pose = _initial_pose(model, group.name)
-        q.update((name, value) for name, value in (pose.values if pose else ()) if name in q)
+    poses = [(g.name, pose.name) for g in model.groups if (pose := _initial_pose(model, g.name))]
+    q.update(initial_pose_values(setup_to_srdf(model), robot, poses))
     for joint in robot.joints:
         if joint.mimic is not None and joint.name in q and joint.mimic.joint in q:
             q[joint.name] = joint.mimic.multiplier * q[joint.mimic.joint] + joint.mimic.offset

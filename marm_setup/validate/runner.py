@@ -15,6 +15,7 @@ from pathlib import Path
 
 from marm_setup.errors import InputError, MarmError
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
+from marm_setup.setup.start_state import package_start_values
 from marm_setup.validate.discovery import ConfigPackage, discover_package
 from marm_setup.validate.rules.controller_rules import (
     check_arbotix,
@@ -240,7 +241,9 @@ def check_with_scene(
         scene = CollisionScene(robot)
     except InputError as exc:
         return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)], None
-    out = guarded("pose", check_pose_collisions, pkg.srdf, robot, scene, pkg.srdf_path, initial_state(pkg))
+    out = guarded(
+        "pose", check_pose_collisions, pkg.srdf, robot, scene, pkg.srdf_path, package_start_values(pkg, robot)
+    )
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
     out += guarded(
@@ -265,21 +268,6 @@ def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
         return value if isinstance(value, int) and not isinstance(value, bool) else None
 
     return integer("seed") or 0, integer("trials")
-
-
-def initial_state(pkg: ConfigPackage) -> dict[str, float]:
-    """Joint values the package's demo starts from (fake controllers' initial poses, or
-    ros2_control's initial_positions.yaml)."""
-    from marm_setup.validate.rules.pose_rules import initial_values
-
-    poses = []
-    fake = pkg.fake_controllers.data if pkg.fake_controllers is not None else None
-    if isinstance(fake, dict) and isinstance(fake.get("initial"), list):
-        poses = [(str(i.get("group")), str(i.get("pose"))) for i in fake["initial"] if isinstance(i, dict)]
-    positions = pkg.initial_positions.data if pkg.initial_positions is not None else None
-    if isinstance(positions, dict):
-        positions = positions.get("initial_positions", positions)
-    return initial_values(pkg.srdf, poses, positions if isinstance(positions, dict) else None)
 
 
 def run_runtime_checks(pkg: ConfigPackage, robot, scene, planned: list) -> list[Finding]:

@@ -26,20 +26,6 @@ def pose_configuration(state, robot: RobotModel, base: Mapping[str, float] | Non
     return q
 
 
-def initial_values(srdf, initial_poses=(), initial_positions: Mapping | None = None) -> dict[str, float]:
-    """The state a demo starts in: `initial` (group, pose) pairs of fake_controllers.yaml, or
-    ros2_control's initial_positions; joints not given stay at their defaults."""
-    out: dict[str, float] = {}
-    states = {(s.group, s.name): s for s in srdf.group_states}
-    for group, pose in initial_poses:
-        if (group, pose) in states:
-            out.update(states[group, pose].values)
-    for joint, value in (initial_positions or {}).items():
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            out[str(joint)] = float(value)
-    return out
-
-
 def check_pose_collisions(
     srdf, robot: RobotModel, scene, file: str, base: Mapping[str, float] | None = None
 ) -> list[Finding]:

@@ -1,0 +1,83 @@
+"""The state a package's demo starts in, as MoveIt's demo sets it: one definition for the files
+render writes, the planner's held joints and validate's pose checks.
+
+- ros1: MoveIt 1's fake controller manager starts from the default state and applies each
+  `initial` (group, pose) entry of fake_controllers.yaml in order, setting that group's active
+  joints to the named pose; an unknown group or pose is skipped with a warning (moveit/moveit
+  moveit_plugins/moveit_fake_controller_manager/src/moveit_fake_controller_manager.cpp,
+  loadInitialJointValues). initial_positions.yaml means nothing to a MoveIt 1 demo.
+- ros2: the demo's ros2_control mock hardware starts each joint at its `initial_value`, which the
+  ros2_control xacro reads from initial_positions.yaml; a joint it does not list stays at its
+  default. MoveIt 2's demo has no fake controller manager reading `initial`.
+Joints neither sets stay at MoveIt's default (0, or mid-range where 0 is outside the limits).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.groups import group_joints, groups_by_name
+from marm_setup.setup.srdf import Srdf
+
+
+def package_start_values(package, robot: RobotModel) -> dict[str, float]:
+    """`demo_start_values` of a config package (anything with `target`, `srdf` and the
+    `fake_controllers` / `initial_positions` sections, each with `.data`, or None)."""
+    fake, positions = package.fake_controllers, package.initial_positions
+    return demo_start_values(
+        package.target,
+        package.srdf,
+        robot,
+        fake.data if fake is not None else None,
+        positions.data if positions is not None else None,
+    )
+
+
+def demo_start_values(target: str, srdf: Srdf | None, robot: RobotModel, fake_controllers, initial_positions):
+    """Joint values a package's demo sets at start (others stay at their defaults): for ros1
+    the `initial` poses of fake_controllers.yaml, for ros2 initial_positions.yaml. The two files
+    are given as parsed YAML (anything, or None when absent)."""
+    if target == "ros1":
+        return initial_pose_values(srdf, robot, _initial_entries(fake_controllers))
+    return initial_position_values(initial_positions, robot)
+
+
+def initial_pose_values(
+    srdf: Srdf | None, robot: RobotModel, poses: Iterable[tuple[str, str]]
+) -> dict[str, float]:
+    """Each (group, pose) in order sets the group's active joints to the named pose's values."""
+    if srdf is None:
+        return {}
+    groups = groups_by_name(srdf.groups)
+    states = {(s.group, s.name): s for s in srdf.group_states}
+    out: dict[str, float] = {}
+    for group, pose in poses:
+        if group not in groups or (group, pose) not in states:
+            continue
+        active = {j for j in group_joints(groups[group], groups, robot) if robot.joint(j).is_active}
+        out.update((joint, value) for joint, value in states[group, pose].values if joint in active)
+    return out
+
+
+def initial_position_values(data, robot: RobotModel) -> dict[str, float]:
+    """The numbers initial_positions.yaml gives active joints of the robot (`initial_positions:`
+    mapping, or the mapping itself)."""
+    values = data.get("initial_positions", data) if isinstance(data, dict) else None
+    if not isinstance(values, dict):
+        return {}
+    return {
+        str(joint): float(value)
+        for joint, value in values.items()
+        if joint in robot.joint_map
+        and robot.joint(joint).is_active
+        and isinstance(value, int | float)
+        and not isinstance(value, bool)
+    }
+
+
+def _initial_entries(data) -> list[tuple[str, str]]:
+    entries = data.get("initial") if isinstance(data, dict) else None
+    if not isinstance(entries, list):
+        return []
+    return [(str(e.get("group")), str(e.get("pose"))) for e in entries if isinstance(e, dict)]
