@@ -41,7 +41,9 @@ class ExecutionReport:
         return not self.violations
 
 
-def _first_over(values: np.ndarray, limit: np.ndarray, times: np.ndarray, names, what: str, slack: float):
+def _first_over(
+    values: np.ndarray, limit: np.ndarray, times: np.ndarray, names: tuple[str, ...], what: str, slack: float
+) -> str | None:
     over = np.abs(values) > limit * (1.0 + slack) + 1e-12
     if not over.any():
         return None
@@ -83,7 +85,16 @@ def sample_times(traj: TimedTrajectory, max_step: float) -> np.ndarray:
     return np.concatenate([*parts, traj.times[-1:]])
 
 
-def _limits(traj, space, limits, t, q, v, a, slack) -> list[str]:
+def _limits(
+    traj: TimedTrajectory,
+    space: GroupSpace,
+    limits: JointLimits,
+    t: np.ndarray,
+    q: np.ndarray,
+    v: np.ndarray,
+    a: np.ndarray,
+    slack: float,
+) -> list[str]:
     names = traj.joint_names
     out = [
         _first_over(v, limits.max_velocity, t, names, "velocity", slack),

@@ -132,7 +132,9 @@ class _Checker:
     options: PlannerOptions
     calls: int = 0
     states: int = 0
-    valid_lines: set = field(default_factory=set)  # (q_a, q_b) bytes of lines found valid
+    valid_lines: set[tuple[bytes, bytes]] = field(
+        default_factory=set
+    )  # (q_a, q_b) bytes of lines found valid
 
     def _hits(self, q: np.ndarray) -> list:
         self.calls += 1

@@ -9,7 +9,9 @@ wrapped into [-pi, pi), as MoveIt's enforceBounds does (a pose may say 4.0 rad).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -27,7 +29,48 @@ from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_con
 from marm_setup.robot.kinematics import default_configuration, wrap_continuous
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.srdf import Srdf
 from marm_setup.setup.start_state import package_start_values
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+
+
+class ConfigFile(Protocol):
+    """A parsed YAML file of the package: its path in the package and its data."""
+
+    @property
+    def file(self) -> str: ...
+
+    @property
+    def data(self) -> Any: ...
+
+
+class PackageConfig(Protocol):
+    """What planning reads from a config package (validate's `ConfigPackage` is one)."""
+
+    @property
+    def shown(self) -> str: ...
+
+    @property
+    def target(self) -> str: ...
+
+    @property
+    def srdf(self) -> Srdf | None: ...
+
+    @property
+    def srdf_path(self) -> str | None: ...
+
+    @property
+    def joint_limits(self) -> ConfigFile | None: ...
+
+    @property
+    def fake_controllers(self) -> ConfigFile | None: ...
+
+    @property
+    def initial_positions(self) -> ConfigFile | None: ...
+
+    def user_path(self, rel: str | None) -> str: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,7 +95,7 @@ class Executed:
     execution: ExecutionReport
 
 
-def _overlay(robot: RobotModel, q: np.ndarray, values) -> np.ndarray:
+def _overlay(robot: RobotModel, q: np.ndarray, values: Iterable[tuple[object, object]]) -> np.ndarray:
     q = q.copy()
     names = robot.active_joint_names
     for joint, value in values:
@@ -61,12 +104,12 @@ def _overlay(robot: RobotModel, q: np.ndarray, values) -> np.ndarray:
     return q
 
 
-def initial_configuration(package, robot: RobotModel) -> np.ndarray:
+def initial_configuration(package: PackageConfig, robot: RobotModel) -> np.ndarray:
     """The active configuration the package's demo starts in (`setup.start_state`)."""
     return _overlay(robot, default_configuration(robot), package_start_values(package, robot).items())
 
 
-def _limits_section(package) -> tuple[dict, float, float]:
+def _limits_section(package: PackageConfig) -> tuple[dict, float, float]:
     data = package.joint_limits.data if package.joint_limits is not None else None
     data = data if isinstance(data, dict) else {}
     entries = data.get("joint_limits")
@@ -77,13 +120,14 @@ def _limits_section(package) -> tuple[dict, float, float]:
     return entries, scale_v, scale_a
 
 
-def _scaling(value) -> float:
+def _scaling(value: object) -> float:
     """A default scaling factor in (0, 1]; 1 (MoveIt's default) when absent or unusable."""
-    usable = isinstance(value, int | float) and not isinstance(value, bool) and 0 < value <= 1
-    return float(value) if usable else 1.0
+    if isinstance(value, int | float) and not isinstance(value, bool) and 0 < value <= 1:
+        return float(value)
+    return 1.0
 
 
-def group_names_with_poses(package) -> tuple[str, ...]:
+def group_names_with_poses(package: PackageConfig) -> tuple[str, ...]:
     """Groups of the package's SRDF that have at least two named poses, sorted."""
     srdf = package.srdf
     if srdf is None:
@@ -94,7 +138,9 @@ def group_names_with_poses(package) -> tuple[str, ...]:
     return tuple(sorted(g for g, n in counts.items() if n >= 2 and any(x.name == g for x in srdf.groups)))
 
 
-def planning_problem(package, robot: RobotModel, scene, group: str) -> PlanningProblem:
+def planning_problem(
+    package: PackageConfig, robot: RobotModel, scene: CollisionScene, group: str
+) -> PlanningProblem:
     """The problem for `group`; InputError (naming the SRDF) for an unknown group or missing limits."""
     srdf = package.srdf
     if srdf is None:
@@ -131,7 +177,7 @@ def planning_problem(package, robot: RobotModel, scene, group: str) -> PlanningP
     )
 
 
-def _limits_file(package) -> str:
+def _limits_file(package: PackageConfig) -> str:
     return package.user_path(package.joint_limits.file if package.joint_limits is not None else None)
 
 

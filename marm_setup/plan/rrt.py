@@ -1,6 +1,6 @@
 """RRT-Connect and shortcut smoothing in a box of joint space, against a line checker.
 
-The checker is duck-typed (see `planner._Checker`): `options` (max_step, max_range, budgets),
+The checker is a `LineChecker` (`planner._Checker`): `options` (max_step, max_range, budgets),
 `space` (lower/upper bounds), `first_invalid(states) -> (index | None, pair | None)` and
 `line_valid(q_a, q_b)`. Trees are numpy arrays grown in place; nearest neighbours by brute
 force, which beats a k-d tree at the few thousand nodes these queries need.
@@ -9,8 +9,29 @@ force, which beats a k-d tree at the few thousand nodes these queries need.
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from marm_setup.plan.planner import GroupSpace, PlannerOptions
+
+
+class LineChecker(Protocol):
+    """Settings, the box to sample in, and collision checks of states and lines."""
+
+    @property
+    def options(self) -> PlannerOptions: ...
+
+    @property
+    def space(self) -> GroupSpace: ...
+
+    @property
+    def valid_lines(self) -> set[tuple[bytes, bytes]]: ...
+
+    def first_invalid(self, q: np.ndarray) -> tuple[int | None, tuple[str, str] | None]: ...
+
+    def line_valid(self, q_a: np.ndarray, q_b: np.ndarray) -> bool: ...
 
 
 def interpolate(q_a: np.ndarray, q_b: np.ndarray, max_step: float) -> np.ndarray:
@@ -59,12 +80,12 @@ def _add_along(tree: _Tree, parent: int, states: np.ndarray, count: int, every: 
     return parent
 
 
-def _steps_per_range(checker, states: np.ndarray, q_from: np.ndarray) -> int:
-    step = np.linalg.norm(states[0] - q_from)
+def _steps_per_range(checker: LineChecker, states: np.ndarray, q_from: np.ndarray) -> int:
+    step = float(np.linalg.norm(states[0] - q_from))
     return max(1, int(checker.options.max_range / max(step, 1e-12)))
 
 
-def _extend(checker, tree: _Tree, q_target: np.ndarray) -> int | None:
+def _extend(checker: LineChecker, tree: _Tree, q_target: np.ndarray) -> int | None:
     """One step of at most max_range from the nearest node toward `q_target`; the new node."""
     i = tree.nearest(q_target)
     d = q_target - tree.nodes[i]
@@ -77,7 +98,7 @@ def _extend(checker, tree: _Tree, q_target: np.ndarray) -> int | None:
     return tree.add(q_new, i)
 
 
-def _connect(checker, tree: _Tree, q_target: np.ndarray) -> bool:
+def _connect(checker: LineChecker, tree: _Tree, q_target: np.ndarray) -> bool:
     """Grow from the nearest node straight to `q_target` as far as valid; True if reached."""
     i = tree.nearest(q_target)
     states = interpolate(tree.nodes[i], q_target, checker.options.max_step)
@@ -91,7 +112,9 @@ def _connect(checker, tree: _Tree, q_target: np.ndarray) -> bool:
     return True
 
 
-def rrt_connect(checker, q_start: np.ndarray, q_goal: np.ndarray, rng: np.random.Generator, t0: float):
+def rrt_connect(
+    checker: LineChecker, q_start: np.ndarray, q_goal: np.ndarray, rng: np.random.Generator, t0: float
+) -> tuple[np.ndarray | None, int]:
     """(waypoints (M, n) from start to goal, iterations), or (None, iterations) over budget."""
     options, space = checker.options, checker.space
     if checker.line_valid(q_start, q_goal):
@@ -109,7 +132,7 @@ def rrt_connect(checker, q_start: np.ndarray, q_goal: np.ndarray, rng: np.random
     return None, options.max_iterations
 
 
-def _greedy(checker, q_path: np.ndarray) -> np.ndarray:
+def _greedy(checker: LineChecker, q_path: np.ndarray) -> np.ndarray:
     """From each kept waypoint, jump to the furthest later waypoint it sees directly."""
     out, i = [q_path[0]], 0
     while i < len(q_path) - 1:
@@ -147,7 +170,7 @@ def merge_collinear(q_path: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     return np.array(out)
 
 
-def shortcut(checker, q_path: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+def shortcut(checker: LineChecker, q_path: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """Greedy waypoint skipping, then random partial shortcuts; never lengthens the path.
 
     Random shortcuts stop after `shortcut_iterations`, or after `shortcut_patience` failures
@@ -169,7 +192,7 @@ def shortcut(checker, q_path: np.ndarray, rng: np.random.Generator) -> np.ndarra
     return merge_collinear(q_path)
 
 
-def _first_bad_segment(checker, q_path: np.ndarray) -> int | None:
+def _first_bad_segment(checker: LineChecker, q_path: np.ndarray) -> int | None:
     """Index of the first segment whose own discretisation has an invalid state.
 
     Segments already found valid as whole lines are skipped; the rest go in one batch.
@@ -188,7 +211,9 @@ def _first_bad_segment(checker, q_path: np.ndarray) -> int | None:
     return segments[int(np.searchsorted(np.cumsum([len(p) for p in parts]), bad, side="right"))]
 
 
-def verify_path(checker, q_path: np.ndarray, rng: np.random.Generator, t0: float, attempts: int = 5):
+def verify_path(
+    checker: LineChecker, q_path: np.ndarray, rng: np.random.Generator, t0: float, attempts: int = 5
+) -> np.ndarray | None:
     """The path with every segment valid at its own discretisation, or None.
 
     Pieces of checked lines (tree chains, partial shortcuts, merged collinear runs) are
