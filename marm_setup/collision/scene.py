@@ -7,6 +7,10 @@ coal narrow phase.
 
 Mesh geometry becomes a coal BVH (`BVHModelOBBRSS`), which is a *surface*, as in MoveIt's
 FCL: a shape entirely inside a mesh, not touching its triangles, does not collide with it.
+
+`collide(..., hulls=True)` first tests the convex hulls of the meshes (primitives as they
+are): a surface lies inside its hull, so hulls apart (by more than the padding) proves the
+surfaces apart; only touching hulls go on to the exact mesh check.
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ from marm_setup.robot.model import Box, CollisionShape, Cylinder, Mesh, RobotMod
 
 Pair = tuple[str, str]
 _EPS = 1e-9
+HULL_MARGIN = 1e-5  # [m] added to the padding of hull tests (coal's GJK tolerance is 1e-6)
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,14 +62,23 @@ class CollisionScene:
         built = [_link_shapes(robot, name, coal, bvh_cache) for name in self.links]
         self._shapes: tuple[tuple[tuple[object, np.ndarray], ...], ...] = tuple(s for s, _ in built)
         points = [p for _, p in built]
+        self.link_points: dict[str, np.ndarray] = dict(zip(self.links, points, strict=True))
         self._bounds = _bounds(points)
         self._request = coal.CollisionRequest()
         self._request.security_margin = self.padding
+        self._hull_request = coal.CollisionRequest()
+        self._hull_request.security_margin = self.padding + HULL_MARGIN
         self._result = coal.CollisionResult()
+        self._hulls: dict[int, tuple | None] = {}  # link row -> hull shapes (None: no mesh)
+        self._hull_cache: dict = {}  # one hull per mesh BVH
         self._tf = (coal.Transform3s(), coal.Transform3s())
         self._solvers: dict[tuple[int, int, int, int], object] = {}
         self._ids_cache: dict[tuple[Pair, ...], np.ndarray] = {}
-        self.narrow_calls = 0
+        self.narrow_calls = 0  # exact coal checks of the real geometry
+        self.hull_checks = 0
+        self.hull_rejections = 0  # hull checks that proved a pair apart
+        self.certificate_queries = 0  # distance queries made for certificates (collision/prover.py)
+        self.certified = 0  # states proven collision-free by a certificate
 
     # -- public API ----------------------------------------------------------------------------
     def enabled_pairs(self, disabled: Iterable[tuple[str, str]]) -> tuple[Pair, ...]:
@@ -102,13 +116,18 @@ class CollisionScene:
             out.append(None if hit is None else link_pair(*pairs[hit]))
         return out
 
-    def collision_counts(self, poses: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    def collision_counts(self, poses: np.ndarray, ids: np.ndarray, hulls: bool = False) -> np.ndarray:
         """How many of the configurations in `poses` have each pair of `ids` in collision."""
         maybe = self.maybe_colliding(poses, ids)
         counts = np.zeros(len(ids), dtype=np.int64)
         for n, k in zip(*np.nonzero(maybe), strict=True):
-            counts[k] += self.collide(poses[n], ids[k])
+            counts[k] += self.collide(poses[n], ids[k], hulls)
         return counts
+
+    def work(self) -> tuple[int, int, int, int, int]:
+        """Counters: exact checks, hull checks, hull rejections, certificate queries, certified."""
+        return (self.narrow_calls, self.hull_checks, self.hull_rejections,
+                self.certificate_queries, self.certified)  # fmt: skip
 
     # -- filters -------------------------------------------------------------------------------
     def sphere_gaps(self, poses: np.ndarray, ids: np.ndarray) -> np.ndarray:
@@ -154,9 +173,12 @@ class CollisionScene:
         return ~apart
 
     # -- narrow phase --------------------------------------------------------------------------
-    def collide(self, poses: np.ndarray, pair_id: int) -> bool:
-        """Exact (coal) check of candidate pair `pair_id` at one configuration's link poses."""
+    def collide(self, poses: np.ndarray, pair_id: int, hulls: bool = False) -> bool:
+        """Exact (coal) check of candidate pair `pair_id` at one configuration's link poses;
+        `hulls`: first try to prove it apart with the meshes' convex hulls (same answer)."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        if hulls and self._hulls_apart(poses, a, b):
+            return False
         tf_a, tf_b = self._tf
         for (ia, (_, la)), (ib, (_, lb)) in itertools.product(
             enumerate(self._shapes[a]), enumerate(self._shapes[b])
@@ -169,15 +191,78 @@ class CollisionScene:
                 return True
         return False
 
-    def distance(self, poses: np.ndarray, pair_id: int) -> float:
-        """Smallest distance [m] between the pair's shapes (0 or less when touching)."""
-        coal = self._coal
+    def has_hulls(self, pair_id: int) -> bool:
+        """Whether either link of the pair has a mesh (with a convex hull)."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        best = np.inf
-        for (ga, la), (gb, lb) in itertools.product(self._shapes[a], self._shapes[b]):
-            tf_a, tf_b = coal.Transform3s(), coal.Transform3s()
+        return self._hull_shapes(a) is not None or self._hull_shapes(b) is not None
+
+    def hull_distance(self, poses: np.ndarray, pair_id: int) -> float:
+        """A lower bound [m] on the pair's distance: that of the meshes' convex hulls (GJK, much
+        cheaper than mesh distance); the exact distance for a pair of primitives."""
+        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        self.hull_checks += 1
+        best = self._min_distance(
+            self._hull_shapes(a) or self._shapes[a],
+            self._hull_shapes(b) or self._shapes[b],
+            poses[a],
+            poses[b],
+        )
+        self.hull_rejections += bool(best > self.padding + HULL_MARGIN)
+        return best
+
+    def _hulls_apart(self, poses: np.ndarray, a: int, b: int) -> bool:
+        """True when the convex hulls (padded) of links a and b cannot touch; False when they
+        may, or when neither link has a mesh (its shapes are their own hulls)."""
+        hull_a, hull_b = self._hull_shapes(a), self._hull_shapes(b)
+        if hull_a is None and hull_b is None:
+            return False
+        tf_a, tf_b = self._tf
+        self.hull_checks += 1
+        for (ga, la), (gb, lb) in itertools.product(hull_a or self._shapes[a], hull_b or self._shapes[b]):
             _set(tf_a, poses[a], la)
             _set(tf_b, poses[b], lb)
+            self._result.clear()
+            if self._coal.collide(ga, tf_a, gb, tf_b, self._hull_request, self._result):
+                return False
+        self.hull_rejections += 1
+        return True
+
+    def _hull_shapes(self, row: int):
+        """The link's shapes with each mesh replaced by its convex hull; None without meshes."""
+        if row not in self._hulls:
+            shapes = self._shapes[row]
+            hulls = [(self._hull(geom), local) for geom, local in shapes]
+            has_mesh = any(h is not g for (h, _), (g, _) in zip(hulls, shapes, strict=True))
+            self._hulls[row] = tuple(hulls) if has_mesh else None
+        return self._hulls[row]
+
+    def _hull(self, geom):
+        """coal's convex hull of a BVH mesh (cached per mesh); other geometry as it is."""
+        if not isinstance(geom, self._coal.BVHModelOBBRSS):
+            return geom
+        key = id(geom)
+        if key not in self._hull_cache:
+            vertices = np.asarray(geom.vertices(), dtype=float)
+            hull = None
+            if _solid(vertices):  # coal's qhull call crashes the process on flat point sets
+                points = self._coal.StdVec_Vec3s()
+                points.extend(list(vertices))
+                hull = self._coal.ConvexBase.convexHull(points, True, None)
+            self._hull_cache[key] = hull
+        return self._hull_cache[key] or geom
+
+    def distance(self, poses: np.ndarray, pair_id: int) -> float:
+        """Smallest distance [m] between the pair's shapes (0 or less when touching)."""
+        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        return self._min_distance(self._shapes[a], self._shapes[b], poses[a], poses[b])
+
+    def _min_distance(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
+        coal = self._coal
+        best = np.inf
+        for (ga, la), (gb, lb) in itertools.product(shapes_a, shapes_b):
+            tf_a, tf_b = coal.Transform3s(), coal.Transform3s()
+            _set(tf_a, pose_a, la)
+            _set(tf_b, pose_b, lb)
             result = coal.DistanceResult()
             coal.distance(ga, tf_a, gb, tf_b, coal.DistanceRequest(), result)
             best = min(best, float(result.min_distance))
@@ -230,6 +315,14 @@ def _coal_geometry(shape: CollisionShape, coal, shown: str, element: str, bvh_ca
             bvh_cache[key] = _bvh(mesh, coal)
         return bvh_cache[key], np.asarray(mesh.vertices)
     raise TypeError(f"unknown geometry {geom!r}")
+
+
+def _solid(points: np.ndarray) -> bool:
+    """At least 4 points spanning 3-D (thinnest extent > 1e-4 of the largest)."""
+    if len(points) < 4:
+        return False
+    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    return bool(spread[0] > 0 and spread[-1] > 1e-4 * spread[0])
 
 
 def _corners(half: np.ndarray) -> np.ndarray:

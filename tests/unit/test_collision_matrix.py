@@ -182,3 +182,52 @@ def test_shared_panda_agrees_with_its_shipped_srdf():
     # (Never there; we see it collide in 8 of 10,000 states, joint4 near its lower limit).
     assert set(ours) - set(theirs) <= {("panda_hand", "panda_link5"), ("panda_link5", "panda_link7")}
     assert set(theirs) - set(ours) <= {("panda_link2", "panda_link6")}
+
+
+def _exact_and_fast(robot, trials: int, padding: float = 0.0, jobs: int = 1):
+    """The matrix with every state checked exactly (no hull test, no certificates) and with
+    the shortcuts, each on its own scene."""
+    exact = compute_collision_matrix(robot, CollisionScene(robot, padding), trials=trials, shortcuts=False)
+    fast = compute_collision_matrix(robot, CollisionScene(robot, padding), trials=trials, jobs=jobs)
+    return exact, fast
+
+
+def _same_bytes(exact: CollisionMatrix, fast: CollisionMatrix) -> None:
+    from marm_setup.collision.report import describe_matrix
+    from marm_setup.collision.srdf_update import render_minimal_srdf
+
+    assert fast == exact  # disabled, enabled, per-pair stats (hits, seen, min distance)
+    assert describe_matrix(fast, "r") == describe_matrix(exact, "r")
+    assert render_minimal_srdf("r", fast.disabled) == render_minimal_srdf("r", exact.disabled)
+
+
+@pytest.mark.parametrize("padding", [0.0, 0.01])
+def test_shortcuts_give_the_exhaustive_matrix_on_the_marm(marm, padding):
+    exact, fast = _exact_and_fast(marm, 3000, padding)
+    _same_bytes(exact, fast)
+    assert fast.narrow_calls <= exact.narrow_calls
+
+
+def test_shortcuts_give_the_exhaustive_matrix_on_the_panda():
+    panda = load_robot(realworld("ros1", "panda_description", "urdf", "panda_arm_hand.urdf.xacro"))
+    exact, fast = _exact_and_fast(panda, 3000)
+    _same_bytes(exact, fast)
+    assert fast.work.hull_rejections > 0 and fast.work.certified > 0
+
+
+def test_shortcuts_give_the_exhaustive_matrix_on_the_pr2_in_two_processes():
+    pr2 = load_robot(realworld("ros1", "pr2_description", "urdf", "robot.xml"))
+    exact, fast = _exact_and_fast(pr2, 2000, jobs=2)
+    _same_bytes(exact, fast)
+    assert fast.narrow_calls < 0.6 * exact.narrow_calls
+    assert fast.work.certified > 0 and fast.work.hull_rejections > 0
+
+
+def test_work_of_worker_processes_is_counted(marm):
+    trials = 3 * CHUNK
+    one = compute_collision_matrix(marm, CollisionScene(marm), trials=trials, shortcuts=False)
+    two = compute_collision_matrix(marm, CollisionScene(marm), trials=trials, shortcuts=False, jobs=2)
+    assert two == one
+    # workers check every chunk for every pair not seen before the trials (no pruning between
+    # chunks running at once), so they do at least the serial run's exact checks
+    assert two.narrow_calls >= one.narrow_calls > 0

@@ -1,0 +1,151 @@
+"""The Never phase's states and the check of one chunk of them (run in any process).
+
+Trial chunk i (fixed size CHUNK) is drawn from `SeedSequence(seed, spawn_key=(1, i))` where it
+is checked: N trials are a prefix of N + k, memory does not grow with the trials, and the
+result does not depend on who checks which chunk.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import astuple, dataclass
+
+import numpy as np
+
+from marm_setup.collision.scene import HULL_MARGIN
+from marm_setup.robot.kinematics import sample_configurations
+from marm_setup.robot.model import RobotModel
+
+Pair = tuple[str, str]
+CHUNK = 1000  # trial samples per chunk (fixed: independent of jobs and CPU count)
+CLOSEST = 8  # samples per Never pair (smallest bounding-sphere gap) where the distance is measured
+
+
+@dataclass(frozen=True, slots=True)
+class Work:
+    """What the computation did (not part of the result: it varies with --jobs and shortcuts)."""
+
+    exact_checks: int = 0  # coal collision checks of the real geometry
+    hull_checks: int = 0
+    hull_rejections: int = 0  # hull checks that proved a pair apart (no exact check needed)
+    certificate_queries: int = 0  # coal distance queries made for certificates
+    certified: int = 0  # (state, pair) checks a certificate answered
+
+    @classmethod
+    def of(cls, scene) -> Work:
+        return cls(*scene.work())
+
+    def __add__(self, other: Work) -> Work:
+        return Work(*(a + b for a, b in zip(astuple(self), astuple(other), strict=True)))
+
+    def __sub__(self, other: Work) -> Work:
+        return Work(*(a - b for a, b in zip(astuple(self), astuple(other), strict=True)))
+
+
+def trial_chunk(robot: RobotModel, seed: int, index: int, trials: int) -> np.ndarray:
+    """Chunk `index` of the Never phase's random states (rows index*CHUNK ... of all trials)."""
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(1, index)))
+    return sample_configurations(robot, rng, max(0, min(CHUNK, trials - index * CHUNK)))
+
+
+def trial_samples(robot: RobotModel, seed: int, trials: int) -> np.ndarray:
+    """All (trials, n_active) random states of the Never phase (the matrix streams them)."""
+    parts = [trial_chunk(robot, seed, i, trials) for i in range(math.ceil(trials / CHUNK))]
+    return np.concatenate(parts) if parts else np.empty((0, len(robot.active_joints)))
+
+
+class TrialChecker:
+    """What a process needs to check trial chunks: the scene, the sampling and (with
+    `shortcuts`) a PairProver whose certificates build up over the chunks it checks."""
+
+    def __init__(self, scene, seed: int, trials: int, shortcuts: bool) -> None:
+        self.scene, self.seed, self.trials, self.shortcuts = scene, seed, trials, shortcuts
+        self.prover = None
+        if shortcuts:
+            from marm_setup.collision.prover import PairProver
+
+            self.prover = PairProver(scene)
+
+    @property
+    def chunks(self) -> int:
+        return math.ceil(self.trials / CHUNK)
+
+    def check(self, index: int, pairs: tuple[Pair, ...]):
+        """check_chunk on chunk `index`: (seen, closest with global rows)."""
+        q = trial_chunk(self.scene.robot, self.seed, index, self.trials)
+        seen, closest = check_chunk(self.scene, q, pairs, self.prover)
+        start = index * CHUNK
+        return seen, {p: [(g, i + start) for g, i in items] for p, items in closest.items()}
+
+    def distances(self, items: list[tuple[Pair, list[int]]]) -> dict[Pair, float]:
+        """Smallest exact distance [m] of each pair over its given trial rows."""
+        rows = sorted({i for _, pair_rows in items for i in pair_rows})
+        if not rows:
+            return {}
+        robot = self.scene.robot
+        chunks = {c: trial_chunk(robot, self.seed, c, self.trials) for c in {i // CHUNK for i in rows}}
+        q = np.array([chunks[i // CHUNK][i % CHUNK] for i in rows])
+        poses = dict(zip(rows, self.scene.link_poses(q), strict=True))
+        out = {}
+        for pair, pair_rows in items:
+            pair_id = int(self.scene.pair_ids((pair,))[0])
+            states = [poses[i] for i in pair_rows]
+            if self.shortcuts:
+                out[pair] = _smallest_distance(self.scene, states, pair_id)
+            else:
+                out[pair] = min(self.scene.distance(p, pair_id) for p in states)
+        return out
+
+
+def _smallest_distance(scene, poses: list[np.ndarray], pair_id: int) -> float:
+    """min of scene.distance over `poses`, skipping states whose hull distance (a lower bound,
+    cheap) already exceeds the smallest found by more than coal's tolerance: same minimum."""
+    if not scene.has_hulls(pair_id):
+        return min(scene.distance(p, pair_id) for p in poses)
+    lower = [scene.hull_distance(p, pair_id) for p in poses]
+    best = np.inf
+    for k in np.argsort(lower, kind="stable"):
+        if lower[k] - HULL_MARGIN >= best:
+            break
+        best = min(best, scene.distance(poses[k], pair_id))
+    return best
+
+
+def check_chunk(scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None):
+    """Pairs of `pairs` seen colliding in states `q`, and each pair's CLOSEST smallest-gap states.
+
+    A pair stops being checked at its first collision; its candidate states are tried in order of
+    deepest bounding-sphere overlap, so sometimes-colliding pairs are found in a few calls.
+    `prover` (a PairProver): the same answer with fewer exact checks.
+    """
+    if not pairs or not len(q):
+        return set(), {}
+    ids = scene.pair_ids(pairs)
+    poses = scene.link_poses(q)
+    gaps = scene.sphere_gaps(poses, ids)
+    maybe = scene.maybe_colliding(poses, ids, gaps)
+    seen = set()
+    for k, pair in enumerate(pairs):
+        candidates = np.flatnonzero(maybe[:, k])
+        rows = candidates[np.argsort(gaps[candidates, k], kind="stable")]
+        if prover is not None:
+            hit = prover.any_collision(q, poses, int(ids[k]), rows)
+        else:
+            hit = any(scene.collide(poses[n], ids[k]) for n in rows)
+        if hit:
+            seen.add(pair)
+    return seen, _closest(gaps, pairs, seen)
+
+
+def _closest(gaps: np.ndarray, pairs, seen) -> dict[Pair, list[tuple[float, int]]]:
+    """Per unseen pair its CLOSEST smallest-gap rows (ties: lower row first, as a stable sort)."""
+    kth = min(CLOSEST, len(gaps)) - 1
+    threshold = np.partition(gaps, kth, axis=0)[kth]
+    out = {}
+    for k, pair in enumerate(pairs):
+        if pair in seen:
+            continue
+        rows = np.flatnonzero(gaps[:, k] <= threshold[k])
+        rows = rows[np.argsort(gaps[rows, k], kind="stable")][:CLOSEST]
+        out[pair] = [(float(gaps[n, k]), int(n)) for n in rows]
+    return out
