@@ -7,8 +7,12 @@ Each result carries the work its process did, so the counts add up under --jobs 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 from marm_setup.collision.trials import Pair, TrialChecker, Work
+
+if TYPE_CHECKING:
+    from concurrent.futures import ProcessPoolExecutor
 
 _CHECKER: TrialChecker | None = None  # the checker of a worker process (fork or _init_worker)
 
@@ -18,7 +22,8 @@ class Workers:
     `jobs` is 1, else in a process pool (forked workers inherit the built scene)."""
 
     def __init__(self, checker: TrialChecker, jobs: int) -> None:
-        self.checker, self.jobs, self._pool = checker, jobs, None
+        self.checker, self.jobs = checker, jobs
+        self._pool: ProcessPoolExecutor | None = None
 
     def __enter__(self) -> Workers:
         if self.jobs > 1 and self.checker.chunks > 1:
@@ -78,12 +83,19 @@ def _init_worker(robot, padding: float, seed: int, trials: int, shortcuts: bool)
         _CHECKER = TrialChecker(CollisionScene(robot, padding), seed, trials, shortcuts)
 
 
+def _checker() -> TrialChecker:
+    assert _CHECKER is not None, "a worker process without its checker"
+    return _CHECKER
+
+
 def _worker_chunk(args):
-    before = Work.of(_CHECKER.scene)
-    seen, closest = _CHECKER.check(*args)
-    return seen, closest, Work.of(_CHECKER.scene) - before
+    checker = _checker()
+    before = Work.of(checker.scene)
+    seen, closest = checker.check(*args)
+    return seen, closest, Work.of(checker.scene) - before
 
 
 def _worker_distances(items):
-    before = Work.of(_CHECKER.scene)
-    return _CHECKER.distances(items), Work.of(_CHECKER.scene) - before
+    checker = _checker()
+    before = Work.of(checker.scene)
+    return checker.distances(items), Work.of(checker.scene) - before
