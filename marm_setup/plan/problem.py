@@ -29,7 +29,7 @@ from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_con
 from marm_setup.robot.kinematics import default_configuration, wrap_continuous
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.srdf import Srdf
+from marm_setup.setup.srdf import Srdf, allowed_pairs
 from marm_setup.setup.start_state import package_start_values
 
 if TYPE_CHECKING:
@@ -171,7 +171,7 @@ def planning_problem(
         for s in srdf.group_states
         if s.group == group
     }
-    pairs = scene.enabled_pairs((p.link1, p.link2) for p in srdf.disabled)
+    pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
     return PlanningProblem(
         group, joints, poses, limits, scale_v, scale_a, lambda q: scene.first_collisions(q, pairs)
     )

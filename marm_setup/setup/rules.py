@@ -91,7 +91,9 @@ class _Rules:
         return self.unknown("srdf.unknown-link", "link", name, self.robot.link_map, where)
 
     def joint(self, name: str, where: Where, rule: str = "srdf.unknown-joint") -> list[Finding]:
-        return self.unknown(rule, "joint", name, self.robot.joint_map, where)
+        """srdfdom model.cpp `isValidJoint`: a URDF joint or one of the SRDF's virtual joints."""
+        known = (*self.robot.joint_map, *(vj.name for vj in self.srdf.virtual_joints))
+        return self.unknown(rule, "joint", name, known, where)
 
     def group(self, name: str, where: Where, rule: str, kind: str = "group") -> list[Finding]:
         return self.unknown(rule, kind, name, self.groups, where)
@@ -141,9 +143,23 @@ def check_virtual_joints(r: _Rules) -> list[Finding]:
         missing = r.link(vj.child_link, where)
         out += missing
         if not missing and vj.child_link != r.robot.root:
-            msg = f"child link '{vj.child_link}' is not the URDF's root link '{r.robot.root}'"
-            out.append(r.error("srdf.virtual-joint-child", where, msg, "MoveIt skips such a virtual joint"))
+            out += _virtual_joint_off_root(r, vj, where)
     return out
+
+
+def _virtual_joint_off_root(r: _Rules, vj, where: Where) -> list[Finding]:
+    """MoveIt's robot_model.cpp (`constructJointModel`, the URDF root) skips a virtual joint whose
+    child is not the root, with a warning ("Skipping virtual joint ... does not match the URDF
+    frame") and assumes a fixed joint. A URDF whose root is named like the parent frame already
+    holds that joint (the Gazebo `world` link): MoveIt 2 no longer warns there (moveit_core
+    CHANGELOG "Silent warning about virtual_joint in Gazebo setups"). Skipping a planar or
+    floating joint loses the base's freedom: an error; a fixed one only renames a frame."""
+    if vj.parent_frame == r.robot.root:
+        return []
+    msg = f"child link '{vj.child_link}' is not the URDF's root link '{r.robot.root}': MoveIt skips it"
+    if vj.type in ("planar", "floating"):
+        return [r.error("srdf.virtual-joint-child", where, f"{msg} and the base's {vj.type} motion")]
+    return [r.warning("srdf.virtual-joint-child", where, msg, f'use child_link="{r.robot.root}"')]
 
 
 def check_groups(r: _Rules) -> list[Finding]:
@@ -230,9 +246,9 @@ def _check_state(r: _Rules, state: GroupState) -> list[Finding]:
     given = {joint for joint, _ in state.values}
     active = active_group_joints(group, r.groups, r.robot, tuple(r.srdf.passive_joints))
     missing = [j for j in active if j not in given]
-    if missing:
-        msg = f"no value for joint(s) {', '.join(missing)} of group '{state.group}'"
-        out.append(r.error("pose.missing-joint", Where("group_state", state.name, ("values",)), msg))
+    if missing:  # robot_model.cpp buildGroupStates warns "doesn't specify all group joints"
+        msg = f"no value for joint(s) {', '.join(missing)} of group '{state.group}' (MoveIt warns)"
+        out.append(r.warning("pose.missing-joint", Where("group_state", state.name, ("values",)), msg))
     return out
 
 
@@ -266,9 +282,11 @@ def _check_end_effector(r: _Rules, ee: EndEffector) -> list[Finding]:
     if out:
         return out
     if ee.parent_link in group_links(r.groups[ee.group], r.groups, r.robot):
+        # a likely mistake, not an error: the Setup Assistant's own check is commented out
+        # (moveit_setup_assistant end_effectors_widget.cpp `doneEditing`) and MoveIt loads it
         msg = f"parent link '{ee.parent_link}' is inside the end effector's own group '{ee.group}'"
         out.append(
-            r.error("srdf.ee-parent-in-group", at("parent_link"), msg, "use the link it is attached to")
+            r.warning("srdf.ee-parent-in-group", at("parent_link"), msg, "use the link it is attached to")
         )
     if ee.parent_group is not None and ee.parent_link not in group_links(
         r.groups[ee.parent_group], r.groups, r.robot
@@ -286,9 +304,14 @@ def check_passive_joints(r: _Rules) -> list[Finding]:
 
 
 def check_disabled_links(r: _Rules) -> list[Finding]:
+    """srdfdom model.cpp `loadCollisionPairs` only warns about a pair naming an unknown link and
+    drops it ("Cannot disable/enable collisions"): a warning, the pair does nothing."""
     out: list[Finding] = []
     for i, pair in enumerate(r.srdf.disabled):
         name = f"{pair.link1} {pair.link2}"
-        out += r.link(pair.link1, Where("disable_collisions", name, ("link1",), i))
-        out += r.link(pair.link2, Where("disable_collisions", name, ("link2",), i))
+        for n, link in ((1, pair.link1), (2, pair.link2)):
+            out += [
+                warning(f.rule, f.file, f.element, f"{f.message} (srdfdom ignores the pair)", f.hint)
+                for f in r.link(link, Where("disable_collisions", name, (f"link{n}",), i))
+            ]
     return out

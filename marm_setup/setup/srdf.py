@@ -224,6 +224,22 @@ def _link_spheres(r: _Reader, elem) -> LinkSpheres:
     return LinkSpheres(link=link, spheres=tuple(spheres))
 
 
+def allowed_pairs(srdf: Srdf, candidates) -> frozenset[tuple[str, str]]:
+    """The `candidates` pairs MoveIt never checks under this SRDF, built as MoveIt builds its
+    allowed collision matrix from srdfdom (model.h: `getNoDefaultCollisionLinks` "disabled by
+    default, and only selectively enabled", then `getEnabledCollisionPairs` re-enabled, then
+    `getDisabledCollisionPairs` disabled): a disabled pair, or a pair touching a
+    `disable_default_collisions` link that no `enable_collisions` re-enables."""
+    disabled = {p.pair for p in srdf.disabled}
+    enabled = {link_pair(p.link1, p.link2) for p in srdf.extras.enable_collisions}
+    off = set(srdf.extras.disable_default_collisions)
+    return frozenset(
+        pair
+        for pair in (link_pair(a, b) for a, b in candidates)
+        if pair in disabled or ((pair[0] in off or pair[1] in off) and pair not in enabled)
+    )
+
+
 # -- between Srdf and SetupModel ---------------------------------------------------------------
 
 

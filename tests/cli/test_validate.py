@@ -34,7 +34,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         f"validated moveit_resources_panda_moveit_config (ros2, moveit2 layout) with robot 'panda' "
         f"from {good.path / 'config/panda.urdf.xacro'} (config/<robot>.urdf.xacro); planned 4 pose pairs"
     )
-    assert text[-1] == "1 error, 2 warnings"
+    assert text[-1] == "1 error, 3 warnings"
     doc = json.loads(runner.invoke(app, [*args, "--format", "json", "--no-plan"]).stdout)
     assert doc["validated"] == {
         "package": "moveit_resources_panda_moveit_config",
@@ -46,7 +46,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         "planned_pairs": None,
         "skipped": [],
     }
-    assert (doc["errors"], doc["warnings"]) == (1, 1)
+    assert (doc["errors"], doc["warnings"]) == (1, 2)
 
 
 def test_errors_exit_1_text_grouped_by_file(tmp_path):
@@ -80,7 +80,12 @@ def test_warnings_pass_unless_strict(tmp_path):
 
 def test_json_output(tmp_path):
     pkg = generate_marm(tmp_path, "ros2")
-    replace_text(pkg, "config/marm.srdf", 'child_link="base_link"', 'child_link="link1"')
+    replace_text(
+        pkg,
+        "config/marm.srdf",
+        'type="fixed" parent_frame="world" child_link="base_link"',
+        'type="floating" parent_frame="world" child_link="link1"',
+    )
     result = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--format", "json"])
     assert result.exit_code == 1
     doc = json.loads(result.stdout)

@@ -40,7 +40,7 @@ BREAKS = {
         m, end_effectors=(EndEffector("ee", "grippr", "grasping_frame"),)
     ),
     "virtual joint not at the root": lambda m: dataclasses.replace(
-        m, virtual_joints=(VirtualJoint("vj", "fixed", "world", "link1"),)
+        m, virtual_joints=(VirtualJoint("vj", "floating", "world", "link1"),)
     ),
     "unknown passive joint": lambda m: dataclasses.replace(m, passive_joints=("joint9",)),
 }

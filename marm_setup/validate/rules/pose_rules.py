@@ -12,6 +12,7 @@ import numpy as np
 from marm_setup.findings import Finding, error
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
+from marm_setup.setup.srdf import allowed_pairs
 
 
 def pose_configuration(state, robot: RobotModel, base: Mapping[str, float] | None = None) -> np.ndarray:
@@ -39,7 +40,7 @@ def check_pose_collisions(
     states = [
         s for s in srdf.group_states if s.group in by_name and all(j in robot.joint_map for j, _ in s.values)
     ]
-    pairs = scene.enabled_pairs([p.pair for p in srdf.disabled])
+    pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
     if not states or not pairs:
         return []
     out = []
