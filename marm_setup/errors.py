@@ -1,4 +1,8 @@
-"""The one error root and its exit codes; only cli.py turns these into output."""
+"""The one error root and its exit codes; only cli/ turns these into output.
+
+One class per kind of failure: callers (validate's rules, the CLI's exit code) decide by the
+type, never by the message text.
+"""
 
 from __future__ import annotations
 
@@ -23,6 +27,22 @@ class MarmError(Exception):
 
 class InputError(MarmError):
     """Bad input: malformed file, unknown name, value out of range, existing output."""
+
+
+class PackageNotFound(InputError):
+    """A ROS package (`package://pkg/...`, `$(find pkg)`) that no package path holds."""
+
+    def __init__(self, message: str, *, package: str, path: str | None = None, element: str | None = None):
+        super().__init__(message, path=path, element=element)
+        self.package = package
+
+
+class MeshNotFound(InputError):
+    """A mesh file that does not exist; `uri` as the URDF wrote it."""
+
+    def __init__(self, message: str, *, uri: str, path: str | None = None, element: str | None = None):
+        super().__init__(message, path=path, element=element)
+        self.uri = uri
 
 
 class ConflictError(MarmError):

@@ -149,12 +149,9 @@ def _package_robot(pkg) -> RobotModel:
 
     robot, problems = load_package_robot(pkg)
     if robot is None:
-        f = problems[0]
-        raise InputError(
-            f.message + (f" ({f.hint})" if getattr(f, "hint", "") else ""),
-            path=f.file,
-            element=f.element or None,
-        )
+        from marm_setup.setup.checks import as_input_error
+
+        raise as_input_error(problems[0])
     return robot
 
 

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from marm_setup.errors import InputError
+from marm_setup.errors import InputError, MeshNotFound
 from marm_setup.robot.model import Vec3
 
 
@@ -31,6 +31,9 @@ class MeshData:
 
 def load_mesh(path: str, scale: Vec3 = (1.0, 1.0, 1.0), *, shown: str = "", element: str = "") -> MeshData:
     """The mesh at `path` scaled by `scale`; `shown`/`element` name the user's file in errors."""
+    if not Path(path).is_file():
+        message = f"cannot read mesh '{path}': file not found"
+        raise MeshNotFound(message, uri=str(path), path=shown or path, element=element)
     try:
         return _load_cached(str(path), tuple(float(s) for s in scale))
     except _MeshReadError as exc:
@@ -51,8 +54,6 @@ def _load_cached(path: str, scale: tuple[float, float, float]) -> MeshData:
 
 
 def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    if not path.is_file():
-        raise _MeshReadError("file not found")
     if path.suffix.lower() == ".stl":
         return _read_stl(path.read_bytes())
     import trimesh

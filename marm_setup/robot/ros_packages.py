@@ -8,7 +8,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from marm_setup.errors import InputError
+from marm_setup.errors import InputError, MeshNotFound, PackageNotFound
 
 PackageMap = Mapping[str, Path]
 
@@ -81,15 +81,17 @@ def find_package(name: str, packages: PackageMap, *, path: str, element: str) ->
     if name in packages:
         return packages[name]
     known = ", ".join(sorted(packages)) or "none"
-    raise InputError(
+    raise PackageNotFound(
         f"unknown package '{name}' (known packages: {known}; add --package-path DIR)",
+        package=name,
         path=path,
         element=element,
     )
 
 
 def resolve_uri(uri: str, base_dir: Path, packages: PackageMap, *, path: str, element: str) -> Path:
-    """Resolve a mesh URI to an existing file, or raise an InputError naming where we looked."""
+    """Resolve a mesh URI to an existing file, or raise MeshNotFound / PackageNotFound naming
+    where we looked."""
     if uri.startswith("package://"):
         pkg, _, rest = uri[len("package://") :].partition("/")
         candidate = find_package(pkg, packages, path=path, element=element) / rest
@@ -98,5 +100,7 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageMap, *, path: str, el
     else:
         candidate = Path(uri) if Path(uri).is_absolute() else base_dir / uri
     if not candidate.is_file():
-        raise InputError(f"mesh '{uri}' not found (looked at {candidate})", path=path, element=element)
+        raise MeshNotFound(
+            f"mesh '{uri}' not found (looked at {candidate})", uri=uri, path=path, element=element
+        )
     return candidate.resolve()

@@ -63,10 +63,17 @@ def check_setup(
 
 
 def raise_first_error(findings: Iterable[Finding], path: str | None) -> None:
-    """The first error finding as an InputError (its hint in parentheses); warnings pass."""
+    """The first error finding as an InputError naming `path`; warnings pass."""
     for f in findings:
         if f.is_error:
-            raise InputError(with_hint(f.message, f.hint), path=path, element=f.element)
+            raise as_input_error(f, path)
+
+
+def as_input_error(f: Finding, path: str | None = None) -> InputError:
+    """A finding as the one-line input error (its hint in parentheses), naming `path` or its file."""
+    return InputError(
+        with_hint(f.message, f.hint), path=f.file if path is None else path, element=f.element or None
+    )
 
 
 def _check_names(c: _Checker) -> None:

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from marm_setup.errors import InputError, MarmError
+from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
 from marm_setup.setup.start_state import package_start_values
 from marm_setup.validate.discovery import ConfigPackage, discover_package
@@ -160,12 +160,18 @@ def load_package_robot(pkg: ConfigPackage):
     try:
         return load_robot(pkg.urdf, dict(pkg.xacro_args), pkg.package_paths), []
     except InputError as exc:
-        rule = "urdf.mesh-missing" if "mesh" in exc.message and "not found" in exc.message else "urdf.load"
-        where = exc.element or ""
-        hint = "pass --package-path DIR for packages outside this folder" if "package" in exc.message else ""
-        return None, [
-            error(rule, shown, where, f"{exc.message} (robot description from {pkg.urdf_origin})", hint)
-        ]
+        rule = "urdf.mesh-missing" if isinstance(exc, MeshNotFound) else "urdf.load"
+        message = f"{exc.message} (robot description from {pkg.urdf_origin})"
+        return None, [error(rule, shown, exc.element or "", message, _package_hint(exc))]
+
+
+def _package_hint(exc: InputError) -> str:
+    """For a package no path holds, or a `package://` mesh not where its package is: where to
+    add one."""
+    in_package = isinstance(exc, MeshNotFound) and exc.uri.startswith("package://")
+    if isinstance(exc, PackageNotFound) or in_package:
+        return "pass --package-path DIR for packages outside this folder"
+    return ""
 
 
 def check_static(pkg: ConfigPackage, robot) -> list[Finding]:

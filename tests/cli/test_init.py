@@ -521,3 +521,20 @@ def test_one_subgroup_cycle_rule_for_validate_init_and_render(tmp_path):
     setup.write_text(setup.read_text().replace("groups:\n", groups, 1))
     result = runner.invoke(app, ["render", str(pkg)])
     assert (result.exit_code, result.stderr) == (2, f"error: {setup}: groups[a].subgroups: {message}\n")
+
+
+@pytest.mark.parametrize(
+    "trials, message",
+    [
+        ("0", "must be >= 1, got 0"),
+        ("-5", "must be >= 1, got -5"),
+        ("abc", "expected a count like 10000, 100k or 1M, got 'abc'"),
+    ],
+)
+def test_init_and_collisions_give_the_same_trials_error(tmp_path, trials, message):
+    out = tmp_path / "pkg"
+    init = runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), "--trials", trials])
+    collisions = runner.invoke(app, ["collisions", str(MARM_URDF), "--trials", trials])
+    for result in (init, collisions):
+        assert (result.exit_code, result.stdout, result.stderr) == (2, "", f"error: --trials: {message}\n")
+    assert not out.exists()

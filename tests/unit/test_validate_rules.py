@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.helpers import urdf
 from tests.validate_helpers import (
     Good,
     copy_package,
@@ -817,3 +818,25 @@ def test_wrong_nested_yaml_shapes_are_findings_not_crashes(
     found = run(pkg, good, matrix_trials=0)
     new_errors = {f for f in found if f.is_error} - set(run(good.path, good, matrix_trials=0))
     assert bool(new_errors) == is_error, found
+
+
+LINK = '<link name="base"><collision><geometry><mesh filename="{uri}"/></geometry></collision></link>'
+
+
+@pytest.mark.parametrize(
+    "body, rule, hinted",
+    [
+        (LINK.format(uri="meshes/nope.stl"), "urdf.mesh-missing", False),
+        (LINK.format(uri="package://nopkg/meshes/base.stl"), "urdf.load", True),  # PackageNotFound
+        # text that mentions a mesh, "not found" and a package, but the error is an unknown link
+        ('<link name="a"/><joint name="mesh not found" type="fixed"><parent link="a"/>'
+         '<child link="package_link"/></joint>', "urdf.load", False),
+    ],
+)  # fmt: skip
+def test_urdf_rule_and_hint_come_from_the_error_type(tmp_path, body, rule, hinted):
+    good = Good(generate_marm(tmp_path, "ros2"))
+    broken = tmp_path / "robot.urdf"
+    broken.write_text(urdf(body, name="marm"), encoding="utf-8")
+    (found,) = run(good.path, good, urdf=broken)
+    assert found.rule == rule
+    assert bool(found.hint) == hinted, found
