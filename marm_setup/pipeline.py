@@ -72,6 +72,8 @@ class PortInitRequest:
     env_distro: str | None = None
     force: bool = False
     package_paths: tuple[Path, ...] = ()
+    urdf: Path | None = None  # the robot description, instead of the one the package names
+    xacro_args: tuple[str, ...] = ()  # NAME:=VALUE, instead of the ones the package passes
     plan: bool = True  # validate's runtime checks on the new package
     jobs: int = 1
 
@@ -93,7 +95,12 @@ def run_port(request: PortInitRequest, progress=None) -> PortResult:
     from marm_setup.validate.runner import validate
 
     check_output_dir(request.out, force=request.force, shown=str(request.out))
-    pkg = discover_package(request.package, package_paths=request.package_paths)
+    pkg = discover_package(
+        request.package,
+        urdf=request.urdf,
+        package_paths=request.package_paths,
+        xacro_args=parse_xacro_args(list(request.xacro_args)) or None,
+    )
     robot = _package_robot(pkg)
     target = request.target or "ros2"
     if target not in TARGETS:

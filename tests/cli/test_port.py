@@ -83,14 +83,30 @@ def test_every_source_file_is_accounted_for(tmp_path):
     assert sensors[0]["status"] == "dropped"
 
 
-def test_from_package_with_a_urdf_is_one_error_line(tmp_path):
-    result = runner.invoke(
-        app, ["init", str(MARM_URDF), "--from-package", str(tmp_path), "--out", str(tmp_path / "o")]
-    )
+def test_from_package_with_a_spec_is_one_error_line(tmp_path):
+    cmd = ["init", "--from-package", str(tmp_path), "--setup", str(SPEC), "--out", str(tmp_path / "o")]
+    result = runner.invoke(app, cmd)
     assert result.exit_code == 2
     assert result.stderr.strip().splitlines() == [
-        "error: --from-package: --from-package takes the robot from the package: drop URDF"
+        "error: --from-package: --from-package takes the robot from the package: drop --setup"
     ]
+
+
+def test_urdf_and_xacro_args_replace_the_packages_own(tmp_path):
+    """A URDF given with --from-package is the description the port uses (as validate --urdf),
+    and --xacro-arg reaches it."""
+    _generate(tmp_path / "a", "ros2", "jazzy")
+    copy = tmp_path / "robot" / "marm.urdf.xacro"
+    copy.parent.mkdir()
+    copy.write_text(MARM_URDF.read_text())
+    args = ["--package-path", str(FIXTURES / "marm"), "--xacro-arg", "with_gripper:=true", "--no-plan"]
+    result = runner.invoke(
+        app, ["init", str(copy), "--from-package", str(tmp_path / "a"), "--out", str(tmp_path / "b"), *args]
+    )
+    assert result.exit_code == 0, result.output
+    setup = (tmp_path / "b" / "marm_setup.yaml").read_text()
+    assert "urdf: ../robot/marm.urdf.xacro" in setup
+    assert "xacro_args:\n    with_gripper: 'true'" in setup
 
 
 def test_not_a_package_is_one_error_line_and_writes_nothing(tmp_path):

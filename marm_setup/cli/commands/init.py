@@ -106,13 +106,21 @@ def init(
     from marm_setup.render.writer import check_output_dir
 
     if from_package is not None:
-        given = [o for o, v in (("URDF", urdf), ("--setup", setup), ("--from-srdf", from_srdf)) if v]
+        given = [o for o, v in (("--setup", setup), ("--from-srdf", from_srdf)) if v]
         if given:
             raise InputError(
                 f"--from-package takes the robot from the package: drop {', '.join(given)}",
                 element="--from-package",
             )
-        _port(from_package, out, name, target, ros_distro, force, package_path, jobs, not no_plan, format)
+        options = dict(
+            force=force,
+            package_path=package_path,
+            urdf=urdf,
+            xacro_arg=xacro_arg,
+            jobs=jobs,
+            plan=not no_plan,
+        )
+        _port(from_package, out, name, target, ros_distro, format, **options)
         return
     if urdf is None:
         raise InputError("give the robot's URDF, or --from-package PKG", element="URDF")
@@ -149,7 +157,9 @@ def init(
         typer.echo(line)
 
 
-def _port(package, out, name, target, ros_distro, force, package_path, jobs, plan, format) -> None:
+def _port(
+    package, out, name, target, ros_distro, format, *, force, package_path, urdf, xacro_arg, jobs, plan
+) -> None:
     """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
     from marm_setup.cli.port_report import format_port_json, format_port_text
     from marm_setup.cli.progress import SamplingProgress
@@ -165,6 +175,8 @@ def _port(package, out, name, target, ros_distro, force, package_path, jobs, pla
         env_distro=os.environ.get("ROS_DISTRO") or None,
         force=force,
         package_paths=tuple(package_path or ()),
+        urdf=urdf,
+        xacro_args=tuple(xacro_arg or ()),
         plan=plan,
         jobs=default_jobs(jobs),
     )
