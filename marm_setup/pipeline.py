@@ -16,6 +16,8 @@ from marm_setup.setup.model import ROS_DISTROS, TARGETS, CollisionSettings, Robo
 
 if TYPE_CHECKING:
     from marm_setup.port.importer import Ported
+    from marm_setup.port.report import PortItem
+    from marm_setup.validate.discovery import ConfigPackage
     from marm_setup.validate.runner import Validation
 
 
@@ -91,16 +93,10 @@ def run_port(request: PortInitRequest, progress=None) -> PortResult:
     from marm_setup.port.importer import PortRequest, port_package
     from marm_setup.render.writer import check_output_dir, format_change
     from marm_setup.setup.checks import check_setup
-    from marm_setup.validate.discovery import discover_package
     from marm_setup.validate.runner import validate
 
     check_output_dir(request.out, force=request.force, shown=str(request.out))
-    pkg = discover_package(
-        request.package,
-        urdf=request.urdf,
-        package_paths=request.package_paths,
-        xacro_args=parse_xacro_args(list(request.xacro_args)) or None,
-    )
+    pkg, notes = _discover_for_port(request)
     robot = _package_robot(pkg)
     target = request.target or "ros2"
     if target not in TARGETS:
@@ -111,7 +107,9 @@ def run_port(request: PortInitRequest, progress=None) -> PortResult:
         target,
     )
     ported = port_package(
-        pkg, robot, PortRequest(request.out, target, distro, request.name, tuple(request.package_paths))
+        pkg,
+        robot,
+        PortRequest(request.out, target, distro, request.name, tuple(request.package_paths), notes),
     )
     check_setup(ported.model, robot, pkg.user_path(pkg.srdf_path))
     model = with_collision_matrix(
@@ -148,6 +146,41 @@ def _with_validation_notes(ported, pkg, validation, package_paths):
         )
         items.append(PortItem("todo", f"validate {f.rule}", f"{f.file}: {f.element}", f"{f.message}; {why}"))
     return dataclasses.replace(ported, items=(*ported.items, *items))
+
+
+def _discover_for_port(request: PortInitRequest) -> tuple[ConfigPackage, tuple[PortItem, ...]]:
+    """The package as validate reads it; a MoveIt 2 `config/<robot>.urdf.xacro` wrapper (the
+    new package writes its own) gives way to the description `.setup_assistant` names."""
+    from marm_setup.port.report import PortItem
+    from marm_setup.validate.discovery import discover_package
+    from marm_setup.validate.sources import setup_assistant_urdf
+
+    args = parse_xacro_args(list(request.xacro_args)) or None
+    pkg = discover_package(
+        request.package, urdf=request.urdf, package_paths=request.package_paths, xacro_args=args
+    )
+    if pkg.urdf_origin != "config/<robot>.urdf.xacro":
+        return pkg, ()
+    found = setup_assistant_urdf(pkg.root, pkg.shown, pkg.package_paths)
+    if found is None:
+        raise InputError(
+            f"the robot description is the package's own wrapper {pkg.urdf.name} (the new package writes its "
+            "own) and .setup_assistant names no other: give the robot's URDF (init URDF --from-package PKG)",
+            path=pkg.user_path(pkg.urdf.relative_to(pkg.root).as_posix()),
+        )
+    path, _, sa_args = found
+    wrapper = pkg.urdf.relative_to(pkg.root).as_posix()
+    pkg = discover_package(
+        request.package, urdf=path, package_paths=request.package_paths, xacro_args=args or dict(sa_args)
+    )
+    note = PortItem(
+        "changed",
+        "robot.urdf",
+        f"{wrapper}, .setup_assistant",
+        f"{wrapper} wraps the description for the source's own launch files (the new package writes its "
+        f"own wrapper): the description .setup_assistant names is used, {path}",
+    )
+    return pkg, (note,)
 
 
 def _package_robot(pkg) -> RobotModel:

@@ -39,6 +39,7 @@ class PortRequest:
     ros_distro: str
     name: str | None = None
     package_paths: tuple[Path, ...] = ()  # the user's --package-path folders
+    notes: tuple[PortItem, ...] = ()  # report items of the steps before the port (finding the package)
 
 
 @dataclass(frozen=True)
@@ -55,6 +56,7 @@ def port_package(pkg: ConfigPackage, robot: RobotModel, request: PortRequest) ->
     if pkg.srdf is None:
         raise InputError("no readable SRDF: nothing to port", path=pkg.user_path(pkg.srdf_path or "config"))
     log = PortLog()
+    log.items.extend(request.notes)
     model = _base(pkg, robot, request, log)
     model = _with_srdf(pkg, model, log)
     model = _without_srdf_errors(model, robot, pkg.srdf_path or "", log)

@@ -159,6 +159,21 @@ def _why_no_urdf(root: Path, marm: Any, setup_assistant: Any) -> str:
     return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro; pass --urdf URDF"
 
 
+def setup_assistant_urdf(root: Path, shown: str, paths: tuple[Path, ...]):
+    """(path, origin, xacro args) of the description `.setup_assistant` names (its URDF package
+    and relative_path), or None when it names none; InputError when the package is not found."""
+    import yaml
+
+    try:
+        raw = yaml.safe_load((root / ".setup_assistant").read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        return None
+    entry = _sa_entry(raw, "urdf")
+    if not (entry.get("package") and entry.get("relative_path")):
+        return None
+    return _setup_assistant_urdf(entry, paths, shown, ())
+
+
 def _setup_assistant_urdf(entry: dict, paths: tuple[Path, ...], shown: str, args):
     from marm_setup.robot.ros_packages import find_package, find_packages
 

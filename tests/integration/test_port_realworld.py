@@ -122,3 +122,22 @@ def test_vendor_packages_port_with_no_validation_errors(tmp_path, name, target):
     assert all("the source package has the same error" in i["detail"] for i in explained), explained
     assert result.exit_code == (1 if errors else 0)
     assert (out / "marm_setup.yaml").is_file()
+
+
+@pytest.mark.parametrize("target", ["ros1", "ros2"])
+def test_panda_moveit2_package_ports_to_both_targets(tmp_path, target):
+    """The MoveIt 2 Panda: its config/panda.urdf.xacro wrapper gives way to the description
+    .setup_assistant names (the new package's own wrapper would include itself), and the
+    gripper controller of gripper_moveit_controllers.yaml joins the arm's."""
+    source = realworld("ros2", "panda_moveit_config")
+    out = tmp_path / "panda"
+    cmd = ["init", "--from-package", str(source), "--out", str(out), "--target", target, "--no-plan"]
+    result = runner.invoke(app, [*cmd, "--package-path", str(source.parent), "--format", "json"])
+    doc = json.loads(result.stdout)
+    errors = {(f["rule"], f["element"]) for f in doc["validation"]["findings"] if f["severity"] == "error"}
+    assert errors == INHERITED, doc["validation"]
+    setup = (out / "marm_setup.yaml").read_text()
+    assert "panda_description/urdf/panda.urdf" in setup
+    assert "name: panda_hand_controller" in setup
+    notes = [i for i in doc["port"]["items"] if i["setting"] == "robot.urdf" and i["status"] == "changed"]
+    assert notes and ".setup_assistant names is used" in notes[0]["detail"]
