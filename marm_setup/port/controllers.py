@@ -51,15 +51,55 @@ def port_controllers(
             "controllers", "", "no MoveIt controller list: one controller per group is written, as init does"
         )
         return ()
-    found, problems = moveit_controllers(section)
-    for f in problems:
-        log.dropped(f"controllers ({f.element})", where(f.file, f.element), f.message)
     out: list[Controller] = []
-    for c in found:
-        ported = _controller(c, section.file, model, robot, {o.name for o in out}, log)
-        if ported is not None:
-            out.append(ported)
+    for i, sec in enumerate((section, *pkg.alt_moveit_controllers)):
+        _report_manager_settings(pkg, sec, log)
+        found, problems = moveit_controllers(sec)
+        for f in problems:
+            log.dropped(f"controllers ({f.element})", where(f.file, f.element), f.message)
+        for c in found:
+            if i and any(o.name == c.name and set(o.joints) == set(c.joints) for o in out):
+                log.carried(
+                    f"controllers[{c.name}]", where(sec.file, c.element), "the same as in " + section.file
+                )
+                continue
+            ported = _controller(c, sec.file, model, robot, {o.name for o in out}, log)
+            if ported is not None:
+                out.append(ported)
+                if i:
+                    log.changed(
+                        f"controllers[{c.name}]",
+                        where(sec.file, c.element),
+                        f"from an alternative controller file the source launches instead of {section.file}: "
+                        "the new package has one set holding both",
+                    )
     return tuple(out)
+
+
+# Keys of a MoveIt controllers file the port reads (the rest is the target's own settings).
+CONTROLLER_LIST_KEYS = ("controller_list", "controller_names", "moveit_simple_controller_manager")
+
+
+def _report_manager_settings(pkg: ConfigPackage, section: ConfigSection, log: PortLog) -> None:
+    """Other keys of the controllers file (trajectory_execution, the manager plugin, ...): the
+    new package writes its own."""
+    import yaml
+
+    try:
+        raw = yaml.safe_load(pkg.path(section.file).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        return
+    if (
+        not isinstance(raw, dict)
+        or (raw.keys() & {"controller_list", "moveit_simple_controller_manager"}) == set()
+    ):
+        return
+    for key in sorted(set(raw) - set(CONTROLLER_LIST_KEYS), key=str):
+        log.changed(
+            f"moveit_controllers file: {key}",
+            where(section.file, str(key)),
+            "the new package writes its own value",
+        )
 
 
 def _controller(

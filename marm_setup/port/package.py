@@ -237,6 +237,7 @@ def read_files(pkg: ConfigPackage) -> set[str]:
         section = getattr(pkg, field)
         if section is not None:
             names.add(section.file)
+    names.update(s.file for s in pkg.alt_moveit_controllers)
     return names
 
 

@@ -23,6 +23,11 @@ KINEMATICS_KEYS = {
 }
 OMPL_TYPES = {ompl_type: name for name, ompl_type in OMPL_PLANNERS}
 GROUP_OMPL_KEYS = ("default_planner_config", "planner_configs", "longest_valid_segment_fraction")
+# joint_limits.yaml's default scaling factors -> SetupModel field
+SCALING_KEYS = {
+    "default_velocity_scaling_factor": "default_velocity_scaling",
+    "default_acceleration_scaling_factor": "default_acceleration_scaling",
+}
 # A limit that differs from the URDF's by less than this fraction of it is the URDF's (rounding).
 ROUNDING = 1e-4
 
@@ -119,6 +124,16 @@ def port_joint_limits(
         return (), {}
     data = _mapping(section.data)
     scaling = _scaling(section, data, log)
+    for key in sorted(set(data) - {"joint_limits", *SCALING_KEYS}, key=str):
+        src = where(section.file, section.element(key))
+        if key == "cartesian_limits":
+            log.changed(
+                f"{key}", src, "the target's Pilz cartesian limits are written with MoveIt's defaults"
+            )
+        else:
+            log.dropped(
+                f"joint_limits file: {key}", src, f"{_short(data[key])}: marm_setup.yaml has no place for it"
+            )
     planning = set(planning)
     out = []
     for joint, entry in _mapping(data.get("joint_limits")).items():
@@ -138,10 +153,7 @@ def port_joint_limits(
 
 def _scaling(section: ConfigSection, data: dict, log: PortLog) -> dict[str, float]:
     out = {}
-    for key, field in (
-        ("default_velocity_scaling_factor", "default_velocity_scaling"),
-        ("default_acceleration_scaling_factor", "default_acceleration_scaling"),
-    ):
+    for key, field in SCALING_KEYS.items():
         if key not in data:
             continue
         value = _number(data[key])

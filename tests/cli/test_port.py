@@ -122,3 +122,50 @@ def test_init_without_urdf_or_package_is_one_error_line(tmp_path):
     result = runner.invoke(app, ["init", "--out", str(tmp_path / "o")])
     assert result.exit_code == 2
     assert "give the robot's URDF, or --from-package PKG" in result.stderr
+
+
+def _items(result) -> dict[str, list[dict]]:
+    doc = json.loads(result.stdout)
+    out: dict[str, list[dict]] = {}
+    for item in doc["port"]["items"]:
+        out.setdefault(item["setting"], []).append(item)
+    return out
+
+
+def test_what_moveit_cannot_use_is_dropped_with_a_line(tmp_path):
+    """A virtual joint off the root, KDL on a group that is no chain: MoveIt skips / cannot load
+    them, so the port leaves them out and says so instead of failing or writing an error."""
+    _generate(tmp_path / "a", "ros1", "noetic")
+    srdf = tmp_path / "a" / "config" / "marm.srdf"
+    srdf.write_text(srdf.read_text().replace('child_link="base_link"', 'child_link="link2"'))
+    kin = tmp_path / "a" / "config" / "kinematics.yaml"
+    kin.write_text(
+        kin.read_text() + "gripper:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
+    )
+    result = _port(tmp_path / "a", tmp_path / "b", "--target", "ros2", "--format", "json")
+    assert result.exit_code == 0, result.output
+    items = _items(result)
+    vj = items["virtual_joints[virtual_joint]"][-1]
+    assert vj["status"] == "dropped" and "is not the URDF's root link 'base_link'" in vj["detail"]
+    kdl = items["kinematics[gripper].kinematics_solver"][-1]
+    assert kdl["status"] == "changed" and "needs a serial chain" in kdl["detail"]
+    setup = (tmp_path / "b" / "marm_setup.yaml").read_text()
+    assert "virtual_joints" not in setup and "group: gripper\n  solver" not in setup
+    assert json.loads(result.stdout)["validation"]["errors"] == 0
+
+
+def test_a_gripper_command_of_several_joints_becomes_a_trajectory_controller_on_ros2(tmp_path):
+    """ros2_control's GripperActionController drives one joint."""
+    _generate(tmp_path / "a", "ros1", "noetic")
+    ctl = tmp_path / "a" / "config" / "controllers.yaml"
+    text = ctl.read_text().replace("      - finger_joint1\n", "      - finger_joint1\n      - joint6\n")
+    ctl.write_text(text)
+    result = _port(tmp_path / "a", tmp_path / "b", "--target", "ros2", "--format", "json")
+    items = _items(result)
+    change = items["controllers[gripper_controller].type"][0]
+    assert change["status"] == "changed" and "GripperCommand -> FollowJointTrajectory" in change["detail"]
+    setup = (tmp_path / "b" / "marm_setup.yaml").read_text()
+    assert (
+        "name: gripper_controller\n  type: FollowJointTrajectory\n  action_ns: follow_joint_trajectory"
+        in setup
+    )
