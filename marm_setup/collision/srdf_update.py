@@ -22,8 +22,13 @@ from marm_setup.errors import InputError
 COMPUTED = frozenset(
     {DisabledReason.ADJACENT, DisabledReason.DEFAULT, DisabledReason.ALWAYS, DisabledReason.NEVER}
 )
-_ELEMENT = re.compile(r"<disable_collisions\b[^>]*?(?:/>|>\s*</disable_collisions\s*>)", re.S)
-_COMMENT = re.compile(r"<!--.*?-->|<!\[CDATA\[.*?\]\]>", re.S)
+# A whole `<disable_collisions .../>` (or with an empty end tag); quoted attribute values may
+# hold `>` and `/>`.
+_ELEMENT = re.compile(
+    r"<disable_collisions\b(?:\s+[^\s=/>]+\s*=\s*(?:\"[^\"]*\"|'[^']*'))*\s*(?:/>|>\s*</disable_collisions\s*>)"
+)
+# Text that is not markup of the document tree: comments, CDATA, processing instructions, the DTD.
+_HIDDEN = re.compile(r"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]|\[.*?\])*>", re.S)
 
 
 @dataclass(frozen=True, slots=True)
@@ -56,25 +61,33 @@ def render_minimal_srdf(robot_name: str, disabled: Iterable[DisabledPair]) -> st
 
 
 def read_srdf_entries(text: str, *, shown: str) -> list[SrdfEntry]:
-    """The `disable_collisions` entries of SRDF `text`, in document order."""
+    """The `disable_collisions` entries of SRDF `text`, in document order.
+
+    Offsets come from the text (outside comments, CDATA, processing instructions and the DTD);
+    link names and reasons from lxml's tree, so entity references read as the parser reads them.
+    """
     try:
         root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError as exc:
         raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
     if root.tag != "robot":
         raise InputError(f"root element is <{root.tag!s}>, expected <robot>", path=shown)
+    elements = root.findall("disable_collisions")
+    matches = list(_element_matches(text))
+    lines = [text.count("\n", 0, m.start()) + 1 for m in matches]
+    if len(matches) != len(elements) or any(
+        el.sourceline != n for el, n in zip(elements, lines, strict=False)
+    ):
+        raise InputError(
+            "disable_collisions elements in an unexpected form (nested, or with content); cannot edit in place",
+            path=shown,
+        )
     entries = []
-    for match in _element_matches(text):
-        el = etree.fromstring(match.group(0))
+    for match, el, line in zip(matches, elements, lines, strict=True):
         link1, link2 = el.get("link1"), el.get("link2")
         if not link1 or not link2:
-            line = text.count("\n", 0, match.start()) + 1
             raise InputError("disable_collisions needs link1 and link2", path=shown, element=f"line {line}")
         entries.append(SrdfEntry(match.start(), match.end(), link1, link2, el.get("reason", "")))
-    if len(entries) != len(root.findall("disable_collisions")):
-        raise InputError(
-            "disable_collisions elements in an unexpected form; cannot edit in place", path=shown
-        )
     return entries
 
 
@@ -109,12 +122,14 @@ def update_srdf(
     return text, tuple(sorted([e.pair for e in kept] + new))
 
 
+def masked(text: str) -> str:
+    """`text` with comments, CDATA, processing instructions and the DTD blanked (same offsets)."""
+    return _HIDDEN.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), text)
+
+
 def _element_matches(text: str):
-    """Regex matches of disable_collisions elements outside comments and CDATA."""
-    hidden = [m.span() for m in _COMMENT.finditer(text)]
-    for match in _ELEMENT.finditer(text):
-        if not any(a <= match.start() < b for a, b in hidden):
-            yield match
+    """Regex matches of disable_collisions elements in the document tree's own markup."""
+    return _ELEMENT.finditer(masked(text))
 
 
 def _line_span(text: str, entry: SrdfEntry) -> tuple[int, int]:
@@ -132,7 +147,7 @@ def _anchor(text: str, removed: list[SrdfEntry], entries: list[SrdfEntry], shown
     if removed:
         start = _line_span(text, removed[0])[0]
         return start, _indent_at(text, removed[0].start)
-    close = text.rfind("</robot")
+    close = masked(text).rfind("</robot")  # the root's end tag, not one in a comment after it
     if close < 0:
         raise InputError(
             "<robot/> has no end tag to add disable_collisions before; write <robot ...></robot>", path=shown

@@ -11,6 +11,7 @@ import hashlib
 import json
 import os
 import shutil
+import stat
 import tempfile
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -208,17 +209,33 @@ def format_change(change: FileChange) -> str:
 
 
 def write_text_atomic(path: Path, text: str, *, shown: str) -> None:
-    """Write `text` (UTF-8, newlines as given) to `path` through a temporary file."""
-    path, tmp = Path(path), None
+    """Write `text` (UTF-8, newlines as given) to `path` through a temporary file.
+
+    A symlink is followed (its target is replaced, the link stays); the file keeps its mode, and
+    a new file gets the mode a plain open() would give (0666 less the umask).
+    """
+    path, tmp = Path(os.path.realpath(path)), None
     try:
         if path.is_dir():
             raise IsADirectoryError(21, "is a folder")
         path.parent.mkdir(parents=True, exist_ok=True)
+        mode = file_mode(path)
         fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
         with os.fdopen(fd, "wb") as out:
+            os.fchmod(out.fileno(), mode)
             out.write(text.encode("utf-8"))
         os.replace(tmp, path)
     except OSError as exc:
         if tmp is not None:
             Path(tmp).unlink(missing_ok=True)
         raise InputError(f"cannot write: {exc.strerror or exc}", path=shown) from None
+
+
+def file_mode(path: Path, *, executable: bool = False) -> int:
+    """The mode `path` has (when it exists), else the one a plain open() gives a new file."""
+    try:
+        return stat.S_IMODE(path.stat().st_mode)
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return (0o777 if executable else 0o666) & ~umask
