@@ -29,8 +29,13 @@ P = ParamSpec("P")
 R = TypeVar("R")
 
 
+_DEBUG = {"on": False}  # set by the global --debug option
+
+
 def handle_errors(fn: Callable[P, R]) -> Callable[P, R]:
-    """Turn a MarmError into one `error: ...` line on stderr and its exit code."""
+    """Turn a MarmError into one `error: ...` line on stderr and its exit code, and any other
+    exception (a bug) into one `error: internal error: ...` line with exit 2; the traceback only
+    with the global `--debug`."""
 
     @functools.wraps(fn)
     def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
@@ -39,8 +44,23 @@ def handle_errors(fn: Callable[P, R]) -> Callable[P, R]:
         except MarmError as exc:
             echo_err(f"error: {exc}")
             raise typer.Exit(exc.exit_code) from None
+        except (typer.Exit, typer.Abort, typer.TyperException):  # click-style exits and usage errors
+            raise
+        except Exception as exc:
+            if _DEBUG["on"]:
+                raise
+            echo_err(
+                f"error: internal error: {internal_error_text(exc)} (please report; --debug shows where)"
+            )
+            raise typer.Exit(2) from None
 
     return wrapper
+
+
+def internal_error_text(exc: BaseException) -> str:
+    """`RecursionError: maximum recursion depth exceeded`, cut to a readable length."""
+    text = f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
+    return text if len(text) <= 300 else text[:297] + "..."
 
 
 def _version(value: bool) -> None:
@@ -54,8 +74,12 @@ def _root(
     version: Annotated[
         bool, typer.Option("--version", callback=_version, is_eager=True, help="Print the version.")
     ] = False,
+    debug: Annotated[
+        bool, typer.Option("--debug", help="Show the traceback of an internal error (for bug reports).")
+    ] = False,
 ) -> None:
     """Headless MoveIt Setup Assistant."""
+    _DEBUG["on"] = debug
 
 
 def _register() -> None:

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from marm_setup.errors import InputError
 from marm_setup.plan.rrt import merge_collinear
 from marm_setup.robot.model import RobotModel
 
@@ -126,6 +127,9 @@ def _segment_knots(d: np.ndarray, limits: JointLimits) -> list[tuple[float, floa
     ]
 
 
+MAX_SEGMENT_S = 3600.0  # [s]: beyond an hour per segment the limits are nonsense (and the points pile up)
+
+
 def time_parameterize(q_path: np.ndarray, limits: JointLimits, max_period_s: float = 0.1) -> TimedTrajectory:
     """Trapezoidal profile per segment, stopping at waypoints; points every <= max_period_s [s].
 
@@ -141,6 +145,12 @@ def time_parameterize(q_path: np.ndarray, limits: JointLimits, max_period_s: flo
         for (_, s0, sd0, sdd0), (dt, _, _, _) in zip(knots[:-1], knots[1:], strict=True):
             if dt <= 1e-12:
                 continue
+            if dt > MAX_SEGMENT_S:
+                raise InputError(
+                    f"a trajectory segment would take {dt:.3g} s at these limits (a velocity or "
+                    "acceleration limit near 0?)",
+                    element="joint_limits",
+                )
             t_start, n = times[-1], max(1, int(np.ceil(dt / max_period_s)))
             for tau in dt * np.arange(1, n + 1) / n:
                 times.append(t_start + tau)

@@ -43,12 +43,11 @@ def format_tree(robot: RobotModel) -> str:
     """The kinematic tree as indented text, plus a summary line."""
     lines = [f"robot {robot.name}", _link_label(robot, robot.root)]
 
-    def walk(link: str, indent: str) -> None:
-        for joint in robot.child_joints_of[link]:
-            lines.append(f"{indent}└─ {describe_joint(joint)} -> {_link_label(robot, joint.child)}")
-            walk(joint.child, indent + "   ")
-
-    walk(robot.root, "")
+    stack = [(joint, "") for joint in reversed(robot.child_joints_of[robot.root])]
+    while stack:  # depth first, iterative: a 1,000-link chain is fine
+        joint, indent = stack.pop()
+        lines.append(f"{indent}└─ {describe_joint(joint)} -> {_link_label(robot, joint.child)}")
+        stack.extend((j, indent + "   ") for j in reversed(robot.child_joints_of[joint.child]))
     n_mimic = sum(1 for j in robot.joints if j.mimic is not None)
     lines.append(
         f"{len(robot.links)} links ({len(robot.geometry_links)} with collision geometry), "

@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
+import os
 import re
 import sys
 import types
@@ -72,13 +73,34 @@ def parse_xml(text: str, *, shown: str) -> etree._Element:
         raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
 
 
+XACRO_SECONDS = 60.0  # [s] for one xacro expansion; MARM_SETUP_XACRO_TIMEOUT overrides
+XACRO_MEMORY = 2 << 30  # [bytes]
+
+
 def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, shown: str) -> str:
-    """Run the real xacro on `file` with `args`, resolving `$(find pkg)` from `packages`."""
+    """Run the real xacro on `file` with `args`, resolving `$(find pkg)` from `packages`, in a
+    child process bounded in time and memory (xacro evaluates `${...}` as Python)."""
+    from marm_setup.robot.sandbox import TimeLimitExceeded, run_limited
+
+    text = read_text(file, shown=shown).replace("$(find-pkg-share ", "$(find ")
+    seconds = float(os.environ.get("MARM_SETUP_XACRO_TIMEOUT", XACRO_SECONDS))
+    try:
+        return run_limited(
+            lambda: _run_xacro(file, text, args, packages, shown), seconds=seconds, memory_bytes=XACRO_MEMORY
+        )
+    except TimeLimitExceeded:
+        raise InputError(
+            f"xacro did not finish within {seconds:g} s (an expression that never ends, like ${{10**10**8}}?)",
+            path=shown,
+            element="xacro",
+        ) from None
+
+
+def _run_xacro(file: Path, text: str, args: dict[str, str], packages: PackageMap, shown: str) -> str:
     from xml.parsers.expat import ExpatError
 
     import xacro
 
-    text = read_text(file, shown=shown).replace("$(find-pkg-share ", "$(find ")
     captured = io.StringIO()
     with _ament_index_stub(packages, shown), contextlib.redirect_stderr(captured):
         try:
@@ -102,6 +124,8 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
 
 
 def _xacro_message(exc: Exception) -> str:
+    if isinstance(exc, MemoryError):
+        return f"xacro needed more than {XACRO_MEMORY >> 30} GiB of memory"
     text = " ".join(str(exc).split())
     undefined = re.search(r"Undefined substitution argument (\S+)", text)
     if undefined:

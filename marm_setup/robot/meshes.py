@@ -40,6 +40,9 @@ def load_mesh(path: str, scale: Vec3 = (1.0, 1.0, 1.0), *, shown: str = "", elem
         raise InputError(f"cannot read mesh '{path}': {exc}", path=shown or path, element=element) from None
 
 
+MAX_VERTEX_M = 1e6  # [m] after units and scale: no robot part is larger
+
+
 class _MeshReadError(Exception):
     pass
 
@@ -48,6 +51,8 @@ class _MeshReadError(Exception):
 def _load_cached(path: str, scale: tuple[float, float, float]) -> MeshData:
     vertices, faces = _read(Path(path))
     vertices = vertices * np.asarray(scale)
+    if not np.all(np.isfinite(vertices)) or np.abs(vertices).max() > MAX_VERTEX_M:
+        raise _MeshReadError(f"vertex coordinates must be finite and within {MAX_VERTEX_M:g} m")
     vertices.setflags(write=False)
     faces.setflags(write=False)
     return MeshData(vertices, faces)

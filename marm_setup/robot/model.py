@@ -214,17 +214,17 @@ class RobotModel:
         return tuple(reversed(joints))
 
     def subtree_links(self, link: str) -> tuple[str, ...]:
-        """`link` and every link below it, in tree order."""
-        out = [link]
-        for joint in self.child_joints_of[link]:
-            out.extend(self.subtree_links(joint.child))
-        return tuple(out)
+        """`link` and every link below it, in tree order (iterative: any depth)."""
+        return (link, *(j.child for j in self.subtree_joints(link)))
 
     def subtree_joints(self, link: str) -> tuple[Joint, ...]:
+        """Every joint below `link`, in tree order (depth first, children in document order)."""
         out: list[Joint] = []
-        for joint in self.child_joints_of[link]:
+        stack = list(reversed(self.child_joints_of[link]))
+        while stack:
+            joint = stack.pop()
             out.append(joint)
-            out.extend(self.subtree_joints(joint.child))
+            stack.extend(reversed(self.child_joints_of[joint.child]))
         return tuple(out)
 
     def adjacent_geometry_pairs(self) -> frozenset[tuple[str, str]]:

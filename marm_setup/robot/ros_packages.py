@@ -20,23 +20,26 @@ def package_name(folder: Path) -> str | None:
         return None
     try:
         name = etree.parse(str(manifest)).findtext("name")
-    except etree.XMLSyntaxError:
+    except (etree.XMLSyntaxError, OSError):
         return None
     return name.strip() if name else None
 
 
 def _packages_below(root: Path, depth: int = 3) -> dict[str, Path]:
     """Packages at or below `root` (as ROS_PACKAGE_PATH is searched; a package is not entered)."""
-    name = package_name(root)
-    if name:
-        return {name: root}
+    try:  # a folder we may not read holds no package we can use: skip it, as rospack does
+        name = package_name(root)
+        if name:
+            return {name: root}
+        if depth == 0 or not root.is_dir():
+            return {}
+        children = sorted(c for c in root.iterdir() if c.is_dir() and not c.name.startswith("."))
+    except OSError:
+        return {}
     found: dict[str, Path] = {}
-    if depth == 0 or not root.is_dir():
-        return found
-    for child in sorted(root.iterdir()):
-        if child.is_dir() and not child.name.startswith("."):
-            for pkg, path in _packages_below(child, depth - 1).items():
-                found.setdefault(pkg, path)
+    for child in children:
+        for pkg, path in _packages_below(child, depth - 1).items():
+            found.setdefault(pkg, path)
     return found
 
 

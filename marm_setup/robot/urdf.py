@@ -26,6 +26,9 @@ from marm_setup.robot.model import (
 )
 from marm_setup.robot.ros_packages import PackageMap, resolve_uri
 
+# No real robot has a length, limit, scale or effort beyond this; near 1e308 sums and products
+# of poses overflow to inf and NaN, and every collision check then says "no contact".
+MAX_MAGNITUDE = 1e9
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 
@@ -77,6 +80,10 @@ def _floats(
         raise ctx.error(element, f"expected {n} numbers, got '{text}'")
     if not all(math.isfinite(v) for v in values):
         raise ctx.error(element, f"expected finite numbers, got '{text}'")
+    if any(abs(v) > MAX_MAGNITUDE for v in values):
+        raise ctx.error(
+            element, f"'{text}' is out of range (|value| <= {MAX_MAGNITUDE:g}: metres, radians, N, m/s)"
+        )
     return values
 
 

@@ -8,9 +8,30 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.setup.model import Group
 
 
-def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: set[str]):
-    """(joints, links) of a group and its subgroups; each subgroup expanded once (`seen` grows),
-    so cycles end and diamond-shaped subgroups stay linear."""
+def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: frozenset[str]):
+    """(joints, links) of a group and its subgroups, duplicates allowed (callers order them).
+
+    Each group reachable through subgroups is expanded once, whatever the shape (a diamond of
+    subgroups is not exponential) or depth (iterative), and cycles end where they close.
+    """
+    joints: list[str] = []
+    links: list[str] = []
+    visited = set(seen) | {group.name}
+    stack = [group]
+    while stack:
+        current = stack.pop()
+        own_joints, own_links = _own_members(current, robot)
+        joints += own_joints
+        links += own_links
+        for sub in current.subgroups:
+            if sub in groups and sub not in visited:
+                visited.add(sub)
+                stack.append(groups[sub])
+    return joints, links
+
+
+def _own_members(group: Group, robot: RobotModel) -> tuple[list[str], list[str]]:
+    """(joints, links) the group names itself: its chain, joints and links (with parent joints)."""
     joints: list[str] = []
     links: list[str] = []
     if group.chain is not None:
@@ -25,12 +46,6 @@ def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: 
             parent = robot.parent_joint_of.get(link)
             if parent is not None:
                 joints.append(parent.name)
-    for sub in group.subgroups:
-        if sub in groups and sub not in seen:
-            seen.add(sub)
-            sub_joints, sub_links = _expand(groups[sub], groups, robot, seen)
-            joints += sub_joints
-            links += sub_links
     return joints, links
 
 
@@ -41,13 +56,13 @@ def _tree_ordered(names: list[str], order: tuple[str, ...]) -> tuple[str, ...]:
 
 def group_joints(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
     """Every joint of the group (fixed and mimic included), in tree order."""
-    joints, _ = _expand(group, groups, robot, {group.name})
+    joints, _ = _expand(group, groups, robot, frozenset({group.name}))
     return _tree_ordered(joints, tuple(j.name for j in robot.joints_in_tree_order))
 
 
 def group_links(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
     """Every link of the group, in tree order."""
-    _, links = _expand(group, groups, robot, {group.name})
+    _, links = _expand(group, groups, robot, frozenset({group.name}))
     return _tree_ordered(links, robot.links_in_tree_order)
 
 

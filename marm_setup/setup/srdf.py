@@ -7,6 +7,7 @@ virtual joints; pairs and other order-free lists sorted), so read -> render -> r
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from os import PathLike
 
@@ -55,9 +56,12 @@ class _Reader:
 
     def number(self, text: str, where: str) -> float:
         try:
-            return float(text)
+            value = float(text)
         except ValueError:
             raise InputError(f"not a number: '{text}'", path=self.path, element=where) from None
+        if not math.isfinite(value):
+            raise InputError(f"expected a finite number, got '{text}'", path=self.path, element=where)
+        return value
 
     def fail(self, message: str, where: str) -> InputError:
         return InputError(message, path=self.path, element=where)

@@ -21,6 +21,7 @@ import yaml
 from marm_setup.collision.pairs import DisabledPair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
+from marm_setup.safe_yaml import load_yaml
 from marm_setup.setup.domain import MOVEIT_CONTROLLER_TYPES, OMPL_PLANNER_NAMES, VIRTUAL_JOINT_TYPES
 from marm_setup.setup.model import (
     TARGETS,
@@ -100,8 +101,10 @@ def read_yaml_mapping(path: str | PathLike) -> dict:
         text = Path(path).read_text(encoding="utf-8")
     except OSError as exc:
         raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
     try:
-        data = yaml.safe_load(text)
+        data = load_yaml(text)
     except yaml.YAMLError as exc:
         where = getattr(exc, "problem_mark", None)
         at = f" (line {where.line + 1})" if where is not None else ""

@@ -25,6 +25,8 @@ from typing import Any
 
 import yaml
 
+from marm_setup.safe_yaml import BoundedSafeLoader, load_yaml
+
 SUBST = re.compile(r"\$\((arg|find|env|optenv|dirname|eval|anon)\b\s*([^()]*(?:\([^()]*\)[^()]*)*)\)")
 
 
@@ -32,7 +34,7 @@ class SubstitutionError(ValueError):
     """A substitution roslaunch could not resolve (unknown arg, package or variable)."""
 
 
-class RosparamLoader(yaml.SafeLoader):
+class RosparamLoader(BoundedSafeLoader):
     """PyYAML's safe loader plus rosparam's angle tags and `deg()` / `rad()` scalars."""
 
 
@@ -93,7 +95,7 @@ def _arith(node: ast.AST) -> float:
 
 def load_ros_yaml(text: str) -> Any:
     """Parse YAML text the way rosparam does (angle tags and scalars become radians)."""
-    return yaml.load(text, Loader=RosparamLoader)  # noqa: S506 - a SafeLoader subclass
+    return load_yaml(text, RosparamLoader)  # a bounded SafeLoader subclass
 
 
 def substitute(

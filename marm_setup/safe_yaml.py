@@ -1,0 +1,91 @@
+"""YAML input with bounds: every YAML file we read goes through `load_yaml`.
+
+PyYAML's `safe_load` is safe from code but not from work: its composer recurses once per nesting
+level (50,000 `[` is a RecursionError), aliases let a few hundred bytes stand for billions of
+nodes (a MemoryError in whoever walks the result), and an alias may point into itself. Here a
+document is refused, as a `yaml.YAMLError` so callers report it as any malformed YAML, when it
+is larger than MAX_BYTES, nested deeper than MAX_DEPTH, expands (aliases followed) to more than
+MAX_NODES nodes, or refers to itself.
+"""
+
+from __future__ import annotations
+
+import yaml
+
+MAX_BYTES = 16 * 1024 * 1024
+MAX_DEPTH = 200  # a MoveIt config nests about 8 deep
+MAX_NODES = 1_000_000
+
+
+class YamlLimitError(yaml.YAMLError):
+    """A document over one of the bounds; `problem` says which (as PyYAML's errors do)."""
+
+    def __init__(self, problem: str):
+        super().__init__(problem)
+        self.problem = problem
+        self.problem_mark = None
+
+
+class BoundedSafeLoader(yaml.SafeLoader):
+    """PyYAML's SafeLoader within the bounds above (subclass it to add constructors)."""
+
+    _depth = 0
+
+    def compose_node(self, parent, index):
+        self._depth += 1
+        try:
+            if self._depth > MAX_DEPTH:
+                raise YamlLimitError(f"nested deeper than {MAX_DEPTH} levels")
+            return super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
+
+    def get_single_node(self):
+        node = super().get_single_node()
+        if node is not None:
+            _check_expanded_size(node)
+        return node
+
+
+def _check_expanded_size(root: yaml.Node) -> None:
+    """Count nodes as the constructed data will hold them (an alias counts its whole target)."""
+    sizes: dict[int, int] = {}
+    open_nodes: set[int] = set()
+    stack: list[tuple[yaml.Node, bool]] = [(root, False)]
+    while stack:
+        node, children_done = stack.pop()
+        key = id(node)
+        if key in sizes:
+            continue
+        kids = _children(node)
+        if children_done:
+            open_nodes.discard(key)
+            sizes[key] = 1 + sum(sizes[id(k)] for k in kids)
+            if sizes[key] > MAX_NODES:
+                raise YamlLimitError(f"expands to more than {MAX_NODES:,} values (aliases followed)")
+            continue
+        if key in open_nodes:
+            raise YamlLimitError("an alias refers to a node that contains it")
+        open_nodes.add(key)
+        stack.append((node, True))
+        stack.extend((k, False) for k in kids if id(k) not in sizes)
+    return None
+
+
+def _children(node: yaml.Node) -> list[yaml.Node]:
+    if isinstance(node, yaml.MappingNode):
+        return [n for pair in node.value for n in pair]
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    return []
+
+
+def load_yaml(text: str, loader_class: type[BoundedSafeLoader] = BoundedSafeLoader):
+    """`yaml.safe_load(text)` within the bounds above; raises yaml.YAMLError."""
+    if len(text) > MAX_BYTES:
+        raise YamlLimitError(f"larger than {MAX_BYTES // (1024 * 1024)} MiB")
+    loader = loader_class(text)
+    try:
+        return loader.get_single_data()
+    finally:
+        loader.dispose()

@@ -1,0 +1,197 @@
+"""Inputs that raised tracebacks or never returned: each is now one `error:` line (exit 2), a
+finding, or a success; anything unforeseen is one `internal error` line (traceback with --debug)."""
+
+from __future__ import annotations
+
+import os
+import stat
+
+import pytest
+import typer
+import yaml
+
+from marm_setup.cli import app as app_module
+from tests.conftest import FIXTURES, MARM_URDF
+from tests.helpers import TWO_BOXES, urdf
+from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
+from tests.reliability.inputs import alias_bomb, chain_urdf, subgroup_chain, subgroup_diamonds
+
+SPEC = FIXTURES / "marm" / "marm_setup.yaml"
+TRIALS = ("--trials", "10")
+
+
+def _write(path, text: str | bytes):
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    return path
+
+
+def test_an_unexpected_exception_is_one_internal_error_line(capsys):
+    def broken():
+        raise RuntimeError("boom\nsecond line")
+
+    with pytest.raises(typer.Exit) as exit_info:
+        app_module.handle_errors(broken)()
+    assert exit_info.value.exit_code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("error: internal error: RuntimeError: boom\\nsecond line")
+    assert "please report" in err
+
+
+def test_debug_shows_the_traceback():
+    def broken():
+        raise RuntimeError("boom")
+
+    result = run("--debug", "inspect", "--help")
+    assert result.exit_code == 0
+    try:
+        with pytest.raises(RuntimeError):
+            app_module.handle_errors(broken)()
+    finally:
+        app_module._DEBUG["on"] = False
+
+
+def test_a_thousand_link_chain(tmp_path):
+    path = _write(tmp_path / "chain.urdf", chain_urdf(1000, geometry_every=250))
+    assert_clean_exit(run("inspect", path), codes=(0,))
+    assert_clean_exit(run("collisions", path, *TRIALS), codes=(0,))
+    assert_clean_exit(run("init", path, "--out", tmp_path / "pkg", *TRIALS), codes=(0,))
+    assert_clean_exit(run("validate", tmp_path / "pkg", "--no-plan"), codes=(0,))
+
+
+@pytest.mark.parametrize(
+    "spec", [subgroup_chain(1200), subgroup_diamonds(40)], ids=["chain-1200", "diamonds-40"]
+)
+def test_deep_and_diamond_subgroups(tmp_path, spec):
+    path = _write(tmp_path / "spec.yaml", yaml.safe_dump(spec))
+    assert_clean_exit(run("init", MARM_URDF, "--out", tmp_path / "pkg", "--setup", path, *TRIALS), codes=(0,))
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("groups: " + "[" * 50_000 + "]" * 50_000 + "\n", "nested deeper than"),
+        (alias_bomb(), "expands to more than"),
+        ("groups: &a [*a]\n", "refers to a node that contains it"),
+        (b"package_name: \xff\xfe\n", "not UTF-8 text (byte 14)"),
+    ],
+    ids=["deep", "alias-bomb", "self-alias", "not-utf8"],
+)
+def test_yaml_that_would_not_load_is_one_line(tmp_path, text, message):
+    path = _write(tmp_path / "spec.yaml", text)
+    result = run("init", MARM_URDF, "--out", tmp_path / "pkg", "--setup", path, *TRIALS)
+    assert_one_line_error(result, str(path), message)
+
+
+def test_yaml_bounds_in_a_package_validate_reads(tmp_path):
+    assert_clean_exit(run("init", MARM_URDF, "--out", tmp_path / "pkg", "--setup", SPEC, *TRIALS), codes=(0,))
+    _write(tmp_path / "pkg" / "config" / "kinematics.yaml", alias_bomb())
+    result = run("validate", tmp_path / "pkg", "--no-plan")
+    assert_clean_exit(result, codes=(1,))
+    assert "expands to more than" in result.stdout
+
+
+def test_a_nul_byte_in_a_urdf_is_one_line(tmp_path):
+    path = _write(tmp_path / "nul.urdf", b'<robot name="a">\x00<link name="a"/></robot>')
+    assert_one_line_error(run("inspect", path), "malformed XML")
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
+def test_a_non_finite_srdf_pose_on_a_continuous_joint(tmp_path, value):
+    body = TWO_BOXES.replace('type="revolute"', 'type="continuous"')
+    path = _write(tmp_path / "robot.urdf", body)
+    srdf = _write(
+        tmp_path / "robot.srdf",
+        '<robot name="test_robot"><group name="arm"><chain base_link="a" tip_link="b"/></group>'
+        f'<group_state name="home" group="arm"><joint name="j" value="{value}"/></group_state></robot>',
+    )
+    result = run("init", path, "--out", tmp_path / "pkg", "--from-srdf", srdf, *TRIALS)
+    assert_one_line_error(result, "expected a finite number")
+
+
+@pytest.mark.parametrize(
+    "attrs",
+    ['xyz="1e308 0 0"', 'xyz="0 0 1e10"', 'rpy="0 0 -1e300"'],
+)
+def test_huge_numbers_in_a_urdf_are_one_line(tmp_path, attrs):
+    body = TWO_BOXES.replace('<origin xyz="0 0 0.2"/>', f"<origin {attrs}/>")
+    assert_one_line_error(run("collisions", _write(tmp_path / "r.urdf", body), *TRIALS), "out of range")
+
+
+TRIANGLE_DAE = """<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="{meter}" name="unit"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries><geometry id="g"><mesh>
+    <source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>
+      <technique_common><accessor source="#pa" count="3" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node><instance_geometry url="#g"/></node></visual_scene>
+  </library_visual_scenes><scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"""
+
+
+@pytest.mark.parametrize("meter", ["nan", "0", "-1", "inf"])
+def test_dae_units_must_be_a_positive_length(tmp_path, meter):
+    _write(tmp_path / "m.dae", TRIANGLE_DAE.format(meter=meter))
+    body = urdf('<link name="a"><collision><geometry><mesh filename="m.dae"/></geometry></collision></link>')
+    assert_one_line_error(run("collisions", _write(tmp_path / "r.urdf", body), *TRIALS), "unit meter")
+
+
+def test_a_dae_in_millimetres_still_loads(tmp_path):
+    _write(tmp_path / "m.dae", TRIANGLE_DAE.format(meter="0.001"))
+    body = urdf('<link name="a"><collision><geometry><mesh filename="m.dae"/></geometry></collision></link>')
+    assert_clean_exit(run("collisions", _write(tmp_path / "r.urdf", body), *TRIALS), codes=(0,))
+
+
+def test_nan_mesh_vertices_are_one_line(tmp_path):
+    _write(tmp_path / "m.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n")
+    body = urdf('<link name="a"><collision><geometry><mesh filename="m.obj"/></geometry></collision></link>')
+    assert_one_line_error(run("collisions", _write(tmp_path / "r.urdf", body), *TRIALS), "finite")
+
+
+def test_xacro_that_never_ends_is_stopped(tmp_path, monkeypatch):
+    monkeypatch.setenv("MARM_SETUP_XACRO_TIMEOUT", "2")
+    path = _write(
+        tmp_path / "hang.urdf.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="h">'
+        '<xacro:if value="${10**10**8 > 0}"><link name="a"/></xacro:if></robot>',
+    )
+    assert_one_line_error(run("inspect", path), "did not finish within 2 s")
+
+
+def test_near_zero_velocity_limits_in_plan(tmp_path):
+    pkg = tmp_path / "pkg"
+    assert_clean_exit(run("init", MARM_URDF, "--out", pkg, "--setup", SPEC, *TRIALS), codes=(0,))
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(setup.read_text() + "joint_limits:\n- joint: joint2\n  max_velocity: 1.0e-300\n")
+    assert_clean_exit(run("render", pkg), codes=(0,))
+    result = run("plan", pkg, "--group", "arm", "--from", "home", "--to", "forward")
+    assert_one_line_error(result, "a velocity or acceleration limit near 0")
+
+
+def test_fake_controllers_initial_with_a_list_as_group(tmp_path):
+    pkg = tmp_path / "pkg"
+    assert_clean_exit(run("init", MARM_URDF, "--out", pkg, "--setup", SPEC, *TRIALS), codes=(0,))
+    fake = pkg / "config" / "fake_controllers.yaml"
+    data = yaml.safe_load(fake.read_text())
+    data["initial"] = [{"group": [1]}]
+    fake.write_text(yaml.safe_dump(data))
+    result = run("validate", pkg, "--no-plan")
+    assert_clean_exit(result, codes=(1,))
+    assert "controller.fake-initial-pose" in result.stdout
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root reads every folder")
+def test_an_unreadable_folder_on_a_package_path(tmp_path):
+    locked = tmp_path / "ws" / "locked"
+    locked.mkdir(parents=True)
+    locked.chmod(0)
+    try:
+        result = run("inspect", MARM_URDF, "--package-path", tmp_path / "ws")
+        assert_clean_exit(result, codes=(0,))
+    finally:
+        locked.chmod(stat.S_IRWXU)
