@@ -10,6 +10,7 @@ URDF element that uses it.
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from functools import lru_cache
@@ -58,6 +59,18 @@ def _load_cached(path: str, scale: tuple[float, float, float]) -> MeshData:
     return MeshData(vertices, faces)
 
 
+def _check_units(units: str) -> None:
+    """A declared unit must be a positive, finite length (Collada `<unit meter="0">` is not)."""
+    from trimesh.units import unit_conversion
+
+    try:
+        meters = unit_conversion(units, "meters")
+    except Exception:  # trimesh: ValueError / KeyError for names it does not know
+        meters = math.nan
+    if not (math.isfinite(meters) and 0 < meters <= MAX_VERTEX_M):
+        raise _MeshReadError(f"bad unit meter='{units}': must be a positive length in metres")
+
+
 def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
     if path.suffix.lower() == ".stl":
         return _read_stl(path.read_bytes())
@@ -66,6 +79,7 @@ def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
     try:
         mesh = trimesh.load(str(path), force="mesh", process=False)
         if isinstance(mesh, trimesh.Trimesh) and mesh.units is not None:  # Collada <unit>; never guessed
+            _check_units(mesh.units)
             mesh.convert_units("meters")
     except Exception as exc:  # trimesh raises many types for unreadable files
         raise _MeshReadError(" ".join(str(exc).split()) or type(exc).__name__) from None
