@@ -10,6 +10,8 @@ MAX_NODES nodes, or refers to itself.
 
 from __future__ import annotations
 
+from typing import Any
+
 import yaml
 
 MAX_BYTES = 16 * 1024 * 1024
@@ -80,7 +82,7 @@ def _children(node: yaml.Node) -> list[yaml.Node]:
     return []
 
 
-def load_yaml(text: str, loader_class: type[BoundedSafeLoader] = BoundedSafeLoader):
+def load_yaml(text: str, loader_class: type[BoundedSafeLoader] = BoundedSafeLoader) -> Any:
     """`yaml.safe_load(text)` within the bounds above; raises yaml.YAMLError."""
     if len(text) > MAX_BYTES:
         raise YamlLimitError(f"larger than {MAX_BYTES // (1024 * 1024)} MiB")

@@ -80,7 +80,7 @@ XACRO_MEMORY = 2 << 30  # [bytes]
 def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, shown: str) -> str:
     """Run the real xacro on `file` with `args`, resolving `$(find pkg)` from `packages`, in a
     child process bounded in time and memory (xacro evaluates `${...}` as Python)."""
-    from marm_setup.robot.sandbox import TimeLimitExceeded, run_limited
+    from marm_setup.robot.sandbox import ChildDied, TimeLimitExceeded, run_limited
 
     text = read_text(file, shown=shown).replace("$(find-pkg-share ", "$(find ")
     seconds = float(os.environ.get("MARM_SETUP_XACRO_TIMEOUT", XACRO_SECONDS))
@@ -94,6 +94,8 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
             path=shown,
             element="xacro",
         ) from None
+    except ChildDied as exc:
+        raise InputError(f"xacro stopped: {exc}", path=shown, element="xacro") from None
 
 
 def _run_xacro(file: Path, text: str, args: dict[str, str], packages: PackageMap, shown: str) -> str:

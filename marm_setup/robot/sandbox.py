@@ -25,6 +25,10 @@ class TimeLimitExceeded(Exception):
     """The child did not finish in time and was killed."""
 
 
+class ChildDied(Exception):
+    """The child ended without sending a result (killed by the memory limit or a signal)."""
+
+
 def run_limited(fn: Callable[[], T], *, seconds: float, memory_bytes: int) -> T:
     """`fn()` in a child process; its return value or its exception (both pickled) come back."""
     if not hasattr(os, "fork"):
@@ -42,7 +46,9 @@ def run_limited(fn: Callable[[], T], *, seconds: float, memory_bytes: int) -> T:
         raise
     finally:
         os.close(read_fd)
-    ok, value = pickle.loads(data) if data else (False, RuntimeError("the xacro process died"))
+    if not data:
+        raise ChildDied("the child process died without an answer (out of memory?)")
+    ok, value = pickle.loads(data)
     if ok:
         return value
     raise value
