@@ -24,6 +24,17 @@ class MarmError(Exception):
         parts = [p for p in (self.path, self.element) if p]
         return ": ".join([*parts, self.message])
 
+    def __reduce__(self):
+        """Picklable whatever a subclass's __init__ takes (errors cross from xacro's child process)."""
+        return (_rebuild, (type(self), self.args, dict(self.__dict__)))
+
+
+def _rebuild(cls: type[MarmError], args: tuple, state: dict) -> MarmError:
+    error = cls.__new__(cls)
+    Exception.__init__(error, *args)
+    error.__dict__.update(state)
+    return error
+
 
 class InputError(MarmError):
     """Bad input: malformed file, unknown name, value out of range, existing output."""

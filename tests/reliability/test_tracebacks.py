@@ -195,3 +195,15 @@ def test_an_unreadable_folder_on_a_package_path(tmp_path):
         assert_clean_exit(result, codes=(0,))
     finally:
         locked.chmod(stat.S_IRWXU)
+
+
+def test_typed_errors_survive_the_xacro_child_process():
+    import pickle
+
+    from marm_setup.errors import PackageNotFound
+
+    error = pickle.loads(
+        pickle.dumps(PackageNotFound("unknown package 'p'", package="p", element="$(find p)"))
+    )
+    assert isinstance(error, PackageNotFound) and (error.package, error.element) == ("p", "$(find p)")
+    assert str(error) == "$(find p): unknown package 'p'"
