@@ -252,14 +252,16 @@ def _target(request: InitRequest, spec: dict) -> str:
 def _distro(request: InitRequest, spec: dict, target: str) -> str:
     """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
     else the target's default (noetic for ros1, humble for ros2)."""
+    from marm_setup.setup.checks import distro_problem
+
     distros = ROS_DISTROS[target]
     for given, where in ((request.ros_distro, "--ros-distro"), (spec.get("ros_distro"), "ros_distro")):
         if given is None:
             continue
-        if given not in distros:
-            path = None if where == "--ros-distro" else str(request.spec)
+        problem = distro_problem(target, given)
+        if problem:
             raise InputError(
-                f"'{given}' is not a {target} distro (valid: {', '.join(distros)})", path=path, element=where
+                problem, path=None if where == "--ros-distro" else str(request.spec), element=where
             )
         return given
     return request.env_distro if request.env_distro in distros else distros[0]

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 
 from marm_setup.errors import InputError
+from marm_setup.names import did_you_mean, with_hint
 from marm_setup.plan.execution import ExecutionOptions, ExecutionReport, fake_execute
 from marm_setup.plan.planner import (
     PlanFailed,
@@ -147,9 +148,8 @@ def planning_problem(
         raise InputError("no readable SRDF", path=package.shown)
     groups = groups_by_name(srdf.groups)
     if group not in groups:
-        known = ", ".join(sorted(groups)) or "none"
         raise InputError(
-            f"unknown group '{group}'; known: {known}",
+            with_hint(f"unknown group '{group}'", did_you_mean(group, groups)),
             path=package.user_path(package.srdf_path),
             element="group",
         )
@@ -182,11 +182,12 @@ def _limits_file(package: PackageConfig) -> str:
 
 
 def pose(problem: PlanningProblem, name: str, srdf_path: str | None) -> np.ndarray:
-    """A named pose's full configuration; InputError listing the group's poses."""
+    """A named pose's full configuration; InputError naming the group's close (or few) poses."""
     if name not in problem.poses:
-        known = ", ".join(sorted(problem.poses)) or "none"
         raise InputError(
-            f"unknown pose '{name}' for group '{problem.group}'; known: {known}",
+            with_hint(
+                f"unknown pose '{name}' for group '{problem.group}'", did_you_mean(name, problem.poses)
+            ),
             path=srdf_path,
             element="group_state",
         )

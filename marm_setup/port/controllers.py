@@ -14,6 +14,7 @@ from marm_setup.setup.domain import (
     DRIVER_ACTION_NS,
     DRIVER_CONTROLLERS,
     FOLLOW_JOINT_TRAJECTORY,
+    FOLLOW_JOINT_TRAJECTORY_NS,
     GRIPPER_COMMAND,
     MOVEIT_CONTROLLER_TYPES,
     ROS2_CONTROLLER_TYPES,
@@ -173,8 +174,10 @@ def _action_ns(c: MoveItController, kind: str, target: str, setting: str, src: s
         )
         return served
     if not c.action_ns:
-        log.changed(f"{setting}.action_ns", src, "empty -> 'follow_joint_trajectory' (the ArbotiX driver's)")
-        return "follow_joint_trajectory"
+        log.changed(
+            f"{setting}.action_ns", src, f"empty -> '{FOLLOW_JOINT_TRAJECTORY_NS}' (the ArbotiX driver's)"
+        )
+        return FOLLOW_JOINT_TRAJECTORY_NS
     return c.action_ns
 
 

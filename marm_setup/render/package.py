@@ -10,6 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from marm_setup.errors import InputError
+from marm_setup.names import did_you_mean, with_hint
 from marm_setup.render.context import build_context
 from marm_setup.robot.model import RobotModel
 from marm_setup.robot.ros_packages import package_name
@@ -65,7 +66,9 @@ def output_path(template_path: str, robot_name: str) -> str:
 def target_templates(target: str) -> list[tuple[str, str]]:
     """(template name, template path in the package) for one target; common files first."""
     if target not in TARGET_FILES:
-        raise InputError(f"unknown target '{target}' (valid: {', '.join(TARGETS)})", element="target")
+        raise InputError(
+            with_hint(f"unknown target '{target}'", did_you_mean(target, TARGETS)), element="target"
+        )
     common = [(f"common/{p}.j2", p) for p in COMMON_FILES]
     return common + [(f"{target}/{p}.j2", p) for p in TARGET_FILES[target]]
 

@@ -80,12 +80,17 @@ def _check_names(c: _Checker) -> None:
     problem = package_name_problem(c.model.package_name)
     if problem:
         raise c.fail(problem, "package_name")
-    distros = ROS_DISTROS.get(c.model.target, ())
-    if c.model.ros_distro is not None and c.model.ros_distro not in distros:
-        valid = ", ".join(distros)
-        raise c.fail(
-            f"'{c.model.ros_distro}' is not a {c.model.target} distro (valid: {valid})", "ros_distro"
-        )
+    problem = distro_problem(c.model.target, c.model.ros_distro)
+    if problem:
+        raise c.fail(problem, "ros_distro")
+
+
+def distro_problem(target: str, distro: str | None) -> str | None:
+    """Why `distro` is not one the target is written for (None: it is, or none is given)."""
+    distros = ROS_DISTROS.get(target, ())
+    if distro is None or distro in distros:
+        return None
+    return f"'{distro}' is not a {target} distro (valid: {', '.join(distros)})"
 
 
 def package_name_problem(name: str) -> str | None:

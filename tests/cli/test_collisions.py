@@ -237,7 +237,7 @@ def test_default_pose_from_the_srdf_replaces_the_zero_state(tmp_path):
         (["--default-pose", "home"], "error: --default-pose: needs --srdf (the SRDF holding the pose)"),
         (
             ["--srdf", "S", "--default-pose", "nope"],
-            "S: --default-pose: unknown pose 'nope'; known: forward, home",
+            "S: --default-pose: unknown pose 'nope' (known: forward, home)",
         ),
     ],
 )

@@ -171,7 +171,7 @@ def test_panda_ready_to_extended_rechecked_by_pinocchio(target, tmp_path):
     [
         (
             ["--group", "arms", "--from", "home", "--to", "forward"],
-            "unknown group 'arms'; known: arm, gripper",
+            "unknown group 'arms' (did you mean 'arm'?)",
         ),
         (["--group", "arm", "--from", "home", "--to", "nowhere"], "unknown pose 'nowhere' for group 'arm'"),
     ],

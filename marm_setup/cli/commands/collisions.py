@@ -21,6 +21,7 @@ from marm_setup.cli.common import (
     parse_count,
 )
 from marm_setup.errors import InputError
+from marm_setup.names import did_you_mean, with_hint
 
 REPORT_SUFFIXES = (".svg", ".html")
 
@@ -120,8 +121,8 @@ def _pose_configuration(robot, srdf_text: str, name: str, shown: str):
 
     states = {s.name: s for s in parse_srdf_string(srdf_text, shown).group_states}
     if name not in states:
-        known = ", ".join(sorted(states)) or "none"
-        raise InputError(f"unknown pose '{name}'; known: {known}", path=shown, element="--default-pose")
+        message = with_hint(f"unknown pose '{name}'", did_you_mean(name, states))
+        raise InputError(message, path=shown, element="--default-pose")
     q = default_configuration(robot)
     index = {joint: i for i, joint in enumerate(robot.active_joint_names)}
     for joint, value in states[name].values:
