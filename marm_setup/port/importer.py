@@ -136,7 +136,7 @@ def _without_srdf_errors(model: SetupModel, robot: RobotModel, file: str, log: P
     if not drop:
         return model
     for (kind, name), message in drop.items():
-        log.dropped(f"{kind}[{name}]", where(file, kind), f"{message}; MoveIt fails on or skips it")
+        log.dropped(f"{kind}[{name}]", where(file, kind), f"{message} (left out of the new package)")
 
     def kept(items: tuple) -> tuple:
         return tuple(i for i in items if (kind_of[type(i)], i.name) not in drop)

@@ -133,11 +133,12 @@ def _items(result) -> dict[str, list[dict]]:
 
 
 def test_what_moveit_cannot_use_is_dropped_with_a_line(tmp_path):
-    """A virtual joint off the root, KDL on a group that is no chain: MoveIt skips / cannot load
-    them, so the port leaves them out and says so instead of failing or writing an error."""
+    """A floating virtual joint off the root, KDL on a group that is no chain: MoveIt skips / cannot
+    load them, so the port leaves them out and says so instead of failing or writing an error."""
     _generate(tmp_path / "a", "ros1", "noetic")
     srdf = tmp_path / "a" / "config" / "marm.srdf"
-    srdf.write_text(srdf.read_text().replace('child_link="base_link"', 'child_link="link2"'))
+    text = srdf.read_text().replace('child_link="base_link"', 'child_link="link2"')
+    srdf.write_text(text.replace('type="fixed" parent_frame="world"', 'type="floating" parent_frame="world"'))
     kin = tmp_path / "a" / "config" / "kinematics.yaml"
     kin.write_text(
         kin.read_text() + "gripper:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
