@@ -15,8 +15,12 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.setup.model import ROS_DISTROS, TARGETS, CollisionSettings, RobotSource, SetupModel
 
 if TYPE_CHECKING:
+    from marm_setup.collision.matrix import Progress
+    from marm_setup.collision.pairs import DisabledPair
     from marm_setup.port.importer import Ported
     from marm_setup.port.report import PortItem
+    from marm_setup.render.writer import FileChange
+    from marm_setup.templating import RenderedFile
     from marm_setup.validate.discovery import ConfigPackage
     from marm_setup.validate.runner import Validation
 
@@ -46,7 +50,7 @@ class InitResult:
     status_lines: tuple[str, ...]  # one line per written file
 
 
-def run_init(request: InitRequest, robot: RobotModel, progress=None) -> InitResult:
+def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None = None) -> InitResult:
     """`progress(done, total)` is called while the matrix samples (see compute_collision_matrix)."""
     model = build_setup(request, robot)
     given = bool(model.collision.disabled)
@@ -88,7 +92,7 @@ class PortResult:
     validation: Validation  # of the new package
 
 
-def run_port(request: PortInitRequest, progress=None) -> PortResult:
+def run_port(request: PortInitRequest, progress: Progress | None = None) -> PortResult:
     """Read the package, port it, check the setup, render and write it, then validate the result."""
     from marm_setup.port.importer import PortRequest, port_package
     from marm_setup.render.writer import check_output_dir, format_change
@@ -183,7 +187,7 @@ def _discover_for_port(request: PortInitRequest) -> tuple[ConfigPackage, tuple[P
     return pkg, (note,)
 
 
-def _package_robot(pkg) -> RobotModel:
+def _package_robot(pkg: ConfigPackage) -> RobotModel:
     """The package's robot; its load failure is the one error line."""
     from marm_setup.validate.runner import load_package_robot
 
@@ -295,7 +299,13 @@ def _relative(path: Path, base: Path) -> str:
 
 
 def with_collision_matrix(
-    model: SetupModel, robot: RobotModel, *, trials: int, seed: int, jobs: int = 1, progress=None
+    model: SetupModel,
+    robot: RobotModel,
+    *,
+    trials: int,
+    seed: int,
+    jobs: int = 1,
+    progress: Progress | None = None,
 ) -> SetupModel:
     """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
     if model.collision.disabled:
@@ -308,7 +318,9 @@ def with_collision_matrix(
     return dataclasses.replace(model, collision=settings)
 
 
-def _disabled_pairs(robot: RobotModel, *, trials: int, seed: int, fraction: float, jobs: int, progress):
+def _disabled_pairs(
+    robot: RobotModel, *, trials: int, seed: int, fraction: float, jobs: int, progress: Progress | None
+) -> tuple[DisabledPair, ...]:
     from marm_setup.collision.matrix import compute_collision_matrix
 
     matrix = compute_collision_matrix(
@@ -336,7 +348,7 @@ def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
     return lines
 
 
-def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool):
+def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool) -> list[FileChange]:
     """Render every file and write them atomically; returns the file changes."""
     from marm_setup.render.writer import apply_writes, check_output_dir, plan_writes
 
@@ -347,7 +359,7 @@ def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: boo
     return changes
 
 
-def _render(model: SetupModel, robot: RobotModel):
+def _render(model: SetupModel, robot: RobotModel) -> list[RenderedFile]:
     from marm_setup.render.package import render_package
 
     return render_package(model, robot)

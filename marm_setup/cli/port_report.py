@@ -4,8 +4,13 @@ package's validation summary."""
 from __future__ import annotations
 
 import json
+from typing import TYPE_CHECKING
 
 from marm_setup.cli.common import one_line
+
+if TYPE_CHECKING:
+    from marm_setup.pipeline import PortResult
+    from marm_setup.port.report import PortItem
 
 HEADINGS = {
     "carried": "carried over",
@@ -15,7 +20,7 @@ HEADINGS = {
 }
 
 
-def format_port_text(result) -> str:
+def format_port_text(result: PortResult) -> str:
     """The port report as text: a summary line, then the items under one heading per status."""
     from marm_setup.port.report import STATUSES, counts
 
@@ -33,13 +38,13 @@ def format_port_text(result) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _item(item) -> str:
+def _item(item: PortItem) -> str:
     source = f" [{item.source}]" if item.source else ""
     detail = f": {item.detail}" if item.detail else ""
     return f"{item.setting}{detail}{source}"
 
 
-def format_port_json(result) -> str:
+def format_port_json(result: PortResult) -> str:
     """One JSON document: the port (source, target, counts, items), the files written and the
     new package's validation (its summary and findings)."""
     from marm_setup.findings import format_json

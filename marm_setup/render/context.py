@@ -19,7 +19,6 @@ from marm_setup.setup.domain import (
     FOLLOW_JOINT_TRAJECTORY,
     GRIPPER_COMMAND,
     OMPL_PLANNERS,
-    ROS2_ACTION_NS,
     ROS2_CONTROLLER_TYPES,
 )
 from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
@@ -83,7 +82,6 @@ class JointLimit:
 class ControllerInfo:
     controller: Controller
     ros2_type: str
-    ros2_action_ns: str
 
     @property
     def name(self) -> str:
@@ -204,7 +202,7 @@ def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
 
 def controller_infos(model: SetupModel) -> list[ControllerInfo]:
     return [
-        ControllerInfo(c, ROS2_CONTROLLER_TYPES[c.type], ROS2_ACTION_NS[c.type])
+        ControllerInfo(c, ROS2_CONTROLLER_TYPES[c.type])
         for c in model.controllers
         if c.type in ROS2_CONTROLLER_TYPES
     ]

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -22,6 +23,14 @@ from marm_setup.cli.common import (
 )
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from marm_setup.cli.progress import SamplingProgress
+    from marm_setup.collision.matrix import CollisionMatrix
+    from marm_setup.collision.pairs import DisabledPair
+    from marm_setup.robot.model import RobotModel
 
 REPORT_SUFFIXES = (".svg", ".html")
 
@@ -114,7 +123,7 @@ def collisions(
     _print_result(matrix, robot.name, disabled, progress, format)
 
 
-def _pose_configuration(robot, srdf_text: str, name: str, shown: str):
+def _pose_configuration(robot: RobotModel, srdf_text: str, name: str, shown: str) -> np.ndarray:
     """The default configuration with the SRDF pose `name` laid over it."""
     from marm_setup.robot.kinematics import default_configuration
     from marm_setup.setup.srdf import parse_srdf_string
@@ -131,7 +140,9 @@ def _pose_configuration(robot, srdf_text: str, name: str, shown: str):
     return q
 
 
-def _check_options(fraction, seed, padding, srdf, keep, report) -> None:
+def _check_options(
+    fraction: float, seed: int, padding: float, srdf: Path | None, keep: bool, report: Path | None
+) -> None:
     if seed < 0:
         raise InputError(f"must be >= 0, got {seed}", element="--seed")
     if not 0.0 < fraction <= 1.0:
@@ -144,14 +155,21 @@ def _check_options(fraction, seed, padding, srdf, keep, report) -> None:
         raise InputError(f"unknown report type '{report.suffix}'; expected .svg or .html", path=str(report))
 
 
-def _write_srdf(robot_name, matrix, srdf, srdf_text, output, keep):
+def _write_srdf(
+    robot_name: str,
+    matrix: CollisionMatrix,
+    srdf: Path | None,
+    srdf_text: str | None,
+    output: Path | None,
+    keep: bool,
+) -> tuple[DisabledPair, ...]:
     """Write the SRDF the options ask for; return the final disabled pairs."""
     if srdf is None and output is None:
         return matrix.disabled  # nothing to write: no Jinja, no writer imported
     from marm_setup.collision.srdf_update import render_minimal_srdf, update_srdf
     from marm_setup.render.writer import write_text_atomic
 
-    if srdf is None:
+    if srdf is None or srdf_text is None:  # the text is read whenever --srdf is given
         if output is not None:
             write_text_atomic(output, render_minimal_srdf(robot_name, matrix.disabled), shown=str(output))
             echo_err(f"wrote {output}")
@@ -163,7 +181,9 @@ def _write_srdf(robot_name, matrix, srdf, srdf_text, output, keep):
     return disabled
 
 
-def _write_report(report: Path, matrix, robot, disabled) -> None:
+def _write_report(
+    report: Path, matrix: CollisionMatrix, robot: RobotModel, disabled: Sequence[DisabledPair]
+) -> None:
     from marm_setup.collision.report import render_matrix_html, render_matrix_svg
     from marm_setup.render.writer import write_text_atomic
 
@@ -174,7 +194,13 @@ def _write_report(report: Path, matrix, robot, disabled) -> None:
     echo_err(f"wrote {report}")
 
 
-def _print_result(matrix, robot_name, disabled, progress, format: OutputFormat) -> None:
+def _print_result(
+    matrix: CollisionMatrix,
+    robot_name: str,
+    disabled: Sequence[DisabledPair],
+    progress: SamplingProgress,
+    format: OutputFormat,
+) -> None:
     from marm_setup.collision.report import describe_matrix, format_summary
 
     if format is OutputFormat.json:

@@ -112,7 +112,13 @@ def init(
                 f"--from-package takes the robot from the package: drop {', '.join(given)}",
                 element="--from-package",
             )
-        options = dict(
+        _port(
+            from_package,
+            out,
+            name,
+            target,
+            ros_distro,
+            format,
             force=force,
             package_path=package_path,
             urdf=urdf,
@@ -120,7 +126,6 @@ def init(
             jobs=jobs,
             plan=not no_plan,
         )
-        _port(from_package, out, name, target, ros_distro, format, **options)
         return
     if urdf is None:
         raise InputError("give the robot's URDF, or --from-package PKG", element="URDF")
@@ -158,7 +163,19 @@ def init(
 
 
 def _port(
-    package, out, name, target, ros_distro, format, *, force, package_path, urdf, xacro_arg, jobs, plan
+    package: Path,
+    out: Path,
+    name: str | None,
+    target: Target | None,
+    ros_distro: str | None,
+    format: OutputFormat,
+    *,
+    force: bool,
+    package_path: list[Path] | None,
+    urdf: Path | None,
+    xacro_arg: list[str] | None,
+    jobs: int | None,
+    plan: bool,
 ) -> None:
     """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
     from marm_setup.cli.port_report import format_port_json, format_port_text

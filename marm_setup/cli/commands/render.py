@@ -3,9 +3,14 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
+
+if TYPE_CHECKING:
+    from marm_setup.render.writer import FileChange
+    from marm_setup.robot.model import RobotModel
+    from marm_setup.setup.model import SetupModel
 
 DirArg = Annotated[Path, typer.Argument(help="Config package folder holding marm_setup.yaml.", metavar="DIR")]
 
@@ -44,7 +49,7 @@ def render(
     typer.echo(_summary(changes))
 
 
-def _summary(changes) -> str:
+def _summary(changes: list[FileChange]) -> str:
     from marm_setup.render.writer import STATUS_WORDS
 
     counts = {word: 0 for word in STATUS_WORDS.values()}
@@ -53,7 +58,7 @@ def _summary(changes) -> str:
     return ", ".join(f"{n} {word}" for word, n in counts.items())
 
 
-def load_package_setup(pkg_dir: Path):
+def load_package_setup(pkg_dir: Path) -> tuple[SetupModel, RobotModel]:
     """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names."""
     from marm_setup.errors import InputError
     from marm_setup.robot.load import load_robot

@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from marm_setup.cli.common import OutputFormat, PackagePaths, XacroArgs, echo_err
+
+if TYPE_CHECKING:
+    from marm_setup.validate.runner import Validation
 
 
 def validate(
@@ -44,8 +47,6 @@ def validate(
         plan=not no_plan,
     )
     result = _run_for_json(package, options) if as_json else _run(package, options)
-    if isinstance(result, int):
-        raise typer.Exit(result)
     if as_json:
         typer.echo(format_json(result.findings, checked=result.as_dict()), nl=False)
     else:
@@ -58,14 +59,14 @@ def validate(
         raise typer.Exit(1)
 
 
-def _run(package: Path, options: dict):
+def _run(package: Path, options: dict) -> Validation:
     from marm_setup.validate.runner import validate as run_validation
 
     return run_validation(package, **options)
 
 
-def _run_for_json(package: Path, options: dict):
-    """The validation, or (after printing a JSON document with the one finding) exit code 2:
+def _run_for_json(package: Path, options: dict) -> Validation:
+    """The validation, or (after printing a JSON document with the one finding) exit 2:
     `--format json` always prints JSON, whatever goes wrong."""
     from marm_setup.errors import MarmError
     from marm_setup.findings import INTERNAL, error, format_json
@@ -82,4 +83,4 @@ def _run_for_json(package: Path, options: dict):
         finding = error(INTERNAL, str(package), "", message, "please report this with the package")
         echo_err(traceback.format_exc().rstrip())
     typer.echo(format_json([finding]), nl=False)
-    return 2
+    raise typer.Exit(2)
