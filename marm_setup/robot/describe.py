@@ -48,6 +48,7 @@ def format_tree(robot: RobotModel) -> str:
         joint, indent = stack.pop()
         lines.append(f"{indent}└─ {describe_joint(joint)} -> {_link_label(robot, joint.child)}")
         stack.extend((j, indent + "   ") for j in reversed(robot.child_joints_of[joint.child]))
+    lines += [f"package {name}: {path} (found by {how})" for name, path, how in robot.packages]
     n_mimic = sum(1 for j in robot.joints if j.mimic is not None)
     lines.append(
         f"{len(robot.links)} links ({len(robot.geometry_links)} with collision geometry), "
@@ -62,6 +63,7 @@ def describe_robot(robot: RobotModel) -> dict:
         "name": robot.name,
         "root": robot.root,
         "active_joints": list(robot.active_joint_names),
+        "packages": [{"name": n, "path": p, "found_by": how} for n, p, how in robot.packages],
         "links": [
             {
                 "name": link.name,

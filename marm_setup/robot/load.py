@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import io
 import logging
 import os
@@ -51,7 +52,9 @@ def load_robot(
     else:
         xml = read_text(file, shown=shown)
     root = parse_xml(xml, shown=shown)
-    return parse_urdf(root, xml, file.parent, packages, shown=shown)
+    robot = parse_urdf(root, xml, file.parent, packages, shown=shown)
+    used = tuple((u.name, u.path, u.found_by) for u in sorted(packages.used.values(), key=lambda u: u.name))
+    return dataclasses.replace(robot, packages=used)
 
 
 def read_text(file: Path, *, shown: str) -> str:

@@ -140,6 +140,8 @@ class RobotModel:
     root: str
     source: str = ""
     urdf_xml: str = field(default="", repr=False, compare=False)
+    # ROS packages the description used: (name, folder, found by "package.xml" | "folder name")
+    packages: tuple[tuple[str, str, str], ...] = field(default=(), compare=False)
 
     # -- lookups -------------------------------------------------------------------------------
     @cached_property

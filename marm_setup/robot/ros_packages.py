@@ -1,14 +1,75 @@
-"""Find ROS packages on disk and resolve `package://`, `file://` and relative URIs."""
+"""Find ROS packages on disk and resolve `package://`, `file://` and relative URIs.
+
+A package is found by its `package.xml` `<name>` first (as ROS does), then by a folder of that
+name under a search root (as pinocchio, yourdfpy and MuJoCo's tools resolve `package://`: pip
+`share/` trees and vendor checkouts often have no or another `package.xml`). The index records
+which way each package it handed out was found, for `inspect` to say.
+"""
 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from lxml import etree
 
 from marm_setup.errors import InputError, MeshNotFound, PackageNotFound
+
+BY_MANIFEST, BY_FOLDER = "package.xml", "folder name"
+SEARCH_DEPTH = 3  # folder levels below a search root, as deep as packages are looked for
+
+
+@dataclass(frozen=True, slots=True)
+class PackageUse:
+    """A package a robot description used: where it is and how it was found."""
+
+    name: str
+    path: str
+    found_by: str  # BY_MANIFEST | BY_FOLDER
+
+
+@dataclass
+class PackageIndex(Mapping[str, Path]):
+    """Packages by `package.xml` name, with the folder-name fallback under `roots`.
+
+    Iterating lists the `package.xml` packages only (the folder fallback is found on demand).
+    """
+
+    manifests: dict[str, Path] = field(default_factory=dict)
+    roots: tuple[tuple[Path, int], ...] = ()  # (folder, levels below it to look at)
+    used: dict[str, PackageUse] = field(default_factory=dict)
+
+    def __getitem__(self, name: str) -> Path:
+        found = self.lookup(name)
+        if found is None:
+            raise KeyError(name)
+        return found
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.manifests)
+
+    def __len__(self) -> int:
+        return len(self.manifests)
+
+    def __contains__(self, name: object) -> bool:
+        return isinstance(name, str) and self.lookup(name) is not None
+
+    def lookup(self, name: str) -> Path | None:
+        """The package's folder (recording how it was found), or None."""
+        if name in self.manifests:
+            return self._use(name, self.manifests[name], BY_MANIFEST)
+        for root, depth in self.roots:
+            folder = _folder_below(root, name, depth)
+            if folder is not None:
+                return self._use(name, folder, BY_FOLDER)
+        return None
+
+    def _use(self, name: str, path: Path, how: str) -> Path:
+        self.used.setdefault(name, PackageUse(name, str(path), how))
+        return path
+
 
 PackageMap = Mapping[str, Path]
 
@@ -25,7 +86,14 @@ def package_name(folder: Path) -> str | None:
     return name.strip() if name else None
 
 
-def _packages_below(root: Path, depth: int = 3) -> dict[str, Path]:
+def _subfolders(folder: Path) -> list[Path]:
+    try:
+        return sorted(c for c in folder.iterdir() if c.is_dir() and not c.name.startswith("."))
+    except OSError:
+        return []
+
+
+def _packages_below(root: Path, depth: int = SEARCH_DEPTH) -> dict[str, Path]:
     """Packages at or below `root` (as ROS_PACKAGE_PATH is searched; a package is not entered)."""
     try:  # a folder we may not read holds no package we can use: skip it, as rospack does
         name = package_name(root)
@@ -33,7 +101,7 @@ def _packages_below(root: Path, depth: int = 3) -> dict[str, Path]:
             return {name: root}
         if depth == 0 or not root.is_dir():
             return {}
-        children = sorted(c for c in root.iterdir() if c.is_dir() and not c.name.startswith("."))
+        children = _subfolders(root)
     except OSError:
         return {}
     found: dict[str, Path] = {}
@@ -41,6 +109,17 @@ def _packages_below(root: Path, depth: int = 3) -> dict[str, Path]:
         for pkg, path in _packages_below(child, depth - 1).items():
             found.setdefault(pkg, path)
     return found
+
+
+def _folder_below(root: Path, name: str, depth: int) -> Path | None:
+    """`root` if it is named `name`, else the first folder named `name` below it (breadth first)."""
+    level = [root]
+    for _ in range(depth + 1):
+        for folder in level:
+            if folder.name == name and folder.is_dir():
+                return folder
+        level = [c for folder in level for c in _subfolders(folder)]
+    return None
 
 
 def _env_roots(environ: Mapping[str, str]) -> list[Path]:
@@ -55,37 +134,42 @@ def find_packages(
     package_paths: Iterable[str | Path],
     near: Path | None = None,
     environ: Mapping[str, str] | None = None,
-) -> dict[str, Path]:
-    """Map package names to folders: `--package-path` first, then the env, then around `near`.
+) -> PackageIndex:
+    """Index packages: `--package-path` first, then the env, then around `near`.
 
-    Around `near` (a URDF): every enclosing folder holding a `package.xml`, and its siblings.
+    Around `near` (a URDF): every enclosing folder holding a `package.xml`, and its siblings;
+    the folder-name fallback also looks at the enclosing folders and their children.
     """
     environ = os.environ if environ is None else environ
-    found: dict[str, Path] = {}
     for given in package_paths:
         if not Path(given).is_dir():
             raise InputError("not a directory", path=str(given), element="--package-path")
-    roots = [Path(p) for p in package_paths] + _env_roots(environ)
+    roots = [Path(p).resolve() for p in package_paths] + [p.resolve() for p in _env_roots(environ)]
+    index = PackageIndex(roots=tuple((root, SEARCH_DEPTH) for root in roots))
     for root in roots:
-        for pkg, path in _packages_below(root.resolve()).items():
-            found.setdefault(pkg, path)
+        for pkg, path in _packages_below(root).items():
+            index.manifests.setdefault(pkg, path)
     if near is not None:
-        for folder in list(near.resolve().parents)[:4]:
+        around = list(near.resolve().parents)[:4]
+        for folder in around:
             name = package_name(folder)
             if name:
-                found.setdefault(name, folder)
+                index.manifests.setdefault(name, folder)
                 for pkg, path in _packages_below(folder.parent, depth=2).items():
-                    found.setdefault(pkg, path)
-    return found
+                    index.manifests.setdefault(pkg, path)
+        index.roots += tuple((folder, 1) for folder in around)
+    return index
 
 
 def find_package(name: str, packages: PackageMap, *, path: str, element: str) -> Path:
     """The folder of package `name`, or an InputError listing where we looked."""
-    if name in packages:
-        return packages[name]
+    found = packages.lookup(name) if isinstance(packages, PackageIndex) else packages.get(name)
+    if found is not None:
+        return found
     known = ", ".join(sorted(packages)) or "none"
     raise PackageNotFound(
-        f"unknown package '{name}' (known packages: {known}; add --package-path DIR)",
+        f"unknown package '{name}' (no package.xml or folder of that name; known packages: {known}; "
+        "add --package-path DIR)",
         package=name,
         path=path,
         element=element,

@@ -194,3 +194,18 @@ def test_a_folder_or_non_utf8_file_is_one_line_exit_2(tmp_path, monkeypatch):
     ):
         result = runner.invoke(app, ["inspect", target])
         assert result.exit_code == 2 and result.stderr == expected + "\n", result.output
+
+
+def test_inspect_says_how_each_package_was_found(tmp_path):
+    from tests.unit.test_robot import _folder_named_package
+
+    root = _folder_named_package(tmp_path)
+    args = ["inspect", str(root / "work/r.urdf.xacro"), "--package-path", str(root / "share")]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    folder = (root / "share/my_robot_description").resolve()
+    assert f"package my_robot_description: {folder} (found by folder name)" in result.stdout
+    data = json.loads(runner.invoke(app, [*args, "--format", "json"]).stdout)
+    assert data["packages"] == [
+        {"name": "my_robot_description", "path": str(folder), "found_by": "folder name"}
+    ]

@@ -91,3 +91,63 @@ def test_parse_xacro_args_rejects_malformed_items():
     assert parse_xacro_args(["a:=1", "b:=x:=y"]) == {"a": "1", "b": "x:=y"}
     with pytest.raises(InputError, match="NAME:=VALUE"):
         parse_xacro_args(["a=1"])
+
+
+STL_TRIANGLE = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0 0.1 0\nendloop\nendfacet\nendsolid t\n"
+
+
+def _folder_named_package(tmp_path):
+    """A pip `share/`-style tree: folder `my_robot_description` whose package.xml says another name."""
+    mesh_link = (
+        '<link name="m"><collision><geometry><mesh filename="package://my_robot_description/meshes/t.stl"/>'
+        '</geometry></collision></link><joint name="jm" type="fixed"><parent link="b"/><child link="m"/></joint>'
+    )
+    return build_file_tree(
+        tmp_path,
+        {
+            "share/my_robot_description/package.xml": "<package><name>vendor_robot</name></package>",
+            "share/my_robot_description/meshes/t.stl": STL_TRIANGLE,
+            "share/my_robot_description/urdf/arm.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+            + TWO_BOXES.split("\n", 2)[2].replace("</robot>", "")
+            + mesh_link
+            + "</robot>",
+            "work/r.urdf.xacro": '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+            '<xacro:include filename="$(find my_robot_description)/urdf/arm.xacro"/></robot>',
+        },
+    )
+
+
+def test_package_found_by_folder_name_for_find_and_meshes(tmp_path):
+    root = _folder_named_package(tmp_path)
+    robot = load_robot(root / "work/r.urdf.xacro", package_paths=[root / "share"])
+    folder = root / "share/my_robot_description"
+    assert robot.link("m").collisions[0].geometry.path == str((folder / "meshes/t.stl").resolve())
+    assert robot.packages == (("my_robot_description", str(folder.resolve()), "folder name"),)
+
+
+def test_package_xml_name_wins_over_a_folder_name(tmp_path):
+    root = _folder_named_package(tmp_path)
+    build_file_tree(
+        root, {"share/other/my_robot_description/package.xml": "<package><name>x</name></package>"}
+    )
+    build_file_tree(
+        root,
+        {
+            "share/real/package.xml": "<package><name>my_robot_description</name></package>",
+            "share/real/urdf/arm.xacro": (root / "share/my_robot_description/urdf/arm.xacro").read_text(),
+            "share/real/meshes/t.stl": STL_TRIANGLE,
+        },
+    )
+    robot = load_robot(root / "work/r.urdf.xacro", package_paths=[root / "share"])
+    assert robot.packages == (("my_robot_description", str((root / "share/real").resolve()), "package.xml"),)
+
+
+def test_folder_fallback_next_to_the_urdf(tmp_path):
+    """Without --package-path: a folder of the package's name enclosing the URDF."""
+    root = _folder_named_package(tmp_path)
+    body = (root / "share/my_robot_description/urdf/arm.xacro").read_text()
+    build_file_tree(
+        root, {"share/my_robot_description/urdf/arm.urdf": body.replace("xmlns:xacro", 'name="r" x')}
+    )
+    robot = load_robot(root / "share/my_robot_description/urdf/arm.urdf")
+    assert robot.packages[0][2] == "folder name"
