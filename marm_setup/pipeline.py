@@ -17,6 +17,7 @@ from marm_setup.setup.model import ROS_DISTROS, TARGETS, CollisionSettings, Robo
 if TYPE_CHECKING:
     from marm_setup.collision.matrix import Progress
     from marm_setup.collision.pairs import DisabledPair
+    from marm_setup.collision.scene import CollisionScene
     from marm_setup.port.importer import Ported
     from marm_setup.port.report import PortItem
     from marm_setup.render.writer import FileChange
@@ -48,22 +49,51 @@ class InitResult:
     model: SetupModel
     inferred: tuple[str, ...]  # what the setup holds, one line each
     status_lines: tuple[str, ...]  # one line per written file
+    notes: tuple[str, ...] = ()  # what inference guessed, one line each
+
+
+@dataclass(frozen=True)
+class _Built:
+    model: SetupModel
+    notes: tuple[str, ...]
+    poses_given: bool  # the SPEC or SRDF gives named poses: none are inferred
 
 
 def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None = None) -> InitResult:
     """`progress(done, total)` is called while the matrix samples (see compute_collision_matrix)."""
-    model = build_setup(request, robot)
+    from marm_setup.collision.scene import CollisionScene
+
+    built = _build(request, robot)
+    model = built.model
     given = bool(model.collision.disabled)
     trials = model.collision.trials if request.trials is None else request.trials
     seed = model.collision.seed if request.seed is None else request.seed
+    scene = CollisionScene(robot)
     model = with_collision_matrix(
-        model, robot, trials=trials, seed=seed, jobs=request.jobs, progress=progress
+        model, robot, trials=trials, seed=seed, jobs=request.jobs, progress=progress, scene=scene
     )
+    notes = built.notes
+    if not built.poses_given:
+        model, pose_notes = _with_poses(model, robot, scene, seed, request)
+        notes += pose_notes
     lines = describe(model, matrix_given=given)
     changes = write_package(model, robot, request.out, force=request.force)
     from marm_setup.render.writer import format_change
 
-    return InitResult(model, tuple(lines), tuple(format_change(c) for c in changes))
+    return InitResult(model, tuple(lines), tuple(format_change(c) for c in changes), notes)
+
+
+def _with_poses(
+    model: SetupModel, robot: RobotModel, scene: CollisionScene, seed: int, request: InitRequest
+) -> tuple[SetupModel, tuple[str, ...]]:
+    """The setup with inferred collision-free poses (home, ready), and notes on what was guessed."""
+    from marm_setup.setup.checks import check_setup
+    from marm_setup.setup.poses import infer_poses
+
+    poses = infer_poses(model, robot, scene, seed=seed)
+    model = dataclasses.replace(model, group_states=poses.states)
+    check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
+    return model, poses.notes
 
 
 @dataclass(frozen=True)
@@ -201,9 +231,20 @@ def _package_robot(pkg: ConfigPackage) -> RobotModel:
 
 def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
     """Inference, then the SRDF import, then the SPEC; checked against the robot."""
+    return _build(request, robot).model
+
+
+def _build(request: InitRequest, robot: RobotModel) -> _Built:
     from marm_setup.names import ros_package_name
     from marm_setup.setup.checks import check_setup, package_name_problem
-    from marm_setup.setup.infer import derive_group_settings, fill_group_settings, infer_setup
+    from marm_setup.setup.infer import (
+        REFERENCE,
+        derive_group_settings,
+        fill_group_settings,
+        fit_to_spec,
+        home_poses,
+        infer,
+    )
 
     if request.name and (problem := package_name_problem(request.name)):
         raise InputError(problem, element="--name")
@@ -211,28 +252,53 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
     target = _target(request, spec)
     name = request.name or spec.get("package_name") or ros_package_name(f"{robot.name}_moveit_config")
     given = bool(spec) or request.from_srdf is not None  # may give the groups inference cannot find
-    model = infer_setup(
-        robot, package_name=str(name), source=_source(request), target=target, arm_required=not given
+    driver = spec.get("driver") if isinstance(spec.get("driver"), str) else None
+    inference = infer(
+        robot,
+        package_name=str(name),
+        source=_source(request),
+        target=target,
+        arm_required=not given,
+        driver=driver,
     )
+    model, notes = inference.model, inference.notes
     inferred_groups = bool(model.groups)
     if request.from_srdf is not None:
         from marm_setup.setup.rules import srdf_element
         from marm_setup.setup.srdf import read_srdf, srdf_to_setup
 
         model = derive_group_settings(srdf_to_setup(read_srdf(request.from_srdf), model), robot)
+        notes = ()
         check_setup(model, robot, str(request.from_srdf), srdf_element)
     if spec:
-        model = _apply_spec(model, spec, request)
+        model = _make_room_for_spec(model, spec)
+        model = fit_to_spec(_apply_spec(model, spec, request), robot, spec)
         if not inferred_groups:
             model = fill_group_settings(model, robot)
+        if "group_states" not in spec and request.from_srdf is None:
+            model = dataclasses.replace(model, group_states=home_poses(model, robot))
     model = dataclasses.replace(model, ros_distro=_distro(request, spec, model.target))
     if not model.groups:
         raise InputError(
-            "no planning groups: no serial arm from the root to infer, and the SPEC / SRDF gives none",
+            f"no planning groups: no limb to infer, and the SPEC / SRDF gives none (see {REFERENCE})",
             path=str(request.spec or request.from_srdf),
             element="groups",
         )
     check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
+    poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
+    return _Built(model, notes, poses_given)
+
+
+def _make_room_for_spec(model: SetupModel, spec: dict) -> SetupModel:
+    """Drop what the SPEC gives in its own way: its poses replace the inferred ones (pose names
+    repeat across groups), and its end effectors those on the same groups."""
+    if "group_states" in spec:
+        model = dataclasses.replace(model, group_states=())
+    items = spec.get("end_effectors")
+    if isinstance(items, list):
+        taken = {e.get("group") for e in items if isinstance(e, dict)}
+        kept = tuple(e for e in model.end_effectors if e.group not in taken)
+        model = dataclasses.replace(model, end_effectors=kept)
     return model
 
 
@@ -306,25 +372,33 @@ def with_collision_matrix(
     seed: int,
     jobs: int = 1,
     progress: Progress | None = None,
+    scene: CollisionScene | None = None,
 ) -> SetupModel:
     """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
     if model.collision.disabled:
         return model
     fraction = model.collision.min_collision_fraction
     disabled = _disabled_pairs(
-        robot, trials=trials, seed=seed, fraction=fraction, jobs=jobs, progress=progress
+        robot, trials=trials, seed=seed, fraction=fraction, jobs=jobs, progress=progress, scene=scene
     )
     settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
     return dataclasses.replace(model, collision=settings)
 
 
 def _disabled_pairs(
-    robot: RobotModel, *, trials: int, seed: int, fraction: float, jobs: int, progress: Progress | None
+    robot: RobotModel,
+    *,
+    trials: int,
+    seed: int,
+    fraction: float,
+    jobs: int,
+    progress: Progress | None,
+    scene: CollisionScene | None = None,
 ) -> tuple[DisabledPair, ...]:
     from marm_setup.collision.matrix import compute_collision_matrix
 
     matrix = compute_collision_matrix(
-        robot, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs, progress=progress
+        robot, scene, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs, progress=progress
     )
     return matrix.disabled
 

@@ -31,14 +31,17 @@ def panda(target: str) -> Good:
 
 
 def generate_marm(out_root: Path, target: str) -> Path:
-    """`marm-setup init` the marm fixture into out_root/marm_<target>."""
+    """`marm-setup init` the marm fixture into out_root/marm_<target> (ros1 with the ArbotiX driver)."""
     from typer.testing import CliRunner
 
     from marm_setup.cli.app import app
 
     out = out_root / f"marm_{target}"
     if not out.exists():
-        result = CliRunner().invoke(app, ["init", str(MARM_URDF), "--out", str(out), "--target", target])
+        spec = out_root / "driver.yaml"
+        spec.write_text("driver: arbotix\n", encoding="utf-8")
+        args = ["init", str(MARM_URDF), "--out", str(out), "--target", target, "--setup", str(spec)]
+        result = CliRunner().invoke(app, args)
         assert result.exit_code == 0, result.output
     return out
 

@@ -274,12 +274,13 @@ def trajectory_demo(model: SetupModel, robot: RobotModel) -> dict | None:
     home_q = {**base, **dict(home.values)} if home else base
     goal_q = {**base, **dict(goal.values)} if goal else {j: v + 0.3 for j, v in base.items()}
     clamp = {j: robot.joint(j).bounds for j in joints}
-    goal_q = {j: min(max(v, clamp[j][0]), clamp[j][1]) for j, v in goal_q.items()}
+    # a pose may span more joints than the controller (an arm + hand pose): only its joints count
+    goal_values = [min(max(goal_q[j], clamp[j][0]), clamp[j][1]) for j in joints]
     return {
         "controller": arm,
         "joints": joints,
         "home": [home_q[j] for j in joints],
-        "goal": [goal_q[j] for j in joints],
+        "goal": goal_values,
         "goal_name": goal.name if goal else "offset",
     }
 
@@ -310,7 +311,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "arbotix_servos": arbotix_servos(model, robot),
         "gripper_nodes": gripper_nodes(model, robot),
         "ros2_control_joints": ros2_control_joints(model, robot),
-        "trajectory_demo": trajectory_demo(model, robot),
+        "trajectory_demo": trajectory_demo(model, robot) if model.target == "ros1" else None,
         # the Setup Assistant's demo publishes an identity TF for every virtual joint, whatever its type
         "static_tfs": model.virtual_joints,
         "rviz": rviz_view(model, robot),

@@ -52,6 +52,8 @@ ROS2_FILES = (
     "launch/move_group.launch.xml",
 )
 TARGET_FILES = {"ros1": ROS1_FILES, "ros2": ROS2_FILES}
+# Files only a package whose setup names the driver gets (ros1).
+DRIVER_FILES = {"arbotix": ("config/arbotix.yaml", "launch/arbotix.launch")}
 SETUP_FILE = "marm_setup.yaml"
 
 
@@ -63,14 +65,16 @@ def output_path(template_path: str, robot_name: str) -> str:
     return f"{folder}/{name}" if folder else name
 
 
-def target_templates(target: str) -> list[tuple[str, str]]:
-    """(template name, template path in the package) for one target; common files first."""
+def target_templates(target: str, driver: str | None = None) -> list[tuple[str, str]]:
+    """(template name, template path in the package) for one target; common files first.
+    Driver files (`arbotix.yaml`, ...) only for the driver named, and only for ros1."""
     if target not in TARGET_FILES:
         raise InputError(
             with_hint(f"unknown target '{target}'", did_you_mean(target, TARGETS)), element="target"
         )
+    other_drivers = {p for d, files in DRIVER_FILES.items() if d != driver or target != "ros1" for p in files}
     common = [(f"common/{p}.j2", p) for p in COMMON_FILES]
-    return common + [(f"{target}/{p}.j2", p) for p in TARGET_FILES[target]]
+    return common + [(f"{target}/{p}.j2", p) for p in TARGET_FILES[target] if p not in other_drivers]
 
 
 def description_package(urdf: Path) -> tuple[str, str] | None:
@@ -96,7 +100,7 @@ def render_package(
         description = description_package(Path(robot.source))
     context = build_context(model, robot, description)
     files = [RenderedFile(SETUP_FILE, dump_setup(model))]
-    for template, path in target_templates(model.target):
+    for template, path in target_templates(model.target, model.driver):
         content = render_template(template, target=model.target, **context)
         files.append(RenderedFile(output_path(path, model.robot_name), content))
     return sorted(files, key=lambda f: f.path)

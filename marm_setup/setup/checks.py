@@ -17,7 +17,6 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
 from marm_setup.robot.model import RobotModel
-from marm_setup.setup.domain import DRIVER_ACTION_NS
 from marm_setup.setup.model import ROS_DISTROS, Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
 from marm_setup.setup.rules import Style, check_semantics, setup_element
@@ -167,12 +166,12 @@ def _check_controller_joints(c: _Checker, ctl: Controller) -> None:
 
 def _check_controller_actions(c: _Checker) -> None:
     """MoveIt's `<name>/<action_ns>` must be the action the target's driver serves."""
-    target = c.model.target
+    driver = c.model.driver_key
     for ctl in c.model.controllers:
-        served = DRIVER_ACTION_NS.get((target, ctl.type))
+        served = c.model.served_action_ns(ctl.type)
         if served is not None and ctl.action_ns != served:
             raise c.fail(
-                f"'{ctl.action_ns}' is not served by the {target} driver: a {ctl.type} controller "
+                f"'{ctl.action_ns}' is not served by the {driver} driver: a {ctl.type} controller "
                 f"serves '{ctl.name}/{served}' (set action_ns: {served})",
                 f"controllers[{ctl.name}].action_ns",
             )

@@ -50,15 +50,20 @@ ROS2_CONTROLLER_TYPES = {
     FOLLOW_JOINT_TRAJECTORY: "joint_trajectory_controller/JointTrajectoryController",
     GRIPPER_COMMAND: "position_controllers/GripperActionController",
 }
-# (target, MoveIt controller type) -> the action namespace that target's driver serves, where the
-# driver fixes it.
+# (driver, MoveIt controller type) -> the action namespace that driver serves, where the driver
+# fixes it; the driver is ros2_control (`ros2`) for ros2, the setup's `driver` for ros1. A ros1
+# package with no driver named may use any action namespace.
 DRIVER_ACTION_NS = {
     **{
         ("ros2", kind): DRIVER_CONTROLLERS[plugin.rsplit("/", 1)[-1]][1]
         for kind, plugin in ROS2_CONTROLLER_TYPES.items()
     },
-    ("ros1", GRIPPER_COMMAND): ARBOTIX_GRIPPER_ACTION_NS,
+    ("arbotix", GRIPPER_COMMAND): ARBOTIX_GRIPPER_ACTION_NS,
 }
+# What an inferred controller uses where no driver fixes it.
+DEFAULT_ACTION_NS = {FOLLOW_JOINT_TRAJECTORY: FOLLOW_JOINT_TRAJECTORY_NS, GRIPPER_COMMAND: GRIPPER_CMD_NS}
+# Hardware drivers whose files a ros1 package can carry (`driver:` in the setup).
+DRIVERS = ("arbotix",)
 ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == "ros2"}
 
 # -- kinematics solvers --------------------------------------------------------------------------

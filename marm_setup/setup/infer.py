@@ -1,26 +1,22 @@
-"""Infer a setup for `init` (DESIGN.md §2): arm chain, gripper group, end effector, home pose,
-controllers, kinematics; and merge a partial SPEC over it.
+"""Infer a setup for `init` (DESIGN.md §2) for any kinematic tree, and merge a partial SPEC over it.
 
-The arm is the serial chain from the root while exactly one child subtree moves; its tip is the
-last arm link extended through fixed joints to geometry-less frames (`grasping_frame`, a
-flange). The gripper is every actuated joint below the arm's last joint, with the links below it
-that are not on the arm (mimic joints included).
+The limbs come from `setup.limbs`: a chain group per limb (arms to their tool frame), a hand
+group (actuated joints after the wrist, with the links they move) and an end effector per arm
+with a hand, composite groups (`arms`, `legs`, `whole_body`) where there are several limbs, and
+a virtual joint that fits the base: none when the root is `world`, planar for a wheeled base,
+floating for a legged one, else fixed to `world`. Poses here are zeros clamped into the limits;
+`setup.poses` makes them collision-free once the collision matrix is known.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 
 from marm_setup.errors import InputError
-from marm_setup.robot.model import Joint, RobotModel
-from marm_setup.setup.domain import (
-    DRIVER_ACTION_NS,
-    FOLLOW_JOINT_TRAJECTORY,
-    FOLLOW_JOINT_TRAJECTORY_NS,
-    GRIPPER_COMMAND,
-)
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.domain import DEFAULT_ACTION_NS, FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND
 from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.limbs import Limbs, find_limbs
 from marm_setup.setup.model import (
     ArbotixJoint,
     Chain,
@@ -36,17 +32,17 @@ from marm_setup.setup.model import (
 )
 from marm_setup.setup.yaml_io import ITEM_KEYS
 
-ARM, GRIPPER, END_EFFECTOR, HOME = "arm", "gripper", "robot_gripper", "home"
+HOME = "home"
+REFERENCE = "docs/setup-file.md"
+COMPOSITES = (("arms", "arm"), ("legs", "leg"))
 
 
-@dataclass(frozen=True, slots=True)
-class ArmGuess:
-    """The inferred arm: its chain, the link after its last actuated joint, the gripper parts."""
+@dataclasses.dataclass(frozen=True, slots=True)
+class Inference:
+    """An inferred setup and what was guessed on the way (one line each)."""
 
-    chain: Chain
-    last_link: str
-    gripper_joints: tuple[str, ...]
-    gripper_links: tuple[str, ...]
+    model: SetupModel
+    notes: tuple[str, ...] = ()
 
 
 def infer_setup(
@@ -56,90 +52,106 @@ def infer_setup(
     source: RobotSource,
     target: str = "ros2",
     arm_required: bool = True,
+    driver: str | None = None,
 ) -> SetupModel:
-    """A complete setup for `robot` (collision matrix left empty: `init` computes it).
+    """A complete setup for `robot` (collision matrix left empty: `init` computes it)."""
+    return infer(
+        robot, package_name=package_name, source=source, target=target, arm_required=arm_required
+    ).model
 
-    Without a serial arm from the root (a dual-arm robot) this is an InputError, or, when not
-    `arm_required` (a SPEC or SRDF gives the groups), a setup with no groups.
-    """
+
+def infer(
+    robot: RobotModel,
+    *,
+    package_name: str,
+    source: RobotSource,
+    target: str = "ros2",
+    arm_required: bool = True,
+    driver: str | None = None,
+) -> Inference:
+    """`infer_setup` with the guesses it made. Nothing that moves is an InputError when
+    `arm_required` (a SPEC or SRDF may give the groups instead)."""
+    limbs = find_limbs(robot)
+    groups, end_effectors = _groups(limbs)
+    vjoints, base_note = _virtual_joints(robot, limbs)
     model = SetupModel(
         package_name=package_name,
         robot_name=robot.name,
         robot=source,
         target=target,
-        virtual_joints=(VirtualJoint("virtual_joint", "fixed", "world", robot.root),),
+        driver=driver,
+        virtual_joints=vjoints,
+        groups=groups,
+        end_effectors=end_effectors,
     )
-    if not arm_required and not any(j.is_actuated for j in _serial_path(robot)):
-        return model
-    guess = infer_arm(robot)
-    groups = [Group(ARM, chain=guess.chain)]
-    end_effectors: tuple[EndEffector, ...] = ()
-    if guess.gripper_joints:
-        groups.append(Group(GRIPPER, joints=guess.gripper_joints, links=guess.gripper_links))
-        end_effectors = (EndEffector(END_EFFECTOR, GRIPPER, guess.chain.tip),)
-    model = dataclasses.replace(model, groups=tuple(groups), end_effectors=end_effectors)
-    model = dataclasses.replace(model, group_states=(home_pose(model, robot),))
-    return derive_group_settings(model, robot)
+    if not groups:
+        if arm_required:
+            raise InputError(
+                f"no actuated joints that form a limb: nothing to plan for (give the groups in a SPEC: see {REFERENCE})",
+                path=robot.source,
+            )
+        return Inference(model)
+    model = dataclasses.replace(model, group_states=home_poses(model, robot))
+    notes = [*limbs.notes, *([base_note] if base_note else []), *_left_out(limbs)]
+    if notes:
+        notes.append(f"to change any of this, give a SPEC with --setup (see {REFERENCE})")
+    return Inference(derive_group_settings(model, robot), tuple(notes))
 
 
-def infer_arm(robot: RobotModel) -> ArmGuess:
-    """The arm chain from the root to the tool frame, and the actuated joints below it."""
-    path = _serial_path(robot)
-    actuated = [j for j in path if j.is_actuated]
-    if not actuated:
-        raise InputError(
-            "no actuated joints on a serial chain from the root: nothing to plan for", path=robot.source
-        )
-    last_link = actuated[-1].child
-    tip = tool_frame(robot, last_link)
-    arm_links = {j.child for j in robot.chain(last_link, tip) or ()} | {last_link}
-    below = robot.subtree_joints(last_link)
-    gripper_joints = tuple(j.name for j in below if j.is_actuated)
-    gripper_links: tuple[str, ...] = ()
-    if gripper_joints:
-        gripper_links = tuple(link for link in robot.subtree_links(last_link) if link not in arm_links)
-    return ArmGuess(Chain(robot.root, tip), last_link, gripper_joints, gripper_links)
+def _groups(limbs: Limbs) -> tuple[tuple[Group, ...], tuple[EndEffector, ...]]:
+    """A chain group per limb, a hand group per hand, composites; end effectors on hands."""
+    groups: list[Group] = []
+    ees: list[EndEffector] = []
+    for limb in limbs.limbs:
+        groups.append(Group(limb.name, chain=Chain(limb.base, limb.tip)))
+        if limb.hand is not None:
+            groups.append(Group(limb.hand.name, joints=limb.hand.joints, links=limb.hand.links))
+            ees.append(EndEffector(limb.hand.name, limb.hand.name, limb.tip, limb.name))
+    groups += [Group(h.name, joints=h.joints, links=h.links) for h in limbs.hands]
+    for name, kind in COMPOSITES:
+        members = tuple(limb.name for limb in limbs.limbs if limb.kind == kind)
+        if len(members) > 1:
+            groups.append(Group(name, subgroups=members))
+    if len(limbs.limbs) > 1:
+        groups.append(Group("whole_body", subgroups=tuple(limb.name for limb in limbs.limbs)))
+    return tuple(groups), tuple(ees)
 
 
-def _serial_path(robot: RobotModel) -> list[Joint]:
-    """Joints from the root while exactly one child joint leads to something that moves."""
-    moving = _moving_subtrees(robot)
-    path: list[Joint] = []
-    link = robot.root
-    while True:
-        children = [j for j in robot.child_joints_of[link] if j.is_actuated or moving[j.child]]
-        if len(children) != 1:
-            return path
-        path.append(children[0])
-        link = children[0].child
+def _virtual_joints(robot: RobotModel, limbs: Limbs) -> tuple[tuple[VirtualJoint, ...], str]:
+    """(virtual joints, a note on the choice): none when the root is `world`; planar for a wheeled
+    base, floating for a legged one, else fixed to `world`."""
+    if robot.root.lower() == "world":
+        return (), ""
+    legs = sum(limb.kind == "leg" for limb in limbs.limbs)
+    if limbs.wheels:
+        note = f"guessed: a wheeled base ({len(limbs.wheels)} wheel joints): planar virtual joint odom -> {robot.root}"
+        return (VirtualJoint("virtual_joint", "planar", "odom", robot.root),), note
+    if legs > 1:
+        note = f"guessed: a legged base ({legs} legs): floating virtual joint odom -> {robot.root}"
+        return (VirtualJoint("virtual_joint", "floating", "odom", robot.root),), note
+    return (VirtualJoint("virtual_joint", "fixed", "world", robot.root),), ""
 
 
-def _moving_subtrees(robot: RobotModel) -> dict[str, bool]:
-    """link -> whether any actuated joint is below it."""
-    out: dict[str, bool] = {}
-    for link in reversed(robot.links_in_tree_order):
-        out[link] = any(j.is_actuated or out[j.child] for j in robot.child_joints_of[link])
+def _left_out(limbs: Limbs) -> list[str]:
+    out = []
+    if limbs.wheels:
+        out.append(f"left out of every group: wheel joints {', '.join(limbs.wheels)}")
+    if limbs.skipped:
+        out.append(f"left out of every group: single joints {', '.join(limbs.skipped)} (not a limb)")
     return out
 
 
-def tool_frame(robot: RobotModel, link: str) -> str:
-    """`link` extended through fixed joints to geometry-less frames (first such child each step)."""
-    while True:
-        frames = [
-            j.child
-            for j in robot.child_joints_of[link]
-            if j.type == "fixed" and not robot.link(j.child).has_geometry
-        ]
-        if not frames:
-            return link
-        link = frames[0]
-
-
-def home_pose(model: SetupModel, robot: RobotModel) -> GroupState:
-    """`home` for the first group: zero for every active joint, clamped into its limits."""
-    group = model.groups[0]
-    joints = active_group_joints(group, groups_by_name(model.groups), robot, model.passive_joints)
-    return GroupState(HOME, group.name, tuple((j, _clamp(0.0, robot.joint(j).bounds)) for j in joints))
+def home_poses(model: SetupModel, robot: RobotModel) -> tuple[GroupState, ...]:
+    """`home` for every group without subgroups: zero for each active joint, clamped into its limits."""
+    by_name = groups_by_name(model.groups)
+    out = []
+    for group in by_name.values():  # one pose per name (duplicate groups are the checks' to report)
+        joints = active_group_joints(group, by_name, robot, model.passive_joints)
+        if joints and not group.subgroups:
+            out.append(
+                GroupState(HOME, group.name, tuple((j, _clamp(0.0, robot.joint(j).bounds)) for j in joints))
+            )
+    return tuple(out)
 
 
 def _clamp(value: float, bounds: tuple[float, float]) -> float:
@@ -154,12 +166,13 @@ def fill_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:
 
 
 def derive_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:
-    """Controllers, KDL kinematics, planner defaults (and ArbotiX ids for ros1) for the groups."""
+    """Controllers, KDL kinematics, planner defaults (and ArbotiX ids when it is the driver)."""
     controllers = _controllers(model, robot)
-    kinematics = tuple(Kinematics(g.name) for g in model.groups if g.chain is not None)
-    planners = tuple(PlannerDefaults(g.name) for g in model.groups)
+    groups = groups_by_name(model.groups).values()  # one each (duplicates are the checks' to report)
+    kinematics = tuple(Kinematics(g.name) for g in groups if g.chain is not None)
+    planners = tuple(PlannerDefaults(g.name) for g in groups)
     arbotix: tuple[ArbotixJoint, ...] = ()
-    if model.target == "ros1":
+    if model.target == "ros1" and model.driver == "arbotix":
         joints = [j for c in controllers for j in c.joints]
         arbotix = tuple(ArbotixJoint(j, i) for i, j in enumerate(joints, start=1))
     return dataclasses.replace(
@@ -168,23 +181,78 @@ def derive_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:
 
 
 def _controllers(model: SetupModel, robot: RobotModel) -> tuple[Controller, ...]:
-    """One controller per group without subgroups: GripperCommand for end-effector groups."""
+    """One controller per group without subgroups, each joint in one controller only.
+
+    GripperCommand for an end-effector group that commands one joint (others mimic it): the
+    gripper action moves one joint; any other group gets a FollowJointTrajectory controller.
+    A group whose joints are all taken by earlier groups gets none.
+    """
     by_name = groups_by_name(model.groups)
     ee_groups = {ee.group for ee in model.end_effectors}
+    taken: set[str] = set()
     out = []
-    for group in model.groups:
+    for group in by_name.values():  # one per name (duplicate groups are the checks' to report)
         joints = active_group_joints(group, by_name, robot, model.passive_joints)
-        if group.subgroups or not joints:
+        joints = tuple(j for j in joints if j not in taken)
+        if group.subgroups and not (group.joints or group.chain or group.links) or not joints:
             continue
-        gripper = group.name in ee_groups
-        kind = GRIPPER_COMMAND if gripper else FOLLOW_JOINT_TRAJECTORY
-        action_ns = DRIVER_ACTION_NS.get((model.target, kind), FOLLOW_JOINT_TRAJECTORY_NS)
-        joints = joints[:1] if gripper else joints
+        kind = GRIPPER_COMMAND if group.name in ee_groups and len(joints) == 1 else FOLLOW_JOINT_TRAJECTORY
+        action_ns = model.served_action_ns(kind) or DEFAULT_ACTION_NS[kind]
+        taken.update(joints)
         out.append(Controller(f"{group.name}_controller", kind, action_ns, joints, group.name))
     return tuple(out)
 
 
 # -- SPEC merge ----------------------------------------------------------------------------------
+
+DERIVED_LISTS = ("controllers", "kinematics", "planners", "arbotix_joints")
+
+
+def fit_to_spec(model: SetupModel, robot: RobotModel, spec: dict) -> SetupModel:
+    """A merged setup made whole: inferred groups whose joints a SPEC group covers are dropped
+    (with composites of them, and their end effectors and poses), and the lists the SPEC does
+    not give (controllers, kinematics, ...) derived again for the final groups."""
+    given = {g.get("name") for g in spec.get("groups") or () if isinstance(g, dict)}
+    if given:
+        model = _drop_shadowed(model, robot, given)
+    derived = derive_group_settings(model, robot)
+    return dataclasses.replace(model, **{n: getattr(derived, n) for n in DERIVED_LISTS if n not in spec})
+
+
+def _drop_shadowed(model: SetupModel, robot: RobotModel, given: set) -> SetupModel:
+    """Without the inferred groups a SPEC group covers (unless a SPEC group names them)."""
+    by_name = groups_by_name(model.groups)
+    known = [g for g in model.groups if _resolvable(g, by_name, robot)]
+    covered = {j for g in known if g.name in given for j in active_group_joints(g, by_name, robot)}
+    used = {s for g in model.groups if g.name in given for s in g.subgroups}
+    dropped = {
+        g.name
+        for g in known
+        if g.name not in given | used
+        and not g.subgroups
+        and set(active_group_joints(g, by_name, robot)) & covered
+    }
+    while more := {
+        g.name for g in model.groups if g.name not in dropped | given and set(g.subgroups) & dropped
+    }:
+        dropped |= more
+    return dataclasses.replace(
+        model,
+        groups=tuple(g for g in model.groups if g.name not in dropped),
+        end_effectors=tuple(
+            e for e in model.end_effectors if e.group not in dropped and e.parent_group not in dropped
+        ),
+        group_states=tuple(s for s in model.group_states if s.group not in dropped),
+    )
+
+
+def _resolvable(group: Group, by_name, robot: RobotModel) -> bool:
+    """Names only what the robot and the setup have (a SPEC's typo is for the checks to report)."""
+    chain_ok = group.chain is None or robot.chain(group.chain.base, group.chain.tip) is not None
+    names_ok = all(j in robot.joint_map for j in group.joints) and all(
+        x in robot.link_map for x in group.links
+    )
+    return chain_ok and names_ok and all(s in by_name for s in group.subgroups)
 
 
 def merge_spec(base: dict, spec: dict) -> dict:

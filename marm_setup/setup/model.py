@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from marm_setup.collision.pairs import DisabledPair
-from marm_setup.setup.domain import DEFAULT_PLANNER, KDL_PLUGIN
+from marm_setup.setup.domain import DEFAULT_PLANNER, DRIVER_ACTION_NS, KDL_PLUGIN
 
 TARGETS = ("ros2", "ros1")
 # The ROS distros each target is written for, the target's default first. Humble and Jazzy differ
@@ -189,6 +189,7 @@ class SetupModel:
     robot: RobotSource
     target: str = "ros2"
     ros_distro: str | None = None  # None: the target's default (ROS_DISTROS[target][0])
+    driver: str | None = None  # ros1: the hardware driver whose files to write (arbotix), or none
     author: Author = field(default_factory=Author)
     virtual_joints: tuple[VirtualJoint, ...] = ()
     groups: tuple[Group, ...] = ()
@@ -213,3 +214,12 @@ class SetupModel:
 
     def group(self, name: str) -> Group:
         return next(g for g in self.groups if g.name == name)
+
+    @property
+    def driver_key(self) -> str | None:
+        """Whose action namespaces the controllers must use: `ros2` (ros2_control) or the ros1 driver."""
+        return "ros2" if self.target == "ros2" else self.driver
+
+    def served_action_ns(self, kind: str) -> str | None:
+        """The action_ns the driver serves for a controller type, or None when any will do."""
+        return DRIVER_ACTION_NS.get((self.driver_key, kind)) if self.driver_key else None

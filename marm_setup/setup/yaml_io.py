@@ -22,7 +22,7 @@ from marm_setup.collision.pairs import DisabledPair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.safe_yaml import load_yaml
-from marm_setup.setup.domain import MOVEIT_CONTROLLER_TYPES, OMPL_PLANNER_NAMES, VIRTUAL_JOINT_TYPES
+from marm_setup.setup.domain import DRIVERS, MOVEIT_CONTROLLER_TYPES, OMPL_PLANNER_NAMES, VIRTUAL_JOINT_TYPES
 from marm_setup.setup.model import (
     TARGETS,
     Controller,
@@ -36,6 +36,7 @@ HEADER = "# marm-setup: this robot's MoveIt setup. Edit it, then run `marm-setup
 # Fields whose strings must be one of a few values: (class, field) -> allowed values.
 CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (SetupModel, "target"): TARGETS,
+    (SetupModel, "driver"): DRIVERS,
     (VirtualJoint, "type"): VIRTUAL_JOINT_TYPES,
     (Controller, "type"): MOVEIT_CONTROLLER_TYPES,
     (PlannerDefaults, "default_planner"): OMPL_PLANNER_NAMES,
@@ -211,7 +212,7 @@ def _load_enum(hint, data, ctx: _Ctx, where: str):
 
 def _check_choice(cls, name: str, value, ctx: _Ctx, where: str) -> None:
     allowed = CHOICES.get((cls, name))
-    if allowed is not None and value not in allowed:
+    if allowed is not None and value is not None and value not in allowed:
         message = f"'{value}' is not one of: {', '.join(allowed)}"
         raise ctx.fail(with_hint(message, did_you_mean(str(value), allowed, few=0)), where)
 

@@ -35,7 +35,7 @@ def test_init_marm_prints_inference_and_writes_the_package(tmp_path):
         "group gripper: joints finger_joint1, finger_joint2; links gripper_finger_link1, gripper_finger_link2"
         in (result.stdout)
     )
-    assert "end effector robot_gripper: group gripper, parent link grasping_frame" in result.stdout
+    assert "end effector gripper: group gripper, parent link grasping_frame" in result.stdout
     assert "controller gripper_controller/gripper_cmd (GripperCommand): finger_joint1" in result.stdout
     assert "create    config/marm.srdf" in result.stdout
     model = load_setup(out / "marm_setup.yaml")
@@ -101,7 +101,7 @@ def test_from_srdf_imports_the_shared_panda_setup(tmp_path):
     assert "group panda_arm: chain panda_link0 -> panda_link8" in result.stdout
     assert "disabled pairs" in result.stdout and "as given (SRDF / SPEC), not recomputed" in result.stdout
     assert "10000 trials" not in result.stdout  # no sampling was run
-    assert "controller hand_controller/gripper_action (GripperCommand): panda_finger_joint1" in result.stdout
+    assert "controller hand_controller/gripper_cmd (GripperCommand): panda_finger_joint1" in result.stdout
     model = load_setup(out / "marm_setup.yaml")
     original = read_srdf(srdf)
     assert model.groups == original.groups and model.collision.disabled == original.disabled
@@ -226,7 +226,7 @@ BAD_SPECS = {
         "robot_name: 'foo' is not the URDF's robot name 'marm'",
     ),
     "duplicate servo id": (
-        {"target": "ros1", "arbotix_joints": [{"joint": "joint2", "id": 1}]},
+        {"target": "ros1", "driver": "arbotix", "arbotix_joints": [{"joint": "joint2", "id": 1}]},
         "arbotix_joints[joint2].id: servo id 1 is also joint1's",
     ),
     "negative IK timeout": (
@@ -245,6 +245,7 @@ BAD_SPECS = {
     "gripper action the driver does not serve": (
         {
             "target": "ros1",
+            "driver": "arbotix",
             "controllers": [
                 {
                     "name": "gripper_controller",
@@ -254,7 +255,7 @@ BAD_SPECS = {
                 }
             ],
         },
-        "controllers[gripper_controller].action_ns: 'gripper_cmd' is not served by the ros1 driver: "
+        "controllers[gripper_controller].action_ns: 'gripper_cmd' is not served by the arbotix driver: "
         "a GripperCommand controller serves 'gripper_controller/gripper_action' (set action_ns: gripper_action)",
     ),
 }
@@ -358,7 +359,7 @@ def test_bad_name_option_is_one_line_and_robot_names_become_valid_package_names(
 
 
 def _dual_arm_urdf() -> str:
-    """Two 2-joint arms on one base: no single serial arm from the root to infer."""
+    """Two 2-joint arms on one base, named by nothing but their side."""
     from tests.helpers import urdf
 
     body = ['<link name="base"/>']
@@ -372,7 +373,7 @@ def _dual_arm_urdf() -> str:
     return urdf("\n".join(body), name="dual")
 
 
-def test_spec_gives_the_groups_inference_cannot_find(tmp_path):
+def test_spec_gives_the_groups_inference_only_guesses(tmp_path):
     spec = {
         "groups": [
             {"name": "left", "chain": {"base": "base", "tip": "l2"}},
@@ -383,8 +384,11 @@ def test_spec_gives_the_groups_inference_cannot_find(tmp_path):
     args = ["init", str(tmp_path / "dual.urdf"), "--trials", "10"]
 
     result = runner.invoke(app, [*args, "--out", str(tmp_path / "a")])
-    assert result.exit_code == 2
-    assert "no actuated joints on a serial chain from the root" in result.stderr
+    assert result.exit_code == 0, result.output
+    assert "guessed: l_j1, l_j2, r_j1, r_j2 are limbs (nothing else moves)" in result.stdout
+    assert "(see docs/setup-file.md)" in result.stdout
+    model = load_setup(tmp_path / "a" / "marm_setup.yaml")
+    assert [g.name for g in model.groups] == ["chain_1", "chain_2", "whole_body"]
 
     result = runner.invoke(app, [*args, "--out", str(tmp_path / "b"), "--setup", str(tmp_path / "spec.yaml")])
     assert result.exit_code == 0, result.output
@@ -398,13 +402,14 @@ def test_spec_gives_the_groups_inference_cannot_find(tmp_path):
     assert [p.group for p in model.planners] == ["left", "right"]
 
     (tmp_path / "empty.yaml").write_text("author: {name: me}\n")
-    result = runner.invoke(
-        app, [*args, "--out", str(tmp_path / "c"), "--setup", str(tmp_path / "empty.yaml")]
-    )
+    fixed = _dual_arm_urdf().replace('type="revolute"', 'type="fixed"')
+    build_file_tree(tmp_path, {"fixed.urdf": fixed})
+    args = ["init", str(tmp_path / "fixed.urdf"), "--out", str(tmp_path / "c")]
+    result = runner.invoke(app, [*args, "--setup", str(tmp_path / "empty.yaml")])
     assert result.exit_code == 2
     assert result.stderr.strip() == (
-        f"error: {tmp_path / 'empty.yaml'}: groups: no planning groups: no serial arm from the root to infer, "
-        "and the SPEC / SRDF gives none"
+        f"error: {tmp_path / 'empty.yaml'}: groups: no planning groups: no limb to infer, "
+        "and the SPEC / SRDF gives none (see docs/setup-file.md)"
     )
     assert not (tmp_path / "c").exists()
 

@@ -172,7 +172,16 @@ def test_marm_package_moved_away_from_its_urdf(tmp_path):
 
 
 def test_a_package_with_one_pose_per_group_says_why_nothing_was_planned(tmp_path):
-    pkg = generate_marm(tmp_path, "ros1")  # inferred setup: only 'home'
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(
+        "group_states: [{name: home, group: arm, values: {joint1: 0, joint2: 0, joint3: 0, "
+        "joint4: 0, joint5: 0, joint6: 0}}]\n"
+    )
+    pkg = tmp_path / "marm"
+    result = runner.invoke(
+        app, ["init", str(MARM_URDF), "--out", str(pkg), "--setup", str(spec), "--trials", "300"]
+    )
+    assert result.exit_code == 0, result.output
     result = runner.invoke(app, ["validate", str(pkg)])
     assert result.exit_code == 0, result.output
     assert result.stdout.splitlines()[-2].endswith(

@@ -180,7 +180,7 @@ def test_roslaunch_loads_our_package_for_the_panda(tmp_path):
     pkg, description = write_panda_package(tmp_path, "ros1")
     for launch in ("demo.launch", "move_group.launch"):
         params = dump_params(pkg / "launch" / launch, [description, pkg], tmp_path)
-        assert missing_move_group_params(params, ["arm", "gripper"], ["arm"]) == []
+        assert missing_move_group_params(params, ["arm", "hand"], ["arm"]) == []
         assert params["/robot_description_planning/joint_limits/panda_joint1/max_velocity"] > 0
 
 

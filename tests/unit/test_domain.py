@@ -16,4 +16,5 @@ def test_generated_ros2_controllers_are_driver_controllers_validate_knows():
 def test_defaults_are_members_of_their_tables():
     assert domain.KDL_PLUGIN in domain.KINEMATICS_PLUGINS and domain.KDL_PLUGIN in domain.CHAIN_ONLY_PLUGINS
     assert domain.DEFAULT_PLANNER in domain.OMPL_PLANNER_NAMES
-    assert domain.DRIVER_ACTION_NS["ros1", domain.GRIPPER_COMMAND] == "gripper_action"
+    assert domain.DRIVER_ACTION_NS["arbotix", domain.GRIPPER_COMMAND] == "gripper_action"
+    assert set(domain.DEFAULT_ACTION_NS) == set(domain.MOVEIT_CONTROLLER_TYPES)

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from marm_setup.errors import InputError
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import infer_setup, merge_spec, tool_frame
+from marm_setup.setup.infer import derive_group_settings, infer_setup, merge_spec
+from marm_setup.setup.limbs import tool_frame
 from marm_setup.setup.model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
 from tests.conftest import MARM_URDF, realworld
 from tests.helpers import build_file_tree, urdf
@@ -18,6 +21,7 @@ SOURCE = RobotSource("robot.urdf")
 def test_marm_matches_the_course_setup():
     robot = load_robot(MARM_URDF)
     model = infer_setup(robot, package_name="marm_moveit_config", source=SOURCE, target="ros1")
+    model = derive_group_settings(dataclasses.replace(model, driver="arbotix"), robot)
     assert model.groups == (
         Group("arm", chain=Chain("base_link", "grasping_frame")),
         Group(
@@ -26,8 +30,11 @@ def test_marm_matches_the_course_setup():
             links=("gripper_finger_link1", "gripper_finger_link2"),
         ),
     )
-    assert model.end_effectors == (EndEffector("robot_gripper", "gripper", "grasping_frame"),)
-    assert model.group_states == (GroupState("home", "arm", tuple((f"joint{i}", 0.0) for i in range(1, 7))),)
+    assert model.end_effectors == (EndEffector("gripper", "gripper", "grasping_frame", "arm"),)
+    assert model.group_states == (
+        GroupState("home", "arm", tuple((f"joint{i}", 0.0) for i in range(1, 7))),
+        GroupState("home", "gripper", (("finger_joint1", 0.0),)),
+    )
     arm, gripper = model.controllers
     assert arm == Controller(
         "arm_controller",
@@ -54,6 +61,12 @@ def test_ros2_gripper_action_is_gripper_cmd_and_no_arbotix():
     model = infer_setup(load_robot(MARM_URDF), package_name="p", source=SOURCE, target="ros2")
     assert model.controllers[1].action_ns == "gripper_cmd"
     assert model.arbotix_joints == ()
+
+
+def test_ros1_without_a_driver_has_no_arbotix_servos_and_any_gripper_action():
+    model = infer_setup(load_robot(MARM_URDF), package_name="p", source=SOURCE, target="ros1")
+    assert model.driver is None and model.arbotix_joints == ()
+    assert model.controllers[1].action_ns == "gripper_cmd"
 
 
 def test_marm_without_gripper_has_arm_only():
@@ -98,14 +111,14 @@ def test_home_is_clamped_into_limits_and_tool_frame_stops_at_geometry(tmp_path):
     robot = load_robot(tmp_path / "r.urdf")
     assert tool_frame(robot, "l1") == "flange"
     model = infer_setup(robot, package_name="p", source=SOURCE)
-    assert model.groups == (Group("arm", chain=Chain("base", "flange")),)
+    assert model.groups == (Group("chain_1", chain=Chain("base", "flange")),)
     assert model.group_states[0].values == (("j1", 0.5),)
 
 
 def test_robot_without_actuated_joints_is_an_input_error(tmp_path):
     body = '<link name="a"/><link name="b"/><joint name="f" type="fixed"><parent link="a"/><child link="b"/></joint>'
     build_file_tree(tmp_path, {"r.urdf": urdf(body)})
-    with pytest.raises(InputError, match="no actuated joints"):
+    with pytest.raises(InputError, match="no actuated joints that form a limb.*docs/setup-file.md"):
         infer_setup(load_robot(tmp_path / "r.urdf"), package_name="p", source=SOURCE)
 
 

@@ -158,6 +158,8 @@ def init(
     )
     for line in result.inferred:
         typer.echo(f"  {line}")
+    for line in result.notes:
+        typer.echo(f"  {line}")
     for line in result.status_lines:
         typer.echo(line)
 

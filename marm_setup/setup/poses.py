@@ -1,0 +1,156 @@
+"""Named poses that work (DESIGN.md §2): a collision-free `home` for every group and a second
+pose, `ready`, for every limb group, so `validate` and `plan` have a pose pair out of the box.
+
+`home` is every group's joints at zero, clamped into the limits; when that state is in
+collision under the setup's matrix, the nearest collision-free state found by a seeded search
+around it. `ready` bends each joint of a limb group away from home (other joints at home) and
+is kept only when it and the straight path to it are collision-free; else a seeded random
+pose near home is taken. All values are rounded to 4 decimals before they are checked.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from marm_setup.robot.kinematics import default_configuration
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.model import GroupState, SetupModel
+
+HOME, READY = "home", "ready"
+SEARCH_SCALES = (0.05, 0.1, 0.2, 0.4, 0.8)  # [rad] (or that share of a prismatic joint's range)
+BATCH = 64
+READY_BEND = 0.4  # [rad]: how far `ready` bends each joint from home
+MIN_MOVE = 0.1  # [rad]: `ready` moves some joint at least this far
+PATH_STEPS = 12
+DECIMALS = 4
+
+
+@dataclass(frozen=True)
+class PoseResult:
+    states: tuple[GroupState, ...]
+    notes: tuple[str, ...]
+
+
+class _Space:
+    """The robot's active joints, a base state, and collision checks under the setup's matrix."""
+
+    def __init__(self, model: SetupModel, robot: RobotModel, scene):
+        self.robot, self.scene = robot, scene
+        self.names = robot.active_joint_names
+        self.index = {n: i for i, n in enumerate(self.names)}
+        self.lo = np.array([robot.joint(n).bounds[0] for n in self.names])
+        self.hi = np.array([robot.joint(n).bounds[1] for n in self.names])
+        self.pairs = scene.enabled_pairs([p.pair for p in model.collision.disabled])
+
+    def round(self, q: np.ndarray) -> np.ndarray:
+        return np.clip(np.round(q, DECIMALS), self.lo, self.hi)
+
+    def hits(self, q: np.ndarray) -> list:
+        """Per configuration (rows of q), the first colliding pair or None."""
+        return (
+            self.scene.first_collisions(np.atleast_2d(q), self.pairs)
+            if self.pairs
+            else [None] * len(np.atleast_2d(q))
+        )
+
+    def steps(self, idx: np.ndarray, scale: float) -> np.ndarray:
+        span = np.minimum(self.hi[idx] - self.lo[idx], 1.0)
+        return scale * span
+
+
+def infer_poses(model: SetupModel, robot: RobotModel, scene, *, seed: int = 0) -> PoseResult:
+    """`home` for each group without subgroups (collision-free together), `ready` for each of
+    them with two or more joints that is not an end effector."""
+    space = _Space(model, robot, scene)
+    by_name = groups_by_name(model.groups)
+    leaves = [g for g in model.groups if not g.subgroups]
+    joints = {g.name: active_group_joints(g, by_name, robot, model.passive_joints) for g in leaves}
+    leaves = [g for g in leaves if joints[g.name]]
+    rng = np.random.default_rng(seed)
+    q, notes = _home(space, [j for g in leaves for j in joints[g.name]], rng)
+    states = [_state(HOME, g.name, joints[g.name], q, space) for g in leaves]
+    hands = {ee.group for ee in model.end_effectors}
+    for group in (g for g in leaves if g.name not in hands and len(joints[g.name]) > 1):
+        ready, note = _ready(space, q, joints[group.name], rng)
+        notes += [f"group {group.name}: {note}"] if note else []
+        if ready is not None:
+            states.append(_state(READY, group.name, joints[group.name], ready, space))
+    return PoseResult(tuple(states), tuple(notes))
+
+
+def _state(name: str, group: str, joints: tuple[str, ...], q: np.ndarray, space: _Space) -> GroupState:
+    return GroupState(name, group, tuple((j, float(q[space.index[j]])) for j in joints))
+
+
+def _home(space: _Space, joints: list[str], rng) -> tuple[np.ndarray, list[str]]:
+    """Zeros clamped into the limits, or the nearest collision-free state found around them."""
+    q = default_configuration(space.robot)
+    idx = np.array([space.index[j] for j in joints], dtype=np.intp)
+    q[idx] = np.clip(0.0, space.lo[idx], space.hi[idx])
+    q = space.round(q)
+    hit = space.hits(q)[0]
+    if hit is None:
+        return q, []
+    for scale in SEARCH_SCALES:
+        found = _nearest_free(space, q, idx, scale, rng)
+        if found is not None:
+            moved = float(np.max(np.abs(found - q)))
+            return found, [
+                f"home: zeros are in collision ({hit[0]} - {hit[1]}); moved up to {moved:.3g} from zero"
+            ]
+    return q, [
+        f"home is in collision ({hit[0]} - {hit[1]}) and no free state was found near it: give one in a SPEC"
+    ]
+
+
+def _nearest_free(space: _Space, q: np.ndarray, idx: np.ndarray, scale: float, rng) -> np.ndarray | None:
+    cand = np.repeat(q[None], BATCH, axis=0)
+    cand[:, idx] += rng.uniform(-1.0, 1.0, (BATCH, len(idx))) * space.steps(idx, scale)
+    cand = space.round(cand)
+    free = [k for k, hit in enumerate(space.hits(cand)) if hit is None]
+    if not free:
+        return None
+    return cand[min(free, key=lambda k: float(np.linalg.norm(cand[k] - q)))]
+
+
+def _ready(space: _Space, home: np.ndarray, joints: tuple[str, ...], rng) -> tuple[np.ndarray | None, str]:
+    """A second pose for a chain group: a bend away from home, or a random one near it."""
+    idx = np.array([space.index[j] for j in joints], dtype=np.intp)
+    bent = _bend(space, home, idx)
+    if bent is not None and _free_path(space, home, bent):
+        return bent, ""
+    for scale in SEARCH_SCALES[2:]:
+        cand = np.repeat(home[None], BATCH, axis=0)
+        cand[:, idx] += rng.uniform(-1.0, 1.0, (BATCH, len(idx))) * space.steps(idx, scale * 2)
+        cand = space.round(cand)
+        for k in np.argsort(-np.max(np.abs(cand - home), axis=1)):
+            if np.max(np.abs(cand[k] - home)) >= MIN_MOVE and _free_path(space, home, cand[k]):
+                return cand[
+                    k
+                ], f"'{READY}' is a random collision-free pose near home (bending the joints collides)"
+    return (
+        None,
+        f"no collision-free second pose found near home: give one in a SPEC to plan '{HOME}' -> another pose",
+    )
+
+
+def _bend(space: _Space, home: np.ndarray, idx: np.ndarray) -> np.ndarray | None:
+    """Each joint bent by READY_BEND, alternating in sign, turned back where a limit is in the way."""
+    q = home.copy()
+    for k, i in enumerate(idx):
+        step = min(READY_BEND, 0.25 * (space.hi[i] - space.lo[i]))
+        sign = 1.0 if k % 2 == 0 else -1.0
+        if not space.lo[i] <= home[i] + sign * step <= space.hi[i]:
+            sign = -sign
+        q[i] = home[i] + sign * step
+    q = space.round(q)
+    return q if np.max(np.abs(q - home)) >= MIN_MOVE * 0.5 else None
+
+
+def _free_path(space: _Space, a: np.ndarray, b: np.ndarray) -> bool:
+    """`b` and the straight joint-space path from `a` to it are collision-free."""
+    t = np.linspace(0.0, 1.0, PATH_STEPS + 1)[1:, None]
+    return all(hit is None for hit in space.hits(a[None] + t * (b - a)[None]))
