@@ -162,6 +162,7 @@ class _Finder:
         elif _is_kind(seg.joints, "hand"):
             self.loose_hands.append(seg)
         else:
+            seg = self._split_torso(seg)
             own, tail = _split_hand(seg.joints)
             if tail or self._ends_in_fingers(seg, own):
                 self.raw.append(_RawLimb("arm", seg.start, own, True))
@@ -169,6 +170,19 @@ class _Finder:
             self._add_limb(seg, own)
             for child in seg.children:
                 self.visit(child)
+
+    def _split_torso(self, seg: _Segment) -> _Segment:
+        """Leading torso-named joints (`torso_lift_joint` before an arm) become a torso limb; the
+        rest of the segment starts after them."""
+        active = [i for i, j in enumerate(seg.joints) if j.is_active]
+        lead = 0
+        while lead < len(active) and _is_kind([seg.joints[active[lead]]], "torso"):
+            lead += 1
+        if lead == 0 or lead == len(active):
+            return seg
+        cut = active[lead - 1] + 1
+        self.raw.append(_RawLimb("torso", seg.start, seg.joints[:cut], False))
+        return _Segment(seg.joints[cut - 1].child, seg.joints[cut:], seg.children)
 
     def _ends_in_fingers(self, seg: _Segment, own: list[Joint]) -> bool:
         """Every chain after `seg` is a finger: named so, or (a guess) short unnamed leaves."""

@@ -543,3 +543,17 @@ def test_init_and_collisions_give_the_same_trials_error(tmp_path, trials, messag
     for result in (init, collisions):
         assert (result.exit_code, result.stdout, result.stderr) == (2, "", f"error: --trials: {message}\n")
     assert not out.exists()
+
+
+@pytest.mark.parametrize("robot", ["dual_arm_table", "wheeled_manipulator"])
+def test_inferred_package_of_a_tree_validates_and_plans_a_pose_pair_per_arm(tmp_path, robot):
+    out = tmp_path / robot
+    urdf = FIXTURES / "synthetic" / f"{robot}.urdf"
+    result = runner.invoke(app, ["init", str(urdf), "--out", str(out), "--trials", "300"])
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(app, ["validate", str(out)])
+    assert result.exit_code == 0, result.output
+    summary = result.stdout.splitlines()[-2]
+    arms = [g.name for g in load_setup(out / "marm_setup.yaml").groups if g.name.endswith("arm")]
+    assert f"planned {2 * len(arms)} pose pairs" in summary
+    assert result.stdout.splitlines()[-1] == "no findings"
