@@ -86,6 +86,7 @@ def _base(pkg: ConfigPackage, robot: RobotModel, request: PortRequest, log: Port
         target=request.target,
         ros_distro=request.ros_distro,
         author=port_author(pkg, log),
+        driver=given.driver or ("arbotix" if pkg.arbotix is not None else None),
     )
 
 
@@ -215,7 +216,7 @@ def _with_controllers(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, 
             )
     report_driver(pkg, controllers, model.target, log)
     arbotix = port_arbotix(pkg, robot, model.target, log)
-    if model.target == "ros1" and not arbotix:
+    if model.target == "ros1" and model.driver == "arbotix" and not arbotix:
         model = dataclasses.replace(model, controllers=controllers)
         arbotix = derive_group_settings(model, robot).arbotix_joints
         ids = ", ".join(f"{a.joint}={a.id}" for a in arbotix)

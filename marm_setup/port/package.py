@@ -242,11 +242,12 @@ def read_files(pkg: ConfigPackage) -> set[str]:
 
 
 def report_marm_setup(pkg: ConfigPackage, log: PortLog) -> dict:
-    """marm_setup.yaml keys no rendered file holds (the collision sampling, default_acceleration)."""
+    """marm_setup.yaml keys no rendered file holds (the collision sampling, default_acceleration,
+    the ros1 driver)."""
     data = pkg.marm_setup.data if pkg.marm_setup is not None else None
     if not isinstance(data, dict):
         return {}
-    out = {k: data[k] for k in ("collision", "default_acceleration") if k in data}
+    out = {k: data[k] for k in ("collision", "default_acceleration", "driver") if k in data}
     for key in out:
         log.carried(key, where("marm_setup.yaml", key), "kept from the source's marm_setup.yaml")
     return out

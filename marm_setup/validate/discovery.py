@@ -210,12 +210,12 @@ def _prepare_launch(reader, root: Path, launch_files, paths, target: str) -> Non
     """What the ROS 1 launch files load: subst_value files and their args, rosparam files, the SRDF."""
     if target != "ros1":
         return
-    from marm_setup.robot.ros_packages import find_packages
+    from marm_setup.robot.ros_packages import PackageIndex, find_packages
 
     try:
         packages = find_packages(paths)
     except InputError:
-        packages = {}
+        packages = PackageIndex()
     reader.find = lambda name: str(packages[name]) if name in packages else None
     reader.contexts = subst_contexts(root, launch_files, reader.find)
     reader.loaded = tuple(loaded_files(root, launch_files, reader.find))
