@@ -43,10 +43,24 @@ class Srdf:
 
 
 class _Reader:
-    """Attribute access that raises an InputError naming the file and element."""
+    """Attribute access that raises an InputError naming the file and element; with `skipped`
+    (a list), `each` drops an element that fails and records the error there instead."""
 
-    def __init__(self, path: str):
+    def __init__(self, path: str, skipped: list[InputError] | None = None):
         self.path = path
+        self.skipped = skipped
+
+    def each(self, elems, parse) -> list:
+        """`parse(self, elem)` for each element; failures raise, or are skipped and recorded."""
+        out = []
+        for elem in elems:
+            try:
+                out.append(parse(self, elem))
+            except InputError as exc:
+                if self.skipped is None:
+                    raise
+                self.skipped.append(exc)
+        return out
 
     def attr(self, elem, name: str, where: str) -> str:
         value = elem.get(name)
@@ -81,49 +95,54 @@ def read_srdf(path: str | PathLike) -> Srdf:
     return parse_srdf_root(root, shown)
 
 
-def parse_srdf_string(text: str, path: str = "<srdf>") -> Srdf:
+def parse_srdf_string(text: str, path: str = "<srdf>", skipped: list[InputError] | None = None) -> Srdf:
     from lxml import etree
 
     try:
         root = etree.fromstring(text.encode(), etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError as exc:
         raise InputError(f"not well-formed XML: {exc}", path=path) from None
-    return parse_srdf_root(root, path)
+    return parse_srdf_root(root, path, skipped)
 
 
-def parse_srdf_root(root, path: str) -> Srdf:
-    r = _Reader(path)
+def parse_srdf_root(root, path: str, skipped: list[InputError] | None = None) -> Srdf:
+    """The SRDF of an lxml root; with `skipped`, an element that cannot be read is left out and
+    its error recorded there (as srdfdom logs and skips it), so the rest can still be checked."""
+    r = _Reader(path, skipped)
     if root.tag != "robot":
         raise r.fail(f"root element is <{root.tag}>, expected <robot>", "robot")
     return Srdf(
         robot_name=root.get("name", ""),
-        groups=tuple(_group(r, e) for e in root.iterchildren("group")),
-        group_states=tuple(_group_state(r, e) for e in root.iterchildren("group_state")),
-        end_effectors=tuple(_end_effector(r, e) for e in root.iterchildren("end_effector")),
-        virtual_joints=tuple(_virtual_joint(r, e) for e in root.iterchildren("virtual_joint")),
-        passive_joints=tuple(r.attr(e, "name", "passive_joint") for e in root.iterchildren("passive_joint")),
+        groups=tuple(r.each(root.iterchildren("group"), _group)),
+        group_states=tuple(r.each(root.iterchildren("group_state"), _group_state)),
+        end_effectors=tuple(r.each(root.iterchildren("end_effector"), _end_effector)),
+        virtual_joints=tuple(r.each(root.iterchildren("virtual_joint"), _virtual_joint)),
+        passive_joints=tuple(r.each(root.iterchildren("passive_joint"), _passive_joint)),
         disabled=_disabled(r, root),
         extras=SrdfExtras(
             enable_collisions=_enabled(r, root),
             disable_default_collisions=tuple(
-                sorted(
-                    {
-                        r.attr(e, "link", "disable_default_collisions")
-                        for e in root.iterchildren("disable_default_collisions")
-                    }
-                )
+                sorted(set(r.each(root.iterchildren("disable_default_collisions"), _default_off)))
             ),
             joint_properties=tuple(
-                sorted((_joint_property(r, e) for e in root.iterchildren("joint_property")), key=_jp_key)
+                sorted(r.each(root.iterchildren("joint_property"), _joint_property), key=_jp_key)
             ),
             link_sphere_approximations=tuple(
                 sorted(
-                    (_link_spheres(r, e) for e in root.iterchildren("link_sphere_approximation")),
+                    r.each(root.iterchildren("link_sphere_approximation"), _link_spheres),
                     key=lambda s: s.link,
                 )
             ),
         ),
     )
+
+
+def _passive_joint(r: _Reader, elem) -> str:
+    return r.attr(elem, "name", "passive_joint")
+
+
+def _default_off(r: _Reader, elem) -> str:
+    return r.attr(elem, "link", "disable_default_collisions")
 
 
 def _group(r: _Reader, elem) -> Group:
@@ -147,13 +166,15 @@ def _group(r: _Reader, elem) -> Group:
 def _group_state(r: _Reader, elem) -> GroupState:
     name = r.attr(elem, "name", "group_state")
     where = f"group_state[{name}]"
-    values = []
-    for j in elem.iterchildren("joint"):
+
+    def value(r: _Reader, j) -> tuple[str, float]:
         joint = r.attr(j, "name", f"{where}.joint")
         text = r.attr(j, "value", f"{where}.joint[{joint}]").split()
         if len(text) != 1:
             raise r.fail("multi-DOF joint values are not supported", f"{where}.joint[{joint}]")
-        values.append((joint, r.number(text[0], f"{where}.joint[{joint}]")))
+        return joint, r.number(text[0], f"{where}.joint[{joint}]")
+
+    values = r.each(elem.iterchildren("joint"), value)  # srdfdom skips only the bad <joint>
     return GroupState(name=name, group=r.attr(elem, "group", where), values=tuple(values))
 
 
@@ -186,20 +207,22 @@ def _disabled(r: _Reader, root) -> tuple[DisabledPair, ...]:
     """
     known = {m.value for m in DisabledReason}
     pairs: dict[tuple[str, str], DisabledPair] = {}
-    for e in root.iterchildren("disable_collisions"):
-        a, b = r.attr(e, "link1", "disable_collisions"), r.attr(e, "link2", "disable_collisions")
-        reason = e.get("reason") or DisabledReason.USER.value
-        if reason not in known:
-            reason = DisabledReason.USER.value
+    for a, b, reason in r.each(root.iterchildren("disable_collisions"), _pair_attrs):
+        reason = reason if reason in known else DisabledReason.USER.value
         pairs.setdefault(link_pair(a, b), DisabledPair.of(a, b, reason))
     return tuple(sorted(pairs.values()))
 
 
+def _pair_attrs(r: _Reader, e) -> tuple[str, str, str]:
+    where = str(e.tag)
+    return r.attr(e, "link1", where), r.attr(e, "link2", where), e.get("reason") or ""
+
+
 def _enabled(r: _Reader, root) -> tuple[CollisionPair, ...]:
     pairs: dict[tuple[str, str], CollisionPair] = {}
-    for e in root.iterchildren("enable_collisions"):
-        a, b = link_pair(r.attr(e, "link1", "enable_collisions"), r.attr(e, "link2", "enable_collisions"))
-        pairs.setdefault((a, b), CollisionPair(a, b, e.get("reason", "")))
+    for a1, b1, reason in r.each(root.iterchildren("enable_collisions"), _pair_attrs):
+        a, b = link_pair(a1, b1)
+        pairs.setdefault((a, b), CollisionPair(a, b, reason))
     return tuple(pairs[k] for k in sorted(pairs))
 
 

@@ -35,6 +35,7 @@ from marm_setup.validate.rules.name_rules import check_controller_names, check_s
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.pose_rules import check_initial_positions
 from marm_setup.validate.rules.srdf_rules import check_srdf
+from marm_setup.validate.sources import skipped_groups
 
 MATRIX_TRIALS = 1000
 
@@ -107,7 +108,7 @@ def validate(
         findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
     pairs = None
     if robot is not None and pkg.srdf is not None:
-        findings += check_static(pkg, robot)
+        findings += without_skipped_group_cascade(check_static(pkg, robot), pkg)
         scene_findings, pairs = check_with_scene(pkg, robot, plan=plan, matrix_trials=matrix_trials)
         findings += scene_findings
     return Validation(
@@ -123,9 +124,22 @@ def validate(
     )
 
 
+def without_skipped_group_cascade(findings: list[Finding], pkg: ConfigPackage) -> list[Finding]:
+    """Drop 'unknown group' findings about a group the SRDF has but that could not be read (its
+    own finding says why): subgroups, kinematics, OMPL and controllers name it rightly."""
+    gone = skipped_groups([f for f in pkg.problems if f.rule in ("srdf.parse", "srdf.unsupported")])
+    marks = tuple(f"{kind} '{g}'" for g in gone for kind in ("unknown group", "unknown subgroup"))
+    return [f for f in findings if not any(mark in f.message for mark in marks)]
+
+
 def skipped_families(pkg: ConfigPackage, robot) -> tuple[str, ...]:
     """What did not run or ran on less than the whole file, each with why (for the summary)."""
     out = [f"the rules on {f.file} ({f.message})" for f in pkg.problems if f.rule == "yaml.parse"]
+    out += [
+        f"{f.element} of {f.file} ({f.message})"
+        for f in pkg.problems
+        if f.rule in ("srdf.parse", "srdf.unsupported")
+    ]
     if robot is None:
         out.append("every rule needing the robot (its URDF did not load)")
     elif pkg.srdf is None:

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from marm_setup.errors import InputError, MarmError
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import package_name
 
 MARM_MOVEIT_YAML = "config/moveit.yaml"
@@ -96,12 +96,48 @@ def read_srdf_source(
     from marm_setup.setup.srdf import parse_srdf_string
 
     file = root / rel
+    skipped: list[InputError] = []
     try:
         text = _srdf_text(file, rel, paths, args or {})
-        return parse_srdf_string(text, rel), text
+        srdf = parse_srdf_string(text, rel, skipped)
     except MarmError as exc:
         problems.append(error("srdf.parse", rel, exc.element or "", exc.message))
         return None, None
+    problems += [_skipped_element(rel, exc) for exc in skipped]
+    return _without_skipped_groups(srdf, skipped), text
+
+
+def _skipped_element(rel: str, exc: InputError) -> Finding:
+    """An SRDF element left out: srdfdom also skips one missing an attribute (logging an error);
+    a form srdfdom reads but this validator does not model is only not checked."""
+    if "not supported" in exc.message:
+        return warning("srdf.unsupported", rel, exc.element or "", f"not checked: {exc.message}")
+    return error("srdf.parse", rel, exc.element or "", f"{exc.message} (srdfdom skips this element)")
+
+
+def skipped_groups(skipped) -> set[str]:
+    """Names of the groups left out (errors or findings whose element is `group[NAME]`)."""
+    return {
+        e.element[len("group[") : -1]
+        for e in skipped
+        if (e.element or "").startswith("group[") and e.element.endswith("]")
+    }
+
+
+def _without_skipped_groups(srdf, skipped: list[InputError]):
+    """Poses and end effectors of a group left out are left out too (no cascade of 'unknown group')."""
+    import dataclasses
+
+    gone = skipped_groups(skipped)
+    if not gone:
+        return srdf
+    return dataclasses.replace(
+        srdf,
+        group_states=tuple(s for s in srdf.group_states if s.group not in gone),
+        end_effectors=tuple(
+            e for e in srdf.end_effectors if e.group not in gone and e.parent_group not in gone
+        ),
+    )
 
 
 def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...], args: dict) -> str:

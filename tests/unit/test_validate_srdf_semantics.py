@@ -69,3 +69,33 @@ def test_a_passive_joint_nested_in_a_group_is_ignored_by_srdfdom(tmp_path):
     assert found(pkg, good, "srdf.nested") == [
         ("srdf.nested-passive-joint", "error", "group[hand].passive_joint")
     ]
+
+
+def test_one_malformed_srdf_element_leaves_the_rest_checked(tmp_path):
+    """A pose value without its attribute (srdfdom skips that <joint>): that value is reported,
+    every other element is still read and checked (the transport collision is still found)."""
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, SRDF, '<joint name="panda_joint1" value="0"/>', '<joint name="panda_joint1"/>')
+    errors = sorted((f.rule, f.element) for f in run(pkg, good, matrix_trials=0) if f.is_error)
+    assert errors == [
+        ("pose.collision", "group_state[transport]"),
+        ("srdf.parse", "group_state[ready].joint[panda_joint1]"),
+    ]
+
+
+def test_a_group_this_validator_cannot_model_is_skipped_without_a_cascade(tmp_path):
+    """Two <chain>s in one group (srdfdom reads them): a warning that it is not checked, and no
+    'unknown group' from kinematics, OMPL or poses that name it."""
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    chain = '<chain base_link="panda_link0" tip_link="panda_link8"/>'
+    replace_text(pkg, SRDF, chain, chain + "\n" + chain)
+    found = [
+        (f.rule, f.severity, f.element)
+        for f in run(pkg, good, matrix_trials=0)
+        if f.file != "launch/demo.launch"
+    ]
+    assert ("srdf.unsupported", "warning", "group[panda_arm]") in found
+    # poses may collide now that the arm's `ready` start pose is gone: the rest is no cascade
+    assert not [f for f in found if f[1] == "error" and f[0] != "pose.collision"], found
