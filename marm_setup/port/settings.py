@@ -9,7 +9,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from marm_setup.port.report import PortLog, where
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot.model import RobotModel, limit_slack
 from marm_setup.setup.domain import DEFAULT_PLANNER, KDL_PLUGIN, OMPL_PLANNER_NAMES, OMPL_PLANNERS
 from marm_setup.setup.model import JointLimitOverride, Kinematics, PlannerDefaults
 from marm_setup.validate.discovery import ConfigSection
@@ -28,8 +28,6 @@ SCALING_KEYS = {
     "default_velocity_scaling_factor": "default_velocity_scaling",
     "default_acceleration_scaling_factor": "default_acceleration_scaling",
 }
-# A limit that differs from the URDF's by less than this fraction of it is the URDF's (rounding).
-ROUNDING = 1e-4
 
 
 def _number(value: Any) -> float | None:
@@ -167,7 +165,8 @@ def _scaling(section: ConfigSection, data: dict, log: PortLog) -> dict[str, floa
 
 
 def _same(a: float, b: float | None) -> bool:
-    return b is not None and abs(a - b) <= ROUNDING * max(abs(b), 1e-9)
+    """`a` is `b` up to the rounding of a limit written in a file (`limit_slack`)."""
+    return b is not None and abs(a - b) <= limit_slack(b)
 
 
 def _limit(

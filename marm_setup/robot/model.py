@@ -13,6 +13,14 @@ ACTUATED_TYPES = ("revolute", "continuous", "prismatic")
 # [rad] or [m]: the slack of every comparison with a joint limit (a value written at full
 # precision sits on its limit).
 LIMIT_TOLERANCE = 1e-9
+# Limits in YAML files are written rounded (2.0944 for the URDF's 2.0943951): a value within this
+# fraction of a limit is that limit.
+LIMIT_ROUNDING = 1e-4
+
+
+def limit_slack(limit: float) -> float:
+    """How far a value written in a file may pass `limit` and still be on it [rad, m, or per s]."""
+    return max(LIMIT_TOLERANCE, LIMIT_ROUNDING * abs(limit))
 
 
 @dataclass(frozen=True, slots=True)

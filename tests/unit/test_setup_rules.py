@@ -166,3 +166,12 @@ def test_group_links_expand_each_subgroup_once_on_diamonds(marm):
         groups[f"r{i}"] = Group(f"r{i}", links=("link2",), subgroups=(f"n{i + 1}",))
     assert group_links(groups["n0"], groups, marm) == ("link1", "link2", "link6")
     assert set(groups.reads.values()) == {1} and len(groups.reads) == 3 * 12 + 1
+
+
+def test_a_limit_written_rounded_is_the_same_limit():
+    """One slack for every file-vs-URDF limit comparison (validate's limits rules, the port)."""
+    from marm_setup.robot.model import limit_slack
+
+    assert limit_slack(2.0943951) >= 2.0944 - 2.0943951  # 5 significant digits
+    assert limit_slack(2.0943951) < 2.1 - 2.0943951
+    assert limit_slack(0.0) == LIMIT_TOLERANCE

@@ -17,7 +17,7 @@ from numbers import Real
 from typing import Any, TypeGuard
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.robot.model import LIMIT_TOLERANCE, RobotModel
+from marm_setup.robot.model import RobotModel, limit_slack
 from marm_setup.setup.groups import planning_joints
 
 FLAGS = {
@@ -27,17 +27,15 @@ FLAGS = {
     "max_effort": "has_effort_limits",
 }
 NUMERIC_KEYS = (*FLAGS, "min_position", "max_position")
-# Values are written rounded (2.0944 for the URDF's 2.0943951): "above the URDF" means above
-# it by more than this fraction of the limit.
-ROUNDING = 1e-4
 
 
 def _above(value: float, limit: float) -> bool:
-    return value > limit + max(LIMIT_TOLERANCE, ROUNDING * abs(limit))
+    """Above the URDF's limit by more than rounding (`limit_slack`)."""
+    return value > limit + limit_slack(limit)
 
 
 def _below(value: float, limit: float) -> bool:
-    return value < limit - max(LIMIT_TOLERANCE, ROUNDING * abs(limit))
+    return value < limit - limit_slack(limit)
 
 
 def check_joint_limits(section, srdf, robot: RobotModel, target: str) -> list[Finding]:
