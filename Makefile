@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed
 DEMO_DIR ?= demo_out
 DEMO_OUT := $(DEMO_DIR)/marm_moveit_config
 
-.PHONY: demo test lint bench clean
+.PHONY: demo test lint bench fuzz clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -29,6 +29,12 @@ test: $(STAMP)
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/mypy
 	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci
+
+# The reliability suite at length: a random-seeded fuzzer (FUZZ_EXAMPLES per input kind) and
+# RELIABILITY_KILLS SIGKILLs per writing command; prints its counts.
+fuzz: $(STAMP)
+	FUZZ_EXAMPLES=$${FUZZ_EXAMPLES:-300} RELIABILITY_KILLS=$${RELIABILITY_KILLS:-50} \
+		$(BIN)/python -m pytest -q -s -p no:cacheprovider --hypothesis-profile=dev tests/reliability
 
 lint: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks

@@ -10,7 +10,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import shutil
 import stat
 import tempfile
 from collections.abc import Iterable
@@ -19,6 +18,7 @@ from pathlib import Path
 from typing import Literal
 
 from marm_setup.errors import ConflictError, InputError
+from marm_setup.render.switch import package_lock, switch_package
 from marm_setup.templating import RenderedFile
 
 MANIFEST = ".marm_setup/manifest.json"
@@ -100,36 +100,17 @@ def conflicts(changes: Iterable[FileChange]) -> list[str]:
     return [c.path for c in changes if c.status == "conflict"]
 
 
-def _write_file(path: Path, content: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w", encoding="utf-8", newline="\n") as handle:
-        handle.write(content)
-    if path.suffix == ".py" or path.suffix == ".sh":
-        path.chmod(0o755)
-
-
-def _stage(changes: list[FileChange], stage: Path, manifest: dict[str, str]) -> list[str]:
-    """Write every changed file (and the manifest) under stage; return the relative paths."""
-    written = []
-    for change in changes:
-        manifest[change.path] = sha256(_encode(change.content))
-        if change.writes:
-            _write_file(stage / change.path, change.content)
-            written.append(change.path)
-    _write_file(stage / MANIFEST, _manifest_text(manifest))
-    return [*written, MANIFEST]
-
-
 def _is_fresh(out_dir: Path) -> bool:
     return not out_dir.exists() or (out_dir.is_dir() and not any(out_dir.iterdir()))
 
 
 def apply_writes(changes: list[FileChange], out_dir: Path, *, force: bool = False) -> list[FileChange]:
-    """Write the changes atomically per file; returns the changes that wrote something.
+    """Switch the package to its new version as a whole; returns the changes that wrote something.
 
     Raises ConflictError (nothing written) when a hand-edited file would be overwritten and
-    `force` is false. All content is staged in a sibling temp dir first, so a failure before the
-    swap leaves the package as it was.
+    `force` is false; with `force` the edited file is kept as `<path>.orig`. Under the package's
+    lock the disk is compared again with what `changes` was planned from (another run may have
+    written meanwhile), then the complete new package is swapped in (`render.switch`).
     """
     clashing = conflicts(changes)
     if clashing and not force:
@@ -141,38 +122,33 @@ def apply_writes(changes: list[FileChange], out_dir: Path, *, force: bool = Fals
     out_dir = Path(out_dir)
     if _nothing_to_do(changes, out_dir):
         return []
+    shown, real = str(out_dir), Path(os.path.realpath(out_dir))
     try:
-        out_dir.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=".marm-setup-", dir=out_dir.parent))
+        with package_lock(real, shown):
+            _recheck(changes, real, shown)
+            manifest = {} if _is_fresh(real) else load_manifest(real)
+            files: dict[str, str | None] = {}
+            for change in changes:
+                manifest[change.path] = sha256(_encode(change.content))
+                if change.writes:
+                    files[change.path] = change.content
+            files[MANIFEST] = _manifest_text(manifest)
+            switch_package(real, files, set(conflicts(changes)), shown)
     except OSError as exc:
         raise _write_error(exc, out_dir) from None
-    try:
-        manifest = {} if _is_fresh(out_dir) else load_manifest(out_dir)
-        _swap_in(tmp / "pkg", _stage(changes, tmp / "pkg", manifest), out_dir)
-    except OSError as exc:
-        raise _write_error(exc, out_dir) from None
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
     return [c for c in changes if c.writes]
 
 
-def _swap_in(stage: Path, written: list[str], out_dir: Path) -> None:
-    """Move the staged files into out_dir: the whole folder when fresh, else file by file."""
-    if _is_fresh(out_dir):
-        try:
-            if out_dir.exists():
-                out_dir.rmdir()
-            os.rename(stage, out_dir)
-        except OSError as exc:
-            raise _write_error(exc, out_dir) from None
-        return
-    for rel in written:
-        target = out_dir / rel
-        try:
-            target.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(stage / rel, target)
-        except OSError as exc:
-            raise _write_error(exc, out_dir, rel) from None
+def _recheck(changes: list[FileChange], real: Path, shown: str) -> None:
+    """The disk still is what the changes were planned from (no other run wrote meanwhile)."""
+    manifest = load_manifest(real)
+    for change in changes:
+        if _status(real / change.path, _encode(change.content), manifest.get(change.path)) != change.status:
+            raise ConflictError(
+                f"{change.path} changed while this run was rendering (another marm-setup run?): "
+                "nothing written; run again",
+                path=shown,
+            )
 
 
 def _write_error(exc: OSError, out_dir: Path, rel: str | None = None) -> InputError:

@@ -33,7 +33,11 @@ def render(
     changes = plan_writes(rendered, dir)
     clashing = conflicts(changes)
     for change in changes:
-        suffix = " (overwritten: --force)" if force and change.status == "conflict" and not dry_run else ""
+        suffix = (
+            f" (overwritten: --force; yours kept as {change.path}.orig)"
+            if force and change.status == "conflict" and not dry_run
+            else ""
+        )
         typer.echo(format_change(change) + suffix)
     for path in stale_files(changes, dir, keep=[SETUP_FILE]):
         typer.echo(f"{'stale':<10}{path} (no longer generated; left in place)")

@@ -1,0 +1,214 @@
+"""A fuzzer over URDF, setup file and SRDF: every run exits 0, 1 or 2 without a traceback, and
+every package written with exit 0 parses (XML, YAML, Python) and passes our own `validate`.
+
+`make test` runs a few examples per input kind; `make fuzz` runs FUZZ_EXAMPLES of each with a
+random seed and prints the counts."""
+
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import tempfile
+from collections import Counter
+from pathlib import Path
+
+import pytest
+import yaml
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from lxml import etree
+
+from tests.reliability.checks import assert_clean_exit, assert_package_parses, run
+
+EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "5"))
+FUZZ = settings(max_examples=EXAMPLES, deadline=None, suppress_health_check=list(HealthCheck))
+STATS: Counter = Counter()
+
+HOSTILE = ["a b", "x$(env HOME)", "--help", "q'\"", "n\nl", "a: b", "wait...", "<&>", "-", "1e3", "é", "a--b"]
+_valid = st.from_regex(r"[A-Za-z_][A-Za-z0-9_]{0,7}", fullmatch=True)
+_any = st.text(st.characters(exclude_categories=("Cs",)), min_size=0, max_size=8)
+names = st.one_of(_valid, _valid, _valid, st.sampled_from(HOSTILE), _any)  # mostly names that pass
+_sane = st.floats(-0.9, 0.9)
+numbers = st.one_of(
+    _sane,
+    _sane,
+    _sane,
+    st.sampled_from([0.0, 1e308, -1e300, 1e-300, math.nan, math.inf, 1e9, 2e9]),
+    st.floats(allow_nan=True, allow_infinity=True),
+)
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _report():
+    yield
+    print(f"\nfuzz: {dict(sorted(STATS.items()))}")
+
+
+def _xml(root: etree._Element) -> bytes:
+    return etree.tostring(root, xml_declaration=True, encoding="utf-8")
+
+
+def _el(parent, tag: str, **attrs) -> etree._Element:
+    try:
+        return etree.SubElement(parent, tag, {k: str(v) for k, v in attrs.items()})
+    except ValueError:  # a name XML cannot hold (control characters): lxml refuses it
+        return etree.SubElement(parent, tag, {k: "x" for k in attrs})
+
+
+def robot_xml(robot: str, links: list[str], values: list[float]) -> bytes:
+    """A 3-link arm: base -> l1 -> l2 (revolute), l2 -> tool (fixed); boxes on the first three."""
+    root = etree.Element("robot")
+    try:
+        root.set("name", robot)
+    except ValueError:
+        root.set("name", "r")
+    for i, name in enumerate(links):
+        link = _el(root, "link", name=name)
+        if i < 3:
+            geometry = etree.SubElement(etree.SubElement(link, "collision"), "geometry")
+            _el(geometry, "box", size=f"{values[0] if i == 0 else 0.05} 0.05 0.05")
+    for i in range(3):
+        joint = _el(root, "joint", name=f"j{i + 1}", type="revolute" if i < 2 else "fixed")
+        _el(joint, "parent", link=links[i])
+        _el(joint, "child", link=links[i + 1])
+        _el(joint, "origin", xyz=f"0 0 {values[1] if i == 1 else 0.1}")
+        _el(joint, "axis", xyz="0 0 1")
+        if i < 2:
+            _el(joint, "limit", lower=-1, upper=values[2] if i == 0 else 1, velocity=1, effort=1)
+    return _xml(root)
+
+
+def _check_run(args: list, out: Path) -> None:
+    result = run(*args)
+    assert_clean_exit(result)
+    STATS[f"exit {result.exit_code}"] += 1
+    if os.environ.get("FUZZ_VERBOSE") and result.exit_code == 2:
+        print(result.stderr.strip()[:160])
+    if result.exit_code == 0:
+        assert_package_parses(out)
+        validated = run("validate", out, "--no-plan")
+        assert_clean_exit(validated, codes=(0,))
+        STATS["packages validated"] += 1
+
+
+def _workdir() -> Path:
+    return Path(tempfile.mkdtemp(prefix="marm-fuzz-"))
+
+
+@FUZZ
+@given(
+    robot=names,
+    links=st.lists(names, min_size=4, max_size=4),
+    values=st.lists(numbers, min_size=3, max_size=3),
+    cut=st.one_of(st.none(), st.none(), st.none(), st.integers(0, 2000)),
+    target=st.sampled_from(["ros1", "ros2"]),
+)
+def test_fuzz_urdf(robot, links, values, cut, target):
+    work = _workdir()
+    try:
+        text = robot_xml(robot, links, values)
+        (work / "r.urdf").write_bytes(text if cut is None else text[:cut])
+        STATS["urdf examples"] += 1
+        _check_run(
+            ["init", work / "r.urdf", "--out", work / "pkg", "--trials", "10", "--target", target],
+            work / "pkg",
+        )
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+SAFE_ROBOT = robot_xml("fuzzbot", ["base", "l1", "l2", "tool"], [0.05, 0.1, 1.0])
+
+
+def _spec(group, pose, ee, ctl, ns, q, scale, target) -> dict:
+    return {
+        "target": target,
+        "groups": [
+            {"name": group, "chain": {"base": "base", "tip": "tool"}},
+            {"name": "hand", "links": ["tool"]},
+        ],
+        "group_states": [{"name": pose, "group": group, "values": {"j1": q, "j2": 0.0}}],
+        "end_effectors": [{"name": ee, "group": "hand", "parent_link": "l2"}],
+        "controllers": [
+            {"name": ctl, "type": "FollowJointTrajectory", "action_ns": ns, "joints": ["j1", "j2"]}
+        ],
+        "default_velocity_scaling": scale,
+    }
+
+
+@FUZZ
+@given(
+    group=names,
+    pose=names,
+    ee=names,
+    ctl=names,
+    ns=names,
+    q=numbers,
+    scale=numbers,
+    target=st.sampled_from(["ros1", "ros2"]),
+    cut=st.one_of(st.none(), st.none(), st.none(), st.integers(0, 600)),
+)
+def test_fuzz_setup_file(group, pose, ee, ctl, ns, q, scale, target, cut):
+    work = _workdir()
+    try:
+        (work / "r.urdf").write_bytes(SAFE_ROBOT)
+        text = yaml.safe_dump(_spec(group, pose, ee, ctl, ns, q, scale, target), allow_unicode=True)
+        (work / "spec.yaml").write_text(text if cut is None else text[:cut], encoding="utf-8")
+        STATS["setup examples"] += 1
+        args = [
+            "init",
+            work / "r.urdf",
+            "--out",
+            work / "pkg",
+            "--trials",
+            "10",
+            "--setup",
+            work / "spec.yaml",
+        ]
+        _check_run(args, work / "pkg")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def srdf_xml(group: str, pose: str, joint: str, value: float, vj_type: str) -> bytes:
+    root = etree.Element("robot", name="fuzzbot")
+    g = _el(root, "group", name=group)
+    _el(g, "chain", base_link="base", tip_link="tool")
+    state = _el(root, "group_state", name=pose, group=group)
+    _el(state, "joint", name=joint, value=value)
+    _el(state, "joint", name="j2", value=0)
+    _el(root, "virtual_joint", name="vj", type=vj_type, parent_frame="world", child_link="base")
+    return _xml(root)
+
+
+@FUZZ
+@given(
+    group=names,
+    pose=names,
+    joint=st.one_of(st.just("j1"), names),
+    value=numbers,
+    vj_type=st.sampled_from(["fixed", "planar", "floating", "hinge", ""]),
+    target=st.sampled_from(["ros1", "ros2"]),
+)
+def test_fuzz_srdf(group, pose, joint, value, vj_type, target):
+    work = _workdir()
+    try:
+        (work / "r.urdf").write_bytes(SAFE_ROBOT)
+        (work / "r.srdf").write_bytes(srdf_xml(group, pose, joint, value, vj_type))
+        STATS["srdf examples"] += 1
+        args = [
+            "init",
+            work / "r.urdf",
+            "--out",
+            work / "pkg",
+            "--trials",
+            "10",
+            "--from-srdf",
+            work / "r.srdf",
+            "--target",
+            target,
+        ]
+        _check_run(args, work / "pkg")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
