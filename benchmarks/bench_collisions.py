@@ -1,111 +1,108 @@
-"""Benchmark: compute_collision_matrix against a plain loop calling coal on every pair of every sample.
+"""Benchmark: `marm-setup collisions` as a whole process, next to the bare-import floor.
 
-Run: `.venv/bin/python benchmarks/bench_collisions.py [--trials 10000] [--jobs 1]`.
-For the marm fixture and (when present) the shared real-world panda, prints the wall time of
-our algorithm and of the plain loop over the same samples (default state, Always rounds and
-trials), their ratio, the narrow-phase (coal collide) call counts, and whether both give the
-same matrix. Single process unless --jobs is given.
+Run: `.venv/bin/python benchmarks/bench_collisions.py [--trials 10000] [--runs 3] [--jobs N]
+[--robot marm|panda|pr2 ...] [--exhaustive]`.
+
+For the marm fixture, the shared real-world panda and the PR2 (`../shared/realworld`, skipped
+when absent) it prints, measured in the same run and interleaved so load hits both alike:
+- the median wall time of the whole `marm-setup collisions URDF --trials N` process and of
+  `python -c "import numpy, coal, lxml.etree"` (the floor any Python tool pays), and their ratio;
+- the matrix phase alone (compute_collision_matrix in this process) and its work: exact coal
+  checks, certificate distance queries, states a certificate proved, hull tests and rejections;
+- with --exhaustive, the same phase with the shortcuts off (every state checked exactly) and
+  whether both matrices are identical.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
+import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from marm_setup.collision.matrix import ROUND, compute_collision_matrix, trial_samples  # noqa: E402
-from marm_setup.collision.pairs import DisabledPair, DisabledReason  # noqa: E402
+from marm_setup.collision.matrix import compute_collision_matrix  # noqa: E402
 from marm_setup.collision.scene import CollisionScene  # noqa: E402
-from marm_setup.robot.kinematics import default_configuration, sample_configurations  # noqa: E402
 from marm_setup.robot.load import load_robot  # noqa: E402
 
+REALWORLD = ROOT.parent / "shared" / "realworld" / "ros1"
 ROBOTS = {
     "marm": ROOT / "fixtures/marm/urdf/marm.urdf.xacro",
-    "panda": ROOT.parent / "shared/realworld/ros1/panda_description/urdf/panda_arm_hand.urdf.xacro",
+    "panda": REALWORLD / "panda_description/urdf/panda_arm_hand.urdf.xacro",
+    "pr2": REALWORLD / "pr2_description/urdf/robot.xml",
 }
+FLOOR = [sys.executable, "-c", "import numpy, coal, lxml.etree"]
 
 
-def plain_table(scene: CollisionScene, q: np.ndarray) -> np.ndarray:
-    """(N, P) collision table: coal on every candidate pair of every state (FK batched)."""
-    poses = scene.link_poses(q)
-    table = np.zeros((len(q), len(scene.candidate_pairs)), dtype=bool)
-    for n in range(len(q)):
-        for k in range(len(scene.candidate_pairs)):
-            table[n, k] = scene.collide(poses[n], k)
-    return table
-
-
-def plain_matrix(robot, scene: CollisionScene, trials: int, seed: int, fraction: float = 0.95):
-    """The same phases as compute_collision_matrix, every pair checked in every sample."""
-    pairs = scene.candidate_pairs
-    reasons = {p: DisabledReason.ADJACENT for p in robot.adjacent_geometry_pairs()}
-    default_hits = plain_table(scene, default_configuration(robot)[None, :])[0]
-    reasons.update(
-        {
-            p: DisabledReason.DEFAULT
-            for p, h in zip(pairs, default_hits, strict=True)
-            if h and p not in reasons
-        }
-    )
-    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
-    seen = set()
-    while True:
-        counts = plain_table(scene, sample_configurations(robot, rng, ROUND)).sum(axis=0)
-        seen |= {p for p, c in zip(pairs, counts, strict=True) if c and p not in reasons}
-        new = [
-            p for p, c in zip(pairs, counts, strict=True) if p not in reasons and c >= fraction * ROUND - 1e-9
-        ]
-        reasons.update(dict.fromkeys(new, DisabledReason.ALWAYS))
-        if not new:
-            break
-    hit = plain_table(scene, trial_samples(robot, seed, trials)).any(axis=0)
-    seen |= {p for p, h in zip(pairs, hit, strict=True) if h}
-    reasons.update({p: DisabledReason.NEVER for p in pairs if p not in reasons and p not in seen})
-    return tuple(sorted(DisabledPair.of(*p, r) for p, r in reasons.items()))
-
-
-def bench(name: str, path: Path, trials: int, jobs: int) -> None:
+def wall(argv: list[str]) -> float:
     started = time.perf_counter()
-    robot = load_robot(path)
-    loaded = time.perf_counter()
+    subprocess.run(argv, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.perf_counter() - started
+
+
+def whole_process(path: Path, trials: int, jobs: int | None, runs: int) -> tuple[float, float]:
+    """Median wall time [s] of the collisions process and of the floor, runs interleaved."""
+    command = [sys.executable, "-m", "marm_setup", "collisions", str(path), "--trials", str(trials)]
+    if jobs is not None:
+        command += ["--jobs", str(jobs)]
+    floors, processes = [], []
+    for _ in range(runs):
+        floors.append(wall(FLOOR))
+        processes.append(wall(command))
+    return statistics.median(processes), statistics.median(floors)
+
+
+def matrix_phase(robot, trials: int, jobs: int, shortcuts: bool):
     scene = CollisionScene(robot)
-    built = time.perf_counter()
-    matrix = compute_collision_matrix(robot, scene, trials=trials, seed=0, jobs=jobs)
-    ours = time.perf_counter() - built
-    calls_before = scene.narrow_calls
-    plain_started = time.perf_counter()
-    plain = plain_matrix(robot, scene, trials, seed=0)
-    plain_time = time.perf_counter() - plain_started
-    plain_calls = scene.narrow_calls - calls_before
+    started = time.perf_counter()
+    matrix = compute_collision_matrix(robot, scene, trials=trials, jobs=jobs, shortcuts=shortcuts)
+    return matrix, time.perf_counter() - started
+
+
+def bench(name: str, path: Path, args) -> None:
+    jobs = args.jobs or len(os.sched_getaffinity(0))
+    process, floor = whole_process(path, args.trials, args.jobs, args.runs)
+    robot = load_robot(path)
+    matrix, seconds = matrix_phase(robot, args.trials, jobs, shortcuts=True)
+    work = matrix.work
+    print(f"{name}: {len(matrix.stats)} candidate pairs, {args.trials} trials, jobs {jobs}")
     print(
-        f"{name}: {len(scene.links)} geometry links, {len(scene.candidate_pairs)} candidate pairs, {trials} trials"
+        f"  whole process {process:6.2f} s   import floor {floor:5.2f} s   ratio {process / floor:4.1f}x"
+        f"   (medians of {args.runs})"
     )
-    print(f"  load robot {loaded - started:.2f} s, build scene {built - loaded:.2f} s")
-    print(f"  ours:       {ours:8.2f} s  narrow-phase calls {matrix.narrow_calls:>10,}  (jobs={jobs})")
-    print(f"  plain loop: {plain_time:8.2f} s  narrow-phase calls {plain_calls:>10,}")
-    print(f"  ratio: {plain_time / ours:.1f}x faster; same matrix: {plain == matrix.disabled}")
-    if plain != matrix.disabled:
-        print(f"    only ours:  {sorted(set(matrix.disabled) - set(plain))}")
-        print(f"    only plain: {sorted(set(plain) - set(matrix.disabled))}")
+    print(f"  matrix phase  {seconds:6.2f} s")
+    print(
+        f"  exact checks {work.exact_checks:,}   certificate queries {work.certificate_queries:,}"
+        f"   proven by certificates {work.certified:,}"
+        f"   hull tests {work.hull_checks:,} (rejected {work.hull_rejections:,})"
+    )
+    if args.exhaustive:
+        exact, exact_seconds = matrix_phase(robot, args.trials, jobs, shortcuts=False)
+        print(
+            f"  exhaustive    {exact_seconds:6.2f} s   exact checks {exact.work.exact_checks:,}"
+            f"   same matrix: {exact == matrix}"
+        )
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--trials", type=int, default=10000)
-    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--runs", type=int, default=3, help="whole-process runs (median)")
+    parser.add_argument("--jobs", type=int, default=None, help="default: as marm-setup (CPU count)")
     parser.add_argument("--robot", choices=sorted(ROBOTS), action="append")
+    parser.add_argument("--exhaustive", action="store_true", help="also time the shortcut-free check")
     args = parser.parse_args()
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
     for name in args.robot or list(ROBOTS):
         if not ROBOTS[name].exists():
             print(f"{name}: {ROBOTS[name]} not present, skipped")
             continue
-        bench(name, ROBOTS[name], args.trials, args.jobs)
+        bench(name, ROBOTS[name], args)
 
 
 if __name__ == "__main__":

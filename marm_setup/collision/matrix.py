@@ -106,7 +106,7 @@ def compute_collision_matrix(
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
     trial_pairs = tuple(p for p in remaining if p not in seen)
-    with Workers(TrialChecker(scene, seed, trials, shortcuts), jobs) as workers:
+    with Workers(TrialChecker(scene, seed, trials, shortcuts, jobs), jobs) as workers:
         seen_in_trials, closest, others = _run_trials(workers, trial_pairs, progress)
         seen |= seen_in_trials
         never = [p for p in remaining if p not in seen]

@@ -7,7 +7,9 @@ never guess. Per state still open, in order:
    distance; for primitives it is the distance), while at least every other such query proves
    something for this pair;
 3. a costly certificate: the exact mesh distance, while each query proves about YIELD states
-   (near pairs whose gap is small next to their lever arms get only PROBE queries);
+   over the run: the other states it proves in this chunk times the chunks this process has
+   still to check (its ball covers as many in each); near pairs whose gap is small next to
+   their lever arms get only PROBE queries;
 4. the exact coal check, after the hull test (scene.collide(hulls=True)) while that rejects
    at least HULL_YIELD of the states it sees.
 A pair stops at its first collision. The first EXACT_FIRST states of a chunk (deepest
@@ -36,11 +38,16 @@ class PairProver:
     def __init__(self, scene) -> None:
         self.scene = scene
         self._stores: dict[int, BallStore] = {}
-        self._tally: dict[tuple[int, str], list[int]] = {}  # (pair, kind) -> [queries, proven]
+        self._tally: dict[tuple[int, str], list[float]] = {}  # (pair, kind) -> [queries, value]
         self._levers: dict = {}  # (ancestor, link) -> joint levers, shared by the pairs
+        self._horizon = 1.0
 
-    def any_collision(self, q: np.ndarray, poses: np.ndarray, pair_id: int, rows: np.ndarray) -> bool:
-        """Whether pair `pair_id` collides in any state `rows` of `q`/`poses` (in that order)."""
+    def any_collision(
+        self, q: np.ndarray, poses: np.ndarray, pair_id: int, rows: np.ndarray, horizon: float = 1.0
+    ) -> bool:
+        """Whether pair `pair_id` collides in any state `rows` of `q`/`poses` (in that order);
+        `horizon`: how many chunks like this one this process will still check."""
+        self._horizon = max(horizon, 1.0)
         scene = self.scene
         if not len(rows):
             return False
@@ -77,10 +84,8 @@ class PairProver:
     def _certified(self, q, poses, pair_id: int, rows, i: int, alive) -> bool:
         """Try the cheap, then the costly certificate at state rows[i] (when they pay)."""
         scene, n = self.scene, rows[i]
-        for kind, measure, needed in (
-            ("hull", scene.hull_distance, CHEAP_YIELD),
-            ("exact", scene.distance, YIELD),
-        ):
+        kinds = (("hull", scene.hull_distance, CHEAP_YIELD), ("exact", scene.distance, YIELD))
+        for kind, measure, needed in kinds:
             tally = self._tally.setdefault((pair_id, kind), [0, 0])
             if tally[0] >= PROBE and tally[1] < needed * tally[0]:
                 continue
@@ -88,20 +93,21 @@ class PairProver:
             scene.certificate_queries += 1
             radius = measure(poses[n], pair_id) - scene.padding - CERT_MARGIN
             if radius > 0:
-                tally[1] += self._add_ball(q, pair_id, rows, i, alive, radius)
+                others = self._add_ball(q, pair_id, rows, i, alive, radius)
+                tally[1] += 1 + others if kind == "hull" else others * self._horizon
                 return True
         return False
 
     def _add_ball(self, q, pair_id: int, rows, i: int, alive, radius: float) -> int:
-        """Certify state rows[i] and every later open state within `radius`; how many."""
+        """Certify state rows[i] and every later open state within `radius`; how many others."""
         store, n = self._stores[pair_id], rows[i]
         store.add(q[n], radius)
         later = rows[i + 1 :]
         newly = alive[i + 1 :] & (store.motion.bound(q[later], q[n]) < radius)
         alive[i + 1 :] &= ~newly
-        proven = 1 + int(newly.sum())
-        self.scene.certified += proven
-        return proven
+        others = int(newly.sum())
+        self.scene.certified += 1 + others
+        return others
 
     def _store(self, pair_id: int) -> BallStore:
         store = self._stores.get(pair_id)

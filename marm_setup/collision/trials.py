@@ -58,8 +58,9 @@ class TrialChecker:
     """What a process needs to check trial chunks: the scene, the sampling and (with
     `shortcuts`) a PairProver whose certificates build up over the chunks it checks."""
 
-    def __init__(self, scene, seed: int, trials: int, shortcuts: bool) -> None:
+    def __init__(self, scene, seed: int, trials: int, shortcuts: bool, jobs: int = 1) -> None:
         self.scene, self.seed, self.trials, self.shortcuts = scene, seed, trials, shortcuts
+        self.jobs = jobs  # processes sharing the chunks (certificates pay over this one's share)
         self.prover = None
         if shortcuts:
             from marm_setup.collision.prover import PairProver
@@ -73,7 +74,8 @@ class TrialChecker:
     def check(self, index: int, pairs: tuple[Pair, ...]):
         """check_chunk on chunk `index`: (seen, closest with global rows)."""
         q = trial_chunk(self.scene.robot, self.seed, index, self.trials)
-        seen, closest = check_chunk(self.scene, q, pairs, self.prover)
+        horizon = (self.chunks - index) / self.jobs
+        seen, closest = check_chunk(self.scene, q, pairs, self.prover, horizon)
         start = index * CHUNK
         return seen, {p: [(g, i + start) for g, i in items] for p, items in closest.items()}
 
@@ -111,12 +113,13 @@ def _smallest_distance(scene, poses: list[np.ndarray], pair_id: int) -> float:
     return best
 
 
-def check_chunk(scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None):
+def check_chunk(scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None, horizon: float = 1.0):
     """Pairs of `pairs` seen colliding in states `q`, and each pair's CLOSEST smallest-gap states.
 
     A pair stops being checked at its first collision; its candidate states are tried in order of
     deepest bounding-sphere overlap, so sometimes-colliding pairs are found in a few calls.
-    `prover` (a PairProver): the same answer with fewer exact checks.
+    `prover` (a PairProver): the same answer with fewer exact checks (`horizon`: the chunks
+    this process has still to check, this one included).
     """
     if not pairs or not len(q):
         return set(), {}
@@ -129,7 +132,7 @@ def check_chunk(scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None):
         candidates = np.flatnonzero(maybe[:, k])
         rows = candidates[np.argsort(gaps[candidates, k], kind="stable")]
         if prover is not None:
-            hit = prover.any_collision(q, poses, int(ids[k]), rows)
+            hit = prover.any_collision(q, poses, int(ids[k]), rows, horizon)
         else:
             hit = any(scene.collide(poses[n], ids[k]) for n in rows)
         if hit:

@@ -38,7 +38,7 @@ class Workers:
                 self.jobs,
                 mp_context=multiprocessing.get_context("fork" if fork else "spawn"),
                 initializer=_init_worker,
-                initargs=(scene.robot, scene.padding, c.seed, c.trials, c.shortcuts),
+                initargs=(scene.robot, scene.padding, c.seed, c.trials, c.shortcuts, c.jobs),
             )
         return self
 
@@ -75,12 +75,12 @@ class Workers:
         return out, work
 
 
-def _init_worker(robot, padding: float, seed: int, trials: int, shortcuts: bool) -> None:
+def _init_worker(robot, padding: float, seed: int, trials: int, shortcuts: bool, jobs: int) -> None:
     global _CHECKER
     if _CHECKER is None:
         from marm_setup.collision.scene import CollisionScene
 
-        _CHECKER = TrialChecker(CollisionScene(robot, padding), seed, trials, shortcuts)
+        _CHECKER = TrialChecker(CollisionScene(robot, padding), seed, trials, shortcuts, jobs)
 
 
 def _checker() -> TrialChecker:
