@@ -11,6 +11,7 @@ pose near home is taken. All values are rounded to 4 decimals before they are ch
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -18,6 +19,9 @@ from marm_setup.robot.kinematics import default_configuration
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.model import GroupState, SetupModel
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
 
 HOME, READY = "home", "ready"
 SEARCH_SCALES = (0.05, 0.1, 0.2, 0.4, 0.8)  # [rad] (or that share of a prismatic joint's range)
@@ -37,7 +41,7 @@ class PoseResult:
 class _Space:
     """The robot's active joints, a base state, and collision checks under the setup's matrix."""
 
-    def __init__(self, model: SetupModel, robot: RobotModel, scene):
+    def __init__(self, model: SetupModel, robot: RobotModel, scene: CollisionScene) -> None:
         self.robot, self.scene = robot, scene
         self.names = robot.active_joint_names
         self.index = {n: i for i, n in enumerate(self.names)}
@@ -61,7 +65,7 @@ class _Space:
         return scale * span
 
 
-def infer_poses(model: SetupModel, robot: RobotModel, scene, *, seed: int = 0) -> PoseResult:
+def infer_poses(model: SetupModel, robot: RobotModel, scene: CollisionScene, *, seed: int = 0) -> PoseResult:
     """`home` for each group without subgroups (collision-free together), `ready` for each of
     them with two or more joints that is not an end effector."""
     space = _Space(model, robot, scene)
@@ -85,7 +89,7 @@ def _state(name: str, group: str, joints: tuple[str, ...], q: np.ndarray, space:
     return GroupState(name, group, tuple((j, float(q[space.index[j]])) for j in joints))
 
 
-def _home(space: _Space, joints: list[str], rng) -> tuple[np.ndarray, list[str]]:
+def _home(space: _Space, joints: list[str], rng: np.random.Generator) -> tuple[np.ndarray, list[str]]:
     """Zeros clamped into the limits, or the nearest collision-free state found around them."""
     q = default_configuration(space.robot)
     idx = np.array([space.index[j] for j in joints], dtype=np.intp)
@@ -106,7 +110,9 @@ def _home(space: _Space, joints: list[str], rng) -> tuple[np.ndarray, list[str]]
     ]
 
 
-def _nearest_free(space: _Space, q: np.ndarray, idx: np.ndarray, scale: float, rng) -> np.ndarray | None:
+def _nearest_free(
+    space: _Space, q: np.ndarray, idx: np.ndarray, scale: float, rng: np.random.Generator
+) -> np.ndarray | None:
     cand = np.repeat(q[None], BATCH, axis=0)
     cand[:, idx] += rng.uniform(-1.0, 1.0, (BATCH, len(idx))) * space.steps(idx, scale)
     cand = space.round(cand)
@@ -116,7 +122,9 @@ def _nearest_free(space: _Space, q: np.ndarray, idx: np.ndarray, scale: float, r
     return cand[min(free, key=lambda k: float(np.linalg.norm(cand[k] - q)))]
 
 
-def _ready(space: _Space, home: np.ndarray, joints: tuple[str, ...], rng) -> tuple[np.ndarray | None, str]:
+def _ready(
+    space: _Space, home: np.ndarray, joints: tuple[str, ...], rng: np.random.Generator
+) -> tuple[np.ndarray | None, str]:
     """A second pose for a chain group: a bend away from home, or a random one near it."""
     idx = np.array([space.index[j] for j in joints], dtype=np.intp)
     bent = _bend(space, home, idx)

@@ -12,6 +12,7 @@ import os
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
@@ -36,6 +37,10 @@ from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.pose_rules import check_initial_positions
 from marm_setup.validate.rules.srdf_rules import check_srdf
 from marm_setup.validate.sources import skipped_groups
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.robot.model import RobotModel
 
 MATRIX_TRIALS = 1000
 
@@ -132,7 +137,7 @@ def without_skipped_group_cascade(findings: list[Finding], pkg: ConfigPackage) -
     return [f for f in findings if not any(mark in f.message for mark in marks)]
 
 
-def skipped_families(pkg: ConfigPackage, robot) -> tuple[str, ...]:
+def skipped_families(pkg: ConfigPackage, robot: RobotModel | None) -> tuple[str, ...]:
     """What did not run or ran on less than the whole file, each with why (for the summary)."""
     out = [f"the rules on {f.file} ({f.message})" for f in pkg.problems if f.rule == "yaml.parse"]
     out += [
@@ -188,7 +193,7 @@ def _package_hint(exc: InputError) -> str:
     return ""
 
 
-def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
+def check_static(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
     """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking), each
     family on its own: one that fails leaves the others running."""
     srdf, file = pkg.srdf, pkg.srdf_path
@@ -206,7 +211,7 @@ def check_static(pkg: ConfigPackage, robot) -> list[Finding]:
     return out
 
 
-def check_controllers(pkg: ConfigPackage, robot) -> list[Finding]:
+def check_controllers(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
     """MoveIt's controllers vs robot and groups, then vs every driver file the package has."""
     out: list[Finding] = []
     if pkg.fake_controllers is not None:
@@ -249,7 +254,7 @@ def gripper_nodes(pkg: ConfigPackage) -> dict[str, tuple[str, str]]:
 
 
 def check_with_scene(
-    pkg: ConfigPackage, robot, *, plan: bool, matrix_trials: int
+    pkg: ConfigPackage, robot: RobotModel, *, plan: bool, matrix_trials: int
 ) -> tuple[list[Finding], int | None]:
     """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
     with the number of pose pairs the runtime checks planned (None when they did not run)."""
@@ -290,7 +295,9 @@ def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
     return integer("seed") or 0, integer("trials")
 
 
-def run_runtime_checks(pkg: ConfigPackage, robot, scene, planned: list) -> list[Finding]:
+def run_runtime_checks(
+    pkg: ConfigPackage, robot: RobotModel, scene: CollisionScene, planned: list
+) -> list[Finding]:
     """The planner's runtime checks; `planned` receives each pose pair planned."""
     from marm_setup.validate.runtime import check_runtime
 

@@ -11,6 +11,7 @@ trajectory breaks a limit, collides between checked states, or misses the goal) 
 from __future__ import annotations
 
 from itertools import permutations
+from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error, warning
@@ -23,13 +24,16 @@ from marm_setup.plan.problem import (
 )
 from marm_setup.robot.model import RobotModel
 
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+
 RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
 
 
 def check_runtime(
     package,
     robot: RobotModel,
-    scene,
+    scene: CollisionScene,
     *,
     seed: int = 0,
     options: PlannerOptions = RUNTIME_OPTIONS,
@@ -50,7 +54,12 @@ def check_runtime(
 
 
 def _check_group(
-    problem: PlanningProblem, robot, srdf_file: str, seed: int, options, planned: list | None = None
+    problem: PlanningProblem,
+    robot: RobotModel,
+    srdf_file: str,
+    seed: int,
+    options,
+    planned: list | None = None,
 ) -> list[Finding]:
     findings, usable = [], []
     for name in sorted(problem.poses):

@@ -8,6 +8,7 @@ and MoveIt 1's `fake_controllers.yaml`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
@@ -23,6 +24,10 @@ from marm_setup.setup.domain import (
 )
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.validate.rules.controller_selection import select_controllers
+
+if TYPE_CHECKING:
+    from marm_setup.setup.srdf import Srdf
+    from marm_setup.validate.discovery import ConfigSection
 
 
 @dataclass(frozen=True, slots=True)
@@ -51,7 +56,7 @@ FAKE_KEYS = ("name", "joints")
 
 
 def moveit_controllers(
-    section, required: tuple[str, ...] = REQUIRED_KEYS
+    section: ConfigSection, required: tuple[str, ...] = REQUIRED_KEYS
 ) -> tuple[list[MoveItController], list[Finding]]:
     """Controllers from a ros1 `controller_list` or a ros2 `controller_names` section, as
     MoveIt's simple controller manager reads them; entries it would skip are findings."""
@@ -114,7 +119,7 @@ def _controller(entry: dict, where: str) -> MoveItController:
 SIMPLE_MANAGER = "moveit_simple_controller_manager"
 
 
-def check_ros2_namespace(section) -> list[Finding]:
+def check_ros2_namespace(section: ConfigSection) -> list[Finding]:
     """MoveIt 2: the simple controller manager reads `moveit_simple_controller_manager.controller_names`
     (moveit2 moveit_simple_controller_manager.cpp, `initialize`: PARAM_BASE_NAME prefix, "No
     controller_names specified" otherwise), and MoveItConfigsBuilder.trajectory_execution loads
@@ -132,7 +137,9 @@ def check_ros2_namespace(section) -> list[Finding]:
 # -- MoveIt side -------------------------------------------------------------------------------
 
 
-def check_moveit_controllers(section, ctrls, robot: RobotModel, real: bool = True) -> list[Finding]:
+def check_moveit_controllers(
+    section: ConfigSection, ctrls, robot: RobotModel, real: bool = True
+) -> list[Finding]:
     """Joints exist; for real (non-fake) controllers: known type, action_ns present and plausible."""
     out: list[Finding] = []
     for c in ctrls:
@@ -146,7 +153,7 @@ def check_moveit_controllers(section, ctrls, robot: RobotModel, real: bool = Tru
     return out
 
 
-def _check_type(section, c: MoveItController) -> list[Finding]:
+def _check_type(section: ConfigSection, c: MoveItController) -> list[Finding]:
     if c.type not in MOVEIT_CONTROLLER_TYPES:
         msg = f"type '{c.type}' is not one MoveIt's simple controller manager knows ({', '.join(MOVEIT_CONTROLLER_TYPES)})"
         return [error("controller.unknown-type", section.file, c.element, msg)]
@@ -168,7 +175,9 @@ def _implausible(type_: str, action_ns: str) -> bool:
     return FOLLOW_JOINT_TRAJECTORY_NS in action_ns
 
 
-def check_coverage(section, ctrls, srdf, robot: RobotModel, alternatives=()) -> list[Finding]:
+def check_coverage(
+    section: ConfigSection, ctrls, srdf: Srdf, robot: RobotModel, alternatives=()
+) -> list[Finding]:
     """Every active group joint is in some controller, and each group's joints can be executed
     by MoveIt's own controller selection (see `controller_selection`)."""
     out: list[Finding] = []
@@ -185,7 +194,7 @@ def check_coverage(section, ctrls, srdf, robot: RobotModel, alternatives=()) -> 
     return out
 
 
-def _check_selection(section, group: str, joints, ctrls) -> list[Finding]:
+def _check_selection(section: ConfigSection, group: str, joints, ctrls) -> list[Finding]:
     where = section.element(f"group[{group}]")
     pick = select_controllers(joints, ctrls)
     if pick is None:
@@ -204,7 +213,7 @@ def _check_selection(section, group: str, joints, ctrls) -> list[Finding]:
     return []
 
 
-def _uncovered(section, where, label, joint, alternatives) -> Finding:
+def _uncovered(section: ConfigSection, where, label, joint, alternatives) -> Finding:
     for alt in alternatives:
         ctrls, _ = moveit_controllers(alt)
         if any(joint in c.joints for c in ctrls):
@@ -220,7 +229,7 @@ def _uncovered(section, where, label, joint, alternatives) -> Finding:
     return error("controller.uncovered-joint", section.file, where, msg, "add it to a controller's joints")
 
 
-def _group_joints(srdf, robot: RobotModel) -> dict[str, list[str]]:
+def _group_joints(srdf: Srdf, robot: RobotModel) -> dict[str, list[str]]:
     by_name = groups_by_name(srdf.groups)
     out: dict[str, list[str]] = {}
     for group in srdf.groups:
@@ -232,7 +241,7 @@ def _group_joints(srdf, robot: RobotModel) -> dict[str, list[str]]:
 # -- driver side: ros2_control / ros_control ---------------------------------------------------------
 
 
-def ros2_driver_controllers(section) -> dict[str, tuple[str, tuple[str, ...] | None, str]]:
+def ros2_driver_controllers(section: ConfigSection) -> dict[str, tuple[str, tuple[str, ...] | None, str]]:
     """name -> (type, joints or None, element) from a ros2_controllers.yaml."""
     data = section.data if isinstance(section.data, dict) else {}
     manager = _mapping(_mapping(data.get("controller_manager")).get("ros__parameters"))
@@ -248,7 +257,7 @@ def ros2_driver_controllers(section) -> dict[str, tuple[str, tuple[str, ...] | N
     return out
 
 
-def ros1_driver_controllers(section) -> dict[str, tuple[str, tuple[str, ...] | None, str]]:
+def ros1_driver_controllers(section: ConfigSection) -> dict[str, tuple[str, tuple[str, ...] | None, str]]:
     """name -> (type, joints or None, element) from a ros_control ros_controllers.yaml."""
     data = section.data if isinstance(section.data, dict) else {}
     return {
@@ -271,7 +280,9 @@ def _driver_joints(params: dict) -> tuple[str, ...] | None:
     return None
 
 
-def check_driver_controllers(moveit_section, section, driver, ctrls, robot: RobotModel) -> list[Finding]:
+def check_driver_controllers(
+    moveit_section: ConfigSection, section: ConfigSection, driver, ctrls, robot: RobotModel
+) -> list[Finding]:
     """MoveIt's controllers exist in the driver file with a matching type, joints and action."""
     if not driver:
         return [
@@ -291,7 +302,9 @@ def check_driver_controllers(moveit_section, section, driver, ctrls, robot: Robo
     return out
 
 
-def _check_against_driver(moveit_section, section, driver, c: MoveItController) -> list[Finding]:
+def _check_against_driver(
+    moveit_section: ConfigSection, section: ConfigSection, driver, c: MoveItController
+) -> list[Finding]:
     file = section.file
     if c.name not in driver:
         known = ", ".join(sorted(driver)) or "none"
@@ -322,7 +335,7 @@ def _check_against_driver(moveit_section, section, driver, c: MoveItController) 
 
 
 def check_arbotix(
-    section, ctrls, robot: RobotModel, gripper_nodes: dict[str, tuple[str, str]]
+    section: ConfigSection, ctrls, robot: RobotModel, gripper_nodes: dict[str, tuple[str, str]]
 ) -> list[Finding]:
     """arbotix.yaml joints exist; FollowJointTrajectory controllers match `controllers` by
     name, action_name and joints; GripperCommand controllers match a gripper_controller node."""
@@ -342,7 +355,7 @@ def check_arbotix(
     return out
 
 
-def _check_arbotix_follow(section, c: MoveItController, drivers: dict) -> list[Finding]:
+def _check_arbotix_follow(section: ConfigSection, c: MoveItController, drivers: dict) -> list[Finding]:
     entry = drivers.get(c.name)
     where = f"controllers.{c.name}"
     if not isinstance(entry, dict):
@@ -376,7 +389,9 @@ def _check_arbotix_follow(section, c: MoveItController, drivers: dict) -> list[F
     return out
 
 
-def _check_gripper_node(section, c: MoveItController, nodes: dict[str, tuple[str, str]]) -> list[Finding]:
+def _check_gripper_node(
+    section: ConfigSection, c: MoveItController, nodes: dict[str, tuple[str, str]]
+) -> list[Finding]:
     """`nodes`: gripper_controller node name -> (launch file, its `joint` param)."""
     if c.name not in nodes:
         known = ", ".join(sorted(nodes)) or "none"
@@ -394,7 +409,7 @@ def _check_gripper_node(section, c: MoveItController, nodes: dict[str, tuple[str
 # -- fake controllers (MoveIt 1) ----------------------------------------------------------------------
 
 
-def check_fake_controllers(section, srdf, robot: RobotModel) -> list[Finding]:
+def check_fake_controllers(section: ConfigSection, srdf: Srdf, robot: RobotModel) -> list[Finding]:
     """Joints exist, every group's active joints are covered, `initial` poses exist."""
     ctrls, out = moveit_controllers(section, FAKE_KEYS)
     out += check_moveit_controllers(section, ctrls, robot, real=False)
@@ -409,7 +424,7 @@ def check_fake_controllers(section, srdf, robot: RobotModel) -> list[Finding]:
     return out
 
 
-def _check_initial(section, srdf) -> list[Finding]:
+def _check_initial(section: ConfigSection, srdf: Srdf) -> list[Finding]:
     data = section.data if isinstance(section.data, dict) else {}
     groups = {g.name for g in srdf.groups}
     states = {(s.group, s.name) for s in srdf.group_states}

@@ -3,16 +3,21 @@
 from __future__ import annotations
 
 from numbers import Real
+from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KINEMATICS_PLUGINS
 from marm_setup.setup.groups import active_group_joints, group_joints, groups_by_name
 
+if TYPE_CHECKING:
+    from marm_setup.setup.srdf import Srdf
+    from marm_setup.validate.discovery import ConfigSection
+
 POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
 
 
-def check_kinematics(section, srdf, robot: RobotModel) -> list[Finding]:
+def check_kinematics(section: ConfigSection, srdf: Srdf, robot: RobotModel) -> list[Finding]:
     """Every rule on a kinematics section (`{group: {kinematics_solver: ..., ...}}`)."""
     data = section.data
     if not isinstance(data, dict):
@@ -41,7 +46,9 @@ def check_kinematics(section, srdf, robot: RobotModel) -> list[Finding]:
     return out
 
 
-def _check_entry(section, where, entry, group, by_name, srdf, robot) -> list[Finding]:
+def _check_entry(
+    section: ConfigSection, where, entry, group, by_name, srdf: Srdf, robot: RobotModel
+) -> list[Finding]:
     out: list[Finding] = []
     solver = entry.get("kinematics_solver")
     if not isinstance(solver, str) or not solver:
@@ -70,7 +77,7 @@ def _solver_hint() -> str:
     return "known: " + ", ".join(s.split("/")[0] for s in KINEMATICS_PLUGINS[:5]) + ", ikfast"
 
 
-def is_chain(group, by_name, srdf, robot: RobotModel) -> bool:
+def is_chain(group, by_name, srdf: Srdf, robot: RobotModel) -> bool:
     """All the group's joints (fixed and mimic included, as MoveIt counts them) lie on one
     root-to-tip path, and at least one of them moves: what KDL can solve."""
     joints = group_joints(group, by_name, robot)

@@ -14,11 +14,15 @@ from __future__ import annotations
 
 import math
 from numbers import Real
-from typing import Any, TypeGuard
+from typing import TYPE_CHECKING, Any, TypeGuard
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel, limit_slack
 from marm_setup.setup.groups import planning_joints
+
+if TYPE_CHECKING:
+    from marm_setup.setup.srdf import Srdf
+    from marm_setup.validate.discovery import ConfigSection
 
 FLAGS = {
     "max_velocity": "has_velocity_limits",
@@ -38,7 +42,7 @@ def _below(value: float, limit: float) -> bool:
     return value < limit - limit_slack(limit)
 
 
-def check_joint_limits(section, srdf, robot: RobotModel, target: str) -> list[Finding]:
+def check_joint_limits(section: ConfigSection, srdf: Srdf, robot: RobotModel, target: str) -> list[Finding]:
     """Every rule on a `robot_description_planning`-style section (`{joint_limits: {...}}`)."""
     data = section.data
     limits = data.get("joint_limits") if isinstance(data, dict) else None
@@ -71,7 +75,7 @@ def check_joint_limits(section, srdf, robot: RobotModel, target: str) -> list[Fi
     return out
 
 
-def _check_coverage(section, limits, srdf, robot) -> list[Finding]:
+def _check_coverage(section: ConfigSection, limits, srdf: Srdf, robot: RobotModel) -> list[Finding]:
     wanted = planning_joints(tuple(srdf.groups), robot, tuple(srdf.passive_joints))
     return [
         warning(
@@ -85,7 +89,7 @@ def _check_coverage(section, limits, srdf, robot) -> list[Finding]:
     ]
 
 
-def _check_entry(section, where, entry: dict, joint, target: str) -> list[Finding]:
+def _check_entry(section: ConfigSection, where, entry: dict, joint, target: str) -> list[Finding]:
     out: list[Finding] = []
     for key, flag in FLAGS.items():
         if not entry.get(flag, False):
@@ -122,7 +126,7 @@ def _check_entry(section, where, entry: dict, joint, target: str) -> list[Findin
     return out
 
 
-def _check_positions(section, where, entry: dict, joint) -> list[Finding]:
+def _check_positions(section: ConfigSection, where, entry: dict, joint) -> list[Finding]:
     if not entry.get("has_position_limits", False) or joint.lower is None or joint.upper is None:
         return []
     out = []
@@ -140,7 +144,7 @@ def _number(value: object) -> TypeGuard[float]:
     return isinstance(value, Real) and not isinstance(value, bool)
 
 
-def _check_floats(section, data: dict) -> list[Finding]:
+def _check_floats(section: ConfigSection, data: dict) -> list[Finding]:
     """ROS 2 parameters are typed: an integer where MoveIt reads a double is an error it logs,
     losing the joint's later keys; only a warning when the value's has_* flag is false (nothing
     after max_acceleration is lost then but that false flag, which is the URDF's default)."""

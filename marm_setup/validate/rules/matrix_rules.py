@@ -16,18 +16,30 @@ sampler) a hit is still a real, observed collision.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from marm_setup.collision.pairs import DisabledReason
 from marm_setup.findings import Finding, warning
 from marm_setup.robot.model import RobotModel
 
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.setup.srdf import Srdf
+
 DEFAULT_TRIALS = 1000
 DEFAULT_SEED = 0
 
 
 def check_matrix_fresh(
-    srdf, robot: RobotModel, scene, file: str, *, trials: int = DEFAULT_TRIALS, seed: int = DEFAULT_SEED
+    srdf: Srdf,
+    robot: RobotModel,
+    scene: CollisionScene,
+    file: str,
+    *,
+    trials: int = DEFAULT_TRIALS,
+    seed: int = DEFAULT_SEED,
 ) -> list[Finding]:
     """Resample `trials` random states; every Never pair seen colliding means a stale matrix."""
     from marm_setup.collision.matrix import trial_samples
@@ -49,7 +61,9 @@ def check_matrix_fresh(
     return out
 
 
-def _stale(pair, n: int, q: np.ndarray, robot: RobotModel, scene, file: str, trials: int) -> Finding:
+def _stale(
+    pair, n: int, q: np.ndarray, robot: RobotModel, scene: CollisionScene, file: str, trials: int
+) -> Finding:
     hits = scene.first_collisions(q, [pair])
     row = next(i for i, hit in enumerate(hits) if hit is not None)
     state = ", ".join(

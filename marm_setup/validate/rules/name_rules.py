@@ -6,12 +6,16 @@ MoveIt 1 cannot read its parameters under."""
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, warning
 from marm_setup.names import name_problem
 
+if TYPE_CHECKING:
+    from marm_setup.setup.srdf import Srdf
 
-def check_srdf_names(srdf, file: str) -> list[Finding]:
+
+def check_srdf_names(srdf: Srdf, file: str) -> list[Finding]:
     """One `names.invalid` warning per SRDF name that is not valid for its kind."""
     return [_finding(file, where, problem) for where, problem in _srdf_problems(srdf)]
 
@@ -31,7 +35,7 @@ def _finding(file: str, where: str, problem: str) -> Finding:
     return warning("names.invalid", file, where, problem, hint)
 
 
-def _srdf_problems(srdf) -> Iterator[tuple[str, str]]:
+def _srdf_problems(srdf: Srdf) -> Iterator[tuple[str, str]]:
     checks = [("robot", srdf.robot_name, "robot")]
     checks += [("group", g.name, f"group[{g.name}]") for g in srdf.groups]
     checks += [("pose", s.name, f"group_state[{s.name}]") for s in srdf.group_states]

@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from marm_setup.findings import Finding, error
+
+if TYPE_CHECKING:
+    from marm_setup.setup.srdf import Srdf
+    from marm_setup.validate.discovery import ConfigSection
 
 GLOBAL_KEYS = frozenset(
     {
@@ -18,7 +24,7 @@ GLOBAL_KEYS = frozenset(
 )
 
 
-def check_ompl(section, srdf) -> list[Finding]:
+def check_ompl(section: ConfigSection, srdf: Srdf) -> list[Finding]:
     """Every rule on an OMPL section (`{planner_configs: {...}, <group>: {...}}`)."""
     data = section.data
     if not isinstance(data, dict):
@@ -42,7 +48,7 @@ def check_ompl(section, srdf) -> list[Finding]:
     return out
 
 
-def _check_group(section, where: str, entry: dict, configs: dict) -> list[Finding]:
+def _check_group(section: ConfigSection, where: str, entry: dict, configs: dict) -> list[Finding]:
     out: list[Finding] = []
     listed = entry.get("planner_configs") or []
     if not isinstance(listed, list):

@@ -6,6 +6,7 @@ A pose's values (group, joints, limits) are checked by the shared rules in `setu
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +14,11 @@ from marm_setup.findings import Finding, error
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.srdf import allowed_pairs
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.setup.srdf import Srdf
+    from marm_setup.validate.discovery import ConfigSection
 
 
 def pose_configuration(state, robot: RobotModel, base: Mapping[str, float] | None = None) -> np.ndarray:
@@ -28,7 +34,7 @@ def pose_configuration(state, robot: RobotModel, base: Mapping[str, float] | Non
 
 
 def check_pose_collisions(
-    srdf, robot: RobotModel, scene, file: str, base: Mapping[str, float] | None = None
+    srdf: Srdf, robot: RobotModel, scene: CollisionScene, file: str, base: Mapping[str, float] | None = None
 ) -> list[Finding]:
     """Each pose, other joints at `base` (the package's initial state) or their defaults, is free
     of the collisions MoveIt would check.
@@ -73,7 +79,7 @@ def _context(base: Mapping[str, float] | None) -> str:
     return " (other joints at the initial state)" if base else " (other joints at their default values)"
 
 
-def check_initial_positions(section, robot: RobotModel) -> list[Finding]:
+def check_initial_positions(section: ConfigSection, robot: RobotModel) -> list[Finding]:
     """ros2_control's `initial_positions.yaml`: known joints, numbers, inside the limits."""
     data = section.data if isinstance(section.data, dict) else {}
     values = data.get("initial_positions", data)
