@@ -174,8 +174,11 @@ def subst_contexts(
     """Package YAML files (relative paths) that a launch file loads with `subst_value="true"`,
     each with (that launch file's args, the launch file's folder); the first launch file (sorted)
     that loads a file wins."""
+    trees = list(_launch_trees(root, launch_files, find))
+    effective = _with_included_args(root, trees, find)
     out: dict[str, tuple[dict[str, str], str]] = {}
-    for _rel, tree, args, dirname in _launch_trees(root, launch_files, find):
+    for rel, tree, _own, dirname in trees:
+        args = effective[rel]
         for elem in tree.iter("rosparam"):
             if (elem.get("subst_value") or "").strip().lower() not in ("true", "1"):
                 continue
@@ -183,6 +186,37 @@ def subst_contexts(
             if target is not None:
                 out.setdefault(target, (args, dirname))
     return out
+
+
+def _with_included_args(root, trees, find) -> dict[str, dict[str, str]]:
+    """Each launch file's args, plus what the package's other launch files pass to it through
+    `<include>`: `<arg name value>` children, and every arg with `pass_all_args` (roslaunch
+    xmlloader.py `_include_tag`); passed values win over the file's defaults. A few rounds carry
+    them down include chains (demo -> move_group -> trajectory_execution -> ...)."""
+    effective = {rel: dict(own) for rel, _tree, own, _dirname in trees}
+    for _round in range(4):
+        passed: dict[str, dict[str, str]] = {}
+        for rel, tree, _own, dirname in trees:
+            for inc in tree.iter("include"):
+                target = _loaded_file(inc.get("file"), effective[rel], find, dirname, root)
+                if target in effective:  # the first includer (sorted) wins, as for the files
+                    given = _include_args(inc, effective[rel], find, dirname)
+                    mine = passed.setdefault(target, {})
+                    mine.update({k: v for k, v in given.items() if k not in mine})
+        effective = {rel: {**own, **passed.get(rel, {})} for rel, _tree, own, _dirname in trees}
+    return effective
+
+
+def _include_args(inc, args: dict[str, str], find, dirname: str) -> dict[str, str]:
+    given = dict(args) if (inc.get("pass_all_args") or "").strip().lower() in ("true", "1") else {}
+    for elem in inc.iterchildren("arg"):
+        name, value = elem.get("name"), elem.get("value")
+        if name and value is not None:
+            try:
+                given[name] = substitute(value, args, find, dirname)
+            except SubstitutionError:
+                continue
+    return given
 
 
 def launch_args(tree, find: Callable[[str], str | None], dirname: str) -> dict[str, str]:

@@ -129,3 +129,19 @@ def test_args_passed_with_pass_all_args_are_defined(tmp_path):
     )
     found = [f.file for f in run(pkg, good, matrix_trials=0) if f.rule == "launch.undefined-arg"]
     assert found == ["launch/demo.launch"]
+
+
+def test_subst_value_args_passed_by_the_including_launch_files(tmp_path):
+    """fake_controllers.yaml's $(arg fake_execution_type) comes from whoever includes the file
+    that loads it (here through pass_all_args) when that file declares the arg without a default."""
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    fake = "launch/fake_moveit_controller_manager.launch.xml"
+    replace_text(
+        pkg,
+        fake,
+        '<arg name="fake_execution_type" default="interpolate" />',
+        '<arg name="fake_execution_type"/>',
+    )
+    found = [(f.rule, f.file) for f in run(pkg, good, matrix_trials=0) if f.rule.startswith("yaml.")]
+    assert found == []
