@@ -1,5 +1,5 @@
 """The setup model (`marm_setup.yaml`): dataclasses, YAML I/O, inference from a robot, group
-queries, SRDF reading and the setup checks.
+queries, SRDF reading, MoveIt's tables (`domain`), the one rule set and the setup checks.
 
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
@@ -13,6 +13,9 @@ __all__, __getattr__, __dir__ = lazy_api(
         "yaml_io": "load_setup dump_setup setup_from_dict",
         "infer": "infer_setup",
         "checks": "check_setup",
+        "rules": "check_semantics",
+        "start_state": "package_start_values",
+        "domain": "VIRTUAL_JOINT_TYPES MOVEIT_CONTROLLER_TYPES DRIVER_ACTION_NS KINEMATICS_PLUGINS OMPL_PLANNER_NAMES",
         "srdf": "read_srdf parse_srdf_string srdf_to_setup",
         "groups": "group_joints active_group_joints planning_joints",
     },

@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-PACKAGES = ("robot", "collision", "setup", "render", "plan", "validate")
+PACKAGES = ("robot", "collision", "setup", "render", "plan", "validate", "port")
 
 
 @pytest.mark.parametrize("package", PACKAGES)
