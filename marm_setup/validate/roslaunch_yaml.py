@@ -199,7 +199,7 @@ def _with_included_args(root, trees, find) -> dict[str, dict[str, str]]:
         for rel, tree, _own, dirname in trees:
             for inc in tree.iter("include"):
                 target = _loaded_file(inc.get("file"), effective[rel], find, dirname, root)
-                if target in effective:  # the first includer (sorted) wins, as for the files
+                if target is not None and target in effective:  # the first includer (sorted) wins
                     given = _include_args(inc, effective[rel], find, dirname)
                     mine = passed.setdefault(target, {})
                     mine.update({k: v for k, v in given.items() if k not in mine})
