@@ -184,6 +184,25 @@ def _action_ns(c: MoveItController, kind: str, target: str, setting: str, src: s
 # -- driver side ---------------------------------------------------------------------------------
 
 
+def report_shared_joints(controllers: tuple[Controller, ...], target: str, log: PortLog) -> None:
+    """ros2_control lends each command interface to one active controller (hardware_interface
+    resource_manager.hpp `command_interface_is_claimed`: "Any command interface can only be claimed
+    by a single instance"; controller_manager.cpp refuses to activate a controller whose interface
+    is claimed, "Resource conflict"): controllers that share joints cannot all be active."""
+    if target != "ros2":
+        return
+    for i, a in enumerate(controllers):
+        for b in controllers[i + 1 :]:
+            shared = [j for j in a.joints if j in b.joints]
+            if shared:
+                log.todo(
+                    f"controllers[{a.name}], controllers[{b.name}]",
+                    "",
+                    f"share {', '.join(shared)}: ros2_control activates one controller per joint, so the demo's "
+                    "spawners cannot activate both; spawn one --inactive and switch controllers as needed",
+                )
+
+
 def report_driver(pkg: ConfigPackage, controllers: tuple[Controller, ...], target: str, log: PortLog) -> None:
     """What becomes of the source driver's controllers (ros_control / ros2_control)."""
     by_name = {c.name: c for c in controllers}

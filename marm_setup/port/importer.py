@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from marm_setup.errors import InputError
-from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver
+from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver, report_shared_joints
 from marm_setup.port.package import (
     port_author,
     read_files,
@@ -215,6 +215,7 @@ def _with_controllers(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, 
                 f"controllers[{c.name}]", "", f"written for group {c.group} ({c.type}), as init infers it"
             )
     report_driver(pkg, controllers, model.target, log)
+    report_shared_joints(controllers, model.target, log)
     arbotix = port_arbotix(pkg, robot, model.target, log)
     if model.target == "ros1" and model.driver == "arbotix" and not arbotix:
         model = dataclasses.replace(model, controllers=controllers)

@@ -156,7 +156,8 @@ def test_what_moveit_cannot_use_is_dropped_with_a_line(tmp_path):
 
 
 def test_a_gripper_command_of_several_joints_becomes_a_trajectory_controller_on_ros2(tmp_path):
-    """ros2_control's GripperActionController drives one joint."""
+    """ros2_control's GripperActionController drives one joint; a joint two controllers share is
+    a todo line (ros2_control activates one controller per command interface)."""
     _generate(tmp_path / "a", "ros1", "noetic")
     ctl = tmp_path / "a" / "config" / "controllers.yaml"
     text = ctl.read_text().replace("      - finger_joint1\n", "      - finger_joint1\n      - joint6\n")
@@ -169,4 +170,8 @@ def test_a_gripper_command_of_several_joints_becomes_a_trajectory_controller_on_
     assert (
         "name: gripper_controller\n  type: FollowJointTrajectory\n  action_ns: follow_joint_trajectory"
         in setup
+    )
+    shared = items["controllers[arm_controller], controllers[gripper_controller]"][0]
+    assert shared["status"] == "todo" and shared["detail"].startswith(
+        "share joint6: ros2_control activates one"
     )
