@@ -9,10 +9,10 @@ runtime checks (plan between named poses, execute as a fake controller) come fro
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
@@ -77,7 +77,7 @@ class Validation:
         return {**{key: getattr(self, key) for key in keys}, "skipped": list(self.skipped)}
 
 
-def guarded(family: str, fn, *args, **kwargs) -> list[Finding]:
+def guarded(family: str, fn: Callable[..., Iterable[Finding]], *args: Any, **kwargs: Any) -> list[Finding]:
     """`fn(*args)`'s findings; a crash in one rule family becomes one finding of its own (exit 2)
     instead of stopping the others."""
     try:
@@ -165,7 +165,7 @@ def user_urdf(pkg: ConfigPackage) -> str:
     return os.path.normpath(pkg.user_path(shown_path(pkg, pkg.urdf)))
 
 
-def load_package_robot(pkg: ConfigPackage):
+def load_package_robot(pkg: ConfigPackage) -> tuple[RobotModel | None, list[Finding]]:
     """(RobotModel or None, findings): the URDF loads and its meshes resolve."""
     from marm_setup.robot.load import load_robot
 

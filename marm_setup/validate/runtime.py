@@ -26,12 +26,13 @@ from marm_setup.robot.model import RobotModel
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
+    from marm_setup.plan.problem import PackageConfig
 
 RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
 
 
 def check_runtime(
-    package,
+    package: PackageConfig,
     robot: RobotModel,
     scene: CollisionScene,
     *,
@@ -58,8 +59,8 @@ def _check_group(
     robot: RobotModel,
     srdf_file: str,
     seed: int,
-    options,
-    planned: list | None = None,
+    options: PlannerOptions,
+    planned: list[tuple[str, str, str]] | None = None,
 ) -> list[Finding]:
     findings, usable = [], []
     for name in sorted(problem.poses):

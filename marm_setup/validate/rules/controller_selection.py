@@ -16,6 +16,10 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from itertools import combinations
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from marm_setup.validate.rules.controller_rules import MoveItController
 
 
 @dataclass(frozen=True, slots=True)
@@ -41,7 +45,7 @@ def select_controllers(joints: Iterable[str], ctrls: Sequence) -> Selection | No
     return None
 
 
-def _covers(combo, wanted: set[str]) -> bool:
+def _covers(combo: tuple[MoveItController, ...], wanted: set[str]) -> bool:
     seen: set[str] = set()
     for c in combo:
         if seen & set(c.joints):
@@ -50,11 +54,11 @@ def _covers(combo, wanted: set[str]) -> bool:
     return wanted <= seen
 
 
-def _rank(combo) -> tuple[int, int]:
+def _rank(combo: tuple[MoveItController, ...]) -> tuple[int, int]:
     return (-sum(1 for c in combo if c.default), sum(len(set(c.joints)) for c in combo))
 
 
-def _best(options) -> Selection:
+def _best(options: list[tuple[MoveItController, ...]]) -> Selection:
     if len(options) == 1:
         return Selection(tuple(c.name for c in options[0]))
     ranked = sorted(options, key=_rank)

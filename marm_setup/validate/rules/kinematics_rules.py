@@ -11,6 +11,7 @@ from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KI
 from marm_setup.setup.groups import active_group_joints, group_joints, groups_by_name
 
 if TYPE_CHECKING:
+    from marm_setup.setup.model import Group
     from marm_setup.setup.srdf import Srdf
     from marm_setup.validate.discovery import ConfigSection
 
@@ -47,7 +48,13 @@ def check_kinematics(section: ConfigSection, srdf: Srdf, robot: RobotModel) -> l
 
 
 def _check_entry(
-    section: ConfigSection, where, entry, group, by_name, srdf: Srdf, robot: RobotModel
+    section: ConfigSection,
+    where: str,
+    entry: dict,
+    group: Group,
+    by_name: dict[str, Group],
+    srdf: Srdf,
+    robot: RobotModel,
 ) -> list[Finding]:
     out: list[Finding] = []
     solver = entry.get("kinematics_solver")
@@ -77,7 +84,7 @@ def _solver_hint() -> str:
     return "known: " + ", ".join(s.split("/")[0] for s in KINEMATICS_PLUGINS[:5]) + ", ikfast"
 
 
-def is_chain(group, by_name, srdf: Srdf, robot: RobotModel) -> bool:
+def is_chain(group: Group, by_name: dict[str, Group], srdf: Srdf, robot: RobotModel) -> bool:
     """All the group's joints (fixed and mimic included, as MoveIt counts them) lie on one
     root-to-tip path, and at least one of them moves: what KDL can solve."""
     joints = group_joints(group, by_name, robot)

@@ -17,7 +17,7 @@ from numbers import Real
 from typing import TYPE_CHECKING, Any, TypeGuard
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.robot.model import RobotModel, limit_slack
+from marm_setup.robot.model import Joint, RobotModel, limit_slack
 from marm_setup.setup.groups import planning_joints
 
 if TYPE_CHECKING:
@@ -75,7 +75,7 @@ def check_joint_limits(section: ConfigSection, srdf: Srdf, robot: RobotModel, ta
     return out
 
 
-def _check_coverage(section: ConfigSection, limits, srdf: Srdf, robot: RobotModel) -> list[Finding]:
+def _check_coverage(section: ConfigSection, limits: dict, srdf: Srdf, robot: RobotModel) -> list[Finding]:
     wanted = planning_joints(tuple(srdf.groups), robot, tuple(srdf.passive_joints))
     return [
         warning(
@@ -89,7 +89,7 @@ def _check_coverage(section: ConfigSection, limits, srdf: Srdf, robot: RobotMode
     ]
 
 
-def _check_entry(section: ConfigSection, where, entry: dict, joint, target: str) -> list[Finding]:
+def _check_entry(section: ConfigSection, where: str, entry: dict, joint: Joint, target: str) -> list[Finding]:
     out: list[Finding] = []
     for key, flag in FLAGS.items():
         if not entry.get(flag, False):
@@ -126,7 +126,7 @@ def _check_entry(section: ConfigSection, where, entry: dict, joint, target: str)
     return out
 
 
-def _check_positions(section: ConfigSection, where, entry: dict, joint) -> list[Finding]:
+def _check_positions(section: ConfigSection, where: str, entry: dict, joint: Joint) -> list[Finding]:
     if not entry.get("has_position_limits", False) or joint.lower is None or joint.upper is None:
         return []
     out = []

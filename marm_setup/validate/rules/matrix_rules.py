@@ -62,7 +62,13 @@ def check_matrix_fresh(
 
 
 def _stale(
-    pair, n: int, q: np.ndarray, robot: RobotModel, scene: CollisionScene, file: str, trials: int
+    pair: tuple[str, str],
+    n: int,
+    q: np.ndarray,
+    robot: RobotModel,
+    scene: CollisionScene,
+    file: str,
+    trials: int,
 ) -> Finding:
     hits = scene.first_collisions(q, [pair])
     row = next(i for i, hit in enumerate(hits) if hit is not None)

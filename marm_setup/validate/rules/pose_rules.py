@@ -17,11 +17,14 @@ from marm_setup.setup.srdf import allowed_pairs
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
+    from marm_setup.setup.model import GroupState
     from marm_setup.setup.srdf import Srdf
     from marm_setup.validate.discovery import ConfigSection
 
 
-def pose_configuration(state, robot: RobotModel, base: Mapping[str, float] | None = None) -> np.ndarray:
+def pose_configuration(
+    state: GroupState, robot: RobotModel, base: Mapping[str, float] | None = None
+) -> np.ndarray:
     """The full active configuration of a named pose: its values over `base` over the default state."""
     from marm_setup.robot.kinematics import default_configuration
 
@@ -68,7 +71,7 @@ def check_pose_collisions(
     return out
 
 
-def _moves_pair(pair, moved: set[str], robot: RobotModel) -> bool:
+def _moves_pair(pair: tuple[str, str], moved: set[str], robot: RobotModel) -> bool:
     """Some joint in `moved` lies between the two links (changes their relative pose)."""
     up_a = {j.name for j in robot.path_to_root(pair[0])}
     up_b = {j.name for j in robot.path_to_root(pair[1])}

@@ -4,12 +4,16 @@ end effectors, virtual and passive joints, disabled pairs), plus what only a fil
 from __future__ import annotations
 
 from collections import Counter
+from typing import TYPE_CHECKING
 
 from marm_setup.collision.pairs import link_pair
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.rules import check_semantics, srdf_element
 from marm_setup.setup.srdf import Srdf
+
+if TYPE_CHECKING:
+    from lxml import etree
 
 
 def check_srdf(srdf: Srdf, robot: RobotModel, file: str, srdf_text: str | None = None) -> list[Finding]:
@@ -22,7 +26,7 @@ def check_srdf(srdf: Srdf, robot: RobotModel, file: str, srdf_text: str | None =
     return out
 
 
-def _xml(text: str):
+def _xml(text: str) -> etree._Element | None:
     from lxml import etree
 
     try:
@@ -31,7 +35,7 @@ def _xml(text: str):
         return None
 
 
-def _nested_passive_joints(root, file: str, robot: RobotModel) -> list[Finding]:
+def _nested_passive_joints(root: etree._Element, file: str, robot: RobotModel) -> list[Finding]:
     """A `<passive_joint>` inside a `<group>`: srdfdom model.cpp reads passive joints only as
     children of `<robot>` (`loadPassiveJoints`) and `loadGroups` skips unknown children, so the
     joint silently stays active: MoveIt plans for it and expects a controller and joint states
@@ -49,7 +53,7 @@ def _nested_passive_joints(root, file: str, robot: RobotModel) -> list[Finding]:
     return out
 
 
-def _duplicate_pairs(root, file: str) -> list[Finding]:
+def _duplicate_pairs(root: etree._Element, file: str) -> list[Finding]:
     """`disable_collisions` pairs written more than once (in either order)."""
     counts = Counter(
         link_pair(e.get("link1", ""), e.get("link2", "")) for e in root.iterchildren("disable_collisions")
