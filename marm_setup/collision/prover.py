@@ -4,32 +4,47 @@ Same answer as checking every state with coal: the shortcuts only ever prove "no
 never guess. Per state still open, in order:
 1. certificates of earlier distance queries (see `certificates`) that cover it;
 2. a cheap certificate: the distance of the meshes' convex hulls (a lower bound of the true
-   distance; for primitives it is the distance), while at least every other such query proves
-   something for this pair;
-3. a costly certificate: the exact mesh distance, while each query proves about YIELD states
-   over the run: the other states it proves in this chunk times the chunks this process has
-   still to check (its ball covers as many in each); near pairs whose gap is small next to
-   their lever arms get only PROBE queries;
-4. the exact coal check, after the hull test (scene.collide(hulls=True)) while that rejects
-   at least HULL_YIELD of the states it sees.
+   distance; for primitives it is the distance);
+3. a costly certificate: the exact mesh distance;
+4. the exact coal check, behind the hull test (scene.collide(hulls=True)).
+Each shortcut is used for a pair while it pays on that pair: after PROBE tries, while the exact
+checks it saves (measured time of this pair's exact check) cost more than it does (its own
+measured time). A certificate saves its state plus the other states it proves in this chunk
+times the chunks this process has still to check (its ball covers as many in each). So near
+pairs whose gap is small next to their lever arms, or whose exact check is cheap anyway, go
+straight to the exact check. Timing decides only how much work is done, never the answer.
+
 A pair stops at its first collision. The first EXACT_FIRST states of a chunk (deepest
 bounding-sphere overlap) go straight to the exact check: sometimes-colliding pairs end there.
-
 State (the certified balls, per pair) lives in the process; under --jobs each worker keeps
 its own, so the counts of work differ with --jobs but the answer does not.
 """
 
 from __future__ import annotations
 
+import time
+from collections.abc import Callable
+
 import numpy as np
 
 from marm_setup.collision.certificates import CERT_MARGIN, BallStore, pair_motions
 
 EXACT_FIRST = 2  # states per chunk checked exactly first (deepest overlap: finds hits fast)
-PROBE = 8  # queries of each kind a pair always gets
-CHEAP_YIELD = 0.5  # then: states proven per hull-distance query needed to keep asking
-YIELD = 8  # and per exact-distance query
-HULL_YIELD = 0.25  # share of hull tests that must prove a state apart to keep testing hulls
+PROBE = 8  # tries each shortcut gets on a pair before its pay is judged
+
+
+class _Ledger:
+    """Per (pair, shortcut): tries, exact checks saved, seconds spent."""
+
+    def __init__(self) -> None:
+        self.rows: dict[tuple[int, str], list[float]] = {}
+
+    def entry(self, pair_id: int, kind: str) -> list[float]:
+        return self.rows.setdefault((pair_id, kind), [0, 0.0, 0.0])
+
+    def pays(self, pair_id: int, kind: str, exact_seconds: float) -> bool:
+        tries, saved, seconds = self.entry(pair_id, kind)
+        return tries < PROBE or saved * exact_seconds >= seconds
 
 
 class PairProver:
@@ -38,7 +53,8 @@ class PairProver:
     def __init__(self, scene) -> None:
         self.scene = scene
         self._stores: dict[int, BallStore] = {}
-        self._tally: dict[tuple[int, str], list[float]] = {}  # (pair, kind) -> [queries, value]
+        self._ledger = _Ledger()
+        self._exact: dict[int, list[float]] = {}  # pair -> [exact checks, seconds]
         self._levers: dict = {}  # (ancestor, link) -> joint levers, shared by the pairs
         self._horizon = 1.0
 
@@ -48,16 +64,15 @@ class PairProver:
         """Whether pair `pair_id` collides in any state `rows` of `q`/`poses` (in that order);
         `horizon`: how many chunks like this one this process will still check."""
         self._horizon = max(horizon, 1.0)
-        scene = self.scene
         if not len(rows):
             return False
         store = self._store(pair_id)
         if len(store):
             covered = store.covers(q[rows])
-            scene.certified += int(covered.sum())
+            self.scene.certified += int(covered.sum())
             rows = rows[~covered]
         for n in rows[:EXACT_FIRST]:
-            if scene.collide(poses[n], pair_id):
+            if self._timed_exact(poses[n], pair_id, hulls=False):
                 return True
         rows = rows[EXACT_FIRST:]
         alive = np.ones(len(rows), dtype=bool)
@@ -70,31 +85,54 @@ class PairProver:
                 return True
         return False
 
-    def _collide(self, poses: np.ndarray, pair_id: int) -> bool:
-        """The exact check, behind the hull test while that rejects often enough (HULL_YIELD)."""
-        tally = self._tally.setdefault((pair_id, "hull test"), [0, 0])
-        if tally[0] >= PROBE and tally[1] < HULL_YIELD * tally[0]:
-            return self.scene.collide(poses, pair_id)
-        before = self.scene.hull_rejections
-        hit = self.scene.collide(poses, pair_id, hulls=True)
-        tally[0] += 1
-        tally[1] += self.scene.hull_rejections - before
+    def _exact_seconds(self, pair_id: int) -> float:
+        count, seconds = self._exact.get(pair_id, (0, 0.0))
+        return seconds / count if count else 0.0
+
+    def _timed_exact(self, poses: np.ndarray, pair_id: int, hulls: bool) -> bool:
+        started = time.perf_counter()
+        hit = self.scene.collide(poses, pair_id, hulls)
+        if not hulls:
+            record = self._exact.setdefault(pair_id, [0, 0.0])
+            record[0] += 1
+            record[1] += time.perf_counter() - started
         return hit
 
+    def _collide(self, poses: np.ndarray, pair_id: int) -> bool:
+        """The exact check, behind the hull test while that pays for this pair."""
+        if not self.scene.has_hulls(pair_id) or not self._ledger.pays(
+            pair_id, "hull test", self._exact_seconds(pair_id)
+        ):
+            return self._timed_exact(poses, pair_id, hulls=False)
+        entry = self._ledger.entry(pair_id, "hull test")
+        started = time.perf_counter()
+        apart = self.scene.hulls_apart(poses, pair_id)
+        entry[0] += 1
+        entry[2] += time.perf_counter() - started
+        if apart:
+            entry[1] += 1
+            return False
+        return self._timed_exact(poses, pair_id, hulls=False)
+
     def _certified(self, q, poses, pair_id: int, rows, i: int, alive) -> bool:
-        """Try the cheap, then the costly certificate at state rows[i] (when they pay)."""
+        """Try the cheap, then the costly certificate at state rows[i] (while they pay)."""
         scene, n = self.scene, rows[i]
-        kinds = (("hull", scene.hull_distance, CHEAP_YIELD), ("exact", scene.distance, YIELD))
-        for kind, measure, needed in kinds:
-            tally = self._tally.setdefault((pair_id, kind), [0, 0])
-            if tally[0] >= PROBE and tally[1] < needed * tally[0]:
+        measures: tuple[tuple[str, Callable], ...] = (
+            ("hull", scene.hull_distance),
+            ("exact", scene.distance),
+        )
+        for kind, measure in measures:
+            if not self._ledger.pays(pair_id, kind, self._exact_seconds(pair_id)):
                 continue
-            tally[0] += 1
+            entry = self._ledger.entry(pair_id, kind)
             scene.certificate_queries += 1
+            started = time.perf_counter()
             radius = measure(poses[n], pair_id) - scene.padding - CERT_MARGIN
+            entry[0] += 1
+            entry[2] += time.perf_counter() - started
             if radius > 0:
                 others = self._add_ball(q, pair_id, rows, i, alive, radius)
-                tally[1] += 1 + others if kind == "hull" else others * self._horizon
+                entry[1] += 1 + others * self._horizon
                 return True
         return False
 

@@ -191,6 +191,11 @@ class CollisionScene:
                 return True
         return False
 
+    def hulls_apart(self, poses: np.ndarray, pair_id: int) -> bool:
+        """The hull test alone: True proves the pair apart (see `collide(hulls=True)`)."""
+        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        return self._hulls_apart(poses, a, b)
+
     def has_hulls(self, pair_id: int) -> bool:
         """Whether either link of the pair has a mesh (with a convex hull)."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
