@@ -11,7 +11,7 @@ nothing, controllers the target's driver cannot serve, servo ids, a ros_distro n
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding
@@ -187,7 +187,7 @@ def _check_ranges(c: _Checker) -> None:
             raise c.fail(f"must be {bound}, got {value:g}", where)
 
 
-def _ranged_values(m: SetupModel):
+def _ranged_values(m: SetupModel) -> Iterator[tuple[str, float | None, float]]:
     """(key path, value, upper bound) of every number with a lower bound of 0 (exclusive)."""
     inf = math.inf
     yield "default_velocity_scaling", m.default_velocity_scaling, 1.0

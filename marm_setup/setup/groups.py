@@ -8,7 +8,9 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.setup.model import Group
 
 
-def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: frozenset[str]):
+def _expand(
+    group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: frozenset[str]
+) -> tuple[list[str], list[str]]:
     """(joints, links) of a group and its subgroups, duplicates allowed (callers order them).
 
     Each group reachable through subgroups is expanded once, whatever the shape (a diamond of

@@ -11,6 +11,7 @@ floating for a legged one, else fixed to `world`. Poses here are zeros clamped i
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
@@ -246,7 +247,7 @@ def _drop_shadowed(model: SetupModel, robot: RobotModel, given: set) -> SetupMod
     )
 
 
-def _resolvable(group: Group, by_name, robot: RobotModel) -> bool:
+def _resolvable(group: Group, by_name: Mapping[str, Group], robot: RobotModel) -> bool:
     """Names only what the robot and the setup have (a SPEC's typo is for the checks to report)."""
     chain_ok = group.chain is None or robot.chain(group.chain.base, group.chain.tip) is not None
     names_ok = all(j in robot.joint_map for j in group.joints) and all(
@@ -274,7 +275,7 @@ def merge_spec(base: dict, spec: dict) -> dict:
     return out
 
 
-def _item_key(item) -> str | None:
+def _item_key(item: object) -> str | None:
     if isinstance(item, dict):
         for key in ITEM_KEYS:
             if isinstance(item.get(key), str):

@@ -6,7 +6,7 @@ is rendered, so a name can neither break a generated file nor turn into code in 
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from marm_setup.errors import InputError
 from marm_setup.names import name_problem
@@ -63,7 +63,7 @@ def setup_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
     yield from _extras_names(m)
 
 
-def _listed(kind: str, names, where: str) -> Iterator[tuple[str, str, str]]:
+def _listed(kind: str, names: Iterable[str], where: str) -> Iterator[tuple[str, str, str]]:
     for i, name in enumerate(names):
         yield kind, name, f"{where}[{i}]"
 

@@ -3,7 +3,7 @@
 `installed` builds the wheel and installs it, dependencies resolved by pip from the configured
 index, into a venv of its own: a module the library imports at run time but pyproject.toml lists
 only as an extra fails here with ModuleNotFoundError. The venv is cached under .venv/ keyed on
-the wheel's exact dependency list and Python version, so it is rebuilt from scratch whenever the
+the wheel's exact runtime dependency list and Python version, so it is rebuilt from scratch whenever the
 dependencies change (and on a fresh machine); a cached one is re-checked with `pip check`.
 """
 
@@ -88,7 +88,7 @@ def _venv_for(wheel: Path, tmp_path_factory) -> Path:
     requires = sorted(
         line
         for line in zipfile.ZipFile(wheel).read(meta).decode().splitlines()
-        if line.startswith("Requires-Dist:")
+        if line.startswith("Requires-Dist:") and "extra ==" not in line  # runtime requirements only
     )
     key = hashlib.sha256("\n".join([sys.version, *requires]).encode()).hexdigest()[:16]
     cache = ROOT / ".venv"
