@@ -290,8 +290,29 @@ def _read_sections(reader: _YamlReader, target: str, moveit_yaml: Any) -> dict[s
         )
         out["alt_moveit_controllers"] = ()
     if moveit_yaml is not None:
+        reader.problems.extend(ros2_parameter_file_problems(moveit_yaml, MARM_MOVEIT_YAML))
         out.update(_marm_moveit_sections(moveit_yaml, out))
     return out
+
+
+def ros2_parameter_file_problems(raw: Any, file: str) -> list[Finding]:
+    """A ROS 2 parameter file maps node names (or `/**`), optionally under a namespace, to
+    `{ros__parameters: {...}}` (ros2/rcl rcl_yaml_param_parser/README.md); rcl rejects anything
+    else and the node does not start."""
+    if not isinstance(raw, dict) or not raw:
+        return [error("yaml.ros2-params", file, "", "expected a mapping of node names to ros__parameters")]
+    return [
+        error("yaml.ros2-params", file, str(node), "expected {ros__parameters: {...}} under a node name")
+        for node, value in raw.items()
+        if not (
+            _node_params(value)
+            or (isinstance(value, dict) and value and all(map(_node_params, value.values())))
+        )
+    ]
+
+
+def _node_params(value: Any) -> bool:
+    return isinstance(value, dict) and isinstance(value.get("ros__parameters"), dict)
 
 
 def _first(reader: _YamlReader, names: tuple[str, ...]) -> ConfigSection | None:

@@ -207,3 +207,26 @@ def test_typed_errors_survive_the_xacro_child_process():
     )
     assert isinstance(error, PackageNotFound) and (error.package, error.element) == ("p", "$(find p)")
     assert str(error) == "$(find p): unknown package 'p'"
+
+
+@pytest.mark.parametrize("value", [[1, 2], "x", {"ros__parameters": [1]}])
+def test_a_ros2_moveit_yaml_whose_node_entry_is_not_ros_parameters(tmp_path, value):
+    pkg = tmp_path / "pkg"
+    assert_clean_exit(run("init", MARM_URDF, "--out", pkg, *TRIALS), codes=(0,))
+    moveit = pkg / "config" / "moveit.yaml"
+    moveit.write_text(yaml.safe_dump({"/**": value}))
+    result = run("validate", pkg, "--no-plan")
+    assert_clean_exit(result, codes=(1,))
+    assert "yaml.ros2-params" in result.stdout
+
+
+def test_from_srdf_refuses_a_virtual_joint_type_moveit_does_not_know(tmp_path):
+    urdf_path = _write(tmp_path / "robot.urdf", TWO_BOXES)
+    srdf = _write(
+        tmp_path / "robot.srdf",
+        '<robot name="test_robot"><group name="arm"><chain base_link="a" tip_link="b"/></group>'
+        '<virtual_joint name="vj" type="hinge" parent_frame="world" child_link="a"/></robot>',
+    )
+    result = run("init", urdf_path, "--out", tmp_path / "pkg", "--from-srdf", srdf, *TRIALS)
+    assert_one_line_error(result, "hinge")
+    assert not (tmp_path / "pkg").exists()
