@@ -4,6 +4,7 @@ write through a symlink out of the package; --force keeps a hand edit as `<name>
 from __future__ import annotations
 
 import os
+import shutil
 import stat
 import subprocess
 import sys
@@ -137,3 +138,25 @@ def test_two_concurrent_inits_into_one_new_folder(tmp_path):
     files = set(snapshot(out))
     ros2 = "config/moveit.yaml" in files
     assert ros2 != ("launch/demo.launch" in files), sorted(files)  # one target's files, not both
+
+
+def test_a_package_that_is_a_mount_point(tmp_path):
+    """The folder cannot be renamed (EBUSY): init and render still write it, in place."""
+    if shutil.which("unshare") is None or subprocess.run(["unshare", "-m", "true"]).returncode != 0:
+        pytest.skip("needs a private mount namespace (unshare -m, root)")
+    out = tmp_path / "pkg"
+    out.mkdir()
+    cli = f"{sys.executable} -m marm_setup"
+    script = f"""set -e
+mount -t tmpfs tmpfs {out}
+{cli} init {MARM_URDF} --out {out} --setup {SPEC} --trials 20 --force > /dev/null
+sed -i 's/default_velocity_scaling: 0.1/default_velocity_scaling: 0.3/' {out}/marm_setup.yaml
+{cli} render {out} > /dev/null
+grep -q 'default_velocity_scaling_factor: 0.3' {out}/config/joint_limits.yaml
+mountpoint -q {out}
+ls -A {out}/.marm_setup
+"""
+    result = subprocess.run(["unshare", "-m", "sh", "-c", script], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stdout.split() == ["manifest.json"]  # no stage or commit record left
