@@ -286,7 +286,16 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
         )
     check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
     poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
-    return _Built(model, notes, poses_given)
+    return _Built(model, (*notes, *_empty_group_warnings(model)), poses_given)
+
+
+def _empty_group_warnings(model: SetupModel) -> tuple[str, ...]:
+    """srdfdom keeps a group that names nothing and MoveIt warns about it: so do we."""
+    return tuple(
+        f"warning: group '{g.name}' holds no chain, joints, links or subgroups (kept; MoveIt warns about it)"
+        for g in model.groups
+        if g.chain is None and not (g.joints or g.links or g.subgroups)
+    )
 
 
 def _make_room_for_spec(model: SetupModel, spec: dict) -> SetupModel:

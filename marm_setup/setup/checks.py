@@ -54,7 +54,6 @@ def check_setup(
     check_setup_names(model, robot, path)
     _check_names(c)
     _check_duplicates(c)
-    _check_empty_groups(c)
     raise_first_error(check_semantics(setup_to_srdf(model), robot, path or "", style), path)
     _check_joint_lists(c)
     _check_controller_actions(c)
@@ -119,13 +118,6 @@ def _check_duplicates(c: _Checker) -> None:
                 where = f" in group '{group}'" if group else ""
                 raise c.fail(f"duplicate name '{short}'{where}", f"{key}[{short}]")
             seen.add(name)
-
-
-def _check_empty_groups(c: _Checker) -> None:
-    """A setup's group must say what it holds (a chain, joints, links or subgroups)."""
-    for g in c.model.groups:
-        if g.chain is None and not (g.joints or g.links or g.subgroups):
-            raise c.fail("empty group: give a chain, joints, links or subgroups", f"groups[{g.name}]")
 
 
 def _check_joint_lists(c: _Checker) -> None:

@@ -69,6 +69,9 @@ class GroupState:
     name: str
     group: str
     values: tuple[tuple[str, float], ...]
+    # joints with several values (a planar or floating virtual joint: x y theta / x y z qx qy qz qw),
+    # kept as srdfdom reads them; no pose math looks at them
+    multi_dof: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
 
 @dataclass(frozen=True, slots=True)

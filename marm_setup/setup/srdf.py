@@ -167,15 +167,17 @@ def _group_state(r: _Reader, elem) -> GroupState:
     name = r.attr(elem, "name", "group_state")
     where = f"group_state[{name}]"
 
-    def value(r: _Reader, j) -> tuple[str, float]:
+    def value(r: _Reader, j) -> tuple[str, tuple[float, ...]]:
         joint = r.attr(j, "name", f"{where}.joint")
         text = r.attr(j, "value", f"{where}.joint[{joint}]").split()
-        if len(text) != 1:
-            raise r.fail("multi-DOF joint values are not supported", f"{where}.joint[{joint}]")
-        return joint, r.number(text[0], f"{where}.joint[{joint}]")
+        return joint, tuple(r.number(t, f"{where}.joint[{joint}]") for t in text)
 
-    values = r.each(elem.iterchildren("joint"), value)  # srdfdom skips only the bad <joint>
-    return GroupState(name=name, group=r.attr(elem, "group", where), values=tuple(values))
+    # srdfdom model.cpp loadGroupStates reads a value list per joint (several for a multi-DOF
+    # joint) and skips only the bad <joint>
+    read = r.each(elem.iterchildren("joint"), value)
+    values = tuple((joint, numbers[0]) for joint, numbers in read if len(numbers) == 1)
+    multi = tuple((joint, numbers) for joint, numbers in read if len(numbers) != 1)
+    return GroupState(name=name, group=r.attr(elem, "group", where), values=values, multi_dof=multi)
 
 
 def _end_effector(r: _Reader, elem) -> EndEffector:

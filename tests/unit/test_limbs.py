@@ -218,3 +218,103 @@ def test_home_moves_off_zeros_that_collide_and_ready_is_free(tmp_path):
         values = dict(state.values)
         assert scene.first_collisions(np.array([[values["j1"], values["j2"]]]), pairs) == [None]
     assert result == infer_poses(model, robot, scene, seed=0)  # seeded
+
+
+# -- --from-srdf keeps what the shipped SRDF holds ------------------------------------------------
+
+GEN3 = (
+    "realworld2/ros2_kortex/kortex_description/robots/gen3.xacro",
+    "realworld2/ros2_kortex/kortex_moveit_config/kinova_gen3_6dof_robotiq_2f_85_moveit_config/config/gen3.srdf",
+    "realworld2/ros2_kortex",
+    {"gripper": "robotiq_2f_85", "dof": "6"},
+)
+SHIPPED = {
+    **REAL,
+    "panda_ros2": (
+        "realworld/ros2/panda_description/urdf/panda.urdf",
+        "realworld/ros2/panda_moveit_config/config/panda.srdf",
+        "",
+        {},
+    ),
+    "fanuc": (
+        "realworld2/fanuc/fanuc_cr7ia_support/urdf/cr7ia.xacro",
+        "realworld2/fanuc/moveit_cfgs/fanuc_cr7ia_moveit_config/config/fanuc_cr7ia.srdf",
+        "realworld2/fanuc",
+        {},
+    ),
+    "gen3": GEN3,
+}
+
+
+@pytest.mark.parametrize("name", list(SHIPPED))
+def test_from_srdf_rerender_keeps_every_semantic_element(tmp_path, name):
+    from pathlib import Path
+
+    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.render.package import render_package
+    from marm_setup.setup.srdf import parse_srdf_string
+
+    rel_urdf, rel_srdf, rel_pkg, args = SHIPPED[name]
+    packages = [_shared(rel_pkg)] if rel_pkg else []
+    if name == "gen3":
+        packages.append(_shared("realworld2/ros2_robotiq_gripper"))
+    urdf_path, srdf_path = _shared(rel_urdf), _shared(rel_srdf)
+    robot = load_robot(urdf_path, args, packages)
+    request = InitRequest(
+        urdf=urdf_path,
+        out=tmp_path / "pkg",
+        from_srdf=srdf_path,
+        xacro_args=tuple(f"{k}:={v}" for k, v in args.items()),
+        package_paths=tuple(Path(p) for p in packages),
+    )
+    model = build_setup(request, robot)
+    files = {f.path: f.content for f in render_package(model, robot)}
+    (srdf_file,) = [p for p in files if p.endswith(".srdf")]
+    ours, theirs = parse_srdf_string(files[srdf_file]), read_srdf(srdf_path)
+    for kind in ("groups", "group_states", "end_effectors", "virtual_joints", "passive_joints"):
+        assert getattr(ours, kind) == getattr(theirs, kind), kind
+    assert ours.disabled == theirs.disabled
+
+
+MOBILE_SRDF = """<?xml version="1.0"?>
+<robot name="dual">
+  <virtual_joint name="world_joint" type="planar" parent_frame="odom" child_link="base"/>
+  <group name="base"><joint name="world_joint"/></group>
+  <group name="nothing"/>
+  <group_state name="origin" group="base"><joint name="world_joint" value="0 0.5 1.2"/></group_state>
+</robot>
+"""
+
+
+def test_from_srdf_keeps_multi_dof_values_and_empty_groups_through_marm_setup_yaml(tmp_path):
+    """srdfdom reads a value list for a multi-DOF joint and keeps a group that names nothing
+    (MoveIt warns): init imports both, warns about the empty group, and render keeps them."""
+    from typer.testing import CliRunner
+
+    from marm_setup.cli.app import app
+    from marm_setup.setup.yaml_io import load_setup
+    from tests.cli.test_init import _dual_arm_urdf
+
+    build_file_tree(tmp_path, {"dual.urdf": _dual_arm_urdf(), "dual.srdf": MOBILE_SRDF})
+    out = tmp_path / "pkg"
+    args = [
+        "init",
+        str(tmp_path / "dual.urdf"),
+        "--from-srdf",
+        str(tmp_path / "dual.srdf"),
+        "--out",
+        str(out),
+    ]
+    result = CliRunner().invoke(app, [*args, "--trials", "50"])
+    assert result.exit_code == 0, result.output
+    assert "warning: group 'nothing' holds no chain, joints, links or subgroups" in result.stdout
+    state = load_setup(out / "marm_setup.yaml").group_states[0]
+    assert state.multi_dof == (("world_joint", (0.0, 0.5, 1.2)),)
+    assert CliRunner().invoke(app, ["render", str(out)]).exit_code == 0
+    srdf = read_srdf(out / "config" / "dual.srdf")
+    original = read_srdf(tmp_path / "dual.srdf")
+    assert (srdf.groups, srdf.group_states, srdf.virtual_joints) == (
+        original.groups,
+        original.group_states,
+        original.virtual_joints,
+    )
