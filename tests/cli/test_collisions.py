@@ -255,3 +255,28 @@ def test_bad_default_pose_is_one_line(tmp_path, extra, expected):
     assert (
         result.stderr.strip().endswith(expected.replace("S: ", "")) and len(result.stderr.splitlines()) == 1
     )
+
+
+def test_default_pose_of_a_composite_group_with_a_floating_base_value():
+    """A humanoid's `half_sitting` names the whole body (a composite group) and gives the
+    floating virtual joint seven numbers; poses of one name in several groups all apply."""
+    from marm_setup.cli.commands.collisions import _pose_configuration
+    from marm_setup.robot.load import load_robot
+    from tests.conftest import FIXTURES
+
+    robot = load_robot(FIXTURES / "synthetic" / "humanoid.urdf")
+    srdf = """<robot name="humanoid">
+      <virtual_joint name="root" type="floating" parent_frame="odom" child_link="pelvis"/>
+      <group name="torso"><joint name="waist_yaw"/><joint name="waist_pitch"/></group>
+      <group name="body"><joint name="root"/><group name="torso"/></group>
+      <group_state name="half_sitting" group="body">
+        <joint name="root" value="0 0 0.8 0 0 0 1"/><joint name="waist_pitch" value="0.2"/>
+      </group_state>
+      <group_state name="home" group="torso"><joint name="waist_yaw" value="0.1"/></group_state>
+      <group_state name="home" group="body"><joint name="waist_pitch" value="-0.1"/></group_state>
+    </robot>"""
+    index = robot.active_joint_names.index
+    q = _pose_configuration(robot, srdf, "half_sitting", "S")
+    assert q[index("waist_pitch")] == 0.2 and q[index("waist_yaw")] == 0.0
+    q = _pose_configuration(robot, srdf, "home", "S")
+    assert (q[index("waist_yaw")], q[index("waist_pitch")]) == (0.1, -0.1)

@@ -124,17 +124,21 @@ def collisions(
 
 
 def _pose_configuration(robot: RobotModel, srdf_text: str, name: str, shown: str) -> np.ndarray:
-    """The default configuration with the SRDF pose `name` laid over it."""
+    """The default configuration with the SRDF pose `name` laid over it: a pose of any group,
+    composite ones included; where several groups have a pose of that name (a `home` per
+    group), all of them. Multi-DOF values (a virtual joint's) do not move the robot's links."""
     from marm_setup.robot.kinematics import default_configuration
     from marm_setup.setup.srdf import parse_srdf_string
 
-    states = {s.name: s for s in parse_srdf_string(srdf_text, shown).group_states}
-    if name not in states:
-        message = with_hint(f"unknown pose '{name}'", did_you_mean(name, states))
+    states = parse_srdf_string(srdf_text, shown).group_states
+    named = [s for s in states if s.name == name]
+    if not named:
+        names = sorted({s.name for s in states})
+        message = with_hint(f"unknown pose '{name}'", did_you_mean(name, names))
         raise InputError(message, path=shown, element="--default-pose")
     q = default_configuration(robot)
     index = {joint: i for i, joint in enumerate(robot.active_joint_names)}
-    for joint, value in states[name].values:
+    for joint, value in (v for s in named for v in s.values):
         if joint in index:
             q[index[joint]] = value
     return q

@@ -41,7 +41,9 @@ DistroOption = Annotated[
 SetupOption = Annotated[
     Path | None,
     typer.Option(
-        "--setup", help="SPEC yaml (marm_setup.yaml schema, any subset) over the inference.", metavar="SPEC"
+        "--setup",
+        help="SPEC yaml (marm_setup.yaml schema, any subset) over the inference; see docs/setup-file.md.",
+        metavar="SPEC",
     ),
 ]
 FromSrdfOption = Annotated[
@@ -99,7 +101,10 @@ def init(
     ] = OutputFormat.text,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package;
-    or, with --from-package, port an existing config package and report every setting."""
+    or, with --from-package, port an existing config package and report every setting.
+
+    The setup file (marm_setup.yaml, and the SPEC of --setup) is described key by key, with
+    examples, in docs/setup-file.md."""
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.errors import InputError
     from marm_setup.pipeline import InitRequest, run_init
