@@ -29,15 +29,17 @@ from marm_setup.validate.rules.controller_rules import (
     ros2_driver_controllers,
 )
 
-# What the new package's driver side is, per target (templates/<target>/config).
+# What the new package's driver side is, per SetupModel.driver_key (ros2_control, the ros1
+# driver, or none: a ros1 package without driver files).
 TARGET_DRIVER = {
     "ros2": "ros2_controllers.yaml (ros2_control, mock_components/GenericSystem hardware)",
-    "ros1": "arbotix.yaml (ArbotiX driver)",
+    "arbotix": "arbotix.yaml (ArbotiX driver)",
+    None: "your driver's configuration (the new ros1 package writes no driver files)",
 }
 TARGET_DRIVER_TYPES = {
     **{("ros2", kind): plugin for kind, plugin in ROS2_CONTROLLER_TYPES.items()},
-    ("ros1", FOLLOW_JOINT_TRAJECTORY): "ArbotiX follow_controller",
-    ("ros1", GRIPPER_COMMAND): "arbotix_controllers gripper_controller node",
+    ("arbotix", FOLLOW_JOINT_TRAJECTORY): "ArbotiX follow_controller",
+    ("arbotix", GRIPPER_COMMAND): "arbotix_controllers gripper_controller node",
 }
 STATE_PUBLISHERS = ("JointStateBroadcaster", "JointStateController")
 
@@ -133,7 +135,7 @@ def _controller(
             f"{setting}.name", src, f"an empty name is renamed {name!r}: the target's driver needs a name"
         )
     kind = _kind(c.type, joints, model.target, setting, src, log)
-    action_ns = _action_ns(c, kind, model.target, setting, src, log)
+    action_ns = _action_ns(c, kind, model.driver_key, setting, src, log)
     log.carried(setting, src, f"{kind} on {', '.join(joints)} (default: {str(c.default).lower()})")
     return Controller(name, kind, action_ns, joints, group, c.default)
 
@@ -164,18 +166,22 @@ def _group_of(joints: tuple[str, ...], model: SetupModel, robot: RobotModel) -> 
     return next((g for g, js in active.items() if js == set(joints)), None)
 
 
-def _action_ns(c: MoveItController, kind: str, target: str, setting: str, src: str, log: PortLog) -> str:
-    served = DRIVER_ACTION_NS.get((target, kind))
+def _action_ns(
+    c: MoveItController, kind: str, driver: str | None, setting: str, src: str, log: PortLog
+) -> str:
+    served = DRIVER_ACTION_NS.get((driver, kind)) if driver else None
     if served is not None and c.action_ns != served:
         log.changed(
             f"{setting}.action_ns",
             src,
-            f"{c.action_ns!r} -> {served!r}: the {target} driver's {kind} controller serves <name>/{served}",
+            f"{c.action_ns!r} -> {served!r}: the {driver} driver's {kind} controller serves <name>/{served}",
         )
         return served
     if not c.action_ns:
         log.changed(
-            f"{setting}.action_ns", src, f"empty -> '{FOLLOW_JOINT_TRAJECTORY_NS}' (the ArbotiX driver's)"
+            f"{setting}.action_ns",
+            src,
+            f"empty -> '{FOLLOW_JOINT_TRAJECTORY_NS}' (the new package's controllers need a name/namespace)",
         )
         return FOLLOW_JOINT_TRAJECTORY_NS
     return c.action_ns
@@ -203,7 +209,9 @@ def report_shared_joints(controllers: tuple[Controller, ...], target: str, log: 
                 )
 
 
-def report_driver(pkg: ConfigPackage, controllers: tuple[Controller, ...], target: str, log: PortLog) -> None:
+def report_driver(
+    pkg: ConfigPackage, controllers: tuple[Controller, ...], driver: str | None, log: PortLog
+) -> None:
     """What becomes of the source driver's controllers (ros_control / ros2_control)."""
     by_name = {c.name: c for c in controllers}
     for section, reader in (
@@ -214,11 +222,17 @@ def report_driver(pkg: ConfigPackage, controllers: tuple[Controller, ...], targe
             continue
         for name, (kind, _, element) in reader(section).items():
             src = where(section.file, element)
-            _driver_item(name, kind, by_name.get(name), target, src, section, log)
+            _driver_item(name, kind, by_name.get(name), driver, src, section, log)
 
 
 def _driver_item(
-    name: str, kind: str, ours: Controller | None, target: str, src: str, section: ConfigSection, log: PortLog
+    name: str,
+    kind: str,
+    ours: Controller | None,
+    driver: str | None,
+    src: str,
+    section: ConfigSection,
+    log: PortLog,
 ) -> None:
     setting = f"driver.{name}"
     suffix = kind.rpartition("/")[2]
@@ -229,14 +243,17 @@ def _driver_item(
         log.dropped(
             setting,
             src,
-            f"{kind}: no MoveIt controller of that name uses it; add it to {TARGET_DRIVER[target]} by hand",
+            f"{kind}: no MoveIt controller of that name uses it; add it to {TARGET_DRIVER[driver]} by hand",
         )
         return
-    new = TARGET_DRIVER_TYPES[target, ours.type]
+    new = TARGET_DRIVER_TYPES.get((driver, ours.type)) if driver else None
+    if new is None:
+        log.todo(setting, src, f"{kind}: keep it in {TARGET_DRIVER[driver]}")
+        return
     if kind == new:
         log.carried(setting, src, kind)
     else:
-        log.changed(setting, src, f"{kind} -> {new} in {TARGET_DRIVER[target]}")
+        log.changed(setting, src, f"{kind} -> {new} in {TARGET_DRIVER[driver]}")
     params = _driver_params(section, name)
     if params:
         log.todo(

@@ -214,7 +214,7 @@ def _with_controllers(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, 
             log.changed(
                 f"controllers[{c.name}]", "", f"written for group {c.group} ({c.type}), as init infers it"
             )
-    report_driver(pkg, controllers, model.target, log)
+    report_driver(pkg, controllers, model.driver_key, log)
     report_shared_joints(controllers, model.target, log)
     arbotix = port_arbotix(pkg, robot, model.target, log)
     if model.target == "ros1" and model.driver == "arbotix" and not arbotix:
@@ -225,6 +225,13 @@ def _with_controllers(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, 
             "arbotix_joints",
             "",
             f"ros1 packages drive an ArbotiX bus: servo ids assigned ({ids}); check them",
+        )
+    if model.target == "ros1" and model.driver is None:
+        log.todo(
+            "driver",
+            "",
+            "the new ros1 package writes no hardware driver files (no arbotix.yaml in the source): "
+            "launch your robot's driver so it serves the controllers' actions",
         )
     if model.target == "ros2":
         log.todo(

@@ -141,3 +141,17 @@ def test_panda_moveit2_package_ports_to_both_targets(tmp_path, target):
     assert "name: panda_hand_controller" in setup
     notes = [i for i in doc["port"]["items"] if i["setting"] == "robot.urdf" and i["status"] == "changed"]
     assert notes and ".setup_assistant names is used" in notes[0]["detail"]
+
+
+def test_panda_ros1_to_ros1_without_a_driver_says_the_driver_is_the_users(tmp_path):
+    """No arbotix.yaml in the source: the new ros1 package writes no driver files, so the
+    ros_control controllers are the user's to keep (not mapped to ArbotiX ones)."""
+    source = realworld("ros1", "panda_moveit_config")
+    out = tmp_path / "panda"
+    cmd = ["init", "--from-package", str(source), "--out", str(out), "--target", "ros1", "--no-plan"]
+    result = runner.invoke(app, [*cmd, "--package-path", str(source.parent), "--format", "json"])
+    items = {i["setting"]: i for i in json.loads(result.stdout)["port"]["items"]}
+    assert items["driver.arm_controller"]["status"] == "todo"
+    assert "writes no driver files" in items["driver.arm_controller"]["detail"]
+    assert items["driver"]["status"] == "todo"
+    assert "arbotix" not in (out / "marm_setup.yaml").read_text()
