@@ -18,7 +18,7 @@ from marm_setup.names import did_you_mean
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.domain import VIRTUAL_JOINT_TYPES
 from marm_setup.setup.groups import active_group_joints, group_joints, group_links, groups_by_name
-from marm_setup.setup.model import EndEffector, Group, GroupState
+from marm_setup.setup.model import EndEffector, Group, GroupState, VirtualJoint
 from marm_setup.setup.srdf import Srdf
 
 
@@ -147,7 +147,7 @@ def check_virtual_joints(r: _Rules) -> list[Finding]:
     return out
 
 
-def _virtual_joint_off_root(r: _Rules, vj, where: Where) -> list[Finding]:
+def _virtual_joint_off_root(r: _Rules, vj: VirtualJoint, where: Where) -> list[Finding]:
     """MoveIt's robot_model.cpp (`constructJointModel`, the URDF root) skips a virtual joint whose
     child is not the root, with a warning ("Skipping virtual joint ... does not match the URDF
     frame") and assumes a fixed joint. A URDF whose root is named like the parent frame already

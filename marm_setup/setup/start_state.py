@@ -15,13 +15,35 @@ Joints neither sets stay at MoveIt's default (0, or mid-range where 0 is outside
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import Any, Protocol
 
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.srdf import Srdf
 
 
-def package_start_values(package, robot: RobotModel) -> dict[str, float]:
+class _Parsed(Protocol):
+    @property
+    def data(self) -> Any: ...
+
+
+class StartSources(Protocol):
+    """What the start state is read from: a config package (validate's ConfigPackage is one)."""
+
+    @property
+    def target(self) -> str: ...
+
+    @property
+    def srdf(self) -> Srdf | None: ...
+
+    @property
+    def fake_controllers(self) -> _Parsed | None: ...
+
+    @property
+    def initial_positions(self) -> _Parsed | None: ...
+
+
+def package_start_values(package: StartSources, robot: RobotModel) -> dict[str, float]:
     """`demo_start_values` of a config package (anything with `target`, `srdf` and the
     `fake_controllers` / `initial_positions` sections, each with `.data`, or None)."""
     fake, positions = package.fake_controllers, package.initial_positions
@@ -34,7 +56,9 @@ def package_start_values(package, robot: RobotModel) -> dict[str, float]:
     )
 
 
-def demo_start_values(target: str, srdf: Srdf | None, robot: RobotModel, fake_controllers, initial_positions):
+def demo_start_values(
+    target: str, srdf: Srdf | None, robot: RobotModel, fake_controllers: object, initial_positions: object
+) -> dict[str, float]:
     """Joint values a package's demo sets at start (others stay at their defaults): for ros1
     the `initial` poses of fake_controllers.yaml, for ros2 initial_positions.yaml. The two files
     are given as parsed YAML (anything, or None when absent)."""
@@ -60,7 +84,7 @@ def initial_pose_values(
     return out
 
 
-def initial_position_values(data, robot: RobotModel) -> dict[str, float]:
+def initial_position_values(data: object, robot: RobotModel) -> dict[str, float]:
     """The numbers initial_positions.yaml gives active joints of the robot (`initial_positions:`
     mapping, or the mapping itself)."""
     values = data.get("initial_positions", data) if isinstance(data, dict) else None
@@ -76,7 +100,7 @@ def initial_position_values(data, robot: RobotModel) -> dict[str, float]:
     }
 
 
-def _initial_entries(data) -> list[tuple[str, str]]:
+def _initial_entries(data: object) -> list[tuple[str, str]]:
     entries = data.get("initial") if isinstance(data, dict) else None
     if not isinstance(entries, list):
         return []

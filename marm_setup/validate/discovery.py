@@ -40,7 +40,7 @@ config package at all raises `InputError` (exit 2).
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -206,7 +206,9 @@ def _srdf_choice(root, given, marm_data, setup_assistant, reader, problems):
     return Path(os.path.relpath(Path(given).resolve(), root)).as_posix(), ()
 
 
-def _prepare_launch(reader, root: Path, launch_files, paths, target: str) -> None:
+def _prepare_launch(
+    reader: _YamlReader, root: Path, launch_files: tuple[str, ...], paths: tuple[Path, ...], target: str
+) -> None:
     """What the ROS 1 launch files load: subst_value files and their args, rosparam files, the SRDF."""
     if target != "ros1":
         return
@@ -234,7 +236,7 @@ class _YamlReader:
         self.problems = problems
         self.cache: dict[str, Any] = {}
         self.contexts: dict[str, tuple[dict[str, str], str]] = {}
-        self.find = lambda _name: None
+        self.find: Callable[[str], str | None] = lambda _name: None
         self.loaded: tuple[str, ...] = ()  # files the launch files load with <rosparam file=...>
         self.launch_srdf: tuple[str, tuple[tuple[str, str], ...]] | None = None
 
