@@ -360,12 +360,16 @@ def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupMod
 
 
 def _source(request: InitRequest) -> RobotSource:
-    """The robot's location relative to the package folder (so the package can move with it)."""
+    """Where the robot is, so the package can move (see `render.package.robot_reference`)."""
+    from marm_setup.render.package import robot_reference
+
     out = request.out.resolve()
+    paths = [_relative(p, out) for p in request.package_paths]
+    urdf, paths = robot_reference(Path(request.urdf), out, paths)
     return RobotSource(
-        urdf=_relative(request.urdf, out),
+        urdf=urdf,
         xacro_args=tuple(sorted(parse_xacro_args(list(request.xacro_args)).items())),
-        package_paths=tuple(_relative(p, out) for p in request.package_paths),
+        package_paths=tuple(paths),
     )
 
 

@@ -24,12 +24,15 @@ MARM_KEYS = ("collision", "default_acceleration", "author")
 def robot_source(pkg: ConfigPackage, out: Path, user_paths: tuple[Path, ...], log: PortLog) -> RobotSource:
     """The URDF relative to the new package, the package's xacro args and the folders holding the
     description's packages (the user's --package-path, then marm_setup.yaml's)."""
-    urdf = _relative(pkg.urdf, out)
+    from marm_setup.render.package import robot_reference
     from marm_setup.validate.sources import marm_package_paths
 
     marm = pkg.marm_setup.data if pkg.marm_setup is not None else None
     paths = [*user_paths, *marm_package_paths(pkg.root, marm)]
-    rel_paths = tuple(dict.fromkeys(_relative(p, out) for p in paths))
+    urdf, rel_list = robot_reference(
+        Path(pkg.urdf), out, list(dict.fromkeys(_relative(p, out) for p in paths))
+    )
+    rel_paths = tuple(rel_list)
     log.carried("robot.urdf", pkg.urdf_origin, f"{urdf} (relative to the new package)")
     for name, value in pkg.xacro_args:
         log.carried(f"robot.xacro_args.{name}", pkg.urdf_origin, value)

@@ -7,6 +7,7 @@ the robot's name in the output path.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from marm_setup.errors import InputError
@@ -85,6 +86,28 @@ def description_package(urdf: Path) -> tuple[str, str] | None:
         if name:
             return name, urdf.relative_to(folder).as_posix()
     return None
+
+
+def robot_reference(urdf: Path, out: Path, package_paths: list[str]) -> tuple[str, list[str]]:
+    """(robot.urdf, robot.package_paths) for a package at `out`, so it can move: `package://pkg/path`
+    when the URDF lives in a ROS package (found again by name next to the package, in the
+    environment or in the package paths, which then also hold the folder around that package),
+    else the URDF's path relative to `out`."""
+    described = description_package(urdf)
+    if described is None:
+        return _relative(urdf, out), package_paths
+    home = urdf.resolve()
+    for _ in Path(described[1]).parts:
+        home = home.parent
+    around = _relative(home.parent, out)
+    return f"package://{described[0]}/{described[1]}", [
+        *package_paths,
+        *([around] if around not in package_paths else []),
+    ]
+
+
+def _relative(path: Path, base: Path) -> str:
+    return Path(os.path.relpath(path.resolve(), base.resolve())).as_posix()
 
 
 def render_package(

@@ -191,3 +191,16 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageMap, *, path: str, el
             f"mesh '{uri}' not found (looked at {candidate})", uri=uri, path=path, element=element
         )
     return candidate.resolve()
+
+
+def description_file(ref: str, base: Path, package_paths: Iterable[str | Path] = ()) -> Path:
+    """The robot description a setup names: `package://pkg/path` (looked up in `package_paths`
+    that exist, the environment and around `base`, so a package moved into a workspace next to
+    its description still finds it), else a path relative to `base` (or absolute)."""
+    if not ref.startswith("package://"):
+        candidate = Path(ref)
+        return candidate if candidate.is_absolute() else base / candidate
+    pkg, _, rest = ref[len("package://") :].partition("/")
+    usable = [p for p in package_paths if Path(p).is_dir()]
+    index = find_packages(usable, near=base / "marm_setup.yaml")
+    return find_package(pkg, index, path=str(base / "marm_setup.yaml"), element="robot.urdf") / rest

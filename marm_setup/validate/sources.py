@@ -165,8 +165,12 @@ def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths, robot
     if isinstance(marm, dict) and isinstance(marm.get("robot"), dict):
         robot = marm["robot"]
         if isinstance(robot.get("urdf"), str):
-            file = Path(robot["urdf"])
-            file = file if file.is_absolute() else root / file
+            from marm_setup.robot.ros_packages import description_file
+
+            try:
+                file = description_file(robot["urdf"], root, (*paths, *marm_package_paths(root, marm)))
+            except InputError:  # a package:// the package cannot find: reported as the missing URDF
+                file = root / robot["urdf"]
             return file, "marm_setup.yaml", args or _marm_xacro_args(robot.get("xacro_args"))
     name = package_name(root) or root.name
     xacros = sorted((root / "config").glob("*.urdf.xacro"))
@@ -221,12 +225,14 @@ def _setup_assistant_urdf(entry: dict, paths: tuple[Path, ...], shown: str, args
 
 
 def marm_package_paths(root: Path, marm: Any) -> tuple[Path, ...]:
-    """`robot.package_paths` of marm_setup.yaml (relative to the package)."""
+    """`robot.package_paths` of marm_setup.yaml (relative to the package) that exist: a package
+    copied into a workspace finds its description next to it instead."""
     robot = marm.get("robot") if isinstance(marm, dict) else None
     items = robot.get("package_paths") if isinstance(robot, dict) else None
     if not isinstance(items, list):
         return ()
-    return tuple((root / str(p)).resolve() for p in items if isinstance(p, str))
+    paths = ((root / str(p)).resolve() for p in items if isinstance(p, str))
+    return tuple(p for p in paths if p.is_dir())
 
 
 def _marm_xacro_args(value: Any) -> tuple[tuple[str, str], ...]:

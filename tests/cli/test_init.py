@@ -42,8 +42,39 @@ def test_init_marm_prints_inference_and_writes_the_package(tmp_path):
     assert (model.package_name, model.target, model.collision.trials) == ("marm_moveit_config", "ros2", 1000)
     srdf = read_srdf(out / "config" / "marm.srdf")
     assert srdf.groups == model.groups and srdf.disabled == model.collision.disabled
-    robot_path = (out / model.robot.urdf).resolve()
-    assert robot_path == MARM_URDF.resolve()
+    assert model.robot.urdf == "package://marm_description/urdf/marm.urdf.xacro"
+    from marm_setup.robot.ros_packages import description_file
+
+    assert description_file(
+        model.robot.urdf, out, [out / p for p in model.robot.package_paths]
+    ).resolve() == (MARM_URDF.resolve())
+
+
+def test_a_package_copied_into_a_workspace_renders_and_validates_there(tmp_path):
+    """The setup names the description by ROS package: a copy of the config package next to a
+    copy of the description package (a catkin/colcon workspace) finds it there."""
+    import shutil
+
+    out = tmp_path / "made" / "marm_moveit_config"
+    assert runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), "--trials", "200"]).exit_code == 0
+    src = tmp_path / "ws" / "src"
+    shutil.copytree(FIXTURES / "marm", src / "marm_description")
+    shutil.copytree(out, src / "marm_moveit_config")
+    shutil.rmtree(tmp_path / "made")
+    moved = src / "marm_moveit_config"
+    (moved / "marm_setup.yaml").write_text(
+        (moved / "marm_setup.yaml").read_text().replace("package_paths:", "package_paths:\n  - ../../gone")
+    )
+    result = runner.invoke(app, ["render", str(moved)])
+    assert result.exit_code == 0, result.output
+    result = runner.invoke(app, ["validate", str(moved)])
+    assert result.exit_code == 0, result.output
+    assert str(src / "marm_description" / "urdf" / "marm.urdf.xacro") in result.stdout
+    elsewhere = tmp_path / "alone"
+    shutil.copytree(moved, elsewhere)
+    args = ["--urdf", str(MARM_URDF)]
+    assert runner.invoke(app, ["render", str(elsewhere), *args]).exit_code == 0
+    assert runner.invoke(app, ["validate", str(elsewhere), "--no-plan", *args]).exit_code == 0
 
 
 def test_init_with_course_spec_ros1(tmp_path):
@@ -303,7 +334,8 @@ def test_golden_marm_setup_and_srdf(tmp_path, assert_golden):
     result = _init(out, "--setup", str(SPEC), "--target", "ros1")
     assert result.exit_code == 0, result.output
     setup_text = (out / "marm_setup.yaml").read_text()
-    setup_text = re.sub(r"(?m)^  urdf: .*$", "  urdf: <URDF>", setup_text)
+    assert "  urdf: package://marm_description/urdf/marm.urdf.xacro\n" in setup_text
+    setup_text = re.sub(r"(?m)^  - \S*/fixtures$", "  - <FIXTURES>", setup_text)  # relative to tmp_path
     assert_golden("init/marm/marm_setup.yaml", setup_text)
     srdf_text = (out / "config" / "marm.srdf").read_text()
     etree.fromstring(srdf_text.encode())

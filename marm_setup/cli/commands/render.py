@@ -21,13 +21,23 @@ def render(
     dry_run: Annotated[
         bool, typer.Option("--dry-run", help="Print what would change; write nothing.")
     ] = False,
+    urdf: Annotated[
+        Path | None,
+        typer.Option(
+            "--urdf", help="The robot description, instead of the one marm_setup.yaml names.", metavar="URDF"
+        ),
+    ] = None,
 ) -> None:
     """Re-render every generated file of DIR from DIR/marm_setup.yaml (create / update / unchanged / conflict)."""
     from marm_setup.errors import ConflictError
     from marm_setup.render.package import SETUP_FILE, render_package
     from marm_setup.render.writer import apply_writes, conflicts, format_change, plan_writes, stale_files
 
-    model, robot = load_package_setup(dir)
+    if urdf is not None and not urdf.is_file():
+        from marm_setup.errors import InputError
+
+        raise InputError("file not found", path=str(urdf), element="--urdf")
+    model, robot = load_package_setup(dir, urdf)
     # marm_setup.yaml is the input here: render never rewrites it.
     rendered = [f for f in render_package(model, robot) if f.path != SETUP_FILE]
     changes = plan_writes(rendered, dir)
@@ -62,10 +72,12 @@ def _summary(changes: list[FileChange]) -> str:
     return ", ".join(f"{n} {word}" for word, n in counts.items())
 
 
-def load_package_setup(pkg_dir: Path) -> tuple[SetupModel, RobotModel]:
-    """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names."""
+def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupModel, RobotModel]:
+    """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names (or
+    `urdf`, when given: the package moved away from the description it names)."""
     from marm_setup.errors import InputError
     from marm_setup.robot.load import load_robot
+    from marm_setup.robot.ros_packages import description_file
     from marm_setup.setup.checks import check_setup
     from marm_setup.setup.yaml_io import load_setup
 
@@ -78,8 +90,8 @@ def load_package_setup(pkg_dir: Path) -> tuple[SetupModel, RobotModel]:
         )
     model = load_setup(setup_path)
     source = model.robot
-    urdf = _relative_to(pkg_dir, source.urdf)
-    package_paths = [_relative_to(pkg_dir, p) for p in source.package_paths]
+    package_paths = [p for p in (_relative_to(pkg_dir, p) for p in source.package_paths) if p.is_dir()]
+    urdf = description_file(source.urdf, pkg_dir, package_paths) if urdf is None else urdf
     robot = load_robot(urdf, dict(source.xacro_args), package_paths)
     check_setup(model, robot, str(setup_path))  # an edit may name unknown joints or leave limits
     return model, robot
