@@ -18,6 +18,7 @@ from lxml import etree
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
+from marm_setup.robot.load import xml_syntax_message
 
 COMPUTED = frozenset(
     {DisabledReason.ADJACENT, DisabledReason.DEFAULT, DisabledReason.ALWAYS, DisabledReason.NEVER}
@@ -69,7 +70,9 @@ def read_srdf_entries(text: str, *, shown: str) -> list[SrdfEntry]:
     try:
         root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError as exc:
-        raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
+        raise InputError(
+            f"malformed XML: {xml_syntax_message(exc)}", path=shown, element=f"line {exc.lineno}"
+        ) from None
     if root.tag != "robot":
         raise InputError(f"root element is <{root.tag!s}>, expected <robot>", path=shown)
     elements = root.findall("disable_collisions")

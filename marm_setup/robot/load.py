@@ -73,7 +73,15 @@ def parse_xml(text: str, *, shown: str) -> etree._Element:
         parser = etree.XMLParser(remove_comments=True)
         return etree.fromstring(text.encode("utf-8"), parser)
     except etree.XMLSyntaxError as exc:
-        raise InputError(f"malformed XML: {exc.msg}", path=shown, element=f"line {exc.lineno}") from None
+        raise InputError(
+            f"malformed XML: {xml_syntax_message(exc)}", path=shown, element=f"line {exc.lineno}"
+        ) from None
+
+
+def xml_syntax_message(exc: etree.XMLSyntaxError) -> str:
+    """libxml2's message on one line, without the position it repeats (the element names the line)."""
+    text = " ".join(str(exc.msg).split())
+    return re.sub(r"\s*,?\s*line \d+, column \d+$", "", text)
 
 
 XACRO_SECONDS = 60.0  # [s] for one xacro expansion; MARM_SETUP_XACRO_TIMEOUT overrides

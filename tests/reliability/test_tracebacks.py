@@ -92,7 +92,9 @@ def test_yaml_bounds_in_a_package_validate_reads(tmp_path):
 
 def test_a_nul_byte_in_a_urdf_is_one_line(tmp_path):
     path = _write(tmp_path / "nul.urdf", b'<robot name="a">\x00<link name="a"/></robot>')
-    assert_one_line_error(run("inspect", path), "malformed XML")
+    result = run("inspect", path)
+    assert_one_line_error(result, "malformed XML: Invalid character: Char 0x0 out of allowed range")
+    assert "\\n" not in result.stderr and "column" not in result.stderr
 
 
 @pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
