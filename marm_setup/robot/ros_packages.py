@@ -135,10 +135,10 @@ def find_packages(
     near: Path | None = None,
     environ: Mapping[str, str] | None = None,
 ) -> PackageIndex:
-    """Index packages: `--package-path` first, then the env, then around `near`.
-
-    Around `near` (a URDF): every enclosing folder holding a `package.xml`, and its siblings;
-    the folder-name fallback also looks at the enclosing folders and their children.
+    """Index packages: the packages enclosing `near` (a URDF's own `package://` is its own
+    package, wherever a copy of it lies), then `--package-path`, then the env, then the
+    siblings of those enclosing packages. The folder-name fallback also looks at the folders
+    enclosing `near` and their children.
     """
     environ = os.environ if environ is None else environ
     for given in package_paths:
@@ -146,6 +146,10 @@ def find_packages(
             raise InputError("not a directory", path=str(given), element="--package-path")
     roots = [Path(p).resolve() for p in package_paths] + [p.resolve() for p in _env_roots(environ)]
     index = PackageIndex(roots=tuple((root, SEARCH_DEPTH) for root in roots))
+    for folder in list(near.resolve().parents)[:4] if near is not None else ():
+        name = package_name(folder)
+        if name:
+            index.manifests.setdefault(name, folder)
     for root in roots:
         for pkg, path in _packages_below(root).items():
             index.manifests.setdefault(pkg, path)
