@@ -280,3 +280,41 @@ def test_default_pose_of_a_composite_group_with_a_floating_base_value():
     assert q[index("waist_pitch")] == 0.2 and q[index("waist_yaw")] == 0.0
     q = _pose_configuration(robot, srdf, "home", "S")
     assert (q[index("waist_yaw")], q[index("waist_pitch")]) == (0.1, -0.1)
+
+
+def test_srdf_of_another_robot_is_refused_unless_forced_and_changes_are_summarised(tmp_path):
+    root = realworld("ros1")
+    panda_srdf = tmp_path / "panda.srdf"
+    panda_srdf.write_text((root / "panda_moveit_config/config/panda.srdf").read_text())
+    before = panda_srdf.read_text()
+    result = _run(str(MARM_URDF), *FAST, "--srdf", str(panda_srdf))
+    assert result.exit_code == 2
+    assert result.stderr.strip() == (
+        f"error: {panda_srdf}: robot: the SRDF is robot 'panda', the URDF is 'marm' (--force updates it anyway)"
+    )
+    assert panda_srdf.read_text() == before
+    renamed = tmp_path / "renamed.srdf"
+    renamed.write_text(before.replace('<robot name="panda">', '<robot name="marm">'))
+    result = _run(str(MARM_URDF), *FAST, "--srdf", str(renamed))
+    assert result.exit_code == 2 and "links not in the URDF: panda_hand, panda_leftfinger" in result.stderr
+    result = _run(
+        str(MARM_URDF), *FAST, "--srdf", str(panda_srdf), "--force", "--output", str(tmp_path / "o.srdf")
+    )
+    assert result.exit_code == 0, result.output
+    xacro = str(root / "panda_description/urdf/panda_arm_hand.urdf.xacro")
+    args = [
+        xacro,
+        "--package-path",
+        str(root),
+        "--srdf",
+        str(panda_srdf),
+        *FAST,
+        "--output",
+        str(tmp_path / "p.srdf"),
+    ]
+    result = _run(*args)
+    summary = [line for line in result.stderr.splitlines() if line.startswith("changes to")]
+    assert len(summary) == 1 and " Never" in summary[0]
+    assert not any(line.startswith("  + ") for line in result.stderr.splitlines())
+    verbose = _run(*args, "--verbose").stderr.splitlines()
+    assert any(line.startswith("  + ") or line.startswith("  - ") for line in verbose)

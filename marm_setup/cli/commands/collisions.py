@@ -80,6 +80,12 @@ def collisions(
         Path | None, typer.Option("--report", help="Write a heat map of the matrix (.svg or .html).")
     ] = None,
     format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
+    force: Annotated[
+        bool, typer.Option("--force", help="With --srdf: update it even if it names another robot or links.")
+    ] = False,
+    verbose: Annotated[
+        bool, typer.Option("--verbose", help="With --srdf: list the pairs added and removed.")
+    ] = False,
 ) -> None:
     """Compute which link pairs MoveIt need not check (Adjacent, Default, Always, Never).
 
@@ -100,6 +106,8 @@ def collisions(
     if srdf is not None:
         srdf_text = load_srdf_text(srdf, shown=str(srdf))
         read_srdf_entries(srdf_text, shown=str(srdf))  # fail on a bad SRDF before the long part
+        if not force:
+            _check_same_robot(robot, srdf_text, str(srdf))
     default_q = None
     if default_pose is not None and srdf_text is not None:  # --default-pose needs --srdf (checked above)
         default_q = _pose_configuration(robot, srdf_text, default_pose, str(srdf))
@@ -118,6 +126,9 @@ def collisions(
             progress=progress,
         )
     disabled = _write_srdf(robot.name, matrix, srdf, srdf_text, output, keep)
+    if srdf_text is not None:
+        for line in _changes(srdf_text, disabled, str(srdf), verbose=verbose):
+            echo_err(line)
     if report is not None:
         _write_report(report, matrix, robot, disabled)
     _print_result(matrix, robot.name, disabled, progress, format)
@@ -183,6 +194,44 @@ def _write_srdf(
     write_text_atomic(target, text, shown=str(target))
     echo_err(f"wrote {target}")
     return disabled
+
+
+def _check_same_robot(robot: RobotModel, srdf_text: str, shown: str) -> None:
+    """An SRDF of another robot (its name, or links its pairs and groups name) is refused: updating
+    it would rewrite a file the matrix does not belong to."""
+    from marm_setup.setup.srdf import parse_srdf_string
+
+    srdf = parse_srdf_string(srdf_text, shown)
+    if srdf.robot_name and srdf.robot_name != robot.name:
+        message = f"the SRDF is robot '{srdf.robot_name}', the URDF is '{robot.name}' (--force updates it anyway)"
+        raise InputError(message, path=shown, element="robot")
+    named = {x for p in srdf.disabled for x in p.pair}
+    named |= {x for g in srdf.groups for x in (*g.links, *((g.chain.base, g.chain.tip) if g.chain else ()))}
+    unknown = sorted(named - set(robot.link_map))
+    if unknown:
+        shown_links = ", ".join(unknown[:3]) + (f" and {len(unknown) - 3} more" if len(unknown) > 3 else "")
+        message = f"links not in the URDF: {shown_links} (another robot's SRDF? --force updates it anyway)"
+        raise InputError(message, path=shown, element="robot")
+
+
+def _changes(old_text: str, new: Sequence[DisabledPair], shown: str, *, verbose: bool) -> list[str]:
+    """What the update changed: pairs added and removed per reason, and with `verbose` each pair."""
+    from marm_setup.setup.srdf import parse_srdf_string
+
+    old = {p.pair: p for p in parse_srdf_string(old_text, shown).disabled}
+    now = {p.pair: p for p in new}
+    added = [now[k] for k in sorted(now) if k not in old or old[k].reason != now[k].reason]
+    removed = [old[k] for k in sorted(old) if k not in now or old[k].reason != now[k].reason]
+    counts = [
+        f"{sign}{sum(p.reason.value == r for p in pairs)} {r}"
+        for sign, pairs in (("+", added), ("-", removed))
+        for r in sorted({p.reason.value for p in pairs})
+    ]
+    lines = [f"changes to {shown}: {', '.join(counts) if counts else 'none'}"]
+    if verbose:
+        lines += [f"  + {p.link1} {p.link2} ({p.reason.value})" for p in added]
+        lines += [f"  - {p.link1} {p.link2} ({p.reason.value})" for p in removed]
+    return lines
 
 
 def _write_report(
