@@ -203,7 +203,9 @@ def _check_same_robot(robot: RobotModel, srdf_text: str, shown: str) -> None:
 
     srdf = parse_srdf_string(srdf_text, shown)
     if srdf.robot_name and srdf.robot_name != robot.name:
-        message = f"the SRDF is robot '{srdf.robot_name}', the URDF is '{robot.name}' (--force updates it anyway)"
+        message = (
+            f"the SRDF is robot '{srdf.robot_name}', the URDF is '{robot.name}' (--force updates it anyway)"
+        )
         raise InputError(message, path=shown, element="robot")
     named = {x for p in srdf.disabled for x in p.pair}
     named |= {x for g in srdf.groups for x in (*g.links, *((g.chain.base, g.chain.tip) if g.chain else ()))}
