@@ -318,3 +318,19 @@ def test_srdf_of_another_robot_is_refused_unless_forced_and_changes_are_summaris
     assert not any(line.startswith("  + ") for line in result.stderr.splitlines())
     verbose = _run(*args, "--verbose").stderr.splitlines()
     assert any(line.startswith("  + ") or line.startswith("  - ") for line in verbose)
+
+
+def test_collisions_on_a_package_updates_setup_and_srdf_together(tmp_path):
+    from marm_setup.setup.srdf import read_srdf
+    from marm_setup.setup.yaml_io import load_setup
+
+    pkg = tmp_path / "pkg"
+    assert runner.invoke(app, ["init", str(MARM_URDF), "--out", str(pkg), "--trials", "200"]).exit_code == 0
+    result = _run(str(pkg), "--trials", "2000", "--seed", "3")
+    assert result.exit_code == 0, result.output
+    assert "update    marm_setup.yaml" in result.stdout and "update    config/marm.srdf" in result.stdout
+    model = load_setup(pkg / "marm_setup.yaml")
+    assert (model.collision.trials, model.collision.seed) == (2000, 3)
+    assert read_srdf(pkg / "config" / "marm.srdf").disabled == model.collision.disabled
+    render = runner.invoke(app, ["render", str(pkg)])
+    assert render.exit_code == 0 and "conflict" not in render.stdout.replace("0 conflict", "")

@@ -93,6 +93,10 @@ def collisions(
     """
     count = parse_count(trials, element="--trials")
     jobs = default_jobs(jobs)
+    if urdf.is_dir():  # a package made by init: its marm_setup.yaml and SRDF, together
+        _check_options(min_collision_fraction, seed, padding, None, False, None)
+        _update_package(urdf, count, seed, min_collision_fraction, jobs)
+        return
     _check_options(min_collision_fraction, seed, padding, srdf, keep, report)
     if default_pose is not None and srdf is None:
         raise InputError("needs --srdf (the SRDF holding the pose)", element="--default-pose")
@@ -196,6 +200,49 @@ def _write_srdf(
     return disabled
 
 
+def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: int) -> None:
+    """Recompute a generated package's matrix into its marm_setup.yaml and SRDF together (its
+    User pairs kept), so the next `render` has nothing to disagree with."""
+    import dataclasses
+
+    from marm_setup.cli.commands.render import load_package_setup
+    from marm_setup.collision.matrix import compute_collision_matrix
+    from marm_setup.collision.pairs import DisabledReason
+    from marm_setup.render.package import render_package
+    from marm_setup.render.writer import apply_writes, format_change, plan_writes
+    from marm_setup.setup.model import CollisionSettings
+
+    model, robot = load_package_setup(pkg)
+    matrix = compute_collision_matrix(
+        robot, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs
+    )
+    computed = {p.pair for p in matrix.disabled}
+    user = [p for p in model.collision.disabled if p.reason is DisabledReason.USER and p.pair not in computed]
+    disabled = tuple(sorted((*matrix.disabled, *user)))
+    settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
+    new = dataclasses.replace(model, collision=settings)
+    changes = plan_writes(render_package(new, robot), pkg)
+    apply_writes(changes, pkg)
+    for line in (format_change(c) for c in changes):
+        if not line.startswith("unchanged"):
+            typer.echo(line)
+    summary = _pair_changes(model.collision.disabled, disabled)
+    typer.echo(f"marm_setup.yaml and the SRDF: {len(disabled)} disabled pairs (changes: {summary})")
+
+
+def _pair_changes(old_pairs: Sequence[DisabledPair], new: Sequence[DisabledPair]) -> str:
+    old = {p.pair: p for p in old_pairs}
+    now = {p.pair: p for p in new}
+    added = [now[k] for k in sorted(now) if k not in old or old[k].reason != now[k].reason]
+    removed = [old[k] for k in sorted(old) if k not in now or old[k].reason != now[k].reason]
+    counts = [
+        f"{sign}{sum(p.reason.value == r for p in pairs)} {r}"
+        for sign, pairs in (("+", added), ("-", removed))
+        for r in sorted({p.reason.value for p in pairs})
+    ]
+    return ", ".join(counts) if counts else "none"
+
+
 def _check_same_robot(robot: RobotModel, srdf_text: str, shown: str) -> None:
     """An SRDF of another robot (its name, or links its pairs and groups name) is refused: updating
     it would rewrite a file the matrix does not belong to."""
@@ -220,19 +267,17 @@ def _changes(old_text: str, new: Sequence[DisabledPair], shown: str, *, verbose:
     """What the update changed: pairs added and removed per reason, and with `verbose` each pair."""
     from marm_setup.setup.srdf import parse_srdf_string
 
-    old = {p.pair: p for p in parse_srdf_string(old_text, shown).disabled}
-    now = {p.pair: p for p in new}
-    added = [now[k] for k in sorted(now) if k not in old or old[k].reason != now[k].reason]
-    removed = [old[k] for k in sorted(old) if k not in now or old[k].reason != now[k].reason]
-    counts = [
-        f"{sign}{sum(p.reason.value == r for p in pairs)} {r}"
-        for sign, pairs in (("+", added), ("-", removed))
-        for r in sorted({p.reason.value for p in pairs})
-    ]
-    lines = [f"changes to {shown}: {', '.join(counts) if counts else 'none'}"]
+    old_pairs = parse_srdf_string(old_text, shown).disabled
+    lines = [f"changes to {shown}: {_pair_changes(old_pairs, new)}"]
     if verbose:
-        lines += [f"  + {p.link1} {p.link2} ({p.reason.value})" for p in added]
-        lines += [f"  - {p.link1} {p.link2} ({p.reason.value})" for p in removed]
+        old = {p.pair: p for p in old_pairs}
+        now = {p.pair: p for p in new}
+        lines += [
+            f"  + {p.link1} {p.link2} ({p.reason.value})" for k, p in sorted(now.items()) if old.get(k) != p
+        ]
+        lines += [
+            f"  - {p.link1} {p.link2} ({p.reason.value})" for k, p in sorted(old.items()) if now.get(k) != p
+        ]
     return lines
 
 
