@@ -40,6 +40,7 @@ class InitRequest:
     seed: int | None = None  # None: the SPEC's collision.seed, else 0
     jobs: int = 1  # worker processes of the collision matrix (the result does not depend on it)
     force: bool = False
+    keep_matrix: bool = False  # take a SPEC's collision.disabled as it is (else recompute, User pairs kept)
     xacro_args: tuple[str, ...] = ()
     package_paths: tuple[Path, ...] = ()
 
@@ -64,7 +65,7 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     from marm_setup.collision.scene import CollisionScene
 
     built = _build(request, robot)
-    model = built.model
+    model, user = _matrix_to_compute(built.model, request)
     given = bool(model.collision.disabled)
     trials = model.collision.trials if request.trials is None else request.trials
     seed = model.collision.seed if request.seed is None else request.seed
@@ -72,6 +73,7 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     model = with_collision_matrix(
         model, robot, trials=trials, seed=seed, jobs=request.jobs, progress=progress, scene=scene
     )
+    model = _with_user_pairs(model, user)
     notes = built.notes
     if not built.poses_given:
         model, pose_notes = _with_poses(model, robot, scene, seed, request)
@@ -375,6 +377,28 @@ def _source(request: InitRequest) -> RobotSource:
 
 def _relative(path: Path, base: Path) -> str:
     return Path(os.path.relpath(Path(path).resolve(), base)).as_posix()
+
+
+def _matrix_to_compute(
+    model: SetupModel, request: InitRequest
+) -> tuple[SetupModel, tuple[DisabledPair, ...]]:
+    """A SPEC's matrix (an old marm_setup.yaml's, maybe stale) is computed again unless
+    `keep_matrix`, its User pairs kept; an imported SRDF's matrix is the import: kept."""
+    from marm_setup.collision.pairs import DisabledReason
+
+    if request.from_srdf is not None or request.keep_matrix or not model.collision.disabled:
+        return model, ()
+    user = tuple(p for p in model.collision.disabled if p.reason is DisabledReason.USER)
+    return dataclasses.replace(model, collision=dataclasses.replace(model.collision, disabled=())), user
+
+
+def _with_user_pairs(model: SetupModel, user: tuple[DisabledPair, ...]) -> SetupModel:
+    """The computed matrix with the given User pairs (they stay User: never recomputed)."""
+    if not user:
+        return model
+    mine = {p.pair for p in user}
+    disabled = tuple(sorted((*(p for p in model.collision.disabled if p.pair not in mine), *user)))
+    return dataclasses.replace(model, collision=dataclasses.replace(model.collision, disabled=disabled))
 
 
 def with_collision_matrix(

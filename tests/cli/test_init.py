@@ -589,3 +589,28 @@ def test_inferred_package_of_a_tree_validates_and_plans_a_pose_pair_per_arm(tmp_
     arms = [g.name for g in load_setup(out / "marm_setup.yaml").groups if g.name.endswith("arm")]
     assert f"planned {2 * len(arms)} pose pairs" in summary
     assert result.stdout.splitlines()[-1] == "no findings"
+
+
+def test_init_with_an_old_setup_computes_the_matrix_again_unless_told_to_keep_it(tmp_path):
+    """`init --force --setup pkg/marm_setup.yaml` after a URDF change must not keep a stale matrix:
+    it recomputes (User pairs kept); --keep-matrix takes the pairs as they are."""
+    pkg = tmp_path / "pkg"
+    assert _init(pkg).exit_code == 0
+    spec = tmp_path / "old.yaml"
+    data = yaml.safe_load((pkg / "marm_setup.yaml").read_text())
+    data["collision"]["disabled"] = [
+        {"link1": "base_link", "link2": "link6", "reason": "Never"},
+        {"link1": "link1", "link2": "link5", "reason": "User"},
+    ]
+    spec.write_text(yaml.safe_dump(data))
+    result = runner.invoke(app, ["init", str(MARM_URDF), "--out", str(pkg), "--force", "--setup", str(spec)])
+    assert result.exit_code == 0, result.output
+    pairs = {
+        (p.link1, p.link2): p.reason.value for p in load_setup(pkg / "marm_setup.yaml").collision.disabled
+    }
+    assert pairs[("link1", "link5")] == "User" and len(pairs) > 2
+    result = runner.invoke(
+        app, ["init", str(MARM_URDF), "--out", str(pkg), "--force", "--setup", str(spec), "--keep-matrix"]
+    )
+    assert result.exit_code == 0 and "as given (SRDF / SPEC), not recomputed" in result.stdout
+    assert len(load_setup(pkg / "marm_setup.yaml").collision.disabled) == 2

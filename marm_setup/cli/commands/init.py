@@ -90,6 +90,13 @@ def init(
     ] = None,
     jobs: JobsOption = None,
     force: Annotated[bool, typer.Option("--force", help="Write into an existing non-empty DIR.")] = False,
+    keep_matrix: Annotated[
+        bool,
+        typer.Option(
+            "--keep-matrix",
+            help="Take the SPEC's collision.disabled as it is (default: compute it again, User pairs kept).",
+        ),
+    ] = False,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
     from_package: FromPackageOption = None,
@@ -150,6 +157,7 @@ def init(
         seed=seed,
         jobs=default_jobs(jobs),
         force=force,
+        keep_matrix=keep_matrix,
         xacro_args=tuple(xacro_arg or ()),
         package_paths=tuple(package_path or ()),
     )
