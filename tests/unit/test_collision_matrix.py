@@ -219,7 +219,8 @@ def test_shortcuts_give_the_exhaustive_matrix_on_the_pr2_in_two_processes():
     pr2 = load_robot(realworld("ros1", "pr2_description", "urdf", "robot.xml"))
     exact, fast = _exact_and_fast(pr2, 2000, jobs=2)
     _same_bytes(exact, fast)
-    assert fast.narrow_calls < 0.6 * exact.narrow_calls
+    # How many exact checks the shortcuts save depends on measured times (the prover keeps a
+    # shortcut while it pays), so only the answer is compared, plus the work counted in workers.
     assert fast.work.certified > 0 and fast.work.hull_rejections > 0
 
 
