@@ -78,7 +78,7 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     if not built.poses_given:
         model, pose_notes = _with_poses(model, robot, scene, seed, request)
         notes += pose_notes
-    lines = describe(model, matrix_given=given)
+    lines = describe(model, matrix_given=given) + reused_ros2_control(model, robot)
     changes = write_package(model, robot, request.out, force=request.force)
     from marm_setup.render.writer import format_change
 
@@ -457,6 +457,18 @@ def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
         f"collision matrix: {len(model.collision.disabled)} disabled pairs ({summary or 'none'}); {source}"
     )
     return lines
+
+
+def reused_ros2_control(model: SetupModel, robot: RobotModel) -> list[str]:
+    """One line per `<ros2_control>` system the description already has (ros2 reuses it)."""
+    if model.target != "ros2":
+        return []
+    from marm_setup.robot.ros2_control import described_systems
+
+    return [
+        f"ros2_control: reusing the description's system {s.name} ({s.plugin}) for {', '.join(s.joints)}"
+        for s in described_systems(robot)
+    ]
 
 
 def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool) -> list[FileChange]:

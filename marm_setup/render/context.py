@@ -18,6 +18,7 @@ from marm_setup.setup.domain import (
     ARBOTIX_GRIPPER_ACTION_NS,
     FOLLOW_JOINT_TRAJECTORY,
     GRIPPER_COMMAND,
+    MOCK_HARDWARE,
     OMPL_PLANNERS,
     ROS2_CONTROLLER_TYPES,
 )
@@ -27,6 +28,7 @@ from marm_setup.setup.model import (
     GroupState,
     Kinematics,
     PlannerDefaults,
+    Ros2ControlHardware,
     SetupModel,
 )
 from marm_setup.setup.srdf import setup_to_srdf
@@ -111,11 +113,14 @@ class GripperNode:
 
 @dataclass(frozen=True, slots=True)
 class Ros2ControlJoint:
+    """A joint of the generated ros2_control system; a mimic or passive joint has no command."""
+
     joint: str
     initial: float
     mimic: str | None = None
     multiplier: float = 1.0
     offset: float = 0.0
+    commanded: bool = True
 
 
 def description_ref(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None) -> DescriptionRef:
@@ -244,20 +249,30 @@ def gripper_nodes(model: SetupModel, robot: RobotModel) -> list[GripperNode]:
 
 
 def ros2_control_joints(model: SetupModel, robot: RobotModel) -> list[Ros2ControlJoint]:
-    """Controller joints in tree order, mimic joints after their leaders with their factors; each
-    starts at the demo's start state."""
-    wanted = {j for c in model.controllers for j in c.joints}
-    wanted |= {j.name for j in robot.joints if j.mimic is not None and j.mimic.joint in wanted}
+    """Every actuated joint no `<ros2_control>` of the description covers, in tree order, so each
+    joint gets a state (TF) whether or not a controller drives it; mimic joints carry their
+    factors (and are left out when their leader is the description's), mimic and passive joints
+    get no command interface. Each starts at the demo's start state."""
+    from marm_setup.robot.ros2_control import described_joints
+
+    covered = described_joints(robot)
     start = start_positions(model, robot)
     out = []
     for joint in robot.joints_in_tree_order:
-        if joint.name not in wanted or not joint.is_actuated:
+        if joint.name in covered or not joint.is_actuated:
             continue
+        if joint.mimic is not None and joint.mimic.joint in covered:
+            continue  # mock hardware resolves a mimic within its own system; robot_state_publisher follows it
         if joint.mimic is not None:
             m = joint.mimic
-            out.append(Ros2ControlJoint(joint.name, start[joint.name], m.joint, m.multiplier, m.offset))
+            out.append(
+                Ros2ControlJoint(
+                    joint.name, start[joint.name], m.joint, m.multiplier, m.offset, commanded=False
+                )
+            )
         else:
-            out.append(Ros2ControlJoint(joint.name, start[joint.name]))
+            commanded = joint.name not in model.passive_joints
+            out.append(Ros2ControlJoint(joint.name, start[joint.name], commanded=commanded))
     return out
 
 
@@ -315,6 +330,8 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         # the Setup Assistant's demo publishes an identity TF for every virtual joint, whatever its type
         "static_tfs": model.virtual_joints,
         "rviz": rviz_view(model, robot),
+        "hardware": model.ros2_control or Ros2ControlHardware(),
+        "mock_hardware": MOCK_HARDWARE,
         "ompl_planners": OMPL_PLANNERS,
         "cartesian_limits": CARTESIAN_LIMITS,
         "arbotix_gripper_action_ns": ARBOTIX_GRIPPER_ACTION_NS,

@@ -15,5 +15,6 @@ __all__, __getattr__, __dir__ = lazy_api(
         "meshes": "load_mesh",
         "ros_packages": "find_packages find_package resolve_uri",
         "describe": "describe_robot format_tree",
+        "ros2_control": "Ros2ControlSystem described_systems described_joints",
     },
 )

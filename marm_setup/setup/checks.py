@@ -58,6 +58,7 @@ def check_setup(
     _check_joint_lists(c)
     _check_controller_actions(c)
     _check_ranges(c)
+    _check_ros2_control(c)
 
 
 def raise_first_error(findings: Iterable[Finding], path: str | None) -> None:
@@ -89,6 +90,26 @@ def distro_problem(target: str, distro: str | None) -> str | None:
     if distro is None or distro in distros:
         return None
     return f"'{distro}' is not a {target} distro (valid: {', '.join(distros)})"
+
+
+def _check_ros2_control(c: _Checker) -> None:
+    """joint_trajectory_controller needs a command interface and a position state of each joint
+    (and joint_state_broadcaster publishes positions), so the hardware must offer them."""
+    hardware = c.model.ros2_control
+    if hardware is None:
+        return
+    if not hardware.plugin:
+        raise c.fail("the hardware plugin is empty", "ros2_control.plugin")
+    if not hardware.command_interfaces:
+        raise c.fail(
+            "no command interface: the trajectory controllers could not command",
+            "ros2_control.command_interfaces",
+        )
+    if "position" not in hardware.state_interfaces:
+        raise c.fail(
+            "needs a 'position' state interface (joint states, trajectory control)",
+            "ros2_control.state_interfaces",
+        )
 
 
 def package_name_problem(name: str) -> str | None:

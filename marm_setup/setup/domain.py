@@ -69,6 +69,8 @@ ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if
 # -- kinematics solvers --------------------------------------------------------------------------
 
 KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+# ros2_control's mock hardware (package mock_components): mirrors commands to states.
+MOCK_HARDWARE = "mock_components/GenericSystem"
 KINEMATICS_PLUGINS = (
     KDL_PLUGIN,
     "trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin",

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from marm_setup.collision.pairs import DisabledPair
-from marm_setup.setup.domain import DEFAULT_PLANNER, DRIVER_ACTION_NS, KDL_PLUGIN
+from marm_setup.setup.domain import DEFAULT_PLANNER, DRIVER_ACTION_NS, KDL_PLUGIN, MOCK_HARDWARE
 
 TARGETS = ("ros2", "ros1")
 # The ROS distros each target is written for, the target's default first. Humble and Jazzy differ
@@ -134,6 +134,18 @@ class ArbotixJoint:
 
 
 @dataclass(frozen=True, slots=True)
+class Ros2ControlHardware:
+    """The hardware of the generated ros2_control system (ros2 target): its plugin, the plugin's
+    `<param>`s, and every joint's command and state interfaces. The demo's `use_mock_hardware`
+    (true by default) swaps the plugin for mock_components/GenericSystem, same interfaces."""
+
+    plugin: str = MOCK_HARDWARE
+    parameters: tuple[tuple[str, str], ...] = ()
+    command_interfaces: tuple[str, ...] = ("position",)
+    state_interfaces: tuple[str, ...] = ("position", "velocity")
+
+
+@dataclass(frozen=True, slots=True)
 class JointLimitOverride:
     """Overrides for `joint_limits.yaml`; None keeps the URDF value (or no limit)."""
 
@@ -204,6 +216,7 @@ class SetupModel:
     planners: tuple[PlannerDefaults, ...] = ()
     controllers: tuple[Controller, ...] = ()
     arbotix_joints: tuple[ArbotixJoint, ...] = ()
+    ros2_control: Ros2ControlHardware | None = None  # None: mock hardware, position command
     joint_limits: tuple[JointLimitOverride, ...] = ()
     default_velocity_scaling: float = 0.1
     default_acceleration_scaling: float = 0.1
