@@ -20,6 +20,7 @@ from marm_setup.setup.domain import (
     GRIPPER_COMMAND,
     MOCK_HARDWARE,
     OMPL_PLANNERS,
+    PIPELINES,
     ROS2_CONTROLLER_TYPES,
 )
 from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
@@ -331,6 +332,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "static_tfs": model.virtual_joints,
         "rviz": rviz_view(model, robot),
         "hardware": model.ros2_control or Ros2ControlHardware(),
+        "pipelines": [(name, PIPELINES[name]) for name in model.planning_pipelines],
         "mock_hardware": MOCK_HARDWARE,
         "ompl_planners": OMPL_PLANNERS,
         "cartesian_limits": CARTESIAN_LIMITS,

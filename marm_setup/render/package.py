@@ -28,16 +28,20 @@ ROS1_FILES = (
     "config/fake_controllers.yaml",
     "config/joint_limits.yaml",
     "config/kinematics.yaml",
-    "config/ompl_planning.yaml",
     "launch/arbotix.launch",
+    "launch/default_warehouse_db.launch",
     "launch/demo.launch",
     "launch/fake_moveit_controller_manager.launch.xml",
     "launch/move_group.launch",
     "launch/moveit.rviz",
     "launch/moveit_rviz.launch",
     "launch/planning_context.launch",
-    "launch/robot_moveit_controller_manager.launch.xml",
+    "launch/planning_pipeline.launch.xml",
+    "launch/ros_control_moveit_controller_manager.launch.xml",
+    "launch/simple_moveit_controller_manager.launch.xml",
     "launch/trajectory_execution.launch.xml",
+    "launch/warehouse.launch",
+    "launch/warehouse_settings.launch.xml",
     "scripts/trajectory_demo.py",
 )
 ROS2_FILES = (
@@ -76,6 +80,25 @@ def target_templates(target: str, driver: str | None = None) -> list[tuple[str, 
     other_drivers = {p for d, files in DRIVER_FILES.items() if d != driver or target != "ros1" for p in files}
     common = [(f"common/{p}.j2", p) for p in COMMON_FILES]
     return common + [(f"{target}/{p}.j2", p) for p in TARGET_FILES[target] if p not in other_drivers]
+
+
+def pipeline_templates(model: SetupModel) -> list[tuple[str, str, dict]]:
+    """(template, path, extra context) of the files the setup's planning pipelines add (ros1: one
+    launch file per pipeline, ompl_planning.yaml, chomp_planning.yaml, Pilz's cartesian_limits.yaml;
+    ros2 writes every pipeline into moveit.yaml)."""
+    from marm_setup.setup.domain import PIPELINES
+
+    if model.target != "ros1":
+        return []
+    out = []
+    configs = {"ompl": "ompl_planning.yaml", "chomp": "chomp_planning.yaml", "pilz": "cartesian_limits.yaml"}
+    for name in model.planning_pipelines:
+        pipeline = PIPELINES[name]
+        launch = f"launch/{pipeline.namespace}_planning_pipeline.launch.xml"
+        out.append((f"ros1/launch/{name}_planning_pipeline.launch.xml.j2", launch, {"pipeline": pipeline}))
+        if name in configs:
+            out.append((f"ros1/config/{configs[name]}.j2", f"config/{configs[name]}", {}))
+    return out
 
 
 def description_package(urdf: Path) -> tuple[str, str] | None:
@@ -123,7 +146,8 @@ def render_package(
         description = description_package(Path(robot.source))
     context = build_context(model, robot, description)
     files = [RenderedFile(SETUP_FILE, dump_setup(model))]
-    for template, path in target_templates(model.target, model.driver):
-        content = render_template(template, target=model.target, **context)
+    templates = [(t, p, {}) for t, p in target_templates(model.target, model.driver)]
+    for template, path, extra in templates + pipeline_templates(model):
+        content = render_template(template, target=model.target, **context, **extra)
         files.append(RenderedFile(output_path(path, model.robot_name), content))
     return sorted(files, key=lambda f: f.path)

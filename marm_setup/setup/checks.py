@@ -59,6 +59,7 @@ def check_setup(
     _check_controller_actions(c)
     _check_ranges(c)
     _check_ros2_control(c)
+    _check_pipelines(c)
 
 
 def raise_first_error(findings: Iterable[Finding], path: str | None) -> None:
@@ -90,6 +91,23 @@ def distro_problem(target: str, distro: str | None) -> str | None:
     if distro is None or distro in distros:
         return None
     return f"'{distro}' is not a {target} distro (valid: {', '.join(distros)})"
+
+
+def _check_pipelines(c: _Checker) -> None:
+    """Known pipelines, each once, shipped by the package's distro."""
+    from marm_setup.setup.domain import PIPELINES
+
+    names = c.model.planning_pipelines
+    if not names:
+        raise c.fail("no planning pipeline: move_group could not plan", "planning_pipelines")
+    for i, name in enumerate(names):
+        where = f"planning_pipelines[{i}]"
+        c.name("planning pipeline", name, PIPELINES, where)
+        if name in names[:i]:
+            raise c.fail(f"'{name}' is listed twice", where)
+        if c.model.distro not in PIPELINES[name].distros:
+            shipped = ", ".join(PIPELINES[name].distros)
+            raise c.fail(f"'{name}' is not in MoveIt's {c.model.distro} binaries (only {shipped})", where)
 
 
 def _check_ros2_control(c: _Checker) -> None:

@@ -6,6 +6,8 @@ Setup (model, inference, checks), render and validate all read these; nothing el
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 # srdfdom's virtual joint types (srdfdom model.cpp loadVirtualJoints accepts these three).
 VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
 
@@ -69,8 +71,6 @@ ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if
 # -- kinematics solvers --------------------------------------------------------------------------
 
 KDL_PLUGIN = "kdl_kinematics_plugin/KDLKinematicsPlugin"
-# ros2_control's mock hardware (package mock_components): mirrors commands to states.
-MOCK_HARDWARE = "mock_components/GenericSystem"
 KINEMATICS_PLUGINS = (
     KDL_PLUGIN,
     "trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin",
@@ -89,6 +89,62 @@ CHAIN_ONLY_PLUGINS = (
     "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
     "lma_kinematics_plugin/LMAKinematicsPlugin",
 )
+
+# -- ros2_control --------------------------------------------------------------------------------
+
+# ros2_control's mock hardware (package mock_components): mirrors commands to states.
+MOCK_HARDWARE = "mock_components/GenericSystem"
+
+# -- planning pipelines --------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class Pipeline:
+    """A MoveIt planning pipeline: its parameter namespace (the name move_group's
+    planning_pipelines lists), planner plugin per MoveIt generation, the package exporting it,
+    and the distros whose binaries ship it."""
+
+    namespace: str
+    plugin_ros1: str
+    plugin_ros2: str
+    package: str
+    distros: tuple[str, ...]
+
+    def plugin(self, target: str) -> str:
+        return self.plugin_ros1 if target == "ros1" else self.plugin_ros2
+
+
+# The setup's `planning_pipelines` names. STOMP is not in Humble's binaries (moveit/moveit2#2550:
+# added in Iron) and not part of MoveIt 1 (a separate stomp_moveit package), so only Jazzy gets it.
+# MoveIt 1's Pilz plugin class is `pilz_industrial_motion_planner::CommandPlanner` (what the Setup
+# Assistant writes), MoveIt 2's `pilz_industrial_motion_planner/CommandPlanner`.
+PIPELINES = {
+    "ompl": Pipeline(
+        "ompl",
+        "ompl_interface/OMPLPlanner",
+        "ompl_interface/OMPLPlanner",
+        "moveit_planners_ompl",
+        ("noetic", "humble", "jazzy"),
+    ),
+    "chomp": Pipeline(
+        "chomp",
+        "chomp_interface/CHOMPPlanner",
+        "chomp_interface/CHOMPPlanner",
+        "moveit_planners_chomp",
+        ("noetic", "humble", "jazzy"),
+    ),
+    "pilz": Pipeline(
+        "pilz_industrial_motion_planner",
+        "pilz_industrial_motion_planner::CommandPlanner",
+        "pilz_industrial_motion_planner/CommandPlanner",
+        "pilz_industrial_motion_planner",
+        ("noetic", "humble", "jazzy"),
+    ),
+    "stomp": Pipeline("stomp", "", "stomp_moveit/StompPlanner", "moveit_planners_stomp", ("jazzy",)),
+}
+# OMPL for any query, Pilz for deterministic PTP/LIN/CIRC motions (needs only the cartesian
+# limits); CHOMP and STOMP optimise trajectories and want tuning per robot, so they are opt-in.
+DEFAULT_PIPELINES = ("ompl", "pilz")
 
 # -- OMPL ----------------------------------------------------------------------------------------
 

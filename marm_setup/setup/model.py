@@ -9,7 +9,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from marm_setup.collision.pairs import DisabledPair
-from marm_setup.setup.domain import DEFAULT_PLANNER, DRIVER_ACTION_NS, KDL_PLUGIN, MOCK_HARDWARE
+from marm_setup.setup.domain import (
+    DEFAULT_PIPELINES,
+    DEFAULT_PLANNER,
+    DRIVER_ACTION_NS,
+    KDL_PLUGIN,
+    MOCK_HARDWARE,
+)
 
 TARGETS = ("ros2", "ros1")
 # The ROS distros each target is written for, the target's default first. Humble and Jazzy differ
@@ -214,6 +220,8 @@ class SetupModel:
     collision: CollisionSettings = field(default_factory=CollisionSettings)
     kinematics: tuple[Kinematics, ...] = ()
     planners: tuple[PlannerDefaults, ...] = ()
+    # MoveIt planning pipelines (domain.PIPELINES), the first is move_group's default
+    planning_pipelines: tuple[str, ...] = DEFAULT_PIPELINES
     controllers: tuple[Controller, ...] = ()
     arbotix_joints: tuple[ArbotixJoint, ...] = ()
     ros2_control: Ros2ControlHardware | None = None  # None: mock hardware, position command

@@ -193,3 +193,57 @@ def test_check_urdf_accepts_our_ros2_urdf_for_the_panda(tmp_path):
     urdf.write_text(xml)
     result = subprocess.run(["check_urdf", str(urdf)], capture_output=True, text=True, timeout=60)
     assert result.returncode == 0, result.stdout + result.stderr
+
+
+# Keys the Setup Assistant's panda demo.launch gives that ours may lack, each with its reason.
+ALLOWED_MISSING = (
+    (
+        r"/move_group/planning_pipelines/ompl/planner_configs/[^/]+/(?!type$)[^/]+",
+        "planner parameters: we leave each at OMPL's own default (MoveIt passes only those given)",
+    ),
+    (
+        r"/move_group/planning_pipelines/ompl/planner_configs/(BFMT|BiEST|BiTRRT|FMT|LBTRRT|LazyPRM|LazyPRMstar"
+        r"|PDST|ProjEST|SPARS|SPARStwo|STRIDE)/type",
+        "we define the twelve common OMPL planners (domain.OMPL_PLANNERS), not all twenty-three",
+    ),
+    (r"/move_group/(sensors|octomap_resolution|max_range)", "no 3D sensors are configured (sensor_manager)"),
+    (
+        r"/robot_description_planning/joint_limits/panda_finger_joint2/.*",
+        "a mimic joint is never planned: joint_limits.yaml lists the groups' active joints",
+    ),
+)
+
+
+@needs_roslaunch
+def test_roslaunch_keys_match_the_setup_assistants_panda_demo(tmp_path):
+    """Real `roslaunch --dump-params` of our ros1 demo.launch for the shared panda (its SRDF
+    imported, the same pipelines: ompl, chomp, pilz) gives every key the Setup Assistant's
+    panda demo.launch gives, apart from ALLOWED_MISSING."""
+    import dataclasses
+    import re
+
+    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.robot.load import load_robot
+
+    root = realworld("ros1")
+    sa = dump_params(root / "panda_moveit_config" / "launch" / "demo.launch", [root], tmp_path)
+    urdf = root / "panda_description" / "urdf" / "panda_arm_hand.urdf.xacro"
+    robot = load_robot(urdf, {}, [root])
+    out = tmp_path / "panda_moveit_config"
+    srdf = root / "panda_moveit_config" / "config" / "panda.srdf"
+    request = InitRequest(urdf=urdf, out=out, target="ros1", from_srdf=srdf, package_paths=(root,))
+    model = dataclasses.replace(build_setup(request, robot), planning_pipelines=("ompl", "chomp", "pilz"))
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    ours = dump_params(out / "launch" / "demo.launch", [root / "panda_description", out], tmp_path)
+    missing = [
+        key
+        for key in sorted(set(sa) - set(ours))
+        if not any(re.fullmatch(p, key) for p, _ in ALLOWED_MISSING)
+    ]
+    assert missing == []
+    for key in ("/move_group/default_planning_pipeline", "/move_group/capabilities"):
+        assert ours[key] == sa[key], key
+    for pipeline in ("ompl", "chomp", "pilz_industrial_motion_planner"):
+        key = f"/move_group/planning_pipelines/{pipeline}/planning_plugin"
+        assert ours[key] == sa[key]
+    assert ours["/move_group/moveit_controller_manager"] == sa["/move_group/moveit_controller_manager"]

@@ -54,18 +54,26 @@ ROS1_PACKAGE = (
     "config/controllers.yaml",
     "config/fake_controllers.yaml",
     "config/joint_limits.yaml",
+    "config/cartesian_limits.yaml",
     "config/kinematics.yaml",
     "config/marm.srdf",
     "config/ompl_planning.yaml",
     "launch/arbotix.launch",
+    "launch/default_warehouse_db.launch",
     "launch/demo.launch",
     "launch/fake_moveit_controller_manager.launch.xml",
-    "launch/marm_moveit_controller_manager.launch.xml",
     "launch/move_group.launch",
     "launch/moveit.rviz",
     "launch/moveit_rviz.launch",
+    "launch/ompl_planning_pipeline.launch.xml",
+    "launch/pilz_industrial_motion_planner_planning_pipeline.launch.xml",
     "launch/planning_context.launch",
+    "launch/planning_pipeline.launch.xml",
+    "launch/ros_control_moveit_controller_manager.launch.xml",
+    "launch/simple_moveit_controller_manager.launch.xml",
     "launch/trajectory_execution.launch.xml",
+    "launch/warehouse.launch",
+    "launch/warehouse_settings.launch.xml",
     "marm_setup.yaml",
     "package.xml",
     "scripts/trajectory_demo.py",
@@ -239,16 +247,24 @@ def test_ros1_trajectory_demo_drives_the_arbotix_arm_controller():
 
 
 def test_ros1_launch_references_exist():
+    """Every config and launch file is loaded by a launch file, directly or as the
+    `$(arg moveit_controller_manager)` / `$(arg pipeline)` choice the Setup Assistant's layout uses."""
     files = rendered("ros1")
     text = "\n".join(v for k, v in files.items() if k.startswith("launch/"))
+    chosen = ("_moveit_controller_manager.launch.xml", "_planning_pipeline.launch.xml")
     for path in files:
-        if path.startswith(("config/", "launch/")) and "_moveit_controller_manager" not in path:
+        if path.startswith(("config/", "launch/")) and not path.endswith(chosen):
             assert path in text or path.endswith(("demo.launch", "arbotix.launch")), path
-    assert (
-        "$(find marm_moveit_config)/launch/$(arg moveit_controller_manager)_moveit_controller_manager" in text
-    )
-    for manager in ("marm", "fake"):
+    launch = "$(find marm_moveit_config)/launch/"
+    assert f"{launch}$(arg moveit_controller_manager)_moveit_controller_manager.launch.xml" in text
+    assert f"{launch}$(arg pipeline)_planning_pipeline.launch.xml" in text
+    for manager in ("simple", "fake", "ros_control"):
         assert f"launch/{manager}_moveit_controller_manager.launch.xml" in files
+    move_group = etree.fromstring(files["launch/move_group.launch"].encode())
+    for include in move_group.iter("include"):
+        for arg in include.iter("arg"):
+            if arg.get("name") == "pipeline" and "$(" not in arg.get("value"):
+                assert f"launch/{arg.get('value')}_planning_pipeline.launch.xml" in files
 
 
 def _floats_only(tree, where=""):

@@ -27,6 +27,8 @@ What each reads, from the sources (moveit/moveit2 humble and jazzy branches, ros
 
 from __future__ import annotations
 
+import re
+
 import pytest
 import yaml
 
@@ -135,3 +137,49 @@ def test_moveit_controller_manager_reads_every_controller(distro):
             assert own["joints"] == entry["joints"] and own["command_interfaces"] and own["state_interfaces"]
         else:
             assert own["joint"] == entry["joints"][0]
+
+
+@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+def test_every_pipeline_loads_on_its_distro(distro):
+    import dataclasses
+
+    from marm_setup.render.package import render_package
+    from tests.render_helpers import inferred_marm
+
+    names = ("ompl", "chomp", "pilz") + (("stomp",) if distro == "jazzy" else ())
+    model, robot = inferred_marm("ros2", __import__("pathlib").Path("pkg"), distro)
+    files = {
+        f.path: f.content for f in render_package(dataclasses.replace(model, planning_pipelines=names), robot)
+    }
+    params = yaml.safe_load(files["config/moveit.yaml"])["/**"]["ros__parameters"]
+    read = humble_pipeline if distro == "humble" else jazzy_pipeline
+    namespaces = params["planning_pipelines"]["pipeline_names"]
+    assert len(namespaces) == len(names)
+    for namespace in namespaces:
+        planners, request, response = read(params[namespace])
+        assert planners == [PLANNER_PLUGINS[namespace]]
+        assert set(request) <= (HUMBLE_REQUEST_ADAPTERS if distro == "humble" else JAZZY_REQUEST_ADAPTERS)
+        assert set(response) <= JAZZY_RESPONSE_ADAPTERS
+
+
+@pytest.mark.parametrize(
+    ("target", "distro", "pipelines", "message"),
+    [
+        ("ros2", "humble", ("ompl", "stomp"), "'stomp' is not in MoveIt's humble binaries (only jazzy)"),
+        ("ros1", "noetic", ("stomp",), "'stomp' is not in MoveIt's noetic binaries (only jazzy)"),
+        ("ros2", "jazzy", ("ompl", "ompl"), "'ompl' is listed twice"),
+        ("ros2", "jazzy", ("omp",), "unknown planning pipeline 'omp'"),
+        ("ros2", "jazzy", (), "no planning pipeline"),
+    ],
+)
+def test_pipelines_a_distro_cannot_load_are_input_errors(target, distro, pipelines, message):
+    import dataclasses
+    from pathlib import Path
+
+    from marm_setup.errors import InputError
+    from marm_setup.setup.checks import check_setup
+    from tests.render_helpers import inferred_marm
+
+    model, robot = inferred_marm(target, Path("pkg"), distro)
+    with pytest.raises(InputError, match=re.escape(message)):
+        check_setup(dataclasses.replace(model, planning_pipelines=pipelines), robot, "marm_setup.yaml")
