@@ -29,6 +29,7 @@ from marm_setup.validate.rules.controller_rules import (
     ros1_driver_controllers,
     ros2_driver_controllers,
 )
+from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.kinematics_rules import check_kinematics
 from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml, parse_launch
 from marm_setup.validate.rules.limits_rules import check_joint_limits
@@ -208,6 +209,7 @@ def check_static(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
     if pkg.ompl is not None:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf)
     out += guarded("controller", check_controllers, pkg, robot)
+    out += guarded("distro", check_package_runtime, pkg, robot)
     return out
 
 
@@ -260,15 +262,17 @@ def check_with_scene(
     with the number of pose pairs the runtime checks planned (None when they did not run)."""
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.validate.rules.matrix_rules import check_matrix_fresh
-    from marm_setup.validate.rules.pose_rules import check_pose_collisions
+    from marm_setup.validate.rules.pose_rules import check_pose_collisions, check_start_state
 
     try:
         scene = CollisionScene(robot)
     except InputError as exc:
         return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)], None
-    out = guarded(
-        "pose", check_pose_collisions, pkg.srdf, robot, scene, pkg.srdf_path, package_start_values(pkg, robot)
-    )
+    start = package_start_values(pkg, robot)
+    out = guarded("pose", check_pose_collisions, pkg.srdf, robot, scene, pkg.srdf_path, start)
+    section = pkg.initial_positions if pkg.target == "ros2" else pkg.fake_controllers
+    start_file = section.file if section is not None else (pkg.srdf_path or "")
+    out += guarded("pose", check_start_state, pkg.srdf, robot, scene, start_file, start)
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
     out += guarded(

@@ -6,6 +6,7 @@ A pose's values (group, joints, limits) are checked by the shared rules in `setu
 from __future__ import annotations
 
 from collections.abc import Mapping
+from types import SimpleNamespace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -107,3 +108,19 @@ def check_initial_positions(section: ConfigSection, robot: RobotModel) -> list[F
             msg = f"initial position {value:g} is outside the limits [{lo:g}, {hi:g}]"
             out.append(error("pose.initial-out-of-limits", section.file, where, msg))
     return out
+
+
+def check_start_state(srdf, robot: RobotModel, scene, file: str, base: Mapping[str, float]) -> list[Finding]:
+    """The demo's start state (`base` over the defaults) is free of the collisions MoveIt checks:
+    MoveIt 2's CheckStartStateCollision adapter refuses every plan from a state in collision
+    (default_planning_request_adapters, check_start_state_collision.cpp), MoveIt 1's
+    FixStartStateCollision only tries small random moves of it."""
+    if not base:
+        return []
+    pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
+    q = pose_configuration(SimpleNamespace(values=()), robot, base)[None]
+    hit = scene.first_collisions(q, pairs)[0] if pairs else None
+    if hit is None:
+        return []
+    msg = f"the demo starts in collision: {hit[0]} - {hit[1]}; MoveIt refuses to plan from it"
+    return [error("pose.start-collision", file, "initial state", msg, "start at a collision-free named pose")]

@@ -1,0 +1,222 @@
+"""What a ROS 2 package must get right for its distro and at run time: the planning pipelines'
+parameter format, the planning scene publishing flags, OMPL projection evaluators, and one
+ros2_control system per joint.
+
+Sources (moveit/moveit2 humble and jazzy branches, ros-controls/ros2_control):
+- Humble's PlanningPipeline reads `<pipeline>.planning_plugin` (one string; absent -> the first
+  declared planner class, whichever) and `<pipeline>.request_adapters` into ONE std::string split
+  at spaces; a list there throws a parameter type exception and move_group dies
+  (humble moveit_ros/planning/planning_pipeline/src/planning_pipeline.cpp l.58-77). An adapter
+  class it cannot load is logged as an error and skipped (same file, configure()).
+- Jazzy's reads the string arrays `planning_plugins`, `request_adapters`, `response_adapters`
+  (planning_pipeline_parameters.yaml) and throws "Planning plugin name is empty or not defined"
+  when planning_plugins is empty (jazzy planning_pipeline.cpp, PlanningPipeline::configure).
+- The planning scene monitor declares publish_planning_scene / _geometry_updates /
+  _state_updates / _transforms_updates false (planning_scene_monitor.cpp, initialize()).
+- OMPL's KPIECE family, EST, SBL, ProjEST, PDST and STRIDE plan on a projection, which MoveIt
+  sets from the group's `projection_evaluator` (ompl_interface model_based_planning_context.cpp).
+- The controller manager refuses a second hardware interface of a joint (ros2_control
+  resource_manager.cpp: the interface is already registered).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from lxml import etree
+
+from marm_setup.findings import Finding, error, warning
+from marm_setup.setup.groups import active_group_joints, groups_by_name
+
+PUBLISH_FLAGS = (
+    "publish_planning_scene",
+    "publish_geometry_updates",
+    "publish_state_updates",
+    "publish_transforms_updates",
+)
+# OMPL planner types that need a projection (geometric::<type>).
+PROJECTION_PLANNERS = frozenset({"KPIECE", "BKPIECE", "LBKPIECE", "EST", "SBL", "ProjEST", "PDST", "STRIDE"})
+HUMBLE_ADAPTERS = "default_planner_request_adapters/"
+JAZZY_ADAPTERS = ("default_planning_request_adapters/", "default_planning_response_adapters/")
+
+
+def check_pipeline_format(name: str, section, distro: str) -> list[Finding]:
+    """One pipeline's planner and adapter parameters as `distro` (humble | jazzy) reads them."""
+    data = section.data
+    if not isinstance(data, dict):
+        return []
+    where = section.element
+    if distro == "humble":
+        return _humble_format(name, data, section.file, where)
+    return _jazzy_format(name, data, section.file, where)
+
+
+def _humble_format(name: str, data: dict, file: str, where) -> list[Finding]:
+    out = []
+    if not isinstance(data.get("planning_plugin"), str):
+        found = " (this is Jazzy's planning_plugins list)" if "planning_plugins" in data else ""
+        msg = f"Humble reads one planning_plugin string{found}: move_group takes whichever planner is declared first"
+        out.append(error("distro.pipeline-format", file, where("planning_plugin"), msg))
+    adapters = data.get("request_adapters")
+    if adapters is not None and not isinstance(adapters, str):
+        msg = "Humble reads request_adapters as one space-separated string: a list stops move_group"
+        out.append(error("distro.pipeline-format", file, where("request_adapters"), msg))
+    names = adapters.split() if isinstance(adapters, str) else []
+    for adapter in names:
+        if adapter.startswith(JAZZY_ADAPTERS):
+            msg = f"'{adapter}' is Jazzy's; Humble cannot load it and plans without it"
+            out.append(
+                error("distro.adapter", file, where("request_adapters"), msg, f"use {HUMBLE_ADAPTERS}...")
+            )
+    return out
+
+
+def _jazzy_format(name: str, data: dict, file: str, where) -> list[Finding]:
+    out = []
+    plugins = data.get("planning_plugins")
+    if not (isinstance(plugins, list) and plugins):
+        found = " (this is Humble's planning_plugin string)" if "planning_plugin" in data else ""
+        msg = f"Jazzy reads a planning_plugins list{found}: move_group throws 'Planning plugin name is empty'"
+        out.append(error("distro.pipeline-format", file, where("planning_plugins"), msg))
+    for key in ("request_adapters", "response_adapters"):
+        value = data.get(key)
+        if value is not None and not isinstance(value, list):
+            msg = f"Jazzy reads {key} as a list of plugin names: a string stops move_group"
+            out.append(error("distro.pipeline-format", file, where(key), msg))
+        for adapter in value if isinstance(value, list) else ():
+            if str(adapter).startswith(HUMBLE_ADAPTERS):
+                msg = f"'{adapter}' is Humble's; Jazzy has no such adapter plugin"
+                out.append(
+                    error("distro.adapter", file, where(key), msg, "use default_planning_*_adapters/...")
+                )
+    return out
+
+
+def check_publish_flags(params: dict, file: str, prefix: str) -> list[Finding]:
+    """move_group's four planning scene publishing flags (declared false by MoveIt)."""
+    off = [flag for flag in PUBLISH_FLAGS if params.get(flag) is not True]
+    if not off:
+        return []
+    msg = f"{', '.join(off)} not true: RViz does not see the robot move or the world change"
+    return [
+        warning(
+            "moveit.publish-flags", file, prefix, msg, "set all four to true, as the Setup Assistant does"
+        )
+    ]
+
+
+def check_projection_evaluators(section, srdf, robot) -> list[Finding]:
+    """A group of two or more joints whose default OMPL planner needs a projection has one."""
+    data = section.data if isinstance(section.data, dict) else {}
+    configs = data.get("planner_configs") if isinstance(data.get("planner_configs"), dict) else {}
+    by_name = groups_by_name(srdf.groups)
+    out = []
+    for group_name, entry in sorted(data.items()):
+        if group_name not in by_name or not isinstance(entry, dict) or "projection_evaluator" in entry:
+            continue
+        config = configs.get(str(entry.get("default_planner_config")))
+        kind = str(config.get("type", "")).rsplit("::", 1)[-1] if isinstance(config, dict) else ""
+        joints = active_group_joints(by_name[group_name], by_name, robot, tuple(srdf.passive_joints))
+        if kind in PROJECTION_PLANNERS and len(joints) >= 2:
+            msg = f"default planner {kind} needs a projection_evaluator: every plan of this group fails"
+            hint = f"projection_evaluator: joints({joints[0]},{joints[1]})"
+            out.append(error("ompl.projection-missing", section.file, section.element(group_name), msg, hint))
+    return out
+
+
+def check_ros2_control_systems(files: dict[str, str], described: frozenset[str]) -> list[Finding]:
+    """Each joint in one ros2_control system: the package's `*.ros2_control.xacro` files against
+    each other and against the systems the robot description already declares."""
+    seen: dict[str, str] = {j: "the robot description" for j in described}
+    out = []
+    for rel, text in sorted(files.items()):
+        for joint in _literal_joints(text):
+            if joint in seen:
+                msg = f"joint '{joint}' is already in a ros2_control system of {seen[joint]}"
+                hint = "the controller manager refuses a second interface of the same joint"
+                out.append(error("ros2_control.duplicate-joint", rel, f"joint[{joint}]", msg, hint))
+            else:
+                seen[joint] = rel
+    return out
+
+
+def _literal_joints(text: str) -> list[str]:
+    try:
+        root = etree.fromstring(text.encode(), parser=etree.XMLParser(remove_comments=True))
+    except etree.XMLSyntaxError:
+        return []
+    names = [j.get("name", "") for system in root.iter("ros2_control") for j in system.findall("joint")]
+    return [n for n in names if n and "${" not in n]
+
+
+def move_group_params(raw: Any) -> dict | None:
+    """The ros__parameters of our single-file `config/moveit.yaml`, or None."""
+    if isinstance(raw, dict) and len(raw) == 1:
+        (node,) = raw
+        body = raw[node]
+        if isinstance(body, dict) and isinstance(body.get("ros__parameters"), dict):
+            return body["ros__parameters"]
+    return None
+
+
+def check_package_runtime(pkg, robot) -> list[Finding]:
+    """The rules above on a config package: projection evaluators (both targets), then for ROS 2
+    the distro's pipeline format (the distro marm_setup.yaml names), publishing flags and
+    ros2_control systems."""
+    from marm_setup.robot.ros2_control import described_joints
+
+    out: list[Finding] = []
+    if pkg.ompl is not None and pkg.srdf is not None:
+        out += check_projection_evaluators(pkg.ompl, pkg.srdf, robot)
+    if pkg.target != "ros2":
+        return out
+    pipelines, params = _ros2_pipelines(pkg)
+    distro = package_distro(pkg)
+    if distro in ("humble", "jazzy"):
+        for name, section in pipelines.items():
+            out += check_pipeline_format(name, section, distro)
+    if params is not None:
+        out += check_publish_flags(params, MOVEIT_YAML, "/**.ros__parameters")
+    files = {
+        p.relative_to(pkg.root).as_posix(): p.read_text(encoding="utf-8", errors="replace")
+        for p in sorted((pkg.root / "config").glob("*.ros2_control.xacro"))
+    }
+    out += check_ros2_control_systems(files, described_joints(robot))
+    return out
+
+
+MOVEIT_YAML = "config/moveit.yaml"
+
+
+def package_distro(pkg) -> str | None:
+    """The distro marm_setup.yaml names (`ros_distro`), else None (no format rule then)."""
+    data = pkg.marm_setup.data if pkg.marm_setup is not None else None
+    value = data.get("ros_distro") if isinstance(data, dict) else None
+    return value if isinstance(value, str) else None
+
+
+def _ros2_pipelines(pkg) -> tuple[dict, dict | None]:
+    """({pipeline: ConfigSection}, move_group params) from our config/moveit.yaml, else the
+    OMPL section discovery found."""
+    import yaml
+
+    from marm_setup.validate.discovery import ConfigSection
+
+    file = pkg.root / MOVEIT_YAML
+    try:
+        params = (
+            move_group_params(yaml.safe_load(file.read_text(encoding="utf-8"))) if file.is_file() else None
+        )
+    except (OSError, yaml.YAMLError):
+        params = None
+    if params is None:
+        return ({"ompl": pkg.ompl} if pkg.ompl is not None else {}), None
+    names = params.get("planning_pipelines", {})
+    names = names.get("pipeline_names", []) if isinstance(names, dict) else names
+    prefix = "/**.ros__parameters"
+    sections = {
+        str(n): ConfigSection(MOVEIT_YAML, params[n], f"{prefix}.{n}")
+        for n in (names if isinstance(names, list) else [])
+        if isinstance(params.get(n), dict)
+    }
+    return sections, params
