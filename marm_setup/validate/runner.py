@@ -270,9 +270,10 @@ def check_with_scene(
         return [error("urdf.collision-geometry", exc.path or "", exc.element or "", exc.message)], None
     start = package_start_values(pkg, robot)
     out = guarded("pose", check_pose_collisions, pkg.srdf, robot, scene, pkg.srdf_path, start)
-    section = pkg.initial_positions if pkg.target == "ros2" else pkg.fake_controllers
-    start_file = section.file if section is not None else (pkg.srdf_path or "")
-    out += guarded("pose", check_start_state, pkg.srdf, robot, scene, start_file, start)
+    if (
+        pkg.target == "ros2" and pkg.initial_positions is not None
+    ):  # ros1 starts at named poses, checked above
+        out += guarded("pose", check_start_state, pkg.srdf, robot, scene, pkg.initial_positions.file, start)
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
     out += guarded(

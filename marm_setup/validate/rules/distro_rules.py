@@ -177,11 +177,29 @@ def check_package_runtime(pkg, robot) -> list[Finding]:
             out += check_pipeline_format(name, section, distro)
     if params is not None:
         out += check_publish_flags(params, MOVEIT_YAML, "/**.ros__parameters")
-    files = {
-        p.relative_to(pkg.root).as_posix(): p.read_text(encoding="utf-8", errors="replace")
-        for p in sorted((pkg.root / "config").glob("*.ros2_control.xacro"))
-    }
-    out += check_ros2_control_systems(files, described_joints(robot))
+    out += check_expanded_systems(robot)
+    if not pkg.urdf.resolve().is_relative_to(pkg.root.resolve()):  # our layout: the user's description
+        files = {
+            p.relative_to(pkg.root).as_posix(): p.read_text(encoding="utf-8", errors="replace")
+            for p in sorted((pkg.root / "config").glob("*.ros2_control.xacro"))
+        }
+        out += check_ros2_control_systems(files, described_joints(robot))
+    return out
+
+
+def check_expanded_systems(robot) -> list[Finding]:
+    """A joint in two `<ros2_control>` systems of the URDF the package loads."""
+    from marm_setup.robot.ros2_control import described_systems
+
+    seen: dict[str, str] = {}
+    out = []
+    for system in described_systems(robot):
+        for joint in system.joints:
+            if joint in seen and seen[joint] != system.name:
+                msg = f"joint '{joint}' is in ros2_control systems {seen[joint]} and {system.name}"
+                hint = "the controller manager refuses a second interface of the same joint"
+                out.append(error("ros2_control.duplicate-joint", robot.source, f"joint[{joint}]", msg, hint))
+            seen.setdefault(joint, system.name)
     return out
 
 

@@ -118,6 +118,10 @@ def check_start_state(srdf, robot: RobotModel, scene, file: str, base: Mapping[s
     if not base:
         return []
     pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
+    # a pair touching at the default state too is the collision matrix's problem, not the start's
+    default = pose_configuration(SimpleNamespace(values=()), robot)[None]
+    while pairs and (touching := scene.first_collisions(default, pairs)[0]) is not None:
+        pairs = tuple(p for p in pairs if p != touching)
     q = pose_configuration(SimpleNamespace(values=()), robot, base)[None]
     hit = scene.first_collisions(q, pairs)[0] if pairs else None
     if hit is None:
