@@ -146,7 +146,9 @@ def render_package(
         description = description_package(Path(robot.source))
     context = build_context(model, robot, description)
     files = [RenderedFile(SETUP_FILE, dump_setup(model))]
-    templates = [(t, p, {}) for t, p in target_templates(model.target, model.driver)]
+    templates: list[tuple[str, str, dict]] = [
+        (t, p, {}) for t, p in target_templates(model.target, model.driver)
+    ]
     for template, path, extra in templates + pipeline_templates(model):
         content = render_template(template, target=model.target, **context, **extra)
         files.append(RenderedFile(output_path(path, model.robot_name), content))

@@ -21,12 +21,18 @@ Sources (moveit/moveit2 humble and jazzy branches, ros-controls/ros2_control):
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.setup.groups import active_group_joints, groups_by_name
+
+if TYPE_CHECKING:
+    from marm_setup.robot.model import RobotModel
+    from marm_setup.setup.srdf import Srdf
+    from marm_setup.validate.discovery import ConfigPackage, ConfigSection
 
 PUBLISH_FLAGS = (
     "publish_planning_scene",
@@ -40,7 +46,7 @@ HUMBLE_ADAPTERS = "default_planner_request_adapters/"
 JAZZY_ADAPTERS = ("default_planning_request_adapters/", "default_planning_response_adapters/")
 
 
-def check_pipeline_format(name: str, section, distro: str) -> list[Finding]:
+def check_pipeline_format(name: str, section: ConfigSection, distro: str) -> list[Finding]:
     """One pipeline's planner and adapter parameters as `distro` (humble | jazzy) reads them."""
     data = section.data
     if not isinstance(data, dict):
@@ -51,7 +57,7 @@ def check_pipeline_format(name: str, section, distro: str) -> list[Finding]:
     return _jazzy_format(name, data, section.file, where)
 
 
-def _humble_format(name: str, data: dict, file: str, where) -> list[Finding]:
+def _humble_format(name: str, data: dict, file: str, where: Callable[..., str]) -> list[Finding]:
     out = []
     if not isinstance(data.get("planning_plugin"), str):
         found = " (this is Jazzy's planning_plugins list)" if "planning_plugins" in data else ""
@@ -71,7 +77,7 @@ def _humble_format(name: str, data: dict, file: str, where) -> list[Finding]:
     return out
 
 
-def _jazzy_format(name: str, data: dict, file: str, where) -> list[Finding]:
+def _jazzy_format(name: str, data: dict, file: str, where: Callable[..., str]) -> list[Finding]:
     out = []
     plugins = data.get("planning_plugins")
     if not (isinstance(plugins, list) and plugins):
@@ -105,10 +111,11 @@ def check_publish_flags(params: dict, file: str, prefix: str) -> list[Finding]:
     ]
 
 
-def check_projection_evaluators(section, srdf, robot) -> list[Finding]:
+def check_projection_evaluators(section: ConfigSection, srdf: Srdf, robot: RobotModel) -> list[Finding]:
     """A group of two or more joints whose default OMPL planner needs a projection has one."""
     data = section.data if isinstance(section.data, dict) else {}
-    configs = data.get("planner_configs") if isinstance(data.get("planner_configs"), dict) else {}
+    found = data.get("planner_configs")
+    configs: dict = found if isinstance(found, dict) else {}
     by_name = groups_by_name(srdf.groups)
     out = []
     for group_name, entry in sorted(data.items()):
@@ -159,7 +166,7 @@ def move_group_params(raw: Any) -> dict | None:
     return None
 
 
-def check_package_runtime(pkg, robot) -> list[Finding]:
+def check_package_runtime(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
     """The rules above on a config package: projection evaluators (both targets), then for ROS 2
     the distro's pipeline format (the distro marm_setup.yaml names), publishing flags and
     ros2_control systems."""
@@ -187,7 +194,7 @@ def check_package_runtime(pkg, robot) -> list[Finding]:
     return out
 
 
-def check_expanded_systems(robot) -> list[Finding]:
+def check_expanded_systems(robot: RobotModel) -> list[Finding]:
     """A joint in two `<ros2_control>` systems of the URDF the package loads."""
     from marm_setup.robot.ros2_control import described_systems
 
@@ -206,14 +213,14 @@ def check_expanded_systems(robot) -> list[Finding]:
 MOVEIT_YAML = "config/moveit.yaml"
 
 
-def package_distro(pkg) -> str | None:
+def package_distro(pkg: ConfigPackage) -> str | None:
     """The distro marm_setup.yaml names (`ros_distro`), else None (no format rule then)."""
     data = pkg.marm_setup.data if pkg.marm_setup is not None else None
     value = data.get("ros_distro") if isinstance(data, dict) else None
     return value if isinstance(value, str) else None
 
 
-def _ros2_pipelines(pkg) -> tuple[dict, dict | None]:
+def _ros2_pipelines(pkg: ConfigPackage) -> tuple[dict, dict | None]:
     """({pipeline: ConfigSection}, move_group params) from our config/moveit.yaml, else the
     OMPL section discovery found."""
     import yaml
@@ -229,7 +236,7 @@ def _ros2_pipelines(pkg) -> tuple[dict, dict | None]:
         params = None
     if params is None:
         return ({"ompl": pkg.ompl} if pkg.ompl is not None else {}), None
-    names = params.get("planning_pipelines", {})
+    names: Any = params.get("planning_pipelines", {})
     names = names.get("pipeline_names", []) if isinstance(names, dict) else names
     prefix = "/**.ros__parameters"
     sections = {

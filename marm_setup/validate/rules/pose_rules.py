@@ -6,7 +6,6 @@ A pose's values (group, joints, limits) are checked by the shared rules in `setu
 from __future__ import annotations
 
 from collections.abc import Mapping
-from types import SimpleNamespace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -110,19 +109,24 @@ def check_initial_positions(section: ConfigSection, robot: RobotModel) -> list[F
     return out
 
 
-def check_start_state(srdf, robot: RobotModel, scene, file: str, base: Mapping[str, float]) -> list[Finding]:
+def check_start_state(
+    srdf: Srdf, robot: RobotModel, scene: CollisionScene, file: str, base: Mapping[str, float]
+) -> list[Finding]:
     """The demo's start state (`base` over the defaults) is free of the collisions MoveIt checks:
     MoveIt 2's CheckStartStateCollision adapter refuses every plan from a state in collision
     (default_planning_request_adapters, check_start_state_collision.cpp), MoveIt 1's
     FixStartStateCollision only tries small random moves of it."""
+    from marm_setup.setup.model import GroupState
+
     if not base:
         return []
+    _START = GroupState("start", "", ())
     pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
     # a pair touching at the default state too is the collision matrix's problem, not the start's
-    default = pose_configuration(SimpleNamespace(values=()), robot)[None]
+    default = pose_configuration(_START, robot)[None]
     while pairs and (touching := scene.first_collisions(default, pairs)[0]) is not None:
         pairs = tuple(p for p in pairs if p != touching)
-    q = pose_configuration(SimpleNamespace(values=()), robot, base)[None]
+    q = pose_configuration(_START, robot, base)[None]
     hit = scene.first_collisions(q, pairs)[0] if pairs else None
     if hit is None:
         return []
