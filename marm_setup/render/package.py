@@ -19,7 +19,7 @@ from marm_setup.setup.model import TARGETS, SetupModel
 from marm_setup.setup.yaml_io import dump_setup
 from marm_setup.templating import RenderedFile, render_template
 
-COMMON_FILES = ("config/robot.srdf",)
+COMMON_FILES = ("config/robot.srdf", ".setup_assistant")
 ROS1_FILES = (
     "CMakeLists.txt",
     "package.xml",
@@ -29,6 +29,7 @@ ROS1_FILES = (
     "config/joint_limits.yaml",
     "config/kinematics.yaml",
     "launch/arbotix.launch",
+    "launch/arbotix_moveit.launch",
     "launch/default_warehouse_db.launch",
     "launch/demo.launch",
     "launch/fake_moveit_controller_manager.launch.xml",
@@ -42,6 +43,7 @@ ROS1_FILES = (
     "launch/trajectory_execution.launch.xml",
     "launch/warehouse.launch",
     "launch/warehouse_settings.launch.xml",
+    "scripts/gripper_controller.py",
     "scripts/trajectory_demo.py",
 )
 ROS2_FILES = (
@@ -58,7 +60,14 @@ ROS2_FILES = (
 )
 TARGET_FILES = {"ros1": ROS1_FILES, "ros2": ROS2_FILES}
 # Files only a package whose setup names the driver gets (ros1).
-DRIVER_FILES = {"arbotix": ("config/arbotix.yaml", "launch/arbotix.launch")}
+DRIVER_FILES = {
+    "arbotix": (
+        "config/arbotix.yaml",
+        "launch/arbotix.launch",
+        "launch/arbotix_moveit.launch",
+        "scripts/gripper_controller.py",
+    )
+}
 SETUP_FILE = "marm_setup.yaml"
 
 

@@ -247,3 +247,34 @@ def test_roslaunch_keys_match_the_setup_assistants_panda_demo(tmp_path):
         key = f"/move_group/planning_pipelines/{pipeline}/planning_plugin"
         assert ours[key] == sa[key]
     assert ours["/move_group/moveit_controller_manager"] == sa["/move_group/moveit_controller_manager"]
+
+
+@needs_roslaunch
+def test_roslaunch_loads_the_course_flow_launch(tmp_path):
+    """ArbotiX driver (real by default), our Python 3 gripper server, move_group on the driver's
+    controllers, RViz, the virtual joint's TF: one launch file."""
+    pkg = write_package(tmp_path, "ros1")
+    launch = pkg / "launch" / "arbotix_moveit.launch"
+    params = dump_params(launch, [FIXTURES / "marm", pkg], tmp_path)
+    assert params["/arbotix/sim"] is False
+    assert params["/gripper_controller/joint"] == "finger_joint1"
+    assert params["/move_group/moveit_controller_manager"].startswith("moveit_simple_controller_manager")
+    assert [c["name"] for c in params["/move_group/controller_list"]] == [
+        "arm_controller",
+        "gripper_controller",
+    ]
+    root = etree.parse(str(launch)).getroot()
+    assert any(n.get("pkg") == "tf2_ros" for n in root.iter("node"))
+    arbotix = etree.parse(str(pkg / "launch" / "arbotix.launch")).getroot()
+    gripper = next(n for n in arbotix.iter("node") if n.get("name") == "gripper_controller")
+    assert (gripper.get("pkg"), gripper.get("type")) == ("marm_moveit_config", "gripper_controller.py")
+    assert (pkg / "scripts" / "gripper_controller.py").read_text().startswith("#!/usr/bin/env python3")
+
+
+def test_setup_assistant_file_names_the_urdf_srdf_and_author(tmp_path):
+    pkg = write_package(tmp_path, "ros1")
+    config = yaml.safe_load((pkg / ".setup_assistant").read_text())["moveit_setup_assistant_config"]
+    assert config["URDF"]["package"] == "marm_description"
+    assert (FIXTURES / "marm" / config["URDF"]["relative_path"]).is_file()
+    assert (pkg / config["SRDF"]["relative_path"]).is_file()
+    assert config["CONFIG"]["author_name"] == "marm-setup user"
