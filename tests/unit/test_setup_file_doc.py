@@ -23,7 +23,7 @@ def _examples() -> list[tuple[str, str]]:
 
 
 def _documented() -> set[str]:
-    rows = re.findall(r"^\| `([a-z_.\[\]]+)` \|", DOC.read_text(encoding="utf-8"), re.M)
+    rows = re.findall(r"^\| `([a-z0-9_.\[\]]+)` \|", DOC.read_text(encoding="utf-8"), re.M)
     return set(rows)
 
 
