@@ -158,3 +158,20 @@ def test_unusable_hardware_keys_are_input_errors(hardware, element):
     with pytest.raises(InputError) as error:
         check_setup(model, marm_robot(), "marm_setup.yaml")
     assert error.value.element == element
+
+
+@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+def test_mimic_joints_in_the_distros_own_form(distro):
+    """Humble's mock hardware reads <param name="mimic">; Jazzy's ros2_control takes mimic joints
+    from the URDF's <mimic> and no longer supports those params (ros2_control
+    doc/migration/Jazzy.rst); a mimic joint has no command interface on either."""
+    from tests.unit.test_package_render import rendered
+
+    tree = etree.fromstring(rendered("ros2", distro)["config/marm.ros2_control.xacro"].encode())
+    (joint,) = tree.xpath("//joint[@name='finger_joint2']")
+    params = {p.get("name"): p.text for p in joint.findall("param")}
+    assert joint.find("command_interface") is None
+    if distro == "humble":
+        assert params == {"mimic": "finger_joint1", "multiplier": "-1.0"}
+    else:
+        assert params == {}

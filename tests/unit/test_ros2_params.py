@@ -16,6 +16,10 @@ What each reads, from the sources (moveit/moveit2 humble and jazzy branches, ros
 - Planning scene monitor: `publish_planning_scene`, `publish_geometry_updates`,
   `publish_state_updates`, `publish_transforms_updates`, declared false by default
   (moveit_ros/planning/planning_scene_monitor/src/planning_scene_monitor.cpp, initialize()).
+- move_group capabilities: the top-level `capabilities` string (both distros) plus, per pipeline,
+  Jazzy's `<pipeline>.capabilities` (jazzy move_group.cpp, configureCapabilities); Humble looks
+  for "planning_pipelines/<pipeline>/capabilities", which is no valid ROS 2 parameter name, so
+  a pipeline's own capabilities never load there (moveit/moveit2#1393, #2707).
 - MoveItSimpleControllerManager: `moveit_simple_controller_manager.controller_names`, then per
   controller `type` (FollowJointTrajectory | GripperCommand), `action_ns`, `joints`, `default`
   (moveit_plugins/moveit_simple_controller_manager/src/moveit_simple_controller_manager.cpp, initialize()).
@@ -113,6 +117,28 @@ def test_planning_pipelines_load_on_the_distro(distro):
     other = jazzy_pipeline if distro == "humble" else humble_pipeline
     with pytest.raises(AssertionError):  # the other distro's reader refuses this file
         other(params["ompl"])
+
+
+PILZ_CAPABILITIES = {
+    "pilz_industrial_motion_planner/MoveGroupSequenceAction",
+    "pilz_industrial_motion_planner/MoveGroupSequenceService",
+}
+
+
+def loaded_capabilities(params: dict, distro: str) -> set[str]:
+    """The extra capabilities move_group loads from these parameters on `distro`."""
+    out = set(params.get("capabilities", "").split())
+    if distro != "humble":
+        for name in params["planning_pipelines"]["pipeline_names"]:
+            out |= set(params[name].get("capabilities", "").split())
+    return out
+
+
+@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+def test_pilz_sequence_capabilities_load_on_the_distro(distro):
+    params = move_group_params(distro)
+    assert "pilz_industrial_motion_planner" in params["planning_pipelines"]["pipeline_names"]
+    assert loaded_capabilities(params, distro) == PILZ_CAPABILITIES
 
 
 @pytest.mark.parametrize("distro", ["humble", "jazzy"])
