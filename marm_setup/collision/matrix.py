@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
-from marm_setup.collision.trials import CHUNK, CLOSEST, TrialChecker, Work, trial_samples
+from marm_setup.collision.trials import CHUNK, Work, trial_samples
 from marm_setup.collision.workers import Workers
 from marm_setup.robot.kinematics import default_configuration, sample_configurations
 from marm_setup.robot.model import RobotModel
@@ -31,6 +31,8 @@ __all__ = ["CHUNK", "CollisionMatrix", "PairStats", "compute_collision_matrix", 
 Pair = tuple[str, str]
 ROUND = 200  # samples per Always round, as MoveIt
 Progress = Callable[[int, int], None]
+PAIR_OVERHEAD = 5e-8  # [s] numpy filtering of one pair in one trial state (for the shard plan)
+WORTH_A_PROCESS = 0.3  # [s] estimated Never-phase work below which extra processes do not pay
 
 
 @dataclass(frozen=True, slots=True)
@@ -102,17 +104,20 @@ def compute_collision_matrix(
     if check_default:
         q0 = default_configuration(robot) if default_q is None else np.asarray(default_q, dtype=float)
         _disable_default(scene, q0, reasons, shortcuts)
-    counts = _disable_always(scene, seed, min_collision_fraction, reasons, shortcuts) if check_always else {}
+    always = (
+        _disable_always(scene, seed, min_collision_fraction, reasons, shortcuts) if check_always else None
+    )
+    counts = always.counts if always else {}
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
     trial_pairs = tuple(p for p in remaining if p not in seen)
-    with Workers(TrialChecker(scene, seed, trials, shortcuts, jobs), jobs) as workers:
-        seen_in_trials, closest, others = _run_trials(workers, trial_pairs, progress)
-        seen |= seen_in_trials
+    costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
+    shards = plan_shards(trial_pairs, costs, jobs)
+    with Workers(scene, seed, trials, shortcuts, shards) as workers:
+        work = _run_trials(workers, seen, trials, progress)
         never = [p for p in remaining if p not in seen]
         reasons.update(dict.fromkeys(never, DisabledReason.NEVER))
-        items = [(p, [i for _, i in closest[p]]) for p in never if closest.get(p)]
-        distances, distance_work = workers.distances(items)
+        distances, distance_work = workers.distances()
     stats = tuple(
         PairStats(p[0], p[1], reasons.get(p), *counts.get(p, (0, 0)), p in seen, distances.get(p))
         for p in scene.candidate_pairs
@@ -125,7 +130,7 @@ def compute_collision_matrix(
         seed=seed,
         min_collision_fraction=min_collision_fraction,
         padding=scene.padding,
-        work=Work.of(scene) - before + others + distance_work,
+        work=Work.of(scene) - before + work + distance_work,
     )
 
 
@@ -137,41 +142,79 @@ def _disable_default(scene, q0: np.ndarray, reasons: dict[Pair, DisabledReason],
     reasons.update({p: DisabledReason.DEFAULT for p, h in zip(pairs, hits, strict=True) if h})
 
 
-def _disable_always(scene, seed: int, fraction: float, reasons, hulls: bool) -> dict[Pair, tuple[int, int]]:
-    """Rounds of ROUND samples until a round disables nothing; returns (hits, samples) per pair."""
+@dataclass
+class _AlwaysRounds:
+    """What the Always rounds saw per pair: (hits, samples), and the states that passed the
+    bounding volumes with the seconds their exact checks took (for the shard plan)."""
+
+    counts: dict[Pair, tuple[int, int]] = field(default_factory=dict)
+    open_states: dict[Pair, int] = field(default_factory=dict)
+    seconds: dict[Pair, float] = field(default_factory=dict)
+
+    def costs(self, trials: int) -> dict[Pair, float]:
+        """Estimated Never-phase seconds per pair: its share of states that reach the exact
+        check, times `trials`, times its measured exact-check time."""
+        out = {}
+        for pair, (_, samples) in self.counts.items():
+            opened = self.open_states.get(pair, 0)
+            per_check = self.seconds.get(pair, 0.0) / opened if opened else 0.0
+            out[pair] = (opened / samples * per_check + PAIR_OVERHEAD) * trials
+        return out
+
+
+def _disable_always(scene, seed: int, fraction: float, reasons, hulls: bool) -> _AlwaysRounds:
+    """Rounds of ROUND samples until a round disables nothing."""
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
-    counts: dict[Pair, tuple[int, int]] = {}
+    rounds = _AlwaysRounds()
     while True:
         pairs = tuple(p for p in scene.candidate_pairs if p not in reasons)
         if not pairs:
-            return counts
+            return rounds
         poses = scene.link_poses(sample_configurations(scene.robot, rng, ROUND))
-        hits = scene.collision_counts(poses, scene.pair_ids(pairs), hulls)
+        ids = scene.pair_ids(pairs)
+        opened, seconds = np.zeros(len(ids), dtype=np.int64), np.zeros(len(ids))
+        hits = scene.collision_counts(poses, ids, hulls, opened=opened, seconds=seconds)
         added = 0
-        for pair, h in zip(pairs, hits.tolist(), strict=True):
-            old_hits, old_samples = counts.get(pair, (0, 0))
-            counts[pair] = (old_hits + h, old_samples + ROUND)
+        for k, (pair, h) in enumerate(zip(pairs, hits.tolist(), strict=True)):
+            old_hits, old_samples = rounds.counts.get(pair, (0, 0))
+            rounds.counts[pair] = (old_hits + h, old_samples + ROUND)
+            rounds.open_states[pair] = rounds.open_states.get(pair, 0) + int(opened[k])
+            rounds.seconds[pair] = rounds.seconds.get(pair, 0.0) + float(seconds[k])
             if h >= fraction * ROUND - 1e-9:
                 reasons[pair] = DisabledReason.ALWAYS
                 added += 1
         if not added:
-            return counts
+            return rounds
 
 
-def _run_trials(workers: Workers, pairs: tuple[Pair, ...], progress: Progress | None):
-    """Pairs seen colliding over all trial states, per pair its CLOSEST nearest states (gap,
-    global row), and the work of worker processes (the parent's own is on its scene)."""
-    trials = workers.checker.trials
-    seen: set[Pair] = set()
-    closest: dict[Pair, list[tuple[float, int]]] = {p: [] for p in pairs}
-    others = Work()
+def plan_shards(pairs: tuple[Pair, ...], costs: dict[Pair, float], jobs: int) -> list[tuple[Pair, ...]]:
+    """`pairs` split into at most `jobs` shards of about equal estimated cost (longest first
+    to the least loaded shard); one shard when the whole is too small to pay for processes.
+    Which shard checks a pair changes the work, never the answer."""
+    estimate = {p: costs.get(p, 0.0) for p in pairs}
+    total = sum(estimate.values())
+    count = max(1, min(jobs, len(pairs)))
+    if count == 1 or total < WORTH_A_PROCESS:
+        return [pairs] if pairs else []
+    loads = [0.0] * count
+    members: list[list[Pair]] = [[] for _ in range(count)]
+    for pair in sorted(pairs, key=lambda p: (-estimate[p], p)):
+        k = loads.index(min(loads))
+        loads[k] += estimate[pair]
+        members[k].append(pair)
+    order = {p: i for i, p in enumerate(pairs)}
+    return [tuple(sorted(m, key=order.__getitem__)) for m in members if m]
+
+
+def _run_trials(workers: Workers, seen: set[Pair], trials: int, progress: Progress | None) -> Work:
+    """Adds the pairs seen colliding in the trial states to `seen`; returns the work of
+    worker processes (the parent's own is on its scene)."""
+    work = Work()
     if progress:
         progress(0, trials)
-    for index, (chunk_seen, chunk_closest, work) in enumerate(workers.chunks(pairs)):
+    for index, (chunk_seen, chunk_work) in enumerate(workers.chunks()):
         seen |= chunk_seen
-        others += work
-        for pair, items in chunk_closest.items():
-            closest[pair] = sorted(closest[pair] + items)[:CLOSEST]
+        work += chunk_work
         if progress:
             progress(min(trials, (index + 1) * CHUNK), trials)
-    return seen, closest, others
+    return work

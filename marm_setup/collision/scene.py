@@ -16,6 +16,7 @@ surfaces apart; only touching hulls go on to the exact mesh check.
 from __future__ import annotations
 
 import itertools
+import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
@@ -116,12 +117,26 @@ class CollisionScene:
             out.append(None if hit is None else link_pair(*pairs[hit]))
         return out
 
-    def collision_counts(self, poses: np.ndarray, ids: np.ndarray, hulls: bool = False) -> np.ndarray:
-        """How many of the configurations in `poses` have each pair of `ids` in collision."""
+    def collision_counts(
+        self,
+        poses: np.ndarray,
+        ids: np.ndarray,
+        hulls: bool = False,
+        opened: np.ndarray | None = None,
+        seconds: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """How many of the configurations in `poses` have each pair of `ids` in collision.
+        `opened` / `seconds` (arrays per pair), when given, add up the states that reached the
+        exact check and the seconds those checks took."""
         maybe = self.maybe_colliding(poses, ids)
         counts = np.zeros(len(ids), dtype=np.int64)
         for n, k in zip(*np.nonzero(maybe), strict=True):
+            started = time.perf_counter()
             counts[k] += self.collide(poses[n], ids[k], hulls)
+            if seconds is not None:
+                seconds[k] += time.perf_counter() - started
+        if opened is not None:
+            opened += maybe.sum(axis=0)
         return counts
 
     def work(self) -> tuple[int, int, int, int, int]:

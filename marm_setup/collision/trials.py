@@ -1,8 +1,9 @@
 """The Never phase's states and the check of one chunk of them (run in any process).
 
 Trial chunk i (fixed size CHUNK) is drawn from `SeedSequence(seed, spawn_key=(1, i))` where it
-is checked: N trials are a prefix of N + k, memory does not grow with the trials, and the
-result does not depend on who checks which chunk.
+is checked: N trials are a prefix of N + k and memory does not grow with the trials. Work is
+shared out by pair (a PairShard per process goes through every chunk for its pairs), so
+whether a pair is seen colliding does not depend on who checks it.
 """
 
 from __future__ import annotations
@@ -54,13 +55,15 @@ def trial_samples(robot: RobotModel, seed: int, trials: int) -> np.ndarray:
     return np.concatenate(parts) if parts else np.empty((0, len(robot.active_joints)))
 
 
-class TrialChecker:
-    """What a process needs to check trial chunks: the scene, the sampling and (with
-    `shortcuts`) a PairProver whose certificates build up over the chunks it checks."""
+class PairShard:
+    """One process's share of the Never phase: a fixed set of pairs, checked over every trial
+    chunk in order. A pair leaves at its first collision; with `shortcuts` a PairProver's
+    certificates build up over all the chunks; each unseen pair keeps its CLOSEST states."""
 
-    def __init__(self, scene, seed: int, trials: int, shortcuts: bool, jobs: int = 1) -> None:
+    def __init__(self, scene, seed: int, trials: int, shortcuts: bool, pairs: tuple[Pair, ...]) -> None:
         self.scene, self.seed, self.trials, self.shortcuts = scene, seed, trials, shortcuts
-        self.jobs = jobs  # processes sharing the chunks (certificates pay over this one's share)
+        self.unseen = pairs
+        self.closest: dict[Pair, list[tuple[float, int]]] = {p: [] for p in pairs}
         self.prover = None
         if shortcuts:
             from marm_setup.collision.prover import PairProver
@@ -71,16 +74,20 @@ class TrialChecker:
     def chunks(self) -> int:
         return math.ceil(self.trials / CHUNK)
 
-    def check(self, index: int, pairs: tuple[Pair, ...]):
-        """check_chunk on chunk `index`: (seen, closest with global rows)."""
+    def check(self, index: int) -> set[Pair]:
+        """Check chunk `index` (chunks go in order); the pairs first seen colliding in it."""
         q = trial_chunk(self.scene.robot, self.seed, index, self.trials)
-        horizon = (self.chunks - index) / self.jobs
-        seen, closest = check_chunk(self.scene, q, pairs, self.prover, horizon)
+        seen, closest = check_chunk(self.scene, q, self.unseen, self.prover, self.chunks - index)
+        self.unseen = tuple(p for p in self.unseen if p not in seen)
         start = index * CHUNK
-        return seen, {p: [(g, i + start) for g, i in items] for p, items in closest.items()}
+        for pair, items in closest.items():
+            merged = self.closest[pair] + [(g, i + start) for g, i in items]
+            self.closest[pair] = sorted(merged)[:CLOSEST]
+        return seen
 
-    def distances(self, items: list[tuple[Pair, list[int]]]) -> dict[Pair, float]:
-        """Smallest exact distance [m] of each pair over its given trial rows."""
+    def distances(self) -> dict[Pair, float]:
+        """Smallest exact distance [m] of each never-seen pair over its closest trial states."""
+        items = [(p, [i for _, i in self.closest[p]]) for p in self.unseen if self.closest[p]]
         rows = sorted({i for _, pair_rows in items for i in pair_rows})
         if not rows:
             return {}

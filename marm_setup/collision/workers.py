@@ -1,101 +1,132 @@
-"""Workers: the trial chunks and the Never distances, in this process or in `jobs` processes.
+"""Workers: the Never phase's pair shards, in this process or one process per shard.
 
-Chunks come back in chunk order whoever ran them, so the result does not depend on `jobs`.
-Each result carries the work its process did, so the counts add up under --jobs too.
+Each shard (a PairShard) lives in one process for the whole phase and goes through every trial
+chunk in order, so its certificates and its "seen" pairs carry over from chunk to chunk and no
+work is done twice. A worker process sends one message per chunk, then its distances, through
+its own pipe; the parent reads them in chunk order, so the result does not depend on `jobs`.
+Each message carries the work its process did, so the counts add up.
 """
 
 from __future__ import annotations
 
+import traceback
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
+from typing import Any
 
-from marm_setup.collision.trials import Pair, TrialChecker, Work
+from marm_setup.collision.trials import Pair, PairShard, Work
 
-if TYPE_CHECKING:
-    from concurrent.futures import ProcessPoolExecutor
 
-_CHECKER: TrialChecker | None = None  # the checker of a worker process (fork or _init_worker)
+class WorkerFailed(RuntimeError):
+    """A worker process raised (its traceback is the message) or died without an answer."""
 
 
 class Workers:
-    """A context manager over a TrialChecker: `chunks` and `distances` run serially when
-    `jobs` is 1, else in a process pool (forked workers inherit the built scene)."""
+    """A context manager over pair shards of one scene: `chunks` then `distances`, in this
+    process when there is one shard, else in one process per shard (forked workers inherit
+    the built scene; spawned ones build it again)."""
 
-    def __init__(self, checker: TrialChecker, jobs: int) -> None:
-        self.checker, self.jobs = checker, jobs
-        self._pool: ProcessPoolExecutor | None = None
+    def __init__(self, scene, seed: int, trials: int, shortcuts: bool, shards: list[tuple[Pair, ...]]):
+        self.scene, self.seed, self.trials, self.shortcuts = scene, seed, trials, shortcuts
+        self.shards = [PairShard(scene, seed, trials, shortcuts, pairs) for pairs in shards]
+        self._procs: list[tuple[Any, Any]] = []  # (process, parent end of its pipe)
+
+    @property
+    def count(self) -> int:
+        return self.shards[0].chunks if self.shards else 0
 
     def __enter__(self) -> Workers:
-        if self.jobs > 1 and self.checker.chunks > 1:
+        if len(self.shards) > 1:
             import multiprocessing
-            from concurrent.futures import ProcessPoolExecutor
 
-            global _CHECKER
             fork = "fork" in multiprocessing.get_all_start_methods()
-            _CHECKER = self.checker if fork else None
-            scene, c = self.checker.scene, self.checker
-            self._pool = ProcessPoolExecutor(
-                self.jobs,
-                mp_context=multiprocessing.get_context("fork" if fork else "spawn"),
-                initializer=_init_worker,
-                initargs=(scene.robot, scene.padding, c.seed, c.trials, c.shortcuts, c.jobs),
-            )
+            context = multiprocessing.get_context("fork" if fork else "spawn")
+            for shard in self.shards:
+                ours, theirs = context.Pipe(duplex=False)
+                spec = shard if fork else _ShardSpec.of(shard)
+                proc = context.Process(target=_work, args=(spec, theirs), daemon=True)  # type: ignore[attr-defined]
+                proc.start()
+                theirs.close()
+                self._procs.append((proc, ours))
         return self
 
     def __exit__(self, *exc) -> None:
-        global _CHECKER
-        if self._pool is not None:
-            self._pool.shutdown(cancel_futures=True)
-        _CHECKER = None
+        for proc, conn in self._procs:
+            conn.close()
+            if proc.is_alive():
+                proc.terminate()
+            proc.join()
+        self._procs = []
 
-    def chunks(self, pairs: tuple[Pair, ...]) -> Iterator[tuple[set, dict, Work]]:
-        """(seen, closest, work of other processes) per chunk, in chunk order. Serially, a pair
-        seen in a chunk is not checked in later ones."""
-        if self._pool is None or not pairs:
-            unseen = pairs
-            for index in range(self.checker.chunks):
-                seen, closest = self.checker.check(index, unseen)
-                unseen = tuple(p for p in unseen if p not in seen)
-                yield seen, closest, Work()
-            return
-        yield from self._pool.map(_worker_chunk, [(i, pairs) for i in range(self.checker.chunks)])
+    def chunks(self) -> Iterator[tuple[set[Pair], Work]]:
+        """(pairs first seen in the chunk, work of worker processes) per chunk, in order."""
+        for index in range(self.count):
+            if not self._procs:
+                yield set().union(*(shard.check(index) for shard in self.shards)), Work()
+                continue
+            seen: set[Pair] = set()
+            work = Work()
+            for shard_seen, shard_work in self._receive():
+                seen |= shard_seen
+                work += shard_work
+            yield seen, work
 
-    def distances(self, items: list[tuple[Pair, list[int]]]) -> tuple[dict[Pair, float], Work]:
-        """TrialChecker.distances over `items`, split among the workers."""
-        if self._pool is None or len(items) < 2:
-            return self.checker.distances(items), Work()
-        size = -(-len(items) // (4 * self.jobs))
+    def distances(self) -> tuple[dict[Pair, float], Work]:
+        """Each shard's never-seen pairs' smallest distance over their closest states."""
         out: dict[Pair, float] = {}
+        if not self._procs:
+            for shard in self.shards:
+                out.update(shard.distances())
+            return out, Work()
         work = Work()
-        for part, part_work in self._pool.map(
-            _worker_distances, [items[i : i + size] for i in range(0, len(items), size)]
-        ):
+        for part, part_work in self._receive():
             out.update(part)
             work += part_work
         return out, work
 
+    def _receive(self) -> list:
+        """The next message of every worker, in shard order."""
+        out = []
+        for proc, conn in self._procs:
+            try:
+                kind, payload = conn.recv()
+            except EOFError:
+                raise WorkerFailed(f"collision worker {proc.pid} died (exit {proc.exitcode})") from None
+            if kind == "error":
+                raise WorkerFailed(payload)
+            out.append(payload)
+        return out
 
-def _init_worker(robot, padding: float, seed: int, trials: int, shortcuts: bool, jobs: int) -> None:
-    global _CHECKER
-    if _CHECKER is None:
+
+class _ShardSpec:
+    """What a spawned worker needs to build its shard again (the scene is not picklable)."""
+
+    def __init__(self, robot, padding: float, seed: int, trials: int, shortcuts: bool, pairs) -> None:
+        self.args = (robot, padding, seed, trials, shortcuts, pairs)
+
+    @classmethod
+    def of(cls, shard: PairShard) -> _ShardSpec:
+        scene = shard.scene
+        return cls(scene.robot, scene.padding, shard.seed, shard.trials, shard.shortcuts, shard.unseen)
+
+    def build(self) -> PairShard:
         from marm_setup.collision.scene import CollisionScene
 
-        _CHECKER = TrialChecker(CollisionScene(robot, padding), seed, trials, shortcuts, jobs)
+        robot, padding, seed, trials, shortcuts, pairs = self.args
+        return PairShard(CollisionScene(robot, padding), seed, trials, shortcuts, pairs)
 
 
-def _checker() -> TrialChecker:
-    assert _CHECKER is not None, "a worker process without its checker"
-    return _CHECKER
-
-
-def _worker_chunk(args):
-    checker = _checker()
-    before = Work.of(checker.scene)
-    seen, closest = checker.check(*args)
-    return seen, closest, Work.of(checker.scene) - before
-
-
-def _worker_distances(items):
-    checker = _checker()
-    before = Work.of(checker.scene)
-    return checker.distances(items), Work.of(checker.scene) - before
+def _work(spec: PairShard | _ShardSpec, conn) -> None:
+    """A worker process: every chunk in order, then the distances, one message each."""
+    try:
+        shard = spec.build() if isinstance(spec, _ShardSpec) else spec
+        for index in range(shard.chunks):
+            before = Work.of(shard.scene)
+            seen = shard.check(index)
+            conn.send(("ok", (seen, Work.of(shard.scene) - before)))
+        before = Work.of(shard.scene)
+        distances = shard.distances()
+        conn.send(("ok", (distances, Work.of(shard.scene) - before)))
+    except BaseException:  # report, then end: the parent raises WorkerFailed
+        conn.send(("error", traceback.format_exc()))
+    finally:
+        conn.close()

@@ -7,14 +7,18 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from marm_setup.collision import matrix as matrix_module
 from marm_setup.collision.matrix import (
     CHUNK,
     CollisionMatrix,
     compute_collision_matrix,
+    plan_shards,
     trial_samples,
 )
 from marm_setup.collision.pairs import DisabledReason
 from marm_setup.collision.scene import CollisionScene
+from marm_setup.collision.trials import PairShard
+from marm_setup.collision.workers import WorkerFailed
 from marm_setup.robot.load import load_robot
 from tests.collision_robots import TOY
 from tests.conftest import realworld
@@ -224,11 +228,34 @@ def test_shortcuts_give_the_exhaustive_matrix_on_the_pr2_in_two_processes():
     assert fast.work.certified > 0 and fast.work.hull_rejections > 0
 
 
-def test_work_of_worker_processes_is_counted(marm):
+def test_work_of_worker_processes_is_counted(marm, monkeypatch):
+    monkeypatch.setattr(matrix_module, "WORTH_A_PROCESS", 0.0)  # two processes even for the marm
     trials = 3 * CHUNK
     one = compute_collision_matrix(marm, CollisionScene(marm), trials=trials, shortcuts=False)
     two = compute_collision_matrix(marm, CollisionScene(marm), trials=trials, shortcuts=False, jobs=2)
     assert two == one
-    # workers check every chunk for every pair not seen before the trials (no pruning between
-    # chunks running at once), so they do at least the serial run's exact checks
-    assert two.narrow_calls >= one.narrow_calls > 0
+    # each pair is checked by one process over all chunks, so no check is done twice
+    assert two.narrow_calls == one.narrow_calls > 0
+
+
+def test_shards_split_the_pairs_by_estimated_cost():
+    pairs = tuple((f"a{i}", f"b{i}") for i in range(7))
+    costs = dict(zip(pairs, [5.0, 4.0, 3.0, 1.0, 1.0, 1.0, 1.0], strict=True))
+    shards = plan_shards(pairs, costs, 2)
+    assert sorted(p for shard in shards for p in shard) == sorted(pairs)  # each pair once
+    loads = sorted(sum(costs[p] for p in shard) for shard in shards)
+    assert loads == [8.0, 8.0]
+    assert all(list(shard) == sorted(shard, key=pairs.index) for shard in shards)  # input order kept
+    assert plan_shards(pairs, costs, 2) == shards  # deterministic
+    assert plan_shards(pairs, dict.fromkeys(pairs, 0.01), 2) == [pairs]  # too small for processes
+    assert plan_shards(pairs, costs, 1) == [pairs] and plan_shards((), costs, 4) == []
+
+
+def test_a_failing_worker_is_an_error_not_a_hang(marm, monkeypatch):
+    def broken(self, index):
+        raise ValueError("boom")
+
+    monkeypatch.setattr(matrix_module, "WORTH_A_PROCESS", 0.0)
+    monkeypatch.setattr(PairShard, "check", broken)  # forked workers inherit the patch
+    with pytest.raises(WorkerFailed, match="boom"):
+        compute_collision_matrix(marm, CollisionScene(marm), trials=CHUNK, jobs=2)
