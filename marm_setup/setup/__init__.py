@@ -11,7 +11,7 @@ __all__, __getattr__, __dir__ = lazy_api(
     {
         "model": "SetupModel Group GroupState EndEffector VirtualJoint Controller",
         "yaml_io": "load_setup dump_setup setup_from_dict",
-        "infer": "infer_setup",
+        "infer": "infer Inference",
         "checks": "check_setup",
         "rules": "check_semantics",
         "start_state": "package_start_values",

@@ -46,21 +46,6 @@ class Inference:
     notes: tuple[str, ...] = ()
 
 
-def infer_setup(
-    robot: RobotModel,
-    *,
-    package_name: str,
-    source: RobotSource,
-    target: str = "ros2",
-    arm_required: bool = True,
-    driver: str | None = None,
-) -> SetupModel:
-    """A complete setup for `robot` (collision matrix left empty: `init` computes it)."""
-    return infer(
-        robot, package_name=package_name, source=source, target=target, arm_required=arm_required
-    ).model
-
-
 def infer(
     robot: RobotModel,
     *,
@@ -70,7 +55,8 @@ def infer(
     arm_required: bool = True,
     driver: str | None = None,
 ) -> Inference:
-    """`infer_setup` with the guesses it made. Nothing that moves is an InputError when
+    """A complete setup for `robot` (collision matrix left empty: `init` computes it) and the
+    guesses made on the way. Nothing that moves is an InputError when
     `arm_required` (a SPEC or SRDF may give the groups instead)."""
     limbs = find_limbs(robot)
     groups, end_effectors = _groups(limbs)

@@ -9,7 +9,7 @@ import pytest
 from marm_setup.errors import InputError
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import derive_group_settings, infer_setup, merge_spec
+from marm_setup.setup.infer import derive_group_settings, infer, merge_spec
 from marm_setup.setup.limbs import tool_frame
 from marm_setup.setup.model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
 from tests.conftest import MARM_URDF, realworld
@@ -20,7 +20,7 @@ SOURCE = RobotSource("robot.urdf")
 
 def test_marm_matches_the_course_setup():
     robot = load_robot(MARM_URDF)
-    model = infer_setup(robot, package_name="marm_moveit_config", source=SOURCE, target="ros1")
+    model = infer(robot, package_name="marm_moveit_config", source=SOURCE, target="ros1").model
     model = derive_group_settings(dataclasses.replace(model, driver="arbotix"), robot)
     assert model.groups == (
         Group("arm", chain=Chain("base_link", "grasping_frame")),
@@ -58,20 +58,20 @@ def test_marm_matches_the_course_setup():
 
 
 def test_ros2_gripper_action_is_gripper_cmd_and_no_arbotix():
-    model = infer_setup(load_robot(MARM_URDF), package_name="p", source=SOURCE, target="ros2")
+    model = infer(load_robot(MARM_URDF), package_name="p", source=SOURCE, target="ros2").model
     assert model.controllers[1].action_ns == "gripper_cmd"
     assert model.arbotix_joints == ()
 
 
 def test_ros1_without_a_driver_has_no_arbotix_servos_and_any_gripper_action():
-    model = infer_setup(load_robot(MARM_URDF), package_name="p", source=SOURCE, target="ros1")
+    model = infer(load_robot(MARM_URDF), package_name="p", source=SOURCE, target="ros1").model
     assert model.driver is None and model.arbotix_joints == ()
     assert model.controllers[1].action_ns == "gripper_cmd"
 
 
 def test_marm_without_gripper_has_arm_only():
     robot = load_robot(MARM_URDF, {"with_gripper": "false"})
-    model = infer_setup(robot, package_name="p", source=SOURCE)
+    model = infer(robot, package_name="p", source=SOURCE).model
     assert [g.name for g in model.groups] == ["arm"]
     assert model.groups[0].chain == Chain("base_link", "grasping_frame")
     assert model.end_effectors == ()
@@ -84,7 +84,7 @@ def test_shared_panda_arm_to_flange_and_hand_group(target):
         robot = load_robot(root / "panda_description/urdf/panda_arm_hand.urdf.xacro", package_paths=[root])
     else:
         robot = load_robot(root / "panda_description/urdf/panda.urdf")
-    model = infer_setup(robot, package_name="p", source=SOURCE, target=target)
+    model = infer(robot, package_name="p", source=SOURCE, target=target).model
     arm, hand = model.groups
     assert arm.chain == Chain("panda_link0", "panda_link8")
     assert hand.joints == ("panda_finger_joint1", "panda_finger_joint2")
@@ -110,7 +110,7 @@ def test_home_is_clamped_into_limits_and_tool_frame_stops_at_geometry(tmp_path):
     build_file_tree(tmp_path, {"r.urdf": urdf(body)})
     robot = load_robot(tmp_path / "r.urdf")
     assert tool_frame(robot, "l1") == "flange"
-    model = infer_setup(robot, package_name="p", source=SOURCE)
+    model = infer(robot, package_name="p", source=SOURCE).model
     assert model.groups == (Group("chain_1", chain=Chain("base", "flange")),)
     assert model.group_states[0].values == (("j1", 0.5),)
 
@@ -119,7 +119,7 @@ def test_robot_without_actuated_joints_is_an_input_error(tmp_path):
     body = '<link name="a"/><link name="b"/><joint name="f" type="fixed"><parent link="a"/><child link="b"/></joint>'
     build_file_tree(tmp_path, {"r.urdf": urdf(body)})
     with pytest.raises(InputError, match="no actuated joints that form a limb.*docs/setup-file.md"):
-        infer_setup(load_robot(tmp_path / "r.urdf"), package_name="p", source=SOURCE)
+        infer(load_robot(tmp_path / "r.urdf"), package_name="p", source=SOURCE)
 
 
 def test_merge_spec_by_item_name():

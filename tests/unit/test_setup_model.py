@@ -9,7 +9,7 @@ import yaml
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
-from marm_setup.setup.infer import infer_setup
+from marm_setup.setup.infer import infer
 from marm_setup.setup.model import (
     ArbotixJoint,
     CollisionPair,
@@ -29,7 +29,7 @@ from tests.conftest import FIXTURES
 @pytest.fixture(scope="module")
 def marm_setup(marm):
     source = RobotSource("../urdf/marm.urdf.xacro", (("with_gripper", "true"),), ("../..",))
-    model = infer_setup(marm, package_name="marm_moveit_config", source=source, target="ros1")
+    model = infer(marm, package_name="marm_moveit_config", source=source, target="ros1").model
     pairs = (DisabledPair.of("link2", "link1", "Adjacent"), DisabledPair.of("base_link", "link3", "Never"))
     return dataclasses.replace(
         model,

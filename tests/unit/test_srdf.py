@@ -11,7 +11,7 @@ from lxml import etree
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
 from marm_setup.render.package import render_package
-from marm_setup.setup.infer import infer_setup
+from marm_setup.setup.infer import infer
 from marm_setup.setup.model import CollisionPair, GroupState, RobotSource, SetupModel
 from marm_setup.setup.srdf import parse_srdf_string, read_srdf, setup_to_srdf, srdf_to_setup
 from marm_setup.templating import render_template
@@ -31,7 +31,7 @@ FORWARD = (
 def marm_model(marm):
     from marm_setup.pipeline import with_collision_matrix
 
-    model = infer_setup(marm, package_name="p", source=RobotSource("x"), target="ros1")
+    model = infer(marm, package_name="p", source=RobotSource("x"), target="ros1").model
     model = dataclasses.replace(
         model, group_states=(*model.group_states, GroupState("forward", "arm", FORWARD))
     )
