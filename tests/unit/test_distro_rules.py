@@ -62,6 +62,16 @@ def test_adapters_of_the_other_distro_are_errors(tmp_path):
     assert [f.element for f in rules(pkg)["distro.adapter"]] == ["/**.ros__parameters.ompl.request_adapters"]
 
 
+def test_pipeline_capabilities_on_humble_are_a_warning(tmp_path):
+    pkg = write(tmp_path, "ros2", "humble")
+    assert "distro.pipeline-capabilities" not in rules(pkg)
+    edit(pkg / "config" / "moveit.yaml", "      default_planner_config: PTP\n",
+         "      default_planner_config: PTP\n      capabilities: pilz_industrial_motion_planner/MoveGroupSequenceAction\n")  # fmt: skip
+    (finding,) = rules(pkg)["distro.pipeline-capabilities"]
+    assert not finding.is_error and "MoveGroupSequenceAction" in finding.message
+    assert finding.element == "/**.ros__parameters.pilz_industrial_motion_planner.capabilities"
+
+
 def test_missing_publishing_flags_are_a_warning(tmp_path):
     pkg = write(tmp_path, "ros2")
     assert "moveit.publish-flags" not in rules(pkg)

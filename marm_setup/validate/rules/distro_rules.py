@@ -11,6 +11,10 @@ Sources (moveit/moveit2 humble and jazzy branches, ros-controls/ros2_control):
 - Jazzy's reads the string arrays `planning_plugins`, `request_adapters`, `response_adapters`
   (planning_pipeline_parameters.yaml) and throws "Planning plugin name is empty or not defined"
   when planning_plugins is empty (jazzy planning_pipeline.cpp, PlanningPipeline::configure).
+- Humble's move_group looks a pipeline's own capabilities up as
+  "planning_pipelines/<name>/capabilities", no valid ROS 2 parameter name, so they never load
+  (moveit/moveit2#1393, #2707); only the top-level `capabilities` string does. Jazzy reads
+  `<pipeline>.capabilities` (jazzy move_group.cpp, configureCapabilities).
 - The planning scene monitor declares publish_planning_scene / _geometry_updates /
   _state_updates / _transforms_updates false (planning_scene_monitor.cpp, initialize()).
 - OMPL's KPIECE family, EST, SBL, ProjEST, PDST and STRIDE plan on a projection, which MoveIt
@@ -74,6 +78,10 @@ def _humble_format(name: str, data: dict, file: str, where: Callable[..., str]) 
             out.append(
                 error("distro.adapter", file, where("request_adapters"), msg, f"use {HUMBLE_ADAPTERS}...")
             )
+    if data.get("capabilities"):
+        msg = f"Humble's move_group never reads a pipeline's capabilities: {data['capabilities']} do not load"
+        hint = "list them in the top-level capabilities string"
+        out.append(warning("distro.pipeline-capabilities", file, where("capabilities"), msg, hint))
     return out
 
 
