@@ -267,7 +267,10 @@ class CollisionScene:
             if _solid(vertices):  # coal's qhull call crashes the process on flat point sets
                 points = self._coal.StdVec_Vec3s()
                 points.extend(list(vertices))
-                hull = self._coal.ConvexBase.convexHull(points, True, None)
+                try:
+                    hull = self._coal.ConvexBase.convexHull(points, True, None)
+                except RuntimeError:  # e.g. "Too many neighbors" on a dense mesh: no hull test
+                    hull = None
             self._hull_cache[key] = hull
         return self._hull_cache[key] or geom
 

@@ -156,3 +156,26 @@ def test_unreadable_mesh_is_an_input_error(tmp_path):
         CollisionScene(load_robot(path))
     assert str(info.value).startswith(f"{path}: link[a]/collision[0]/mesh: cannot read mesh")
     assert str(bad) in str(info.value)
+
+
+def test_a_mesh_coal_cannot_hull_is_checked_as_it_is(tmp_path):
+    """coal's convexHull throws 'Too many neighbors' on a vertex with hundreds of edges (a fine
+    cone's apex; a 15k-vertex pelvis in a real robot): that link gets no hull test, same matrix."""
+    import trimesh
+
+    cone = tmp_path / "cone.stl"
+    trimesh.creation.cone(radius=0.1, height=0.2, sections=300).export(str(cone))
+    body = f"""
+      <link name="base"><collision><geometry><mesh filename="{cone}"/></geometry></collision></link>
+      <link name="arm"><collision><origin xyz="0.15 0 0.1"/><geometry><box size="0.05 0.05 0.2"/></geometry>
+      </collision></link>
+      <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.3"/>
+        <axis xyz="0 1 0"/><limit lower="-2" upper="2" velocity="1" effort="1"/></joint>"""
+    (tmp_path / "r.urdf").write_text(urdf(body), encoding="utf-8")
+    robot = load_robot(tmp_path / "r.urdf")
+    scene = CollisionScene(robot)
+    poses = scene.link_poses(np.linspace(-2, 2, 41)[:, None])
+    ids = scene.pair_ids([("arm", "base")])
+    with_hulls = scene.collision_counts(poses, ids, hulls=True)
+    assert 0 < with_hulls[0] < 41
+    np.testing.assert_array_equal(with_hulls, scene.collision_counts(poses, ids))
