@@ -78,6 +78,8 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     if not built.poses_given:
         model, pose_notes = _with_poses(model, robot, scene, seed, request)
         notes += pose_notes
+    model, start_notes = _with_start_poses(model, robot, scene)
+    notes += start_notes
     lines = describe(model, matrix_given=given) + reused_ros2_control(model, robot)
     changes = write_package(model, robot, request.out, force=request.force)
     from marm_setup.render.writer import format_change
@@ -96,6 +98,16 @@ def _with_poses(
     model = dataclasses.replace(model, group_states=poses.states)
     check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
     return model, poses.notes
+
+
+def _with_start_poses(
+    model: SetupModel, robot: RobotModel, scene: CollisionScene
+) -> tuple[SetupModel, tuple[str, ...]]:
+    """The setup with start poses the demo can start at out of collision (setup/poses.py)."""
+    from marm_setup.setup.poses import choose_start_poses
+
+    starts, notes = choose_start_poses(model, robot, scene)
+    return dataclasses.replace(model, start_poses=starts), notes
 
 
 @dataclass(frozen=True)
@@ -241,7 +253,6 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
     from marm_setup.setup.checks import check_setup, package_name_problem
     from marm_setup.setup.infer import (
         REFERENCE,
-        derive_group_settings,
         fill_group_settings,
         fit_to_spec,
         home_poses,
@@ -266,12 +277,7 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
     model, notes = inference.model, inference.notes
     inferred_groups = bool(model.groups)
     if request.from_srdf is not None:
-        from marm_setup.setup.rules import srdf_element
-        from marm_setup.setup.srdf import read_srdf, srdf_to_setup
-
-        model = derive_group_settings(srdf_to_setup(read_srdf(request.from_srdf), model), robot)
-        notes = ()
-        check_setup(model, robot, str(request.from_srdf), srdf_element)
+        model, notes = _import_srdf(request.from_srdf, model, notes, robot)
     if spec:
         model = _make_room_for_spec(model, spec)
         model = fit_to_spec(_apply_spec(model, spec, request), robot, spec)
@@ -289,6 +295,31 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
     check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
     poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
     return _Built(model, (*notes, *_empty_group_warnings(model)), poses_given)
+
+
+def _import_srdf(
+    path: Path, model: SetupModel, notes: tuple[str, ...], robot: RobotModel
+) -> tuple[SetupModel, tuple[str, ...]]:
+    """`model` with the SRDF's elements, as srdfdom and MoveIt load them: what they skip is
+    dropped with a warning line each (setup/srdf_load.py); the rest must pass the rules. An SRDF
+    without groups keeps the inferred ones (and their notes)."""
+    from marm_setup.setup.checks import check_setup
+    from marm_setup.setup.infer import derive_group_settings
+    from marm_setup.setup.rules import srdf_element
+    from marm_setup.setup.srdf import read_srdf, srdf_to_setup
+    from marm_setup.setup.srdf_load import as_moveit_loads
+
+    skipped: list[InputError] = []
+    srdf, dropped = as_moveit_loads(read_srdf(path, skipped), robot)
+    lines = [f"{e.element}: {e.message}" if e.element else e.message for e in skipped] + list(dropped)
+    warnings = tuple(f"warning: {path}: {line} (as MoveIt loads it: left out or changed)" for line in lines)
+    if srdf.groups:
+        model, notes = derive_group_settings(srdf_to_setup(srdf, model), robot), ()
+    else:
+        model = srdf_to_setup(srdf, model)
+        notes = (*notes, f"{path} defines no groups: the inferred ones are kept, with its collision pairs")
+    check_setup(model, robot, str(path), srdf_element)
+    return model, (*notes, *warnings)
 
 
 def _empty_group_warnings(model: SetupModel) -> tuple[str, ...]:

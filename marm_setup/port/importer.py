@@ -185,14 +185,15 @@ def _without_unsolvable(
     """Drop chain-only solvers (KDL, LMA, cached KDL) on groups that are no chain: MoveIt cannot
     initialise them there, so the group had no IK solver (validate's kinematics rule)."""
     from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS
-    from marm_setup.setup.groups import groups_by_name
-    from marm_setup.validate.rules.kinematics_rules import is_chain
+    from marm_setup.setup.groups import groups_by_name, is_chain
 
     section = pkg.kinematics
     by_name = groups_by_name(pkg.srdf.groups)
     kept = []
     for k in kinematics:
-        if k.solver in CHAIN_ONLY_PLUGINS and not is_chain(by_name[k.group], by_name, pkg.srdf, robot):
+        if k.solver in CHAIN_ONLY_PLUGINS and not is_chain(
+            by_name[k.group], by_name, robot, tuple(pkg.srdf.passive_joints)
+        ):
             log.changed(
                 f"kinematics[{k.group}].kinematics_solver",
                 where(section.file, section.element(k.group)) if section is not None else "",

@@ -32,8 +32,7 @@ from marm_setup.setup.model import (
     Ros2ControlHardware,
     SetupModel,
 )
-from marm_setup.setup.srdf import setup_to_srdf
-from marm_setup.setup.start_state import initial_pose_values
+from marm_setup.setup.start_state import model_start_values, start_pose
 
 XACRO_ARG_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
@@ -155,12 +154,6 @@ def check_description_ref(ref: DescriptionRef) -> None:
             )
 
 
-def _initial_pose(model: SetupModel, group: str) -> GroupState | None:
-    states = [s for s in model.group_states if s.group == group]
-    named = [s for s in states if s.name == "home"]
-    return (named or states)[0] if states else None
-
-
 def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
     """Per group (model order): active joints, kinematics, OMPL defaults and initial pose."""
     by_name = groups_by_name(model.groups)
@@ -172,24 +165,10 @@ def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
             active_joints=active_group_joints(g, by_name, robot, model.passive_joints),
             kinematics=kin.get(g.name),
             planner=planners.get(g.name, PlannerDefaults(g.name)),
-            initial_pose=_initial_pose(model, g.name),
+            initial_pose=start_pose(model, g.name),
         )
         for g in model.groups
     ]
-
-
-def start_positions(model: SetupModel, robot: RobotModel) -> dict[str, float]:
-    """The state both targets' demos start in: each joint's default, overlaid in group order by
-    each group's initial pose as ros1's fake controllers apply their `initial` list
-    (`setup.start_state`), which ros2's initial_positions.yaml then writes out; mimic joints
-    follow their leaders."""
-    q = {j.name: j.default_position for j in robot.joints if j.is_actuated}
-    poses = [(g.name, pose.name) for g in model.groups if (pose := _initial_pose(model, g.name))]
-    q.update(initial_pose_values(setup_to_srdf(model), robot, poses))
-    for joint in robot.joints:
-        if joint.mimic is not None and joint.name in q and joint.mimic.joint in q:
-            q[joint.name] = joint.mimic.multiplier * q[joint.mimic.joint] + joint.mimic.offset
-    return q
 
 
 def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
@@ -257,7 +236,7 @@ def ros2_control_joints(model: SetupModel, robot: RobotModel) -> list[Ros2Contro
     from marm_setup.robot.ros2_control import described_joints
 
     covered = described_joints(robot)
-    start = start_positions(model, robot)
+    start = model_start_values(model, robot)
     out = []
     for joint in robot.joints_in_tree_order:
         if joint.name in covered or not joint.is_actuated:

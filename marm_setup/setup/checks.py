@@ -140,6 +140,7 @@ def _check_duplicates(c: _Checker) -> None:
     m = c.model
     lists = {
         "group_states": [f"{s.group}/{s.name}" for s in m.group_states],
+        "start_poses": [s.group for s in m.start_poses or ()],
         "end_effectors": [e.name for e in m.end_effectors],
         "virtual_joints": [v.name for v in m.virtual_joints],
         "controllers": [x.name for x in m.controllers],
@@ -179,6 +180,10 @@ def _check_joint_lists(c: _Checker) -> None:
         servo_ids[a.id] = a.joint
     for lim in m.joint_limits:
         c.joint(lim.joint, f"joint_limits[{lim.joint}].joint")
+    for start in m.start_poses or ():
+        c.group(start.group, f"start_poses[{start.group}].group")
+        poses = [s.name for s in m.group_states if s.group == start.group]
+        c.name(f"pose of group '{start.group}'", start.pose, poses, f"start_poses[{start.group}].pose")
 
 
 def _check_controller_joints(c: _Checker, ctl: Controller) -> None:

@@ -81,6 +81,15 @@ class GroupState:
 
 
 @dataclass(frozen=True, slots=True)
+class StartPose:
+    """The named pose a group's joints start at in the demo (ros1: fake_controllers.yaml
+    `initial`; ros2: initial_positions.yaml)."""
+
+    group: str
+    pose: str
+
+
+@dataclass(frozen=True, slots=True)
 class EndEffector:
     name: str
     group: str
@@ -215,6 +224,9 @@ class SetupModel:
     virtual_joints: tuple[VirtualJoint, ...] = ()
     groups: tuple[Group, ...] = ()
     group_states: tuple[GroupState, ...] = ()
+    # the demo's start: each listed group at its pose, every other joint at its default (as
+    # fake_controllers.yaml `initial`); None: every group at its `home`, else its first pose
+    start_poses: tuple[StartPose, ...] | None = None
     end_effectors: tuple[EndEffector, ...] = ()
     passive_joints: tuple[str, ...] = ()
     collision: CollisionSettings = field(default_factory=CollisionSettings)

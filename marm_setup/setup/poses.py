@@ -10,7 +10,7 @@ pose near home is taken. All values are rounded to 4 decimals before they are ch
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -18,7 +18,9 @@ import numpy as np
 from marm_setup.robot.kinematics import default_configuration
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.model import GroupState, SetupModel
+from marm_setup.setup.model import GroupState, SetupModel, StartPose
+from marm_setup.setup.srdf import allowed_pairs, setup_to_srdf
+from marm_setup.setup.start_state import model_start_values, start_pose
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -47,7 +49,8 @@ class _Space:
         self.index = {n: i for i, n in enumerate(self.names)}
         self.lo = np.array([robot.joint(n).bounds[0] for n in self.names])
         self.hi = np.array([robot.joint(n).bounds[1] for n in self.names])
-        self.pairs = scene.enabled_pairs([p.pair for p in model.collision.disabled])
+        allowed = allowed_pairs(setup_to_srdf(model), scene.candidate_pairs)
+        self.pairs = tuple(p for p in scene.candidate_pairs if p not in allowed)
 
     def round(self, q: np.ndarray) -> np.ndarray:
         return np.clip(np.round(q, DECIMALS), self.lo, self.hi)
@@ -162,3 +165,62 @@ def _free_path(space: _Space, a: np.ndarray, b: np.ndarray) -> bool:
     """`b` and the straight joint-space path from `a` to it are collision-free."""
     t = np.linspace(0.0, 1.0, PATH_STEPS + 1)[1:, None]
     return all(hit is None for hit in space.hits(a[None] + t * (b - a)[None]))
+
+
+def choose_start_poses(
+    model: SetupModel, robot: RobotModel, scene: CollisionScene
+) -> tuple[tuple[StartPose, ...] | None, tuple[str, ...]]:
+    """The setup's `start_poses`, changed when the demo would start in collision, and a note.
+
+    A start is scored by the enabled pairs in collision at it, then by the named poses that
+    collide when applied over it (what validate checks). When the setup's start has a collision,
+    each group in turn tries each of its poses and none (its joints at their defaults), keeping
+    the choice that scores best (deterministic, greedy); the start poses change only when the
+    start is then free of collisions."""
+    space = _Space(model, robot, scene)
+    score = _start_score(model, robot, space)
+    if not score[0]:
+        return model.start_poses, ()
+    chosen: dict[str, str | None] = {
+        g.name: pose.name for g in model.groups if (pose := start_pose(model, g.name))
+    }
+    first, best = score, score
+    for group in model.groups:
+        for name in [s.name for s in model.group_states if s.group == group.name] + [None]:
+            trial = {**chosen, group.name: name}
+            found = _start_score(_with_start(model, trial), robot, space)
+            if found < best:
+                chosen, best = trial, found
+    a, b = first[2]
+    if best[0]:
+        note = (
+            f"warning: the demo starts in collision ({a} - {b}) whatever given poses it starts at: "
+            "give a collision-free pose and name it in start_poses"
+        )
+        return model.start_poses, (note,)
+    starts = _with_start(model, chosen).start_poses or ()
+    listed = ", ".join(f"{s.group}: {s.pose}" for s in starts) or "every joint's default"
+    return starts, (f"the default start poses collide ({a} - {b}): the demo starts at {listed}",)
+
+
+def _with_start(model: SetupModel, chosen: dict[str, str | None]) -> SetupModel:
+    starts = tuple(StartPose(g.name, pose) for g in model.groups if (pose := chosen.get(g.name)))
+    return replace(model, start_poses=starts)
+
+
+def _start_score(model: SetupModel, robot: RobotModel, space: _Space) -> tuple[int, int, tuple[str, str]]:
+    """(pairs in collision at the start, named poses in collision over it, the first pair)."""
+    values = model_start_values(model, robot)
+    start = np.array([values.get(n, robot.joint(n).default_position) for n in space.names])
+    states = [start]
+    by_name = groups_by_name(model.groups)
+    for state in model.group_states:
+        group = by_name.get(state.group)
+        q = start.copy()
+        active = set(active_group_joints(group, by_name, robot, model.passive_joints)) if group else set()
+        for joint, value in state.values:
+            if joint in active:
+                q[space.index[joint]] = value
+        states.append(q)
+    hits = space.hits(np.array(states))
+    return (int(hits[0] is not None), sum(h is not None for h in hits[1:]), hits[0] or ("", ""))

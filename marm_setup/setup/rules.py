@@ -184,9 +184,11 @@ def _check_group(r: _Rules, group: Group) -> list[Finding]:
         base, tip = group.chain.base, group.chain.tip
         missing = r.link(base, at("chain", "base")) + r.link(tip, at("chain", "tip"))
         out += missing
-        if not missing and (base == tip or r.robot.chain(base, tip) is None):
-            msg = f"chain tip '{tip}' is not below base '{base}'"
-            out.append(r.error("srdf.chain-invalid", at("chain", "tip"), msg))
+        # a tip not below its base is a chain through the common root, which MoveIt builds
+        # (robot_model.cpp addJointModelGroup; see setup.groups.chain_joint_names)
+        if not missing and base == tip:
+            msg = f"chain base and tip are the same link '{tip}': the chain holds no joints"
+            out.append(r.warning("srdf.chain-empty", at("chain", "tip"), msg))
     for i, joint in enumerate(group.joints):
         out += r.joint(joint, at("joints", i))
     for i, link in enumerate(group.links):

@@ -81,8 +81,9 @@ class _Reader:
         return InputError(message, path=self.path, element=where)
 
 
-def read_srdf(path: str | PathLike) -> Srdf:
-    """Parse an SRDF file (path as the user typed it, for messages)."""
+def read_srdf(path: str | PathLike, skipped: list[InputError] | None = None) -> Srdf:
+    """Parse an SRDF file (path as the user typed it, for messages); with `skipped`, elements
+    that cannot be read are left out and their errors recorded there (as srdfdom does)."""
     from lxml import etree
 
     shown = str(path)
@@ -92,7 +93,7 @@ def read_srdf(path: str | PathLike) -> Srdf:
         raise InputError(f"cannot read: {exc}", path=shown) from None
     except etree.XMLSyntaxError as exc:
         raise InputError(f"not well-formed XML: {exc}", path=shown) from None
-    return parse_srdf_root(root, shown)
+    return parse_srdf_root(root, shown, skipped)
 
 
 def parse_srdf_string(text: str, path: str = "<srdf>", skipped: list[InputError] | None = None) -> Srdf:
@@ -273,7 +274,12 @@ def allowed_pairs(srdf: Srdf, candidates) -> frozenset[tuple[str, str]]:
 
 
 def srdf_to_setup(srdf: Srdf, base: SetupModel) -> SetupModel:
-    """Import an SRDF into a setup: its semantic parts replace the base's, the rest is kept."""
+    """Import an SRDF into a setup: its semantic parts replace the base's, the rest is kept. An
+    SRDF without groups (one that only carries the collision matrix) keeps the base's groups,
+    poses, end effectors and joints, and gives its pairs and extras."""
+    if not srdf.groups:
+        collision = dataclasses.replace(base.collision, disabled=srdf.disabled)
+        return dataclasses.replace(base, collision=collision, srdf_extras=srdf.extras)
     return dataclasses.replace(
         base,
         groups=srdf.groups,

@@ -19,7 +19,32 @@ from typing import Any, Protocol
 
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
-from marm_setup.setup.srdf import Srdf
+from marm_setup.setup.model import GroupState, SetupModel
+from marm_setup.setup.srdf import Srdf, setup_to_srdf
+
+
+def start_pose(model: SetupModel, group: str) -> GroupState | None:
+    """The pose a setup's group starts at. With `start_poses` (the whole `initial` list) its
+    entry, or none when it has none; without, its `home`, else its first pose."""
+    states = [s for s in model.group_states if s.group == group]
+    if model.start_poses is not None:
+        chosen = {s.group: s.pose for s in model.start_poses}.get(group)
+        return next((s for s in states if s.name == chosen), None)
+    named = [s for s in states if s.name == "home"]
+    return (named or states)[0] if states else None
+
+
+def model_start_values(model: SetupModel, robot: RobotModel) -> dict[str, float]:
+    """The state both targets' demos start in, for a setup: each joint's default, overlaid in
+    group order by each group's start pose as ros1's fake controllers apply their `initial` list
+    (ros2's initial_positions.yaml writes the result out); mimic joints follow their leaders."""
+    q = {j.name: j.default_position for j in robot.joints if j.is_actuated}
+    poses = [(g.name, pose.name) for g in model.groups if (pose := start_pose(model, g.name))]
+    q.update(initial_pose_values(setup_to_srdf(model), robot, poses))
+    for joint in robot.joints:
+        if joint.mimic is not None and joint.name in q and joint.mimic.joint in q:
+            q[joint.name] = joint.mimic.multiplier * q[joint.mimic.joint] + joint.mimic.offset
+    return q
 
 
 class _Parsed(Protocol):

@@ -1,6 +1,7 @@
 """`marm_setup.yaml` <-> SetupModel: typed conversion driven by the dataclasses' field types.
 
-Dump: fields in declaration order, `None` and empty lists left out, `(name, value)` tuples as
+Dump: fields in declaration order, `None` and empty lists left out (an empty list is kept where
+the field's default is None: there it says "none" rather than "the default"), `(name, value)` tuples as
 mappings. Load: unknown keys and wrong types are InputErrors naming the key path
 (`groups[arm].joints[3]`) and, for unknown keys, the closest valid key.
 """
@@ -79,7 +80,8 @@ def _dump_dataclass(obj: typing.Any) -> dict:
     for f in dataclasses.fields(obj):
         value = getattr(obj, f.name)
         required = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
-        if not required and (value is None or value == ()):
+        empty_means_none = value == () and f.default is not None  # () defaults to (): left out
+        if not required and (value is None or empty_means_none):
             continue
         dumped = _dump_value(value, hints[f.name])
         if dumped == {} and dataclasses.is_dataclass(value):

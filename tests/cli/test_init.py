@@ -150,9 +150,9 @@ BAD_SPECS = {
         {"end_effectors": [{"name": "robot_gripper", "group": "gripper", "parent_link": "grasp_frame"}]},
         "end_effectors[robot_gripper].parent_link: unknown link 'grasp_frame' (did you mean 'grasping_frame'?)",
     ),
-    "chain tip not below base": (
-        {"groups": [{"name": "arm", "chain": {"base": "link3", "tip": "link1"}}]},
-        "groups[arm].chain.tip: chain tip 'link1' is not below base 'link3'",
+    "chain to an unknown link": (
+        {"groups": [{"name": "arm", "chain": {"base": "base_link", "tip": "link9"}}]},
+        "groups[arm].chain.tip: unknown link 'link9' (did you mean 'link6', 'link5', 'link4'?)",
     ),
     "subgroup cycle": (
         {"groups": [{"name": "a", "subgroups": ["b"]}, {"name": "b", "subgroups": ["a"]}]},
@@ -311,13 +311,12 @@ def test_model_check_errors_are_one_line_and_leave_dir_unchanged(case, tmp_path)
 @pytest.mark.parametrize(
     "text, expected",
     [
-        (
-            "<robot name='marm'><group name='arm'><joint name='joint9'/></group></robot>",
-            "group[arm].joint: unknown joint 'joint9'",
-        ),
         ("<robot name='marm'><group name='arm'>", "not well-formed XML"),
+        ("<robot name='marm'><group name='a'><joint name='joint1'/><joint name='joint3'/></group>"
+         "<group_state name='p' group='a'><joint name='joint1' value='9'/><joint name='joint3' value='0'/>"
+         "</group_state></robot>", "group_state[p].joint[joint1]: value 9 is outside the limits"),
     ],
-)
+)  # fmt: skip
 def test_bad_srdf_import_is_one_line(tmp_path, text, expected):
     path = tmp_path / "in.srdf"
     path.write_text(text)
@@ -327,6 +326,33 @@ def test_bad_srdf_import_is_one_line(tmp_path, text, expected):
     (line,) = result.stderr.strip().splitlines()
     assert line.startswith(f"error: {path}: ") and expected in line
     assert not out.exists()
+
+
+def test_srdf_import_leaves_out_what_moveit_skips(tmp_path):
+    """srdfdom skips a group member, pose value or end effector naming what the URDF lacks, and
+    MoveIt a pose value of a joint outside the group: the import does too, one warning each."""
+    srdf = tmp_path / "in.srdf"
+    srdf.write_text(
+        "<robot name='marn'><group name='arm'><chain base_link='base_link' tip_link='grasping_frame'/>"
+        "<joint name='joint9'/></group><group name='hand'><joint name='finger_joint1'/></group>"
+        "<group_state name='home' group='arm'><joint name='joint1' value='0'/><joint name='finger_joint1' value='0'/>"
+        "<joint name='jointX' value='0'/></group_state><group_state name='open' group='nohand'/>"
+        "<end_effector name='e' group='hand' parent_link='grasp_frame'/></robot>"
+    )  # fmt: skip
+    out = tmp_path / "pkg"
+    result = _init(out, "--from-srdf", str(srdf))
+    assert result.exit_code == 0, result.output
+    warned = [line for line in result.stdout.splitlines() if line.strip().startswith(f"warning: {srdf}")]
+    assert [w.split(": ", 2)[2].split(" (as MoveIt")[0] for w in warned] == [
+        "robot: 'marn' is not the URDF's robot name 'marm'",
+        "group[arm].joint: unknown joint 'joint9'",
+        "group_state[home].joint[finger_joint1]: not part of group 'arm'",
+        "group_state[home].joint[jointX]: unknown joint",
+        "group_state[open]: group 'nohand' is not loaded",
+        "end_effector[e]: unknown parent link 'grasp_frame'",
+    ]
+    written = (out / "config" / "marm.srdf").read_text()
+    assert "joint9" not in written and "jointX" not in written and "end_effector" not in written
 
 
 def test_golden_marm_setup_and_srdf(tmp_path, assert_golden):
@@ -550,8 +576,12 @@ def test_one_subgroup_cycle_rule_for_validate_init_and_render(tmp_path):
         ("srdf.subgroup-cycle", "group[b]", "subgroups form a cycle: b -> a -> b"),
     ]
 
+    # srdfdom drops groups whose subgroups never all load, a cycle's among them: so does the import
     result = _init(tmp_path / "out", "--from-srdf", str(srdf))
-    assert (result.exit_code, result.stderr) == (2, f"error: {srdf}: group[a]: {message}\n")
+    assert result.exit_code == 0, result.output
+    for group in ("a", "b"):
+        assert f"warning: {srdf}: group[{group}]: subgroups that do not all load" in result.stdout
+    assert 'group name="a"' not in (tmp_path / "out" / "config" / "marm.srdf").read_text()
 
     setup = pkg / "marm_setup.yaml"
     groups = "groups:\n- name: a\n  subgroups: [b]\n- name: b\n  subgroups: [a]\n"

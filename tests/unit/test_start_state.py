@@ -9,12 +9,11 @@ import pytest
 import yaml
 
 from marm_setup.plan.problem import initial_configuration
-from marm_setup.render.context import start_positions
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.setup.model import Group, GroupState
 from marm_setup.setup.srdf import Srdf
-from marm_setup.setup.start_state import demo_start_values, initial_pose_values
+from marm_setup.setup.start_state import demo_start_values, initial_pose_values, model_start_values
 from marm_setup.validate.discovery import discover_package
 from tests.render_helpers import inferred_marm
 
@@ -43,7 +42,7 @@ def test_generated_packages_start_where_render_says(tmp_path, target):
     )
     model = dataclasses.replace(model, group_states=states)
     apply_writes(plan_writes(render_package(model, robot), out), out)
-    expected = start_positions(model, robot)
+    expected = model_start_values(model, robot)
     assert expected["joint2"] == 0.3
     q = initial_configuration(discover_package(out), robot)
     assert dict(zip(robot.active_joint_names, q.tolist(), strict=True)) == pytest.approx(

@@ -128,14 +128,15 @@ SRDF_CASES = [
         match="panda_joint9",
     ),
     Case(
-        "chain-base-below-tip",
+        "chain-base-is-tip",
         "ros1",
         text(
             SRDF1,
             'base_link="panda_link0" tip_link="panda_link8"',
-            'base_link="panda_link8" tip_link="panda_link0"',
+            'base_link="panda_link8" tip_link="panda_link8"',
         ),
-        "srdf.chain-invalid",
+        "srdf.chain-empty",
+        severity="warning",
         also=(
             "pose.joint-not-in-group",
             "srdf.ee-parent-not-in-parent-group",
@@ -725,6 +726,23 @@ def test_break_one_thing(case: Case, goods, baseline, tmp_path_factory):
     new_errors = {f for f in found if f.is_error} - baseline(case.base)
     unexpected = {f.rule for f in new_errors} - {case.rule, *case.also}
     assert not unexpected, [f for f in found if f.rule in unexpected]
+
+
+@pytest.mark.parametrize(
+    ("base", "tip"), [("panda_link8", "panda_link0"), ("panda_rightfinger", "panda_link3")]
+)
+def test_a_chain_through_the_common_root_is_what_moveit_builds(goods, baseline, tmp_path, base, tip):
+    """A tip that is not below its base: MoveIt walks up from both ends to where they meet
+    (robot_model.cpp addJointModelGroup), so the reversed panda arm chain is the arm again."""
+    good = goods("ros1")
+    pkg = copy_package(good, tmp_path)
+    replace_text(
+        pkg, SRDF1, 'base_link="panda_link0" tip_link="panda_link8"', f'base_link="{base}" tip_link="{tip}"'
+    )
+    found = set(run(pkg, good))
+    assert not [f for f in found if f.rule.startswith("srdf.chain")]
+    if base == "panda_link8":
+        assert {f for f in found if f.is_error} <= baseline("ros1")
 
 
 def test_urdf_mesh_missing(tmp_path):

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KINEMATICS_PLUGINS
-from marm_setup.setup.groups import active_group_joints, group_joints, groups_by_name
+from marm_setup.setup.groups import groups_by_name, is_chain
 
 if TYPE_CHECKING:
     from marm_setup.setup.model import Group
@@ -67,7 +67,7 @@ def _check_entry(
                 "kinematics.unknown-solver", section.file, f"{where}.kinematics_solver", msg, _solver_hint()
             )
         )
-    elif solver in CHAIN_ONLY_PLUGINS and not is_chain(group, by_name, srdf, robot):
+    elif solver in CHAIN_ONLY_PLUGINS and not is_chain(group, by_name, robot, tuple(srdf.passive_joints)):
         msg = f"{solver.split('/')[-1]} needs a serial chain, but group '{group.name}' is not one"
         hint = "use a chain group, or a solver for general groups (pick_ik, bio_ik, TRAC-IK)"
         out.append(error("kinematics.kdl-needs-chain", section.file, f"{where}.kinematics_solver", msg, hint))
@@ -82,15 +82,3 @@ def _check_entry(
 
 def _solver_hint() -> str:
     return "known: " + ", ".join(s.split("/")[0] for s in KINEMATICS_PLUGINS[:5]) + ", ikfast"
-
-
-def is_chain(group: Group, by_name: dict[str, Group], srdf: Srdf, robot: RobotModel) -> bool:
-    """All the group's joints (fixed and mimic included, as MoveIt counts them) lie on one
-    root-to-tip path, and at least one of them moves: what KDL can solve."""
-    joints = group_joints(group, by_name, robot)
-    if not active_group_joints(group, by_name, robot, tuple(srdf.passive_joints)):
-        return False
-    depth = {name: len(robot.path_to_root(robot.joint(name).child)) for name in joints}
-    deepest = max(joints, key=lambda n: depth[n])
-    on_path = {j.name for j in robot.path_to_root(robot.joint(deepest).child)}
-    return all(name in on_path for name in joints)

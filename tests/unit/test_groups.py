@@ -1,0 +1,56 @@
+"""setup.groups: what a group holds, resolved as MoveIt resolves it."""
+
+from __future__ import annotations
+
+import pytest
+
+from marm_setup.robot.load import load_robot
+from marm_setup.setup.groups import chain_joint_names, group_joints, groups_by_name
+from marm_setup.setup.model import Chain, Group
+from tests.helpers import urdf
+
+# root -j1- torso -j2- chest -ja1- a1 -ja2- a2 ; torso -jl1- l1 -jl2- l2
+TREE = "".join(f'<link name="{n}"/>' for n in ("root", "torso", "chest", "a1", "a2", "l1", "l2")) + "".join(
+    f'<joint name="{j}" type="revolute"><parent link="{p}"/><child link="{c}"/><axis xyz="0 0 1"/>'
+    f'<limit lower="-1" upper="1" velocity="1" effort="1"/></joint>'
+    for j, p, c in (
+        ("j1", "root", "torso"),
+        ("j2", "torso", "chest"),
+        ("ja1", "chest", "a1"),
+        ("ja2", "a1", "a2"),
+        ("jl1", "torso", "l1"),
+        ("jl2", "l1", "l2"),
+    )
+)
+
+
+@pytest.fixture(scope="module")
+def tree(tmp_path_factory):
+    path = tmp_path_factory.mktemp("tree") / "tree.urdf"
+    path.write_text(urdf(TREE), encoding="utf-8")
+    return load_robot(path)
+
+
+@pytest.mark.parametrize(
+    ("base", "tip", "joints"),
+    [
+        ("torso", "l2", ("jl1", "jl2")),  # the tip below the base: the joints between, in order
+        ("root", "a2", ("j1", "j2", "ja1", "ja2")),
+        ("l2", "l2", ()),
+        # not below: up from the tip to where the base's path meets it (torso), the joint above
+        # that link (j1) included as MoveIt's walk does, plus the base's path up to torso
+        ("chest", "l2", {"jl2", "jl1", "j1", "j2"}),
+        ("a2", "l2", {"jl2", "jl1", "j1", "ja2", "ja1", "j2"}),
+        ("l2", "root", {"jl2", "jl1", "j1"}),  # the root's own joint is the virtual joint: left out
+        ("l2", "nowhere", ()),
+    ],
+)
+def test_chain_joints_follow_moveits_walk(tree, base, tip, joints):
+    found = chain_joint_names(tree, base, tip)
+    assert (set(found) if isinstance(joints, set) else found) == joints
+    assert len(set(found)) == len(found)
+
+
+def test_a_chain_group_holds_its_walk_in_tree_order(tree):
+    group = Group(name="legs_to_arm", chain=Chain(base="a2", tip="l2"))
+    assert group_joints(group, groups_by_name((group,)), tree) == ("j1", "j2", "ja1", "ja2", "jl1", "jl2")
