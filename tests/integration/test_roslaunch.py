@@ -278,3 +278,24 @@ def test_setup_assistant_file_names_the_urdf_srdf_and_author(tmp_path):
     assert (FIXTURES / "marm" / config["URDF"]["relative_path"]).is_file()
     assert (pkg / config["SRDF"]["relative_path"]).is_file()
     assert config["CONFIG"]["author_name"] == "marm-setup user"
+
+
+def test_a_robot_description_path_with_a_space(tmp_path):
+    """A URDF outside any package, in a folder with a space: the launch file's `textfile` is one
+    path to roslaunch (validate reads it so), and real roslaunch loads the URDF from it."""
+    from typer.testing import CliRunner
+
+    from marm_setup.cli.app import app
+
+    urdf = tmp_path / "my robots" / "table.urdf"
+    urdf.parent.mkdir()
+    urdf.write_text((FIXTURES / "synthetic" / "dual_arm_table.urdf").read_text())
+    pkg = tmp_path / "dual_arm_table_moveit_config"
+    runner = CliRunner()
+    made = runner.invoke(app, ["init", str(urdf), "--out", str(pkg), "--target", "ros1", "--trials", "200"])
+    assert made.exit_code == 0, made.output
+    checked = runner.invoke(app, ["validate", str(pkg), "--no-plan"])
+    assert checked.exit_code == 0 and "launch.missing-file" not in checked.stdout, checked.stdout
+    if shutil.which("roslaunch"):
+        params = dump_params(pkg / "launch" / "demo.launch", [pkg], tmp_path)
+        assert params["/robot_description"] == urdf.read_text()

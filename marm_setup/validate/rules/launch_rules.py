@@ -5,6 +5,7 @@ from __future__ import annotations
 import fnmatch
 import os
 import re
+import shlex
 from pathlib import Path
 
 from marm_setup.findings import Finding, error, warning
@@ -98,7 +99,7 @@ def check_paths(tree, rel: str, root: Path, package: str) -> list[Finding]:
     launch_dir = (root / rel).parent
     for elem in _elements(tree):
         for attr, text in elem.attrib.items():
-            for target, shown in _referenced(text, root, launch_dir, package):
+            for target, shown in _referenced(attr, text, root, launch_dir, package):
                 if target.exists():
                     continue
                 if attr in FILE_ATTRS or "$(command" in text:
@@ -111,17 +112,36 @@ def check_paths(tree, rel: str, root: Path, package: str) -> list[Finding]:
     return out
 
 
-def _referenced(text: str, root: Path, launch_dir: Path, package: str):
+WHOLE_PATH_ATTRS = ("file", "textfile", "binfile")
+
+
+def _words(attr: str, text: str) -> list[tuple[str, bool]]:
+    """Pieces of `text` as roslaunch reads them, each with whether a path runs to its end: a
+    `file` / `textfile` / `binfile` value is one path (spaces and all); a `command` is split as
+    a shell would (roslaunch loader.py param_value: `shlex.split(command)`); any other value is
+    scanned whole, a path ending at white space or a quote."""
+    if attr in WHOLE_PATH_ATTRS:
+        return [(text.strip(), True)]
+    if attr == "command":
+        try:
+            return [(word, True) for word in shlex.split(text)]
+        except ValueError:  # an unbalanced quote: roslaunch fails on it too
+            pass
+    return [(text, False)]
+
+
+def _referenced(attr: str, text: str, root: Path, launch_dir: Path, package: str):
     """(absolute path, path as written) for each resolvable path into this package in `text`."""
-    for m in FIND.finditer(text):
-        tail_match = PATH_TAIL.match(text, m.end())
-        tail = tail_match.group(0) if tail_match else ""
-        if "$(" in tail or not tail.strip("/"):
-            continue
-        if m.group(3) == "dirname":
-            yield launch_dir / tail.lstrip("/"), f"$(dirname){tail}"
-        elif m.group(2) == package:
-            yield root / tail.lstrip("/"), f"$({m.group(1)} {package}){tail}"
+    for word, whole in _words(attr, text):
+        for m in FIND.finditer(word):
+            tail_match = None if whole else PATH_TAIL.match(word, m.end())
+            tail = word[m.end() :] if whole else (tail_match.group(0) if tail_match else "")
+            if "$(" in tail or not tail.strip("/"):
+                continue
+            if m.group(3) == "dirname":
+                yield launch_dir / tail.lstrip("/"), f"$(dirname){tail}"
+            elif m.group(2) == package:
+                yield root / tail.lstrip("/"), f"$({m.group(1)} {package}){tail}"
 
 
 def _defined_args(tree) -> set[str]:
