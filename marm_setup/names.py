@@ -8,12 +8,18 @@ ROS constrains some kinds and we follow it there:
   moveit_ros_planning kinematics_plugin_loader.cpp) and roscpp rejects a parameter name outside
   `[A-Za-z_/~][A-Za-z0-9_/]*` (ros_comm names.cpp `validate`); a ros2_control controller is a
   node named after the controller. Controllers and action namespaces may have `/` separators.
-- robot: names our files (`config/<robot>.srdf`) and a xacro macro (`<xacro:<robot>_ros2_control>`),
-  so it must be an XML name without ':' (letters, digits, '_', '.', '-').
+- robot: names our files (`config/<robot>.srdf`) and, behind an '_' where it starts with a
+  digit, a xacro macro (`<xacro:<robot>_ros2_control>`, an XML name): letters, digits, '_', '.',
+  '-' (urdfdom and srdfdom take `2dof_planar`).
+- ros2_control: the hardware plugin is a pluginlib class name (`package/Class`), interfaces and
+  hardware parameter names are ROS names; parameter values are free text (escaped for xacro).
 ROS leaves the others free (URDF links and joints, SRDF poses and end effectors, TF frames); we
 refuse only what no robot needs and what would turn into code in a generated file: control
 characters, and for links, joints and frames also whitespace, quotes, '$' (a launch or xacro
-substitution), '\\' and a leading '-' (an option on a command line).
+substitution), '\\' and a leading '-' (an option on a command line); for joints also ',', '(',
+')' (MoveIt's `projection_evaluator: joints(a,b)` splits at them: ompl_interface
+model_based_planning_context.cpp getProjectionEvaluator) and '{', '}' (a xacro `${...}` ends at
+the first '}', xacro's EXPR lexer token).
 """
 
 from __future__ import annotations
@@ -28,14 +34,20 @@ MAX_NAME = 200  # characters: a robot name becomes a file name, and file names s
 _ROS_SEGMENT = r"[A-Za-z_][A-Za-z0-9_]*"
 _PATTERNS = {
     "package": re.compile(r"[a-z][a-z0-9_]*"),
-    "robot": re.compile(r"[A-Za-z_][A-Za-z0-9_.\-]*"),
+    "robot": re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*"),
+    "plugin": re.compile(rf"{_ROS_SEGMENT}((/|::){_ROS_SEGMENT})+"),
+    "interface": re.compile(rf"{_ROS_SEGMENT}(/{_ROS_SEGMENT})*"),
+    "parameter": re.compile(rf"{_ROS_SEGMENT}([./]{_ROS_SEGMENT})*"),
     "group": re.compile(_ROS_SEGMENT),
     "controller": re.compile(rf"{_ROS_SEGMENT}(/{_ROS_SEGMENT})*"),
     "action_ns": re.compile(rf"{_ROS_SEGMENT}(/{_ROS_SEGMENT})*"),
 }
 _RULES = {
     "package": "lowercase letters, digits and '_', starting with a letter",
-    "robot": "letters, digits, '_', '.' and '-', starting with a letter or '_'",
+    "robot": "letters, digits, '_', '.' and '-', starting with a letter, a digit or '_'",
+    "plugin": "a pluginlib class name: ROS names joined by '/' or '::' (package/Class)",
+    "interface": "ROS names (letters, digits, '_', starting with a letter or '_') joined by '/'",
+    "parameter": "ROS names (letters, digits, '_', starting with a letter or '_') joined by '.' or '/'",
     "group": "letters, digits and '_', starting with a letter or '_' (a ROS name)",
     "controller": "ROS names (letters, digits, '_', starting with a letter or '_') joined by '/'",
     "action_ns": "ROS names (letters, digits, '_', starting with a letter or '_') joined by '/'",
@@ -43,6 +55,7 @@ _RULES = {
 REFERENCE_KINDS = ("link", "joint", "frame", "virtual joint")
 LABEL_KINDS = ("pose", "end effector", "property")
 _REFERENCE_FORBIDDEN = set("$'\"`\\")
+_JOINT_FORBIDDEN = set(",(){}")  # a projection_evaluator list, a xacro ${...} (see the module doc)
 KINDS = (*_PATTERNS, *REFERENCE_KINDS, *LABEL_KINDS)
 
 
@@ -93,6 +106,10 @@ def _free_name_problem(kind: str, name: str) -> str | None:
         return f"{kind} name {name!r} holds {shown} (no spaces, quotes, '$', '`' or '\\' in {kind} names)"
     if name.startswith("-"):
         return f"{kind} name {name!r} starts with '-' (it would read as an option)"
+    syntax = sorted({c for c in name if c in _JOINT_FORBIDDEN}) if kind == "joint" else []
+    if syntax:
+        shown = " ".join(repr(c) for c in syntax)
+        return f"joint name {name!r} holds {shown} (MoveIt's joints(a,b) lists and xacro expressions cannot hold it)"
     return None
 
 

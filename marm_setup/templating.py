@@ -107,6 +107,14 @@ def xml_comment(value: object) -> str:
     return text + " " if text.endswith("-") else text
 
 
+def xacro_text(value: object) -> str:
+    """Text xacro leaves as it is: xacro evaluates `${...}` and `$(...)` in text and attributes
+    and reads `$${` / `$$(` as the literal `${` / `$(` (xacro __init__.py, eval_text's
+    DOLLAR_DOLLAR_BRACE), so each run of '$' before '{' or '(' gets one more. XML escaping is the
+    template's (autoescape)."""
+    return re.sub(r"(\$+)(?=[{(])", r"$\1", str(value))
+
+
 def yaml_bool(value: bool) -> str:
     return "true" if value else "false"
 
@@ -127,7 +135,12 @@ def environment() -> jinja2.Environment:
         ),
     )
     env.filters.update(
-        fmt_float=fmt_float, yaml_str=yaml_str, yaml_bool=yaml_bool, py_repr=py_repr, xml_comment=xml_comment
+        fmt_float=fmt_float,
+        yaml_str=yaml_str,
+        yaml_bool=yaml_bool,
+        py_repr=py_repr,
+        xml_comment=xml_comment,
+        xacro_text=xacro_text,
     )
     return env
 

@@ -290,6 +290,13 @@ def rviz_view(model: SetupModel, robot: RobotModel) -> dict:
     return {"group": group, "fixed_frame": frame}
 
 
+def ros2_control_macro(robot_name: str) -> str:
+    """The Setup Assistant's `<robot>_ros2_control` macro name, behind an '_' where the robot's
+    name starts with a digit (`2dof_arm`), which no XML name may."""
+    prefix = "_" if robot_name[:1].isdigit() else ""
+    return f"{prefix}{robot_name}_ros2_control"
+
+
 def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None = None) -> dict:
     """Everything the templates read, keyed by the names they use."""
     return {
@@ -298,6 +305,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "pkg": model.package_name,
         "distro": model.distro,
         "robot_name": model.robot_name,
+        "ros2_control_macro": ros2_control_macro(model.robot_name),
         "description": description_ref(model, robot, package),
         "groups": group_infos(model, robot),
         "joint_limits": joint_limits(model, robot),

@@ -15,13 +15,14 @@ from marm_setup.setup.model import SetupModel
 
 
 def check_setup_names(model: SetupModel, robot: RobotModel | None, path: str | None) -> None:
-    """Raise InputError for the first name that is not valid for its kind."""
+    """Raise InputError for the first name that is not valid for its kind (the URDF's own
+    first: a bad joint name is the URDF's to fix, wherever the setup repeats it)."""
+    if robot is not None:
+        check_robot_names(robot)
     for kind, name, where in setup_names(model):
         problem = name_problem(kind, name)
         if problem:
             raise InputError(problem, path=path, element=where)
-    if robot is not None:
-        check_robot_names(robot)
 
 
 def check_robot_names(robot: RobotModel) -> None:
@@ -61,6 +62,7 @@ def setup_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
     for lim in m.joint_limits:
         yield "joint", lim.joint, f"joint_limits[{lim.joint}]"
     yield from _extras_names(m)
+    yield from _ros2_control_names(m)
 
 
 def _listed(kind: str, names: Iterable[str], where: str) -> Iterator[tuple[str, str, str]]:
@@ -114,3 +116,14 @@ def _extras_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
         yield "property", prop.value or "-", f"{w}.value"
     for approx in extras.link_sphere_approximations:
         yield "link", approx.link, f"srdf_extras.link_sphere_approximations[{approx.link}]"
+
+
+def _ros2_control_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
+    hardware = m.ros2_control
+    if hardware is None:
+        return
+    yield "plugin", hardware.plugin, "ros2_control.plugin"
+    yield from _listed("interface", hardware.command_interfaces, "ros2_control.command_interfaces")
+    yield from _listed("interface", hardware.state_interfaces, "ros2_control.state_interfaces")
+    for key, _ in hardware.parameters:
+        yield "parameter", key, f"ros2_control.parameters.{key}"

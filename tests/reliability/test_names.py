@@ -42,7 +42,15 @@ def _init(tmp_path, spec: str, *args: str):
         ("package", "Marm", False),
         ("robot", "L31K-GRIPPER_URDF_SIMPLIFIED_V2", True),
         ("robot", "my robot", False),
-        ("robot", "2bad", False),
+        ("robot", "2dof_planar", True),
+        ("robot", ".hidden", False),
+        ("joint", "j,1", False),
+        ("joint", "j}1", False),
+        ("joint", "arm.joint_1", True),
+        ("plugin", "mock_components/GenericSystem", True),
+        ("plugin", "$(env X)/Y", False),
+        ("interface", "position", True),
+        ("parameter", "calculate_dynamics", True),
         ("group", "panda_arm", True),
         ("group", "a: b", False),
         ("group", "$(env HOME)", False),
@@ -157,7 +165,7 @@ def test_names_that_need_escaping_make_parseable_packages(tmp_path, target):
         assert {"group": "arm", "pose": "home"} in fake["initial"]
 
 
-@pytest.mark.parametrize("robot_name", ["my robot", "2bad", "a:b"])
+@pytest.mark.parametrize("robot_name", ["my robot", ".hidden", "a:b"])
 def test_robot_names_that_cannot_name_files_or_macros(tmp_path, robot_name):
     urdf = tmp_path / "robot.urdf"
     urdf.write_text(TWO_BOXES.replace('name="test_robot"', f'name="{robot_name}"'))
@@ -186,3 +194,52 @@ def test_validate_reports_unsafe_names_in_foreign_packages(tmp_path):
     rules = {(f["rule"], f["element"]) for f in json.loads(found.stdout)["findings"]}
     assert ("names.invalid", "group_state[$(env HOME)]") in rules
     assert any(rule == "names.invalid" and "controller_list" in where for rule, where in rules), rules
+
+
+def test_a_robot_named_with_a_leading_digit_gets_a_package_that_expands(tmp_path):
+    """urdfdom and srdfdom take `2dof_planar`; the ros2_control macro is the Setup Assistant's
+    `<robot>_ros2_control` behind an '_' (no XML name starts with a digit)."""
+    from marm_setup.robot.load import expand_xacro
+    from marm_setup.robot.ros_packages import find_packages
+
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(TWO_BOXES.replace('name="test_robot"', 'name="2dof_planar"'))
+    pkg = tmp_path / "pkg"
+    assert_clean_exit(run("init", urdf, "--out", pkg, *TRIALS), codes=(0,))
+    wrapper = pkg / "config" / "2dof_planar.urdf.xacro"
+    text = expand_xacro(wrapper, {}, find_packages([tmp_path], near=wrapper), shown=str(wrapper))
+    assert len(etree.fromstring(text.encode()).findall("ros2_control")) == 1
+    assert_clean_exit(run("validate", pkg, "--no-plan"), codes=(0,))
+
+
+@pytest.mark.parametrize("joint", ["j,1", "j}1", "j)2"])
+def test_joint_names_that_break_moveit_lists_or_xacro_are_one_line(tmp_path, joint):
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(TWO_BOXES.replace('joint name="j"', f'joint name="{joint}"'))
+    assert_one_line_error(run("init", urdf, "--out", tmp_path / "pkg", *TRIALS), f"joint[{joint!r}]")
+
+
+def test_hardware_parameters_reach_xacro_as_text(tmp_path):
+    """`$(env HOME)` and `${...}` in a hardware parameter stay text through real xacro; names of
+    the plugin and interfaces are refused when they are not ROS names."""
+    from marm_setup.robot.load import expand_xacro
+    from marm_setup.robot.ros_packages import find_packages
+
+    def hardware(plugin: str):
+        def edit(data):
+            data.update(target="ros2", ros_distro="jazzy")
+            del data["driver"]
+            data["ros2_control"] = {"plugin": plugin, "parameters": {"port": "$(env HOME) ${10**10**8}"}}
+
+        return edit
+
+    result = _init(tmp_path, _spec(tmp_path, hardware("my_driver/ArmSystem")))
+    assert_clean_exit(result, codes=(0,))
+    wrapper = tmp_path / "pkg" / "config" / "marm.urdf.xacro"
+    packages = find_packages([tmp_path, FIXTURES / "marm"], near=wrapper)
+    text = expand_xacro(wrapper, {"use_mock_hardware": "false"}, packages, shown=str(wrapper))
+    (param,) = etree.fromstring(text.encode()).xpath("//hardware/param[@name='port']")
+    assert param.text == "$(env HOME) ${10**10**8}"
+    shutil.rmtree(tmp_path / "pkg")
+    bad = _init(tmp_path, _spec(tmp_path, hardware("$(env X)/Y")))
+    assert_one_line_error(bad, "ros2_control.plugin")
