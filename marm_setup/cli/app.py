@@ -7,6 +7,7 @@ trimesh, scipy) inside its body, so `marm-setup --help` stays fast.
 from __future__ import annotations
 
 import functools
+import sys
 from collections.abc import Callable
 from typing import Annotated, ParamSpec, TypeVar
 
@@ -93,7 +94,30 @@ _register()
 
 
 def main() -> None:
-    app(prog_name="marm-setup")
+    """The console script. A usage error (an unknown option, a bad choice, a missing argument)
+    is one `error: ... (see '... --help')` line with exit 2, like every other bad input, instead
+    of click's usage block."""
+    try:
+        code = app(prog_name="marm-setup", standalone_mode=False)
+    except typer.TyperException as exc:  # the errors of the click typer bundles: usage errors
+        ctx = getattr(exc, "ctx", None)
+        if ctx is not None and str(exc) == ctx.get_help():  # no arguments at all: the help, as click
+            typer.echo(str(exc), err=True)
+        else:
+            echo_err(usage_error_line(exc))
+        sys.exit(exc.exit_code if isinstance(exc.exit_code, int) and exc.exit_code else 2)
+    except typer.Abort:
+        echo_err("error: aborted")
+        sys.exit(1)
+    sys.exit(code if isinstance(code, int) else 0)
+
+
+def usage_error_line(exc: Exception) -> str:
+    """`error: <what click says> (see '<command> --help')` on one line."""
+    message = " ".join(getattr(exc, "format_message", exc.__str__)().split())
+    ctx = getattr(exc, "ctx", None)
+    hint = f" (see '{ctx.command_path} --help')" if ctx is not None else ""
+    return f"error: {message}{hint}"
 
 
 if __name__ == "__main__":  # pragma: no cover

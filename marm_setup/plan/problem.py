@@ -28,7 +28,7 @@ from marm_setup.plan.planner import (
 )
 from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_config, time_parameterize
 from marm_setup.robot.kinematics import default_configuration, wrap_continuous
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot.model import MIN_RATE, RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.srdf import Srdf, allowed_pairs
 from marm_setup.setup.start_state import package_start_values
@@ -165,6 +165,12 @@ def planning_problem(
         limits = limits_from_config(robot, joints, entries)
     except ValueError as exc:
         raise InputError(str(exc), path=_limits_file(package)) from None
+    scaled = limits.scaled(scale_v, scale_a)
+    if min(scaled.max_velocity.min(), scaled.max_acceleration.min()) < MIN_RATE:
+        msg = (
+            f"the scaled velocity or acceleration limits fall below {MIN_RATE:g}: no trajectory can be timed"
+        )
+        raise InputError(msg, path=_limits_file(package), element="default_velocity_scaling_factor")
     q_initial = initial_configuration(package, robot)
     poses = {
         s.name: wrap_continuous(robot, _overlay(robot, q_initial, s.values))

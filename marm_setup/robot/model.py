@@ -13,6 +13,8 @@ ACTUATED_TYPES = ("revolute", "continuous", "prismatic")
 # [rad] or [m]: the slack of every comparison with a joint limit (a value written at full
 # precision sits on its limit).
 LIMIT_TOLERANCE = 1e-9
+MIN_RATE = 1e-6  # [rad/s, m/s, /s^2] slower than any joint moves (1 rad in 11.6 days): a speed,
+# acceleration or scaling below it makes the durations of a trajectory overflow
 # Limits in YAML files are written rounded (2.0944 for the URDF's 2.0943951): a value within this
 # fraction of a limit is that limit.
 LIMIT_ROUNDING = 1e-4

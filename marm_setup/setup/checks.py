@@ -16,13 +16,14 @@ from collections.abc import Iterable, Iterator
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot.model import MIN_RATE, RobotModel
 from marm_setup.setup.model import ROS_DISTROS, Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
 from marm_setup.setup.rules import Style, check_semantics, setup_element
 from marm_setup.setup.srdf import setup_to_srdf
 
 MAX_SERVO_ID = 253  # Dynamixel ids on an ArbotiX bus (254 is broadcast)
+RATE_KEYS = ("scaling", "default_acceleration", "max_velocity", "max_acceleration", "max_jerk", "max_speed")
 
 
 class _Checker:
@@ -83,6 +84,19 @@ def _check_names(c: _Checker) -> None:
     problem = distro_problem(c.model.target, c.model.ros_distro)
     if problem:
         raise c.fail(problem, "ros_distro")
+    _check_author(c)
+
+
+def _check_author(c: _Checker) -> None:
+    """The maintainer as catkin_pkg reads package.xml (Person.validate: an email it rejects makes
+    the whole package.xml invalid to catkin and to `validate`)."""
+    from catkin_pkg.package import InvalidPackage, Person
+
+    author = c.model.author
+    try:
+        Person(author.name, author.email).validate()
+    except InvalidPackage as exc:
+        raise c.fail(f"{exc}: catkin_pkg rejects package.xml with it", "author.email") from None
 
 
 def distro_problem(target: str, distro: str | None) -> str | None:
@@ -221,6 +235,10 @@ def _check_ranges(c: _Checker) -> None:
         if value is not None and not 0 < value <= upper:
             bound = "> 0" if upper == math.inf else f"in (0, {upper:g}]"
             raise c.fail(f"must be {bound}, got {value:g}", where)
+        if value is not None and where.endswith(RATE_KEYS) and value < MIN_RATE:
+            raise c.fail(
+                f"must be at least {MIN_RATE:g} (no trajectory could be timed), got {value:g}", where
+            )
 
 
 def _ranged_values(m: SetupModel) -> Iterator[tuple[str, float | None, float]]:

@@ -150,6 +150,14 @@ BAD_SPECS = {
         {"end_effectors": [{"name": "robot_gripper", "group": "gripper", "parent_link": "grasp_frame"}]},
         "end_effectors[robot_gripper].parent_link: unknown link 'grasp_frame' (did you mean 'grasping_frame'?)",
     ),
+    "author email catkin rejects": (
+        {"author": {"name": "Ann", "email": "not-an-email"}},
+        'author.email: Invalid email "not-an-email" for person "Ann": catkin_pkg rejects package.xml with it',
+    ),
+    "a rate too small to time": (
+        {"default_acceleration": 5e-324},
+        "default_acceleration: must be at least 1e-06 (no trajectory could be timed), got 4.94066e-324",
+    ),
     "chain to an unknown link": (
         {"groups": [{"name": "arm", "chain": {"base": "base_link", "tip": "link9"}}]},
         "groups[arm].chain.tip: unknown link 'link9' (did you mean 'link6', 'link5', 'link4'?)",
