@@ -2,7 +2,10 @@
 
 `python -m tests.synthetic_robots` rewrites the fixture files; a test checks they are current.
 Each robot is built from the same parts: a box body, arms of cylinders with a two-finger gripper,
-legs, a head, wheels; joint and link names follow common conventions (left_/right_, L/R, LF_).
+legs, a head, wheels; joint and link names follow common conventions (left_/right_, L/R, LF_,
+FR/RR, RLEG_). Some robots carry a case that inference once got wrong: limbs without collision
+geometry, a wrist whose link is called `gripper`, suspensions, a bare hand, rotors, feet on
+fixed joints.
 """
 
 from __future__ import annotations
@@ -13,13 +16,11 @@ FOLDER = Path(__file__).resolve().parent.parent / "fixtures" / "synthetic"
 LIMIT = '<limit lower="{lo}" upper="{hi}" velocity="1.0" effort="10"/>'
 
 
-def _link(name: str, geometry: str = "", xyz: str = "0 0 0") -> str:
+def _link(name: str, geometry: str = "", xyz: str = "0 0 0", tag: str = "collision") -> str:
+    """A link with one `tag` (collision or visual) shape, or none without `geometry`."""
     if not geometry:
         return f'<link name="{name}"/>'
-    return (
-        f'<link name="{name}"><collision><origin xyz="{xyz}"/><geometry>{geometry}</geometry>'
-        f"</collision></link>"
-    )
+    return f'<link name="{name}"><{tag}><origin xyz="{xyz}"/><geometry>{geometry}</geometry></{tag}></link>'
 
 
 def _joint(name, kind, parent, child, xyz="0 0 0", axis="0 0 1", lo=-2.0, hi=2.0, mimic=None) -> str:
@@ -175,11 +176,202 @@ def wheeled_manipulator() -> str:
     return _robot("wheeled_manipulator", parts)
 
 
+def unitree_quadruped() -> str:
+    """Legs named FR/FL/RR/RL (front/rear first, then the side), each ending in a foot link with
+    a sphere on a fixed joint."""
+    parts = [_link("base"), _link("trunk", '<box size="0.4 0.2 0.1"/>')]
+    parts.append(_joint("floating_base", "fixed", "base", "trunk"))
+    parts += [_link("imu_link"), _joint("imu_joint", "fixed", "trunk", "imu_link")]
+    for code, x, y in (("FR", 0.18, -0.05), ("FL", 0.18, 0.05), ("RR", -0.18, -0.05), ("RL", -0.18, 0.05)):
+        parts += leg(
+            [f"{code}_hip_joint", f"{code}_thigh_joint", f"{code}_calf_joint"],
+            f"{code}_",
+            "trunk",
+            f"{x} {y} 0",
+        )
+        parts.append(_link(f"{code}_foot", '<sphere radius="0.02"/>'))
+        parts.append(_joint(f"{code}_foot_fixed", "fixed", f"{code}_shank", f"{code}_foot", "0 0 -0.14"))
+    return _robot("unitree_quadruped", parts)
+
+
+def bare_humanoid() -> str:
+    """A humanoid whose limbs have no collision geometry (arms and head only visual shapes, legs
+    none), soles among sensor frames, and a pan-tilt camera mount that is no limb."""
+    parts = [_link("base_link"), _link("BODY", '<box size="0.2 0.3 0.2"/>')]
+    parts.append(_joint("waist", "fixed", "base_link", "BODY"))
+    for side, y in (("R", -0.1), ("L", 0.1)):
+        names = ["HIP_R", "HIP_P", "HIP_Y", "KNEE", "ANKLE_P", "ANKLE_R"]
+        parts += _bare_chain([f"{side}LEG_{n}" for n in names], f"{side}LEG_LINK", "BODY", f"0 {y} -0.1", "")
+        ankle, low = f"{side}LEG_LINK6", side.lower()
+        for frame in (f"{low}_sole", f"{side}Fsr_frame", f"{side}FootBumper_frame"):
+            parts += [_link(frame), _joint(f"{frame}_joint", "fixed", ankle, frame, "0 0 -0.05")]
+    parts += _bare_chain(["WAIST_P", "WAIST_R", "CHEST"], "WAIST_LINK", "BODY", "0 0 0.1", "", "chest")
+    parts += _bare_chain(["NECK_Y", "NECK_P"], "NECK_LINK", "chest", "0 0 0.3", '<sphere radius="0.08"/>')
+    for side, y in (("R", -0.2), ("L", 0.2)):
+        names = ["SHOULDER_P", "SHOULDER_R", "SHOULDER_Y", "ELBOW", "WRIST_Y", "WRIST_P"]
+        geometry = '<cylinder radius="0.03" length="0.1"/>'
+        parts += _bare_chain(
+            [f"{side}ARM_{n}" for n in names], f"{side}ARM_LINK", "chest", f"0 {y} 0.25", geometry
+        )
+    parts += _bare_chain(["pan_joint", "tilt_joint"], "ptu_link", "chest", "0.1 0 0.3", "")
+    return _robot("bare_humanoid", parts)
+
+
+def _bare_chain(joint_names, link_prefix, parent, xyz, visual, last=""):
+    """A chain of revolute joints along -z whose links have at most a visual shape."""
+    out, prev = [], parent
+    for i, name in enumerate(joint_names):
+        link = last if last and i == len(joint_names) - 1 else f"{link_prefix}{i + 1}"
+        out.append(_link(link, visual, tag="visual"))
+        axis = ("0 0 1", "1 0 0", "0 1 0")[i % 3]
+        out.append(_joint(name, "revolute", prev, link, xyz if i == 0 else "0 0 -0.1", axis, -1.0, 1.0))
+        prev = link
+    return out
+
+
+def wrist_gripper_arm() -> str:
+    """A five-joint arm whose wrist_roll joint moves a link called `gripper`; the one-joint jaw
+    after it is the gripper."""
+    parts = [_link("base", '<box size="0.1 0.1 0.05"/>')]
+    names = ["shoulder_pan", "shoulder_lift", "elbow_flex", "wrist_flex", "wrist_roll"]
+    links = ["shoulder", "upper_arm", "lower_arm", "wrist", "gripper"]
+    prev = "base"
+    for i, (name, link) in enumerate(zip(names, links, strict=True)):
+        geometry, center = _cyl(0.1)
+        parts.append(_link(link, geometry, center))
+        parts.append(
+            _joint(
+                name,
+                "revolute",
+                prev,
+                link,
+                "0 0 0.05" if i == 0 else "0 0 0.12",
+                "0 1 0" if i % 2 else "0 0 1",
+            )
+        )
+        prev = link
+    parts += [
+        _link("gripper_frame"),
+        _joint("gripper_frame_joint", "fixed", "gripper", "gripper_frame", "0 0 0.15"),
+    ]
+    parts.append(_link("jaw", '<box size="0.01 0.02 0.06"/>', "0 0 0.03"))
+    parts.append(_joint("gripper", "revolute", "gripper", "jaw", "0.02 0 0.1", "0 1 0", 0.0, 1.0))
+    return _robot("wrist_gripper_arm", parts)
+
+
+def suspended_base() -> str:
+    """A wheeled base whose drive wheels sit on prismatic suspensions, casters of two joints, and a
+    lifting torso with an arm."""
+    parts = [_link("base_footprint"), _link("base_link", '<box size="0.5 0.4 0.2"/>', "0 0 0.1")]
+    parts.append(_joint("base_footprint_joint", "fixed", "base_footprint", "base_link", "0 0 0.08"))
+    for side, y in (("right", -0.23), ("left", 0.23)):
+        parts += [_link(f"suspension_{side}_link")]
+        parts.append(
+            _joint(
+                f"suspension_{side}_joint",
+                "prismatic",
+                "base_link",
+                f"suspension_{side}_link",
+                f"0 {y} 0",
+                "0 0 1",
+                -0.02,
+                0.02,
+            )
+        )
+        parts.append(_link(f"wheel_{side}_link", '<cylinder radius="0.08" length="0.04"/>'))
+        parts.append(
+            _joint(
+                f"wheel_{side}_joint",
+                "continuous",
+                f"suspension_{side}_link",
+                f"wheel_{side}_link",
+                axis="0 1 0",
+            )
+        )
+    parts += [_link("caster_1_link"), _link("caster_2_link", '<sphere radius="0.03"/>')]
+    parts.append(_joint("caster_1_joint", "continuous", "base_link", "caster_1_link", "-0.2 0 -0.03"))
+    parts.append(
+        _joint("caster_2_joint", "continuous", "caster_1_link", "caster_2_link", "-0.02 0 -0.02", "0 1 0")
+    )
+    parts += [_link("torso_lift_link", '<box size="0.1 0.1 0.1"/>', "0 0 0.05")]
+    parts.append(
+        _joint("torso_lift_joint", "prismatic", "base_link", "torso_lift_link", "0 0 0.2", "0 0 1", 0.0, 0.3)
+    )
+    parts += arm([f"arm_{i}_joint" for i in range(1, 7)], "arm_", "torso_lift_link", "0 0 0.12", "gripper_")
+    return _robot("suspended_base", parts)
+
+
+def finger_hand() -> str:
+    """A bare four-finger hand: unnamed four-joint fingers on a palm."""
+    parts = [_link("palm", '<box size="0.1 0.1 0.02"/>')]
+    for f, y in enumerate((-0.045, -0.015, 0.015, 0.045)):
+        parts += _finger(f, "palm", f"0 {y} 0.01")
+    return _robot("finger_hand", parts)
+
+
+def _finger(number: int, parent: str, xyz: str) -> list[str]:
+    out, prev = [], parent
+    for i in range(4):
+        index = 4 * number + i
+        geometry, center = _cyl(0.03, 0.008)
+        out.append(_link(f"link_{index}", geometry, center))
+        axis = "0 0 1" if i == 0 else "0 1 0"
+        out.append(
+            _joint(
+                f"joint_{index}",
+                "revolute",
+                prev,
+                f"link_{index}",
+                xyz if i == 0 else "0 0 0.035",
+                axis,
+                -0.5,
+                1.5,
+            )
+        )
+        prev = f"link_{index}"
+    out += [
+        _link(f"link_{4 * number + 3}_tip"),
+        _joint(f"joint_{4 * number + 3}_tip", "fixed", prev, f"link_{4 * number + 3}_tip", "0 0 0.03"),
+    ]
+    return out
+
+
+def rotor_arm() -> str:
+    """A quadrotor body (four continuous rotor joints) carrying a two-joint arm."""
+    parts = [_link("body", '<box size="0.3 0.3 0.08"/>')]
+    for i, (x, y) in enumerate(((0.2, 0.2), (-0.2, 0.2), (-0.2, -0.2), (0.2, -0.2))):
+        parts.append(_link(f"rotor_{i}", '<cylinder radius="0.1" length="0.01"/>'))
+        parts.append(_joint(f"rotor_{i}_joint", "continuous", "body", f"rotor_{i}", f"{x} {y} 0.06"))
+    for i, parent in ((1, "body"), (2, "link1")):
+        geometry, center = _cyl(0.12, 0.015)
+        parts.append(_link(f"link{i}", geometry, f"0 0 -{center.split()[-1]}"))
+        parts.append(
+            _joint(
+                f"arm_joint{i}",
+                "revolute",
+                parent,
+                f"link{i}",
+                "0 0 -0.06" if i == 1 else "0 0 -0.13",
+                "0 1 0",
+                -1.5,
+                1.5,
+            )
+        )
+    parts += [_link("ee"), _joint("ee_joint", "fixed", "link2", "ee", "0 0 -0.13")]
+    return _robot("rotor_arm", parts)
+
+
 ROBOTS = {
     "dual_arm_table": dual_arm_table,
     "humanoid": humanoid,
     "legged_arm": legged_arm,
     "wheeled_manipulator": wheeled_manipulator,
+    "unitree_quadruped": unitree_quadruped,
+    "bare_humanoid": bare_humanoid,
+    "wrist_gripper_arm": wrist_gripper_arm,
+    "suspended_base": suspended_base,
+    "finger_hand": finger_hand,
+    "rotor_arm": rotor_arm,
 }
 
 

@@ -3,8 +3,8 @@
 The limbs come from `setup.limbs`: a chain group per limb (arms to their tool frame), a hand
 group (actuated joints after the wrist, with the links they move) and an end effector per arm
 with a hand, composite groups (`arms`, `legs`, `whole_body`) where there are several limbs, and
-a virtual joint that fits the base: none when the root is `world`, planar for a wheeled base,
-floating for a legged one, else fixed to `world`. Poses here are zeros clamped into the limits;
+a virtual joint that fits the base: none when the root is `world`, floating for a flying
+(rotors, names) or legged base, planar for a wheeled one, else fixed to `world`. Poses here are zeros clamped into the limits;
 `setup.poses` makes them collision-free once the collision matrix is known.
 """
 
@@ -16,7 +16,8 @@ from collections.abc import Mapping
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.domain import DEFAULT_ACTION_NS, FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND
-from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.groups import active_group_joints, groups_by_name, is_chain
+from marm_setup.setup.limb_words import tokens
 from marm_setup.setup.limbs import Limbs, find_limbs
 from marm_setup.setup.model import (
     ArbotixJoint,
@@ -36,6 +37,10 @@ from marm_setup.setup.yaml_io import ITEM_KEYS
 HOME = "home"
 REFERENCE = "docs/setup-file.md"
 COMPOSITES = (("arms", "arm"), ("legs", "leg"))
+FLYING_WORDS = (
+    "drone", "quadrotor", "quadcopter", "hexacopter", "octocopter", "multirotor", "multicopter",
+    "copter", "uav", "aerial", "flying", "hexarotor",
+)  # fmt: skip
 
 
 @dataclasses.dataclass(frozen=True, slots=True)
@@ -105,24 +110,37 @@ def _groups(limbs: Limbs) -> tuple[tuple[Group, ...], tuple[EndEffector, ...]]:
 
 
 def _virtual_joints(robot: RobotModel, limbs: Limbs) -> tuple[tuple[VirtualJoint, ...], str]:
-    """(virtual joints, a note on the choice): none when the root is `world`; planar for a wheeled
-    base, floating for a legged one, else fixed to `world`."""
+    """(virtual joints, a note on the choice): none when the root is `world`; floating for a
+    flying or legged base, planar for a wheeled one, else fixed to `world`."""
     if robot.root.lower() == "world":
         return (), ""
     legs = sum(limb.kind == "leg" for limb in limbs.limbs)
+    floating = (VirtualJoint("virtual_joint", "floating", "odom", robot.root),)
+    if flying := _flying(robot, limbs):
+        return floating, f"guessed: a flying base ({flying}): floating virtual joint odom -> {robot.root}"
+    if legs > 1:
+        return floating, f"guessed: a legged base ({legs} legs): floating virtual joint odom -> {robot.root}"
     if limbs.wheels:
         note = f"guessed: a wheeled base ({len(limbs.wheels)} wheel joints): planar virtual joint odom -> {robot.root}"
         return (VirtualJoint("virtual_joint", "planar", "odom", robot.root),), note
-    if legs > 1:
-        note = f"guessed: a legged base ({legs} legs): floating virtual joint odom -> {robot.root}"
-        return (VirtualJoint("virtual_joint", "floating", "odom", robot.root),), note
     return (VirtualJoint("virtual_joint", "fixed", "world", robot.root),), ""
+
+
+def _flying(robot: RobotModel, limbs: Limbs) -> str:
+    """Why the base flies ('' when it does not): rotor joints, or names that say so."""
+    if limbs.rotors:
+        return f"{len(limbs.rotors)} rotor joints"
+    names = (robot.name, *(link.name for link in robot.links))
+    words = sorted({t for n in names for t in tokens(n)} & set(FLYING_WORDS))
+    return f"named '{words[0]}'" if words else ""
 
 
 def _left_out(limbs: Limbs) -> list[str]:
     out = []
     if limbs.wheels:
         out.append(f"left out of every group: wheel joints {', '.join(limbs.wheels)}")
+    if limbs.rotors:
+        out.append(f"left out of every group: rotor joints {', '.join(limbs.rotors)}")
     if limbs.skipped:
         out.append(f"left out of every group: single joints {', '.join(limbs.skipped)} (not a limb)")
     return out
@@ -156,7 +174,14 @@ def derive_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:
     """Controllers, KDL kinematics, planner defaults (and ArbotiX ids when it is the driver)."""
     controllers = _controllers(model, robot)
     groups = groups_by_name(model.groups).values()  # one each (duplicates are the checks' to report)
-    kinematics = tuple(Kinematics(g.name) for g in groups if g.chain is not None)
+    # KDL only where MoveIt's KDL plugin initialises: a chain in JointModelGroup's sense (a
+    # <chain> element can name a tree: up from the tip to the common root and down to the base)
+    by_name = groups_by_name(model.groups)
+    kinematics = tuple(
+        Kinematics(g.name)
+        for g in groups
+        if g.chain is not None and is_chain(g, by_name, robot, model.passive_joints)
+    )
     planners = tuple(PlannerDefaults(g.name) for g in groups)
     arbotix: tuple[ArbotixJoint, ...] = ()
     if model.target == "ros1" and model.driver == "arbotix":
@@ -235,7 +260,7 @@ def _drop_shadowed(model: SetupModel, robot: RobotModel, given: set) -> SetupMod
 
 def _resolvable(group: Group, by_name: Mapping[str, Group], robot: RobotModel) -> bool:
     """Names only what the robot and the setup have (a SPEC's typo is for the checks to report)."""
-    chain_ok = group.chain is None or robot.chain(group.chain.base, group.chain.tip) is not None
+    chain_ok = group.chain is None or {group.chain.base, group.chain.tip} <= set(robot.link_map)
     names_ok = all(j in robot.joint_map for j in group.joints) and all(
         x in robot.link_map for x in group.links
     )

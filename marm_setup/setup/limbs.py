@@ -1,34 +1,41 @@
 """Find a robot's limbs (DESIGN.md §2): serial chains of actuated joints between branch points
-and tips, what each one is (arm, leg, head, torso, hand, wheel) and what to call it.
+and tips, what each one is (arm, leg, head, torso, hand, wheel, rotor) and what to call it.
 
 Pure tree analysis of a RobotModel. The words that name a limb's kind come from the joint and
-link names (`r_shoulder_pan_joint`, `LF_HFE`, `arm_left_joint_1_s`); where names say nothing
-the structure decides (a chain with limbs after it is a torso, one with a hand is an arm) and
-the guess is reported in `Limbs.notes`.
+link names (`r_shoulder_pan_joint`, `LF_HAA`, `arm_left_joint_1_s`), a joint's own name before
+its child link's; where names say nothing the structure decides (a chain with limbs after it is
+a torso, one with a hand is an arm, a long one is an arm) and the guess is reported in
+`Limbs.notes`. Wheels (with what carries them) and rotors belong to the base, not to a limb.
 """
 
 from __future__ import annotations
 
-import re
+import math
 from collections import Counter
 from dataclasses import dataclass, field
 
 from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.setup.limb_tips import limb_tip
+from marm_setup.setup.limb_words import (
+    BASE_KINDS,
+    KIND_WORDS,
+    MOUNT_WORDS,
+    common_prefix,
+    is_kind,
+    joint_kinds,
+    name_kinds,
+    name_words,
+    side_of,
+    tokens,
+    votes_for,
+)
 
-KIND_WORDS = {
-    "hand": ("finger", "gripper", "hand", "thumb", "knuckle", "jaw", "claw", "palm", "robotiq", "pinch"),
-    "wheel": ("wheel", "caster", "castor"),
-    "leg": ("leg", "hip", "thigh", "shank", "knee", "calf", "ankle", "foot", "haa", "hfe", "kfe", "tibia"),
-    "head": ("head", "neck", "gaze"),
-    "torso": ("torso", "waist", "chest", "trunk", "spine", "pelvis"),
-    "arm": ("arm", "shoulder", "elbow", "wrist", "forearm", "manipulator"),
-}
-SIDES = {"l": "left", "left": "left", "r": "right", "right": "right"}
-CORNERS = {"f": "front", "h": "hind", "b": "back", "r": "rear"}
-TOOL_WORDS = ("tool", "tcp", "grasp", "grasping", "end", "effector", "ee", "flange", "tip")
 MIN_LIMB_JOINTS = 2  # fewer, and no name that says what it is: a sensor mount, not a limb
 MIN_ARM_JOINTS = 3  # an unnamed leaf chain with this many joints is taken for an arm
 MAX_FINGER_JOINTS = 3  # unnamed leaf chains after an arm with at most this many: its fingers
+MAX_HAND_JOINTS = 5  # a bare hand's fingers have at most this many joints
+MAX_WRIST_JOINTS = 2  # and the wrist before them at most this many
+MAX_FINGER_LENGTH = 0.2  # [m] joint offsets along a finger after its first joint, at most
 
 
 @dataclass(frozen=True, slots=True)
@@ -56,9 +63,10 @@ class Limb:
 @dataclass(frozen=True, slots=True)
 class Limbs:
     limbs: tuple[Limb, ...] = ()
-    hands: tuple[Hand, ...] = ()  # hands on no arm (a robot that is only a gripper)
-    wheels: tuple[str, ...] = ()
-    skipped: tuple[str, ...] = ()  # single unnamed joints left out of every group
+    hands: tuple[Hand, ...] = ()  # hands on no arm (a robot that is only a gripper or a hand)
+    wheels: tuple[str, ...] = ()  # wheel joints and the joints that carry them (suspensions)
+    rotors: tuple[str, ...] = ()  # rotor and propeller joints
+    skipped: tuple[str, ...] = ()  # joints of short unnamed chains (sensor mounts) left out of every group
     notes: tuple[str, ...] = ()
 
 
@@ -78,37 +86,56 @@ class _Segment:
     def active(self) -> list[Joint]:
         return [j for j in self.joints if j.is_active]
 
-    def subtree_active(self) -> int:
-        return len(self.active) + sum(c.subtree_active() for c in self.children)
 
-
-def tokens(name: str) -> list[str]:
-    """`LArmShoulder_pitch2` -> ['l', 'arm', 'shoulder', 'pitch', '2'] (lowercase)."""
-    parts = re.findall(r"[A-Z]+(?=[A-Z][a-z]|\b|_|\d|$)|[A-Z]?[a-z]+|[A-Z]+|\d+", name)
-    return [p.lower() for p in parts]
-
-
-def _words(joints: list[Joint]) -> list[str]:
-    return [t for j in joints for name in (j.name, j.child) for t in tokens(name)]
-
-
-def _kind_votes(joints: list[Joint]) -> Counter:
-    words = _words(joints)
-    return Counter({kind: sum(w in vocab for w in words) for kind, vocab in KIND_WORDS.items()})
-
-
-def _is_kind(joints: list[Joint], kind: str) -> bool:
-    """Every active joint's name or child link has a word of `kind`."""
-    active = [j for j in joints if j.is_active] or joints
-    return bool(active) and all(_kind_votes([j])[kind] for j in active)
+def _base_kind(seg: _Segment) -> str:
+    """'wheel' or 'rotor' when `seg` belongs to the base: its joints wheels, rotors or unnamed
+    (a suspension), with a wheel or rotor in it or in every chain after it; else ''."""
+    kinds = [joint_kinds(j) for j in seg.active]
+    if any(k - set(BASE_KINDS) for k in kinds):
+        return ""
+    below = [_base_kind(c) for c in seg.children]
+    if not all(below):
+        return ""
+    found = [b for k in kinds for b in BASE_KINDS if b in k] + below
+    return found[0] if found else ""
 
 
 def find_limbs(robot: RobotModel) -> Limbs:
-    """The robot's limbs, hands, wheels, and what was guessed."""
+    """The robot's limbs, hands, wheels, rotors, and what was guessed."""
     finder = _Finder(robot)
-    for seg in _segments(robot, robot.root, _moving(robot)):
+    segments = _segments(robot, robot.root, _moving(robot))
+    hand = _whole_hand(robot, segments)
+    if hand:
+        finder.notes.append(f"guessed: the robot is a hand ({hand}): one hand group")
+        finder.loose_hands += segments
+    for seg in [] if hand else segments:
         finder.visit(seg)
     return finder.result()
+
+
+def _whole_hand(robot: RobotModel, segments: list[_Segment]) -> str:
+    """Why the whole robot is one hand ('' when it is not): nothing but short chains (fingers,
+    a wrist of at most two joints before them) named for no limb, and its name or its palm's
+    says hand, or (a guess) three or more short fingers hang from one link."""
+    flat = [s for seg in segments for s in _flatten(seg)]
+    if not flat or any(votes_for(s.joints) or _base_kind(s) for s in flat):
+        return ""
+    most = [MAX_WRIST_JOINTS if s.children else MAX_HAND_JOINTS for s in flat]
+    if any(len(s.active) > limit for s, limit in zip(flat, most, strict=True)):
+        return ""
+    named = [n for n in (robot.name, robot.root, *(s.start for s in flat)) if "hand" in name_kinds(n)]
+    if named:
+        return f"named {named[0]}"
+    fingers = [s for s in flat if not s.children and _finger_length(s) <= MAX_FINGER_LENGTH]
+    starts = Counter(s.start for s in fingers)
+    if len(fingers) == sum(not s.children for s in flat) and max(starts.values(), default=0) >= 3:
+        return f"{len(fingers)} short fingers"
+    return ""
+
+
+def _finger_length(seg: _Segment) -> float:
+    """[m] the joint offsets along `seg` after its first joint (the finger's own length)."""
+    return sum(math.dist((0.0, 0.0, 0.0), j.origin.xyz) for j in seg.joints[1:])
 
 
 def _moving(robot: RobotModel) -> dict[str, bool]:
@@ -145,24 +172,25 @@ class _RawLimb:
 
 
 class _Finder:
-    """Walks the segment tree, sorting segments into limbs, hands and wheels."""
+    """Walks the segment tree, sorting segments into limbs, hands, wheels and rotors."""
 
     def __init__(self, robot: RobotModel):
         self.robot = robot
         self.raw: list[_RawLimb] = []
         self.loose_hands: list[_Segment] = []
-        self.wheels: list[str] = []
+        self.base_joints: dict[str, list[str]] = {kind: [] for kind in BASE_KINDS}
         self.skipped: list[str] = []
         self.skipped_raw: list[_RawLimb] = []
         self.notes: list[str] = []
 
     def visit(self, seg: _Segment) -> None:
-        if _is_kind(seg.joints, "wheel"):
-            self.wheels += [j.name for s in _flatten(seg) for j in s.active]
-        elif _is_kind(seg.joints, "hand"):
+        base = _base_kind(seg)
+        if base:
+            self.base_joints[base] += [j.name for s in _flatten(seg) for j in s.active]
+        elif is_kind(seg.joints, "hand"):
             self.loose_hands.append(seg)
         else:
-            seg = self._split_torso(seg)
+            seg = self._split_wheel(self._split_torso(seg))
             own, tail = _split_hand(seg.joints)
             if tail or self._ends_in_fingers(seg, own):
                 self.raw.append(_RawLimb("arm", seg.start, own, True))
@@ -176,7 +204,7 @@ class _Finder:
         rest of the segment starts after them."""
         active = [i for i, j in enumerate(seg.joints) if j.is_active]
         lead = 0
-        while lead < len(active) and _is_kind([seg.joints[active[lead]]], "torso"):
+        while lead < len(active) and is_kind([seg.joints[active[lead]]], "torso"):
             lead += 1
         if lead == 0 or lead == len(active):
             return seg
@@ -184,15 +212,24 @@ class _Finder:
         self.raw.append(_RawLimb("torso", seg.start, seg.joints[:cut], False))
         return _Segment(seg.joints[cut - 1].child, seg.joints[cut:], seg.children)
 
+    def _split_wheel(self, seg: _Segment) -> _Segment:
+        """A limb that ends in wheels (a leg on a wheel): the wheel joints go to the base."""
+        own, tail = _split_tail(seg.joints, "wheel")
+        wheels = [j.name for j in tail if j.is_active]
+        if not own or not wheels:
+            return seg
+        self.base_joints["wheel"] += wheels
+        return _Segment(seg.start, own, seg.children)
+
     def _ends_in_fingers(self, seg: _Segment, own: list[Joint]) -> bool:
         """Every chain after `seg` is a finger: named so, or (a guess) short unnamed leaves."""
         kids = seg.children
         if not kids:
             return False
-        if all(_is_kind(c.joints, "hand") for c in kids):
+        if all(is_kind(c.joints, "hand") for c in kids):
             return True
         short = all(not c.children and len(c.active) <= MAX_FINGER_JOINTS for c in kids)
-        if short and sum(j.is_active for j in own) > MAX_FINGER_JOINTS and _votes_for(own) != "leg":
+        if short and sum(j.is_active for j in own) > MAX_FINGER_JOINTS and votes_for(own) != "leg":
             names = ", ".join(j.name for c in kids for j in c.active)
             self.notes.append(f"guessed: {names} (short chains after {seg.end}) are the fingers of a hand")
             return True
@@ -200,12 +237,11 @@ class _Finder:
 
     def _add_limb(self, seg: _Segment, own: list[Joint]) -> None:
         active = [j for j in own if j.is_active]
-        limb_kids = [c for c in seg.children if not _is_kind(c.joints, "wheel")]
-        moved = self.robot.subtree_links(active[0].child)
-        if not limb_kids and not any(self.robot.link(x).has_geometry for x in moved):
-            self._skip(seg, own)  # a transmission or sensor frame: moves nothing visible
+        limb_kids = [c for c in seg.children if not _base_kind(c)]
+        if not limb_kids and not self._is_body_part(active):
+            self._skip(seg, own)  # a transmission or sensor mount
             return
-        kind = _votes_for(own) or ("torso" if limb_kids else "")
+        kind = votes_for(own) or ("torso" if limb_kids else "")
         names = ", ".join(j.name for j in active)
         if not kind and len(active) >= MIN_ARM_JOINTS:
             kind = "arm"
@@ -218,6 +254,15 @@ class _Finder:
             return
         self.raw.append(_RawLimb(kind, seg.start, own, False))
 
+    def _is_body_part(self, active: list[Joint]) -> bool:
+        """A leaf chain is a limb when it moves collision geometry, has several joints, or its
+        names say which limb it is and not a sensor or transmission (a camera's pan-tilt is no limb)."""
+        if any(self.robot.link(x).has_geometry for x in self.robot.subtree_links(active[0].child)):
+            return True
+        if len(active) >= MIN_ARM_JOINTS:
+            return True
+        return bool(votes_for(active)) and not set(name_words(active)) & set(MOUNT_WORDS)
+
     def _skip(self, seg: _Segment, own: list[Joint]) -> None:
         self.skipped += [j.name for j in own if j.is_active]
         self.skipped_raw.append(_RawLimb("chain", seg.start, own, False))
@@ -228,12 +273,12 @@ class _Finder:
             self.raw, self.skipped = self.skipped_raw, []
         names = _limb_names(self.raw)
         limbs = tuple(self._limb(raw, name) for raw, name in zip(self.raw, names, strict=True))
-        hands = tuple(self._loose_hand(seg, len(self.loose_hands)) for seg in self.loose_hands)
-        return Limbs(limbs, hands, tuple(self.wheels), tuple(self.skipped), tuple(self.notes))
+        wheels, rotors = (tuple(self.base_joints[kind]) for kind in BASE_KINDS)
+        return Limbs(limbs, self._loose_hands(), wheels, rotors, tuple(self.skipped), tuple(self.notes))
 
     def _limb(self, raw: _RawLimb, name: str) -> Limb:
         last = raw.joints[-1].child
-        tip = last if raw.kind == "torso" else tool_frame(self.robot, last)
+        tip = limb_tip(self.robot, raw.kind, last)
         active = tuple(j.name for j in raw.joints if j.is_active)
         hand = self._hand(name, last, tip) if raw.has_hand else None
         return Limb(name, raw.kind, raw.base, tip, active, hand)
@@ -249,17 +294,28 @@ class _Finder:
         name = word if arm == "arm" else name
         return Hand(name, tuple(j.name for j in joints), links, tuple(j.name for j in joints if j.is_active))
 
-    def _loose_hand(self, seg: _Segment, count: int) -> Hand:
-        joints = [j for s in _flatten(seg) for j in s.joints if j.is_actuated]
-        links = (seg.joints[0].child, *(j.child for s in _flatten(seg) for j in s.joints))
-        word = _hand_word(joints)
-        name = word if count == 1 else f"{word}_{self.loose_hands.index(seg) + 1}"
-        active = tuple(j.name for j in joints if j.is_active)
-        return Hand(name, tuple(j.name for j in joints), tuple(dict.fromkeys(links)), active)
+    def _loose_hands(self) -> tuple[Hand, ...]:
+        """A hand per link that hand chains hang from (the fingers of one palm are one hand)."""
+        palms: dict[str, list[_Segment]] = {}
+        for seg in self.loose_hands:
+            palms.setdefault(seg.start, []).append(seg)
+        numbers = [0] if len(palms) == 1 else list(range(1, len(palms) + 1))
+        return tuple(_loose_hand(segs, n) for segs, n in zip(palms.values(), numbers, strict=True))
+
+
+def _loose_hand(segs: list[_Segment], number: int) -> Hand:
+    """One hand of the chains `segs`, numbered in its name unless `number` is 0."""
+    flat = [s for seg in segs for s in _flatten(seg)]
+    joints = [j for s in flat for j in s.joints if j.is_actuated]
+    links = (*(seg.joints[0].child for seg in segs), *(j.child for s in flat for j in s.joints))
+    word = _hand_word(joints)
+    name = f"{word}_{number}" if number else word
+    active = tuple(j.name for j in joints if j.is_active)
+    return Hand(name, tuple(j.name for j in joints), tuple(dict.fromkeys(links)), active)
 
 
 def _hand_word(joints: list[Joint]) -> str:
-    words = _words(joints)
+    words = name_words(joints)
     return "gripper" if words.count("gripper") + words.count("robotiq") > words.count("hand") else "hand"
 
 
@@ -287,69 +343,23 @@ def _limb_name(raw: _RawLimb, unique: bool, number: int) -> str:
     prefix = common_prefix([j.name for j in raw.joints if j.is_active])
     if any(t in KIND_WORDS[raw.kind] for t in prefix):
         return "_".join(prefix)
-    side = _side(prefix)
+    side = side_of(prefix)
     if side:
         return f"{side}_{raw.kind}"
     return "_".join(prefix) if prefix else f"{raw.kind}_{number}"
 
 
-def common_prefix(names: list[str]) -> list[str]:
-    """The leading tokens all `names` share, without a trailing `joint`."""
-    lists = [tokens(n) for n in names]
-    out: list[str] = []
-    for column in zip(*lists, strict=False):
-        if len(set(column)) != 1:
-            break
-        out.append(column[0])
-    while out and out[-1] in ("joint", "jnt", "j"):
-        out.pop()
-    return out
-
-
-def _side(prefix: list[str]) -> str:
-    """`left` / `right` / `front_left` ... from prefix tokens (`l`, `right`, `FL`, `LH`)."""
-    for t in prefix:
-        if t in SIDES:
-            return SIDES[t]
-        if len(t) == 2 and {t[0], t[1]} & set("lr") and {t[0], t[1]} & set(CORNERS):
-            a, b = t[0], t[1]
-            names = [SIDES.get(c) or CORNERS[c] for c in (a, b)]
-            if a in "lr" and b in CORNERS and b != "r":
-                return f"{CORNERS[b]}_{SIDES[a]}"
-            return "_".join(names)
-    return ""
-
-
-def _votes_for(joints: list[Joint]) -> str:
-    """The limb kind the names vote for (arm, leg, head, torso), or '' when they say nothing."""
-    votes = _kind_votes(joints)
-    best = max(("arm", "leg", "head", "torso"), key=lambda k: votes[k])
-    return best if votes[best] else ""
-
-
 def _split_hand(joints: list[Joint]) -> tuple[list[Joint], list[Joint]]:
-    """(limb joints, trailing hand-named joints) of a segment that does not start as a hand."""
-    last = max((i for i, j in enumerate(joints) if j.is_active and not _kind_votes([j])["hand"]), default=-1)
+    """(limb joints, trailing hand joints) of a segment that does not start as a hand; a joint
+    whose own name says wrist or arm stays in the limb whatever its child link is called."""
+    return _split_tail(joints, "hand")
+
+
+def _split_tail(joints: list[Joint], kind: str) -> tuple[list[Joint], list[Joint]]:
+    """`joints` cut after the last active joint that is not of `kind`."""
+    last = max((i for i, j in enumerate(joints) if j.is_active and kind not in joint_kinds(j)), default=-1)
     return joints[: last + 1], joints[last + 1 :]
 
 
 def _flatten(seg: _Segment) -> list[_Segment]:
     return [seg, *(s for c in seg.children for s in _flatten(c))]
-
-
-def tool_frame(robot: RobotModel, link: str) -> str:
-    """`link` extended through fixed joints to geometry-less frames: the only such child, or
-    the one named like a tool frame (`tool0`, `tcp`, `grasping_frame`, `end_effector`)."""
-    while True:
-        frames = [
-            j.child
-            for j in robot.child_joints_of[link]
-            if j.type == "fixed" and not robot.link(j.child).has_geometry
-        ]
-        named = [f for f in frames if set(tokens(f)) & set(TOOL_WORDS)]
-        if len(frames) == 1:
-            link = frames[0]
-        elif named:
-            link = named[0]
-        else:
-            return link

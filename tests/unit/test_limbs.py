@@ -1,5 +1,6 @@
 """Inference on kinematic trees: synthetic fixtures (dual-arm table, humanoid, legged base with an
-arm, wheeled manipulator), the real robots of ../shared/realworld*, and collision-free poses."""
+arm, wheeled manipulator, and the cases inference once got wrong), inline trees, the real robots
+of ../shared/realworld*, and collision-free poses."""
 
 from __future__ import annotations
 
@@ -13,8 +14,8 @@ from marm_setup.collision.scene import CollisionScene
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.infer import infer
-from marm_setup.setup.limbs import tokens
-from marm_setup.setup.model import CollisionSettings, RobotSource
+from marm_setup.setup.limb_words import tokens
+from marm_setup.setup.model import Chain, CollisionSettings, Group, RobotSource
 from marm_setup.setup.poses import infer_poses
 from marm_setup.setup.srdf import read_srdf
 from tests import synthetic_robots
@@ -73,6 +74,167 @@ def test_synthetic_robots_groups_and_base(name):
     kinds = {c.group: c.type for c in model.controllers}
     assert all(kinds[h] == "GripperCommand" for h in hands)
     assert not {"arms", "legs", "whole_body"} & set(kinds)
+
+
+# Robots inference once got wrong: (groups, virtual joint (type, parent, child)).
+ONCE_WRONG = {
+    # FR/FL/RR/RL: front/rear first, then the side; legs to their foot links on fixed joints
+    "unitree_quadruped": (
+        ["front_right_leg", "front_left_leg", "rear_right_leg", "rear_left_leg", "legs", "whole_body"],
+        ("floating", "odom", "base"),
+    ),
+    # limbs with visual shapes or none are limbs all the same; a pan-tilt camera mount is not
+    "bare_humanoid": (
+        ["right_leg", "left_leg", "torso", "head", "right_arm", "left_arm", "arms", "legs", "whole_body"],
+        ("floating", "odom", "base_link"),
+    ),
+    # `wrist_roll` moves a link called `gripper`: still the arm's
+    "wrist_gripper_arm": (["arm", "gripper"], ("fixed", "world", "base")),
+    # suspension + wheel chains and two-joint casters belong to the base
+    "suspended_base": (["torso", "arm", "gripper", "whole_body"], ("planar", "odom", "base_footprint")),
+    # four unnamed fingers on a palm: one hand, no arms
+    "finger_hand": (["hand"], ("fixed", "world", "palm")),
+    # rotors: a flying base, and no group
+    "rotor_arm": (["arm"], ("floating", "odom", "body")),
+}
+
+
+@pytest.mark.parametrize("name", list(ONCE_WRONG))
+def test_robots_inference_once_got_wrong(name):
+    groups, (kind, parent, child) = ONCE_WRONG[name]
+    model = _infer(load_robot(SYNTHETIC / f"{name}.urdf")).model
+    assert [g.name for g in model.groups] == groups
+    (vj,) = model.virtual_joints
+    assert (vj.type, vj.parent_frame, vj.child_link) == (kind, parent, child)
+
+
+def test_legs_end_at_their_foot_or_sole_frame_geometry_or_not():
+    by_name = groups_by_name(_infer(load_robot(SYNTHETIC / "unitree_quadruped.urdf")).model.groups)
+    assert [by_name[f"{c}_leg"].chain.tip for c in ("front_right", "rear_left")] == ["FR_foot", "RL_foot"]
+    robot = load_robot(SYNTHETIC / "bare_humanoid.urdf")
+    by_name = groups_by_name(_infer(robot).model.groups)
+    assert (by_name["right_leg"].chain.tip, by_name["left_leg"].chain.tip) == ("r_sole", "l_sole")
+
+
+def test_limbs_without_collision_geometry_are_limbs_and_a_camera_mount_is_not():
+    robot = load_robot(SYNTHETIC / "bare_humanoid.urdf")
+    result = _infer(robot)
+    by_name = groups_by_name(result.model.groups)
+    assert by_name["right_arm"].chain.base == "chest" and by_name["head"].chain.tip == "NECK_LINK2"
+    assert not any(robot.link(x).has_geometry for x in robot.subtree_links("RLEG_LINK1"))
+    assert "left out of every group: single joints pan_joint, tilt_joint (not a limb)" in result.notes
+
+
+def test_a_wrist_joint_stays_in_the_arm_and_a_one_joint_gripper_gets_gripper_command():
+    model = _infer(load_robot(SYNTHETIC / "wrist_gripper_arm.urdf")).model
+    arm, gripper = model.groups
+    assert arm.chain == Chain("base", "gripper_frame") and gripper.joints == ("gripper",)
+    controllers = {c.group: (c.type, c.joints) for c in model.controllers}
+    assert controllers["arm"][1][-1] == "wrist_roll"
+    assert controllers["gripper"] == ("GripperCommand", ("gripper",))
+
+
+def test_suspensions_wheels_and_casters_are_the_base():
+    result = _infer(load_robot(SYNTHETIC / "suspended_base.urdf"))
+    grouped = {j for c in result.model.controllers for j in c.joints}
+    assert not {j for j in grouped if "wheel" in j or "suspension" in j or "caster" in j}
+    base = "suspension_right_joint, wheel_right_joint, suspension_left_joint, wheel_left_joint"
+    assert f"left out of every group: wheel joints {base}, caster_1_joint, caster_2_joint" in result.notes
+
+
+def test_a_bare_hand_is_one_hand_group_with_every_finger():
+    model = _infer(load_robot(SYNTHETIC / "finger_hand.urdf")).model
+    (hand,) = model.groups
+    assert hand.joints == tuple(f"joint_{i}" for i in range(16))
+    assert model.end_effectors == ()
+    (controller,) = model.controllers
+    assert controller.type == "FollowJointTrajectory"
+
+
+def test_rotors_make_a_flying_base_and_no_group():
+    result = _infer(load_robot(SYNTHETIC / "rotor_arm.urdf"))
+    assert [c.joints for c in result.model.controllers] == [("arm_joint1", "arm_joint2")]
+    assert "guessed: a flying base (4 rotor joints): floating virtual joint odom -> body" in result.notes
+
+
+# -- inline trees ----------------------------------------------------------------------------------
+
+BOX = '<collision><geometry><box size="0.02 0.02 0.02"/></geometry></collision>'
+
+
+def _tree(tmp_path, rows, *, name="test_robot", bare=(), step=0.1):
+    """A robot from (joint, type, parent, child) rows: each link a small box unless in `bare`,
+    each joint `step` [m] after its parent link."""
+    links = dict.fromkeys(x for _, _, parent, child in rows for x in (parent, child))
+    body = [f'<link name="{x}">{"" if x in bare else BOX}</link>' for x in links]
+    for joint, kind, parent, child in rows:
+        limit = {"fixed": "", "continuous": '<limit velocity="1" effort="1"/>'}.get(
+            kind, '<limit lower="-1" upper="1" velocity="1" effort="1"/>'
+        )
+        body.append(
+            f'<joint name="{joint}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+            f'<origin xyz="0 0 {step}"/><axis xyz="0 1 0"/>{limit}</joint>'
+        )
+    build_file_tree(tmp_path, {"r.urdf": urdf("\n".join(body), name)})
+    return load_robot(tmp_path / "r.urdf")
+
+
+def _serial(names, first, link="l"):
+    """Revolute rows for `names` in a chain from link `first`; links `<link>1`, `<link>2`, ..."""
+    parents = [first, *(f"{link}{i}" for i in range(1, len(names)))]
+    return [(n, "revolute", p, f"{link}{i}") for i, (n, p) in enumerate(zip(names, parents, strict=True), 1)]
+
+
+ARM = ["shoulder_pitch", "shoulder_roll", "elbow", "wrist_pitch"]
+
+
+def test_a_wrist_moving_a_link_called_hand_is_the_arms(tmp_path):
+    """`l_wrist_yaw` moves `l_hand` (no fingers after it): the arm's last joint, no hand group."""
+    rows = [*_serial(ARM, "base"), ("l_wrist_yaw", "revolute", "l4", "l_hand")]
+    rows += [("grip", "fixed", "l_hand", "l_gripper"), ("dh", "fixed", "l_hand", "l_hand_dh_frame")]
+    model = _infer(_tree(tmp_path, rows, bare={"l_gripper", "l_hand_dh_frame"})).model
+    assert model.groups == (Group("arm", chain=Chain("base", "l_gripper")),)
+    rows = [*_serial([*ARM, "WristYaw", "LeftGripperYaw"], "base"), ("nub", "fixed", "l6", "leftNub")]
+    model = _infer(_tree(tmp_path, rows)).model
+    assert [(c.group, c.type, c.joints[-1]) for c in model.controllers] == [
+        ("arm", "FollowJointTrajectory", "LeftGripperYaw")
+    ]
+
+
+def test_a_leg_on_a_wheel_keeps_its_leg_and_gives_the_wheel_to_the_base(tmp_path):
+    rows = []
+    for i in (1, 2):
+        rows += _serial([f"hip_yaw_{i}", f"knee_pitch_{i}", f"ankle_pitch_{i}"], "pelvis", f"leg{i}_")
+        rows.append((f"j_wheel_{i}", "continuous", f"leg{i}_3", f"wheel_{i}"))
+    result = _infer(_tree(tmp_path, rows))
+    assert [g.name for g in result.model.groups] == ["leg_1", "leg_2", "legs", "whole_body"]
+    assert [c.joints[-1] for c in result.model.controllers] == ["ankle_pitch_1", "ankle_pitch_2"]
+    assert result.model.virtual_joints[0].type == "floating"
+    assert "left out of every group: wheel joints j_wheel_1, j_wheel_2" in result.notes
+
+
+def test_short_unnamed_fingers_make_a_hand_and_long_chains_do_not(tmp_path):
+    rows = [r for f in range(3) for r in _serial([f"j{f}{i}" for i in range(3)], "base_link", f"f{f}_")]
+    model = _infer(_tree(tmp_path, rows, step=0.03)).model
+    assert [(g.name, len(g.joints)) for g in model.groups] == [("hand", 9)]
+    model = _infer(_tree(tmp_path, rows, step=0.15)).model
+    assert "hand" not in [g.name for g in model.groups]
+
+
+def test_a_base_named_flying_floats(tmp_path):
+    rows = [("mount", "fixed", "base", "flying_arm_base"), *_serial(["arm_j1", "arm_j2"], "flying_arm_base")]
+    (vj,) = _infer(_tree(tmp_path, rows)).model.virtual_joints
+    assert (vj.type, vj.parent_frame) == ("floating", "odom")
+
+
+def test_a_named_limb_without_geometry_counts_and_a_transmission_does_not(tmp_path):
+    """alexander's `SPINE_Z` moves a torso with no collision geometry: a torso; PR2's
+    `torso_lift_motor_screw_joint` moves nothing visible either: no limb."""
+    rows = [("SPINE_Z", "revolute", "PELVIS", "TORSO_LINK"), *_serial(ARM, "PELVIS")]
+    rows.append(("torso_lift_motor_screw_joint", "continuous", "PELVIS", "screw_link"))
+    result = _infer(_tree(tmp_path, rows, bare={"TORSO_LINK", "screw_link"}))
+    assert [g.name for g in result.model.groups] == ["torso", "arm", "whole_body"]
+    assert any("torso_lift_motor_screw_joint (not a limb)" in n for n in result.notes)
 
 
 def test_wheels_and_single_sensor_joints_are_left_out_and_said():
