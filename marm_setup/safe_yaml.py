@@ -82,12 +82,33 @@ def _children(node: yaml.Node) -> list[yaml.Node]:
     return []
 
 
+class UniqueKeyLoader(BoundedSafeLoader):
+    """A BoundedSafeLoader that refuses a mapping naming a key twice (PyYAML keeps the last one
+    silently): for our own files, where a repeated key is a mistake."""
+
+    def construct_mapping(self, node, deep=False):
+        seen: set = set()
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=True)
+            if not isinstance(key, str | int | float | bool):
+                continue  # an unhashable key is PyYAML's to refuse
+            if key in seen:
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"key '{key}' given twice", key_node.start_mark
+                )
+            seen.add(key)
+        return super().construct_mapping(node, deep)
+
+
 def load_yaml(text: str, loader_class: type[BoundedSafeLoader] = BoundedSafeLoader) -> Any:
-    """`yaml.safe_load(text)` within the bounds above; raises yaml.YAMLError."""
+    """`yaml.safe_load(text)` within the bounds above; raises yaml.YAMLError (also for a value no
+    Python number holds: an integer of more than 4300 digits)."""
     if len(text) > MAX_BYTES:
         raise YamlLimitError(f"larger than {MAX_BYTES // (1024 * 1024)} MiB")
     loader = loader_class(text)
     try:
         return loader.get_single_data()
+    except (ValueError, OverflowError) as exc:  # a constructor's int()/float() on an absurd scalar
+        raise YamlLimitError(f"a value no number can hold ({' '.join(str(exc).split())[:80]})") from None
     finally:
         loader.dispose()

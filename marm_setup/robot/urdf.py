@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from pathlib import Path
 
 from lxml import etree
@@ -29,6 +30,22 @@ from marm_setup.robot.ros_packages import PackageMap, resolve_uri
 # No real robot has a length, limit, scale or effort beyond this; near 1e308 sums and products
 # of poses overflow to inf and NaN, and every collision check then says "no contact".
 MAX_MAGNITUDE = 1e9
+AXIS_EPS = 1e-9  # an axis shorter than this (1e-320 1e-320 0) has no direction
+MAX_LIMIT = 1e16  # joint position limits: sdformat's "unbounded" value, which SDF -> URDF writes
+# A number as urdfdom's strToDouble (a C++ stream) and srdfdom's lexical_cast read it: ASCII
+# digits, a point, an exponent; not Python's extras (`1_0`, other scripts' digits, ' 1 ').
+NUMBER = re.compile(r"[+-]?([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?")
+NON_FINITE = re.compile(r"[+-]?(nan|inf|infinity)", re.IGNORECASE)
+
+
+def strict_float(text: str) -> float:
+    """`text` as a C++ reader takes a number (nan / inf spelled out pass, for the caller to
+    refuse as not finite); ValueError otherwise."""
+    if NUMBER.fullmatch(text) or NON_FINITE.fullmatch(text):
+        return float(text)
+    raise ValueError(f"not a number: {text!r}")
+
+
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 
@@ -66,23 +83,28 @@ def parse_urdf(
 
 
 def _floats(
-    text: str | None, n: int, element: str, ctx: _Ctx, default: tuple[float, ...] | None = None
+    text: str | None,
+    n: int,
+    element: str,
+    ctx: _Ctx,
+    default: tuple[float, ...] | None = None,
+    magnitude: float = MAX_MAGNITUDE,
 ) -> tuple[float, ...]:
     if text is None:
         if default is None:
             raise ctx.error(element, "missing value")
         return default
     try:
-        values = tuple(float(v) for v in text.split())
+        values = tuple(strict_float(v) for v in text.split())
     except ValueError:
         raise ctx.error(element, f"expected {n} numbers, got '{text}'") from None
     if len(values) != n:
         raise ctx.error(element, f"expected {n} numbers, got '{text}'")
     if not all(math.isfinite(v) for v in values):
         raise ctx.error(element, f"expected finite numbers, got '{text}'")
-    if any(abs(v) > MAX_MAGNITUDE for v in values):
+    if any(abs(v) > magnitude for v in values):
         raise ctx.error(
-            element, f"'{text}' is out of range (|value| <= {MAX_MAGNITUDE:g}: metres, radians, N, m/s)"
+            element, f"'{text}' is out of range (|value| <= {magnitude:g}: metres, radians, N, m/s)"
         )
     return values
 
@@ -152,7 +174,10 @@ def _geometry(el: etree._Element, element: str, ctx: _Ctx) -> Geometry:
 def _attr(el: etree._Element | None, key: str, element: str, ctx: _Ctx) -> float | None:
     if el is None or el.get(key) is None:
         return None
-    return _floats(el.get(key), 1, f"{element}@{key}", ctx)[0]
+    magnitude = (
+        MAX_LIMIT if key in ("lower", "upper", "soft_lower_limit", "soft_upper_limit") else MAX_MAGNITUDE
+    )
+    return _floats(el.get(key), 1, f"{element}@{key}", ctx, magnitude=magnitude)[0]
 
 
 def _parse_joint(el: etree._Element, ctx: _Ctx) -> Joint:
@@ -183,7 +208,7 @@ def _parse_joint(el: etree._Element, ctx: _Ctx) -> Joint:
         soft_lower=_attr(safety, "soft_lower_limit", f"{element}/safety_controller", ctx),
         soft_upper=_attr(safety, "soft_upper_limit", f"{element}/safety_controller", ctx),
     )
-    if joint.is_actuated and not any(joint.axis):
+    if joint.is_actuated and max(abs(v) for v in joint.axis) < AXIS_EPS:
         raise ctx.error(f"{element}/axis", "axis must not be zero")
     return _check_limits(joint, limit, ctx)
 

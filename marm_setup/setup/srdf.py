@@ -13,6 +13,7 @@ from os import PathLike
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason, link_pair
 from marm_setup.errors import InputError
+from marm_setup.robot.urdf import strict_float
 from marm_setup.setup.model import (
     Chain,
     CollisionPair,
@@ -70,7 +71,7 @@ class _Reader:
 
     def number(self, text: str, where: str) -> float:
         try:
-            value = float(text)
+            value = strict_float(text)
         except ValueError:
             raise InputError(f"not a number: '{text}'", path=self.path, element=where) from None
         if not math.isfinite(value):

@@ -22,7 +22,7 @@ import yaml
 from marm_setup.collision.pairs import DisabledPair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
-from marm_setup.safe_yaml import load_yaml
+from marm_setup.safe_yaml import UniqueKeyLoader, load_yaml
 from marm_setup.setup.domain import DRIVERS, MOVEIT_CONTROLLER_TYPES, OMPL_PLANNER_NAMES, VIRTUAL_JOINT_TYPES
 from marm_setup.setup.model import (
     TARGETS,
@@ -107,7 +107,7 @@ def read_yaml_mapping(path: str | PathLike) -> dict:
     except UnicodeDecodeError as exc:
         raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
     try:
-        data = load_yaml(text)
+        data = load_yaml(text, UniqueKeyLoader)
     except yaml.YAMLError as exc:
         where = getattr(exc, "problem_mark", None)
         at = f" (line {where.line + 1})" if where is not None else ""
@@ -194,9 +194,15 @@ def _load_tuple(hint, data, ctx: _Ctx, where: str):
 
 def _load_scalar(hint, data, ctx: _Ctx, where: str):
     if hint is float and isinstance(data, int | float) and not isinstance(data, bool):
-        if not math.isfinite(data):
+        try:
+            value = float(data)
+        except OverflowError:  # an integer beyond any float
+            raise ctx.fail(
+                f"expected a finite number, got an integer of {len(str(data))} digits", where
+            ) from None
+        if not math.isfinite(value):
             raise ctx.fail(f"expected a finite number, got {data}", where)
-        return float(data)
+        return value
     if hint is int and isinstance(data, int) and not isinstance(data, bool):
         return data
     if hint in (str, bool) and isinstance(data, hint):

@@ -158,8 +158,12 @@ def test_missing_top_level_key():
     [
         ("groups: [\n", r"not valid YAML \(line 2\)"),
         ("- a\n- b\n", "expected a mapping at the top, got a list"),
+        ("package_name: a\npackage_name: b\n", r"not valid YAML \(line 2\): key 'package_name' given twice"),
+        ("default_acceleration: " + "1" * 5000 + "\n", "not valid YAML: a value no number can hold"),
+        ("package_name: p\nrobot_name: r\nrobot: {urdf: r}\ndefault_acceleration: " + "1" * 400 + "\n",
+         "default_acceleration: expected a finite number, got an integer of 400 digits"),
     ],
-)
+)  # fmt: skip
 def test_unreadable_files(tmp_path, text, message):
     path = tmp_path / "s.yaml"
     path.write_text(text)

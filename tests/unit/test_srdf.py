@@ -117,6 +117,16 @@ def test_every_srdfdom_element_is_kept():
             "group_state[s].joint[j]",
             "not a number",
         ),
+        (  # srdfdom's lexical_cast refuses it; Python's float reads 0_1 as 1
+            "<robot><group_state name='s' group='g'><joint name='j' value='0_1'/></group_state></robot>",
+            "group_state[s].joint[j]",
+            "not a number",
+        ),
+        (
+            "<robot><group_state name='s' group='g'><joint name='j' value='\u0661'/></group_state></robot>",
+            "group_state[s].joint[j]",
+            "not a number",
+        ),
     ],
 )
 def test_bad_srdf_is_an_input_error(text, element, message):

@@ -58,6 +58,26 @@ CASES = {
         "joint[j]/origin@xyz",
         "expected 3 numbers, got '0 zero 0.2'",
     ),
+    "a number Python reads but urdfdom does not": (
+        TWO_BOXES.replace('upper="1"', 'upper="1_0"'),
+        "joint[j]/limit@upper",
+        "expected 1 numbers, got '1_0'",
+    ),
+    "digits of another script": (
+        TWO_BOXES.replace('upper="1"', 'upper="\u0661"'),
+        "joint[j]/limit@upper",
+        "expected 1 numbers, got '\u0661'",
+    ),
+    "a limit beyond sdformat's unbounded 1e16": (
+        TWO_BOXES.replace('upper="1"', 'upper="1e17"'),
+        "joint[j]/limit@upper",
+        "'1e17' is out of range (|value| <= 1e+16: metres, radians, N, m/s)",
+    ),
+    "a subnormal axis": (
+        TWO_BOXES.replace('<axis xyz="0 0 1"/>', '<axis xyz="1e-320 1e-320 0"/>'),
+        "joint[j]/axis",
+        "axis must not be zero",
+    ),
     "origin with two numbers": (
         TWO_BOXES.replace('<origin xyz="0 0 0.2"/>', '<origin xyz="0 0.2"/>'),
         "joint[j]/origin@xyz",
@@ -155,3 +175,10 @@ def test_malformed_xacro_names_the_line(tmp_path):
         load_robot(path)
     assert err.value.path == str(path) and err.value.element == "line 3"
     assert err.value.message.startswith("malformed XML: mismatched tag")
+
+
+def test_gazebo_style_unbounded_limits_load(tmp_path):
+    """SDF -> URDF writes +-1e16 for a joint without limits (sdformat's default): it loads."""
+    path = tmp_path / "r.urdf"
+    path.write_text(TWO_BOXES.replace('lower="-1" upper="1"', 'lower="-1e+16" upper="1e16"'))
+    assert load_robot(path).joint("j").bounds == (-1e16, 1e16)
