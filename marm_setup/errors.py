@@ -64,3 +64,8 @@ class PlanningFailed(MarmError):
     """The planner could not produce a valid trajectory."""
 
     exit_code = 1
+
+
+def permission_error(exc: PermissionError) -> InputError:
+    """A file or folder we may not read or write, as the one-line input error naming it."""
+    return InputError(f"permission denied ({exc.strerror or 'not allowed'})", path=exc.filename or None)

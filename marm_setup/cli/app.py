@@ -15,7 +15,7 @@ import typer
 
 from marm_setup import __version__
 from marm_setup.cli.common import echo_err
-from marm_setup.errors import MarmError
+from marm_setup.errors import MarmError, permission_error
 
 app = typer.Typer(
     name="marm-setup",
@@ -45,6 +45,9 @@ def handle_errors(fn: Callable[P, R]) -> Callable[P, R]:
         except MarmError as exc:
             echo_err(f"error: {exc}")
             raise typer.Exit(exc.exit_code) from None
+        except PermissionError as exc:  # a file or folder of the user's we may not read: input
+            echo_err(f"error: {permission_error(exc)}")
+            raise typer.Exit(2) from None
         except (typer.Exit, typer.Abort, typer.TyperException):  # click-style exits and usage errors
             raise
         except Exception as exc:

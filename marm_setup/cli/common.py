@@ -62,6 +62,9 @@ JobsOption = Annotated[
 ]
 
 
+MAX_COUNT = 1e12  # trials: a trillion states would take days on any robot
+
+
 def parse_count(text: str, *, element: str) -> int:
     """A positive count written `10000`, `10_000`, `100k`, `1M` or `1e5`; else an InputError."""
     from marm_setup.errors import InputError
@@ -73,8 +76,8 @@ def parse_count(text: str, *, element: str) -> int:
         value = float(number) * scale
     except ValueError:
         raise InputError(f"expected a count like 10000, 100k or 1M, got '{text}'", element=element) from None
-    if not 1 <= value <= 1e12:  # also refuses nan and inf
-        raise InputError(f"must be >= 1, got {text}", element=element)
+    if not 1 <= value <= MAX_COUNT:  # also refuses nan and inf
+        raise InputError(f"must be between 1 and {MAX_COUNT:.0e}, got {text}", element=element)
     if value != int(value):
         raise InputError(f"must be a whole number, got {text}", element=element)
     return int(value)

@@ -144,6 +144,13 @@ def check_virtual_joints(r: _Rules) -> list[Finding]:
         out += missing
         if not missing and vj.child_link != r.robot.root:
             out += _virtual_joint_off_root(r, vj, where)
+        if vj.parent_frame in r.robot.link_map and vj.parent_frame != r.robot.root:
+            # robot_state_publisher puts that link below the root; the virtual joint's TF would put
+            # the root below it: a loop tf2 refuses
+            msg = f"parent frame '{vj.parent_frame}' is one of the robot's own links: TF would form a loop"
+            out.append(
+                r.error("srdf.virtual-joint-parent", Where("virtual_joint", vj.name, ("parent_frame",)), msg)
+            )
     return out
 
 

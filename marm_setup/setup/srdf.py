@@ -93,7 +93,7 @@ def read_srdf(path: str | PathLike, skipped: list[InputError] | None = None) -> 
     except OSError as exc:
         raise InputError(f"cannot read: {exc}", path=shown) from None
     except etree.XMLSyntaxError as exc:
-        raise InputError(f"not well-formed XML: {exc}", path=shown) from None
+        raise _syntax_error(exc, shown) from None
     return parse_srdf_root(root, shown, skipped)
 
 
@@ -103,8 +103,17 @@ def parse_srdf_string(text: str, path: str = "<srdf>", skipped: list[InputError]
     try:
         root = etree.fromstring(text.encode(), etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError as exc:
-        raise InputError(f"not well-formed XML: {exc}", path=path) from None
+        raise _syntax_error(exc, path) from None
     return parse_srdf_root(root, path, skipped)
+
+
+def _syntax_error(exc, shown: str) -> InputError:
+    """libxml2's complaint on one line, the element naming its line (as for a URDF)."""
+    from marm_setup.robot.load import xml_syntax_message
+
+    return InputError(
+        f"not well-formed XML: {xml_syntax_message(exc)}", path=shown, element=f"line {exc.lineno}"
+    )
 
 
 def parse_srdf_root(root, path: str, skipped: list[InputError] | None = None) -> Srdf:

@@ -144,13 +144,14 @@ def test_padding(tmp_path):
 @pytest.mark.parametrize(
     ("args", "expected"),
     [
-        (["--trials", "-1"], "error: --trials: must be >= 1, got -1"),
-        (["--trials", "0"], "error: --trials: must be >= 1, got 0"),
+        (["--trials", "-1"], "error: --trials: must be between 1 and 1e+12, got -1"),
+        (["--trials", "0"], "error: --trials: must be between 1 and 1e+12, got 0"),
         (["--min-collision-fraction", "0"], "error: --min-collision-fraction: must be in (0, 1]"),
         (["--jobs", "0"], "error: --jobs: must be >= 1"),
         (["--trials", "1.5x"], "error: --trials: expected a count like 10000, 100k or 1M, got '1.5x'"),
         (["--trials", "2.5"], "error: --trials: must be a whole number, got 2.5"),
-        (["--trials", "inf"], "error: --trials: must be >= 1, got inf"),
+        (["--trials", "inf"], "error: --trials: must be between 1 and 1e+12, got inf"),
+        (["--trials", "1e20"], "error: --trials: must be between 1 and 1e+12, got 1e20"),
         (["--seed", "-1"], "error: --seed: must be >= 0, got -1"),
         (["--padding", "-0.1"], "error: --padding: must be >= 0"),
         (["--padding", "nan"], "error: --padding: must be >= 0 and finite, got nan"),

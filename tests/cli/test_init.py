@@ -158,6 +158,14 @@ BAD_SPECS = {
         {"default_acceleration": 5e-324},
         "default_acceleration: must be at least 1e-06 (no trajectory could be timed), got 4.94066e-324",
     ),
+    "virtual joint below a link of the robot": (
+        {
+            "virtual_joints": [
+                {"name": "v", "type": "fixed", "parent_frame": "link3", "child_link": "base_link"}
+            ]
+        },
+        "virtual_joints[v].parent_frame: parent frame 'link3' is one of the robot's own links: TF would form a loop",
+    ),
     "chain to an unknown link": (
         {"groups": [{"name": "arm", "chain": {"base": "base_link", "tip": "link9"}}]},
         "groups[arm].chain.tip: unknown link 'link9' (did you mean 'link6', 'link5', 'link4'?)",
@@ -601,8 +609,8 @@ def test_one_subgroup_cycle_rule_for_validate_init_and_render(tmp_path):
 @pytest.mark.parametrize(
     "trials, message",
     [
-        ("0", "must be >= 1, got 0"),
-        ("-5", "must be >= 1, got -5"),
+        ("0", "must be between 1 and 1e+12, got 0"),
+        ("-5", "must be between 1 and 1e+12, got -5"),
         ("abc", "expected a count like 10000, 100k or 1M, got 'abc'"),
     ],
 )

@@ -97,6 +97,13 @@ def test_a_nul_byte_in_a_urdf_is_one_line(tmp_path):
     assert "\\n" not in result.stderr and "column" not in result.stderr
 
 
+def test_a_nul_byte_in_an_srdf_is_one_line(tmp_path):
+    srdf = _write(tmp_path / "nul.srdf", b'<robot name="marm">\x00</robot>')
+    result = run("init", MARM_URDF, "--out", tmp_path / "pkg", "--from-srdf", srdf, *TRIALS)
+    assert_one_line_error(result, f"{srdf}: line 1: not well-formed XML: Invalid character")
+    assert "\\n" not in result.stderr and "column" not in result.stderr
+
+
 @pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
 def test_a_non_finite_srdf_pose_on_a_continuous_joint(tmp_path, value):
     body = TWO_BOXES.replace('type="revolute"', 'type="continuous"')
@@ -245,3 +252,22 @@ def test_from_srdf_refuses_a_virtual_joint_type_moveit_does_not_know(tmp_path):
     result = run("init", urdf_path, "--out", tmp_path / "pkg", "--from-srdf", srdf, *TRIALS)
     assert_one_line_error(result, "hinge")
     assert not (tmp_path / "pkg").exists()
+
+
+def _denied(*_args, **_kwargs):
+    raise PermissionError(13, "Permission denied", "/pkg/config")
+
+
+def test_a_folder_we_may_not_read_is_one_line(tmp_path, monkeypatch):
+    """An unreadable folder or file (root reads everything, so the error is injected where the
+    package is read): one line naming it, exit 2; with --format json a JSON document."""
+    import json
+
+    pkg = tmp_path / "pkg"
+    assert_clean_exit(run("init", MARM_URDF, "--out", pkg, "--setup", SPEC, *TRIALS), codes=(0,))
+    monkeypatch.setattr("marm_setup.validate.runner.validate", _denied)
+    assert_one_line_error(run("validate", pkg), "error: /pkg/config: permission denied")
+    found = run("validate", pkg, "--format", "json")
+    assert found.exit_code == 2 and json.loads(found.stdout)["findings"][0]["rule"] == "input.unreadable"
+    monkeypatch.setattr("marm_setup.render.writer.plan_writes", _denied)
+    assert_one_line_error(run("render", pkg), "error: /pkg/config: permission denied")

@@ -109,7 +109,7 @@ def test_every_srdfdom_element_is_kept():
 @pytest.mark.parametrize(
     "text, element, message",
     [
-        ("<robot><group name='g'>", None, "not well-formed XML"),
+        ("<robot><group name='g'>", "line 1", "not well-formed XML"),
         ("<srdf/>", "robot", "root element is <srdf>"),
         ("<robot><group/></robot>", "group", "missing attribute 'name'"),
         (

@@ -145,6 +145,16 @@ SRDF_CASES = [
         ),
     ),
     Case(
+        "virtual-joint-below-own-link",
+        "ros1",
+        text(
+            SRDF1,
+            'parent_frame="world" child_link="panda_link0"',
+            'parent_frame="panda_link3" child_link="panda_link0"',
+        ),
+        "srdf.virtual-joint-parent",
+    ),
+    Case(
         "unknown-subgroup",
         "ros1",
         text(SRDF1, '<group name="hand"/>', '<group name="hands"/>'),

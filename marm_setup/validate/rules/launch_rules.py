@@ -24,7 +24,11 @@ def parse_launch(path: Path, rel: str):
         return etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot(), []
     except etree.XMLSyntaxError as exc:
         line = exc.lineno or 0
-        return None, [error("launch.malformed", rel, f"line {line}", f"not well-formed XML: {exc.msg}")]
+        from marm_setup.robot.load import xml_syntax_message
+
+        return None, [
+            error("launch.malformed", rel, f"line {line}", f"not well-formed XML: {xml_syntax_message(exc)}")
+        ]
     except OSError as exc:
         return None, [error("launch.malformed", rel, "", f"cannot read: {exc}")]
 
