@@ -183,7 +183,9 @@ def find_package(name: str, packages: PackageMap, *, path: str, element: str) ->
 def resolve_uri(uri: str, base_dir: Path, packages: PackageMap, *, path: str, element: str) -> Path:
     """Resolve a mesh URI to an existing file, or raise MeshNotFound / PackageNotFound naming
     where we looked."""
-    if uri.startswith("package://"):
+    if uri.startswith("package:///"):
+        candidate = _unnamed_package_file(uri[len("package:///") :], base_dir, packages)
+    elif uri.startswith("package://"):
         pkg, _, rest = uri[len("package://") :].partition("/")
         candidate = find_package(pkg, packages, path=path, element=element) / rest
     elif uri.startswith("file://"):
@@ -195,6 +197,17 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageMap, *, path: str, el
             f"mesh '{uri}' not found (looked at {candidate})", uri=uri, path=path, element=element
         )
     return candidate.resolve()
+
+
+def _unnamed_package_file(rest: str, base_dir: Path, packages: PackageMap) -> Path:
+    """`package:///a/b.stl` (no package name) as pinocchio reads it (`retrieveResourcePath`: the
+    path below each package directory): the first of the package search roots, then the folders
+    enclosing the URDF, that holds `a/b.stl` (example-robot-data's talos_full_v2 names its
+    meshes so); else the path below the first root, for the not-found message."""
+    roots = [root for root, _ in packages.roots] if isinstance(packages, PackageIndex) else []
+    folders = [*roots, *base_dir.resolve().parents]
+    found = next((f / rest for f in folders if (f / rest).is_file()), None)
+    return found if found is not None else (folders[0] if folders else base_dir) / rest
 
 
 def description_file(ref: str, base: Path, package_paths: Iterable[str | Path] = ()) -> Path:

@@ -151,3 +151,37 @@ def test_folder_fallback_next_to_the_urdf(tmp_path):
     )
     robot = load_robot(root / "share/my_robot_description/urdf/arm.urdf")
     assert robot.packages[0][2] == "folder name"
+
+
+def _unnamed_package_urdf(tmp_path, uri: str):
+    mesh_link = (
+        f'<link name="m"><collision><geometry><mesh filename="{uri}"/></geometry></collision></link>'
+        '<joint name="jm" type="fixed"><parent link="b"/><child link="m"/></joint>'
+    )
+    return build_file_tree(
+        tmp_path,
+        {
+            "share/robots_data/robots/talos/meshes/t.stl": STL_TRIANGLE,
+            "share/robots_data/robots/talos/robots/r.urdf": TWO_BOXES.replace(
+                "</robot>", mesh_link + "</robot>"
+            ),
+        },
+    )
+
+
+def test_a_package_uri_without_a_name_reads_as_pinocchio_reads_it(tmp_path):
+    """`package:///a/b` (example-robot-data's talos_full_v2): the path below a package search
+    root, or below a folder enclosing the URDF."""
+    root = _unnamed_package_urdf(tmp_path, "package:///robots_data/robots/talos/meshes/t.stl")
+    urdf_path = root / "share/robots_data/robots/talos/robots/r.urdf"
+    mesh = (root / "share/robots_data/robots/talos/meshes/t.stl").resolve()
+    assert load_robot(urdf_path).link("m").collisions[0].geometry.path == str(mesh)
+    assert load_robot(urdf_path, package_paths=[root / "share"]).link("m").collisions[0].geometry.path == str(
+        mesh
+    )
+
+
+def test_a_package_uri_without_a_name_that_no_folder_holds(tmp_path):
+    root = _unnamed_package_urdf(tmp_path, "package:///elsewhere/t.stl")
+    with pytest.raises(InputError, match=r"mesh 'package:///elsewhere/t.stl' not found \(looked at "):
+        load_robot(root / "share/robots_data/robots/talos/robots/r.urdf")
