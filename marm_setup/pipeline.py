@@ -84,7 +84,9 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     changes = write_package(model, robot, request.out, force=request.force)
     from marm_setup.render.writer import format_change
 
-    return InitResult(model, tuple(lines), tuple(format_change(c) for c in changes), notes)
+    return InitResult(
+        model, tuple(lines), tuple(format_change(c, forced=request.force) for c in changes), notes
+    )
 
 
 def _with_poses(
@@ -171,7 +173,9 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
     changes = write_package(model, robot, request.out, force=request.force)
     validation = validate(request.out, plan=request.plan)
     ported = _with_validation_notes(ported, pkg, validation, request.package_paths)
-    return PortResult(ported, model, tuple(format_change(c) for c in changes), validation)
+    return PortResult(
+        ported, model, tuple(format_change(c, forced=request.force) for c in changes), validation
+    )
 
 
 def _with_validation_notes(ported, pkg, validation, package_paths):
@@ -509,7 +513,7 @@ def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: boo
     check_output_dir(out, force=force)
     rendered = _render(model, robot)
     changes = plan_writes(rendered, out)
-    apply_writes(changes, out, force=force)
+    apply_writes(changes, out, force=force, require_fresh=not force)
     return changes
 
 

@@ -2,7 +2,8 @@
 
 `plan_writes` is pure apart from reading the package dir; `apply_writes` is the only writer.
 A file we wrote and the user did not touch since (its disk hash equals the manifest's) may be
-updated; a file that differs from what we last wrote is a `conflict` and needs `force`.
+updated; a file that differs from what we last wrote is a `conflict` and needs `force`, which
+keeps the user's version under a free name (`<path>.orig`, else `.orig.1`, `.orig.2`, ...).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from pathlib import Path
 from typing import Literal
 
 from marm_setup.errors import ConflictError, InputError
-from marm_setup.render.switch import package_lock, switch_package
+from marm_setup.render.switch import COMMIT, package_lock, pending_files, switch_package
 from marm_setup.templating import RenderedFile
 
 MANIFEST = ".marm_setup/manifest.json"
@@ -27,11 +28,15 @@ Status = Literal["new", "identical", "update", "conflict"]
 
 @dataclass(frozen=True, slots=True)
 class FileChange:
-    """What writing one rendered file would do: status is new | identical | update | conflict."""
+    """What writing one rendered file would do: status is new | identical | update | conflict.
+
+    `kept_as`: for a conflict, where --force keeps the file on disk (a name no file has).
+    """
 
     path: str
     status: Status
     content: str
+    kept_as: str | None = None
 
     @property
     def writes(self) -> bool:
@@ -46,9 +51,32 @@ def _encode(content: str) -> bytes:
     return content.encode("utf-8")
 
 
+@dataclass(frozen=True, slots=True)
+class _Disk:
+    """The package as its next write sees it: the files an interrupted in-place switch has yet
+    to move in (that write moves them first) in place of those they replace."""
+
+    root: Path
+    pending: dict[str, Path]
+
+    @classmethod
+    def of(cls, root: Path) -> _Disk:
+        return cls(root, pending_files(Path(os.path.realpath(root))) if root.is_dir() else {})
+
+    def path(self, rel: str) -> Path:
+        return self.pending.get(rel, self.root / rel)
+
+    def taken(self, rel: str) -> bool:
+        return rel in self.pending or os.path.lexists(self.root / rel)
+
+
 def load_manifest(out_dir: Path) -> dict[str, str]:
     """{relative path: sha256} of what we last wrote into out_dir ({} when none or unreadable)."""
-    path = out_dir / MANIFEST
+    return _read_manifest(_Disk.of(out_dir).path(MANIFEST))
+
+
+def _read_manifest(path: Path) -> dict[str, str]:
+    """The manifest file at `path` as {relative path: sha256} ({} when none or unreadable)."""
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -80,20 +108,34 @@ def _check_path(rel: str) -> None:
 
 
 def plan_writes(rendered: Iterable[RenderedFile], out_dir: Path) -> list[FileChange]:
-    """Compare each rendered file with disk and the manifest; sorted by path."""
-    manifest = load_manifest(out_dir)
+    """Compare each rendered file with disk and the manifest; sorted by path. A package an
+    interrupted in-place switch left is compared as that switch leaves it."""
+    disk = _Disk.of(out_dir)
+    manifest = _read_manifest(disk.path(MANIFEST))
     changes = []
     for item in sorted(rendered, key=lambda r: r.path):
         _check_path(item.path)
-        status = _status(out_dir / item.path, _encode(item.content), manifest.get(item.path))
-        changes.append(FileChange(item.path, status, item.content))
+        status = _status(disk.path(item.path), _encode(item.content), manifest.get(item.path))
+        kept = _free_orig_name(disk, item.path) if status == "conflict" else None
+        changes.append(FileChange(item.path, status, item.content, kept))
     return changes
+
+
+def _free_orig_name(disk: _Disk, rel: str) -> str:
+    """`<rel>.orig`, or the first of `<rel>.orig.1`, `.orig.2`, ... no file (or link) has yet."""
+    name, n = f"{rel}.orig", 0
+    while disk.taken(name):
+        n += 1
+        name = f"{rel}.orig.{n}"
+    return name
 
 
 def stale_files(changes: Iterable[FileChange], out_dir: Path, keep: Iterable[str] = ()) -> list[str]:
     """Files we wrote before (manifest) that this render no longer produces and still exist."""
     current = {c.path for c in changes} | set(keep)
-    return sorted(p for p in load_manifest(out_dir) if p not in current and (out_dir / p).is_file())
+    disk = _Disk.of(out_dir)
+    manifest = _read_manifest(disk.path(MANIFEST))
+    return sorted(p for p in manifest if p not in current and disk.path(p).is_file())
 
 
 def conflicts(changes: Iterable[FileChange]) -> list[str]:
@@ -104,13 +146,16 @@ def _is_fresh(out_dir: Path) -> bool:
     return not out_dir.exists() or (out_dir.is_dir() and not any(out_dir.iterdir()))
 
 
-def apply_writes(changes: list[FileChange], out_dir: Path, *, force: bool = False) -> list[FileChange]:
+def apply_writes(
+    changes: list[FileChange], out_dir: Path, *, force: bool = False, require_fresh: bool = False
+) -> list[FileChange]:
     """Switch the package to its new version as a whole; returns the changes that wrote something.
 
     Raises ConflictError (nothing written) when a hand-edited file would be overwritten and
-    `force` is false; with `force` the edited file is kept as `<path>.orig`. Under the package's
-    lock the disk is compared again with what `changes` was planned from (another run may have
-    written meanwhile), then the complete new package is swapped in (`render.switch`).
+    `force` is false; with `force` the edited file is kept as its `kept_as` name. Under the
+    package's lock the disk is compared again with what `changes` was planned from (another run
+    may have written meanwhile), and with `require_fresh` (init without --force) the folder must
+    still be missing or empty; then the complete new package is swapped in (`render.switch`).
     """
     clashing = conflicts(changes)
     if clashing and not force:
@@ -120,33 +165,47 @@ def apply_writes(changes: list[FileChange], out_dir: Path, *, force: bool = Fals
             path=str(out_dir),
         )
     out_dir = Path(out_dir)
-    if _nothing_to_do(changes, out_dir):
+    if not require_fresh and _nothing_to_do(changes, out_dir):
         return []
     shown, real = str(out_dir), Path(os.path.realpath(out_dir))
     try:
         with package_lock(real, shown):
+            if require_fresh:
+                check_output_dir(real, force=False, shown=shown)
             _recheck(changes, real, shown)
-            manifest = {} if _is_fresh(real) else load_manifest(real)
-            files: dict[str, str | None] = {}
-            for change in changes:
-                manifest[change.path] = sha256(_encode(change.content))
-                if change.writes:
-                    files[change.path] = change.content
-            files[MANIFEST] = _manifest_text(manifest)
-            switch_package(real, files, set(conflicts(changes)), shown)
+            keep = {
+                c.path: c.kept_as or _free_orig_name(_Disk.of(real), c.path)
+                for c in changes
+                if c.status == "conflict"
+            }
+            switch_package(real, _files_to_write(changes, real), keep, shown)
     except OSError as exc:
         raise _write_error(exc, out_dir) from None
     return [c for c in changes if c.writes]
+
+
+def _files_to_write(changes: list[FileChange], real: Path) -> dict[str, str | None]:
+    """{relative path: text} of the changed files and of the manifest recording every one."""
+    manifest = {} if _is_fresh(real) else load_manifest(real)
+    files: dict[str, str | None] = {}
+    for change in changes:
+        manifest[change.path] = sha256(_encode(change.content))
+        if change.writes:
+            files[change.path] = change.content
+    files[MANIFEST] = _manifest_text(manifest)
+    return files
 
 
 def _recheck(changes: list[FileChange], real: Path, shown: str) -> None:
     """The disk still is what the changes were planned from (no other run wrote meanwhile)."""
     manifest = load_manifest(real)
     for change in changes:
-        if _status(real / change.path, _encode(change.content), manifest.get(change.path)) != change.status:
+        now = _status(real / change.path, _encode(change.content), manifest.get(change.path))
+        taken = change.kept_as is not None and os.path.lexists(real / change.kept_as)
+        if now != change.status or taken:
             raise ConflictError(
-                f"{change.path} changed while this run was rendering (another marm-setup run?): "
-                "nothing written; run again",
+                f"{change.kept_as if taken else change.path} changed while this run was rendering "
+                "(another marm-setup run?): nothing written; run again",
                 path=shown,
             )
 
@@ -156,8 +215,13 @@ def _write_error(exc: OSError, out_dir: Path, rel: str | None = None) -> InputEr
 
 
 def _nothing_to_do(changes: list[FileChange], out_dir: Path) -> bool:
-    """Every file identical and the manifest already records them: leave the disk untouched."""
-    if any(c.writes for c in changes) or not (out_dir / MANIFEST).is_file():
+    """Every file identical and the manifest already records them: leave the disk untouched
+    (unless an interrupted switch is to be completed)."""
+    if (
+        any(c.writes for c in changes)
+        or os.path.lexists(out_dir / COMMIT)
+        or not (out_dir / MANIFEST).is_file()
+    ):
         return False
     manifest = load_manifest(out_dir)
     return all(manifest.get(c.path) == sha256(_encode(c.content)) for c in changes)
@@ -179,9 +243,13 @@ def check_output_dir(out_dir: Path, *, force: bool, shown: str | None = None) ->
 STATUS_WORDS = {"new": "create", "identical": "unchanged", "update": "update", "conflict": "conflict"}
 
 
-def format_change(change: FileChange) -> str:
-    """`create    config/marm.srdf`: one status line for the CLI."""
-    return f"{STATUS_WORDS[change.status]:<10}{change.path}"
+def format_change(change: FileChange, *, forced: bool = False) -> str:
+    """`create    config/marm.srdf`: one status line for the CLI; `forced` (a --force write) adds
+    where a conflict's hand edit is kept."""
+    line = f"{STATUS_WORDS[change.status]:<10}{change.path}"
+    if forced and change.status == "conflict" and change.kept_as:
+        line += f" (overwritten: --force; yours kept as {change.kept_as})"
+    return line
 
 
 def write_text_atomic(path: Path, text: str, *, shown: str) -> None:

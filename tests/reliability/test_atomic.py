@@ -3,6 +3,7 @@ write through a symlink out of the package; --force keeps a hand edit as `<name>
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import stat
@@ -11,7 +12,7 @@ import sys
 
 import pytest
 
-from marm_setup.render import switch
+from marm_setup.render import switch, writer
 from tests.conftest import FIXTURES, MARM_URDF
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
 from tests.reliability.snapshots import snapshot
@@ -97,7 +98,9 @@ def test_the_in_place_switch_and_its_roll_forward(pkg):
     """The path for a package folder that cannot be renamed (mount point, read-only parent)."""
     before = snapshot(pkg)
     with switch.package_lock(pkg, str(pkg)):
-        switch._switch_in_place(pkg, {"package.xml": "<package/>\n"}, {"package.xml"}, str(pkg))
+        switch._switch_in_place(
+            pkg, {"package.xml": "<package/>\n"}, {"package.xml": "package.xml.orig"}, str(pkg)
+        )
     after = snapshot(pkg)
     assert after["package.xml"] == b"<package/>\n" and after["package.xml.orig"] == before["package.xml"]
     # a run killed after its commit record: the next write completes it
@@ -160,3 +163,279 @@ ls -A {out}/.marm_setup
     assert result.returncode == 0, result.stderr
     assert "Traceback" not in result.stderr
     assert result.stdout.split() == ["manifest.json"]  # no stage or commit record left
+
+
+def _victim(tmp_path):
+    """A folder outside the package that a forged commit record aims at."""
+    victim = tmp_path / "victim"
+    (victim / "sub").mkdir(parents=True)
+    (victim / "sub" / "keep.txt").write_text("mine\n")
+    return victim
+
+
+def _stage_with(pkg, rel="config/evil.txt"):
+    stage = pkg / ".marm_setup" / "stage-x"
+    (stage / rel).parent.mkdir(parents=True, exist_ok=True)
+    (stage / rel).write_text("evil\n")
+    return stage
+
+
+def _forge(pkg, victim, case):
+    """Plant the commit record (and what it points at) of one forged-record case."""
+    record = {"stage": ".marm_setup/stage-x", "files": ["config/evil.txt"]}
+    if case == "absolute stage":
+        record = {"stage": str(victim), "files": []}
+    elif case == "stage up and out":
+        record = {"stage": ".marm_setup/../../victim", "files": ["sub/keep.txt"]}
+    elif case == "stage not ours, file up and out":
+        (pkg / "a" / "b").mkdir(parents=True)
+        (pkg / "evil.txt").write_text("evil\n")
+        record = {"stage": "a/b", "files": ["../../evil.txt"]}
+    elif case == "file up and out":
+        _stage_with(pkg, "evil.txt")
+        record["files"] = ["../evil.txt"]
+    elif case == "absolute file":
+        _stage_with(pkg)
+        record["files"] = [str(victim / "sub" / "keep.txt")]
+    elif case == "symlinked stage":
+        (pkg / ".marm_setup" / "stage-x").symlink_to(victim)
+        record["files"] = ["sub/keep.txt"]
+    elif case == "symlink in the stage":
+        (pkg / ".marm_setup" / "stage-x").mkdir()
+        (pkg / ".marm_setup" / "stage-x" / "sub").symlink_to(victim / "sub")
+        record["files"] = ["sub/keep.txt"]
+    elif case == "symlinked destination folder":
+        _stage_with(pkg, "out/evil.txt")
+        (pkg / "out").symlink_to(victim)
+        record["files"] = ["out/evil.txt"]
+    elif case == "the writer's own state":
+        _stage_with(pkg, ".marm_setup/commit.json")
+        record["files"] = [".marm_setup/commit.json"]
+    elif case == "not json":
+        return '{"stage":'
+    elif case == "not a record":
+        return "[1]"
+    elif case == "wrong types":
+        record = {"stage": 3, "files": 1}
+    elif case == "a nul byte":
+        record["stage"] = ".marm_setup/stage-x\u0000"
+    return json.dumps(record)
+
+
+FORGED = [
+    "absolute stage",
+    "stage up and out",
+    "stage not ours, file up and out",
+    "file up and out",
+    "absolute file",
+    "symlinked stage",
+    "symlink in the stage",
+    "symlinked destination folder",
+    "the writer's own state",
+    "not json",
+    "not a record",
+    "wrong types",
+    "a nul byte",
+]
+
+
+@pytest.mark.parametrize("case", FORGED)
+def test_a_forged_commit_record_is_refused_and_nothing_touched(pkg, tmp_path, case):
+    victim = _victim(tmp_path)
+    (pkg / switch.COMMIT).write_text(_forge(pkg, victim, case))
+    _edit_setup(pkg)
+    before, around = snapshot(pkg), snapshot(tmp_path)
+    links = sorted(p for p in pkg.rglob("*") if p.is_symlink())
+    assert_one_line_error(run("render", pkg), f"{pkg}/.marm_setup/commit.json: ")
+    assert snapshot(pkg) == before and snapshot(tmp_path) == around
+    assert sorted(p for p in pkg.rglob("*") if p.is_symlink()) == links
+    assert (victim / "sub" / "keep.txt").read_text() == "mine\n"
+
+
+def test_a_symlinked_state_folder_is_not_cleaned_through(pkg, tmp_path):
+    """`.marm_setup` pointing out of the package: no leftover cleanup, no stage, out there."""
+    outside = tmp_path / "outside"
+    (outside / "stage-abc").mkdir(parents=True)
+    (outside / "stage-abc" / "keep.txt").write_text("mine\n")
+    (pkg / ".marm_setup" / "manifest.json").rename(outside / "manifest.json")
+    (pkg / ".marm_setup").rmdir()
+    (pkg / ".marm_setup").symlink_to(outside)
+    _edit_setup(pkg)
+    assert_one_line_error(run("render", pkg), "'.marm_setup' is a symlink")
+    assert sorted(p.name for p in outside.iterdir()) == ["manifest.json", "stage-abc"]
+    assert (outside / "stage-abc" / "keep.txt").read_text() == "mine\n"
+
+
+def test_the_in_place_switch_keeps_every_hand_edit(pkg):
+    (pkg / "package.xml.orig").write_text("an earlier edit\n")
+    before = snapshot(pkg)
+    with switch.package_lock(pkg, str(pkg)):
+        switch._switch_in_place(
+            pkg, {"package.xml": "<package/>\n"}, {"package.xml": "package.xml.orig.1"}, str(pkg)
+        )
+    after = snapshot(pkg)
+    assert after["package.xml.orig"] == b"an earlier edit\n"
+    assert after["package.xml.orig.1"] == before["package.xml"]
+
+
+def _edit_srdf(pkg, mark):
+    srdf = pkg / "config" / "marm.srdf"
+    srdf.write_text(srdf.read_text() + f"<!-- {mark} -->\n")
+    return srdf.read_text()
+
+
+@pytest.mark.parametrize("command", ["init", "render"])
+def test_force_twice_keeps_both_hand_edits(pkg, command):
+    again = ("init", MARM_URDF, "--out", pkg, "--setup", SPEC, *TRIALS, "--force")
+    edits = []
+    for n, scaling in ((1, "0.3"), (2, "0.4")):
+        edits.append(_edit_srdf(pkg, f"mine {n}"))
+        if command == "render":
+            setup = pkg / "marm_setup.yaml"
+            setup.write_text(
+                setup.read_text().replace(
+                    f"default_velocity_scaling: {'0.1' if n == 1 else '0.3'}",
+                    f"default_velocity_scaling: {scaling}",
+                )
+            )
+        assert_clean_exit(run(*again) if command == "init" else run("render", pkg, "--force"), codes=(0,))
+    assert (pkg / "config" / "marm.srdf.orig").read_text() == edits[0]
+    assert (pkg / "config" / "marm.srdf.orig.1").read_text() == edits[1]
+
+
+@pytest.mark.parametrize("command", ["init", "render"])
+def test_force_says_which_file_keeps_the_hand_edit(pkg, command):
+    (pkg / "config" / "marm.srdf.orig").write_text("an earlier edit\n")
+    _edit_srdf(pkg, "mine")
+    _edit_setup(pkg)
+    args = (
+        ("init", MARM_URDF, "--out", pkg, "--setup", SPEC, *TRIALS) if command == "init" else ("render", pkg)
+    )
+    result = run(*args, "--force")
+    assert_clean_exit(result, codes=(0,))
+    line = "conflict  config/marm.srdf (overwritten: --force; yours kept as config/marm.srdf.orig.1)"
+    assert line in result.stdout.splitlines()
+    assert (pkg / "config" / "marm.srdf.orig").read_text() == "an earlier edit\n"
+
+
+def test_init_checks_again_under_the_lock_that_its_folder_is_new(tmp_path, monkeypatch):
+    """Deterministic form of two concurrent inits: the other one finishes between this one's
+    folder check and its planning."""
+    out = tmp_path / "pkg"
+    plan_writes = writer.plan_writes
+
+    def other_run_first(rendered, out_dir):
+        cmd = [sys.executable, "-m", "marm_setup", "init", str(MARM_URDF), "--out", str(out), *TRIALS]
+        subprocess.run([*cmd, "--target", "ros1"], check=True, capture_output=True)
+        return plan_writes(rendered, out_dir)
+
+    monkeypatch.setattr(writer, "plan_writes", other_run_first)
+    result = run("init", MARM_URDF, "--out", out, "--target", "ros2", *TRIALS)
+    assert_one_line_error(result, f"{out}: directory exists and is not empty")
+    files = set(snapshot(out))
+    assert "launch/demo.launch" in files and "config/moveit.yaml" not in files  # ros1's alone
+
+
+def _in_mount_namespace(script: str) -> subprocess.CompletedProcess[str]:
+    if shutil.which("unshare") is None or subprocess.run(["unshare", "-m", "true"]).returncode != 0:
+        pytest.skip("needs a private mount namespace (unshare -m, root)")
+    return subprocess.run(["unshare", "-m", "sh", "-c", "set -e\n" + script], capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("mount", ["tmpfs", "bind"])
+def test_a_file_system_mounted_inside_the_package_is_left_alone(pkg, tmp_path, mount):
+    """A mount point inside the package: written in place; nothing on it deleted or moved."""
+    source = tmp_path / "source"
+    source.mkdir()
+    (pkg / "data").mkdir()
+    how = f"mount -t tmpfs tmpfs {pkg}/data" if mount == "tmpfs" else f"mount --bind {source} {pkg}/data"
+    _edit_setup(pkg)
+    script = f"""{how}
+echo precious > {pkg}/data/f
+{sys.executable} -m marm_setup render {pkg} > /dev/null
+grep -q 'default_velocity_scaling_factor: 0.3' {pkg}/config/joint_limits.yaml
+mountpoint -q {pkg}/data
+cat {pkg}/data/f
+ls -A {pkg}/.marm_setup
+ls -A {tmp_path}
+"""
+    result = _in_mount_namespace(script)
+    assert result.returncode == 0, result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stdout.split() == ["precious", "manifest.json", "pkg", "source"]  # no stage, record, build
+    assert list(source.iterdir()) == ([source / "f"] if mount == "bind" else [])
+
+
+@pytest.mark.parametrize("where", ["sibling build", "in-package stage"])
+def test_cleaning_leftovers_stops_at_a_mount_point(pkg, tmp_path, where):
+    """A killed run's leftovers are removed, but never what a file system mounted in them holds."""
+    leftover = (
+        tmp_path / ".pkg.marm-setup-abcd1234"
+        if where == "sibling build"
+        else pkg / ".marm_setup" / "stage-abcd1234"
+    )
+    (leftover / "m").mkdir(parents=True)
+    (leftover / "old.txt").write_text("old\n")
+    _edit_setup(pkg)
+    script = f"""mount -t tmpfs tmpfs {leftover}/m
+echo precious > {leftover}/m/f
+{sys.executable} -m marm_setup render {pkg} > /dev/null
+cat {leftover}/m/f
+ls -A {leftover}
+"""
+    result = _in_mount_namespace(script)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["precious", "m"]
+
+
+def test_leftover_names_that_are_symlinks_are_not_followed(pkg, tmp_path):
+    """A killed run's leftovers are dropped; links named like them are not followed out."""
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "keep.txt").write_text("mine\n")
+    (tmp_path / ".pkg.marm-setup-abcd1234").symlink_to(outside)
+    (pkg / ".marm_setup" / "stage-abcd1234").symlink_to(outside)
+    (pkg / ".marm_setup" / "stage-efgh5678" / "sub").mkdir(parents=True)
+    (pkg / ".marm_setup" / "stage-efgh5678" / "sub" / "out").symlink_to(outside)
+    switch.finish_interrupted(pkg)
+    assert [p.name for p in outside.iterdir()] == ["keep.txt"]
+    assert not (pkg / ".marm_setup" / "stage-efgh5678").exists()
+
+
+class _Killed(BaseException):
+    """A run killed (SIGKILL) in the middle of moving its staged files in."""
+
+
+@pytest.mark.parametrize("moved", [0, 1, 5])
+def test_a_killed_in_place_switch_is_completed_by_the_next_render(pkg, tmp_path, monkeypatch, moved):
+    """Killed after its commit record, `moved` files in: the next render plans against the
+    package as the roll-forward leaves it (no false conflict, no 'run again') and completes it."""
+    from marm_setup.cli.commands.render import load_package_setup
+    from marm_setup.render.package import SETUP_FILE, render_package
+
+    _edit_setup(pkg)
+    reference = tmp_path / "reference"
+    shutil.copytree(pkg, reference)
+    assert_clean_exit(run("render", reference), codes=(0,))
+    finish = switch.finish_interrupted
+
+    def killed_while_moving(real, shown=None):
+        if not (real / switch.COMMIT).exists():
+            return finish(real, shown)
+        record = json.loads((real / switch.COMMIT).read_text())
+        for rel in record["files"][:moved]:
+            os.replace(real / record["stage"] / rel, real / rel)
+        raise _Killed
+
+    monkeypatch.setattr(switch, "mount_points_below", lambda root: {root / "a-mount-elsewhere"})
+    monkeypatch.setattr(switch, "finish_interrupted", killed_while_moving)
+    rendered = [f for f in render_package(*load_package_setup(pkg)) if f.path != SETUP_FILE]
+    with pytest.raises(_Killed):
+        writer.apply_writes(writer.plan_writes(rendered, pkg), pkg)
+    monkeypatch.undo()
+    assert (pkg / switch.COMMIT).exists()
+    result = run("render", pkg)
+    assert_clean_exit(result, codes=(0,))
+    assert not [line for line in result.stdout.splitlines() if line.startswith("conflict")]
+    assert snapshot(pkg) == snapshot(reference)
+    assert sorted(os.listdir(pkg / ".marm_setup")) == ["manifest.json"]

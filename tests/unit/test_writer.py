@@ -186,3 +186,71 @@ def test_output_dir_below_a_file_is_refused(tmp_path):
         check_output_dir(tmp_path / "file" / "pkg", force=False)
     with pytest.raises(InputError, match="cannot write"):
         write_all(FILES, tmp_path / "file" / "pkg")
+
+
+def test_force_never_overwrites_an_earlier_orig(tmp_path):
+    out = tmp_path / "pkg"
+    write_all(FILES, out)
+    edits = []
+    for n in (2, 3, 4):
+        edit = f"a: 1  # mine {n}\n"
+        (out / "config/a.yaml").write_text(edit)
+        edits.append(edit)
+        changes = plan_writes([RenderedFile("config/a.yaml", f"a: {n}\n")], out)
+        assert changes[0].kept_as == "config/a.yaml.orig" + (f".{n - 2}" if n > 2 else "")
+        write_all([RenderedFile("config/a.yaml", f"a: {n}\n")], out, force=True)
+    kept = ["config/a.yaml.orig", "config/a.yaml.orig.1", "config/a.yaml.orig.2"]
+    assert [(out / k).read_text() for k in kept] == edits
+    assert (out / "config/a.yaml").read_text() == "a: 4\n"
+
+
+def test_a_dangling_symlink_takes_an_orig_name(tmp_path):
+    out = tmp_path / "pkg"
+    write_all(FILES, out)
+    (out / "config/a.yaml.orig").symlink_to(tmp_path / "nowhere")
+    (out / "config/a.yaml").write_text("mine\n")
+    write_all([RenderedFile("config/a.yaml", "a: 2\n")], out, force=True)
+    assert (out / "config/a.yaml.orig.1").read_text() == "mine\n"
+    assert not (tmp_path / "nowhere").exists()
+
+
+def test_format_change_names_the_file_kept_under_force(tmp_path):
+    out = tmp_path / "pkg"
+    write_all(FILES, out)
+    (out / "config/a.yaml").write_text("mine\n")
+    (out / "config/a.yaml.orig").write_text("older\n")
+    [change] = plan_writes([RenderedFile("config/a.yaml", "a: 2\n")], out)
+    assert format_change(change) == "conflict  config/a.yaml"
+    assert format_change(change, forced=True) == (
+        "conflict  config/a.yaml (overwritten: --force; yours kept as config/a.yaml.orig.1)"
+    )
+
+
+def test_an_orig_name_taken_meanwhile_is_a_conflict(tmp_path):
+    out = tmp_path / "pkg"
+    write_all(FILES, out)
+    (out / "config/a.yaml").write_text("mine\n")
+    changes = plan_writes([RenderedFile("config/a.yaml", "a: 2\n")], out)
+    (out / "config/a.yaml.orig").write_text("another run's\n")
+    with pytest.raises(ConflictError, match="config/a.yaml.orig changed while"):
+        apply_writes(changes, out, force=True)
+    assert (out / "config/a.yaml.orig").read_text() == "another run's\n"
+    assert (out / "config/a.yaml").read_text() == "mine\n"
+
+
+def test_a_new_package_is_checked_again_under_the_lock(tmp_path):
+    """init without --force: another run filled the folder after check_output_dir passed."""
+    out = tmp_path / "pkg"
+    check_output_dir(out, force=False)
+    write_all(FILES, out)  # the other run, finished before this one plans
+    other = [RenderedFile("package.xml", "<package>mine</package>\n"), RenderedFile("b.txt", "b\n")]
+    changes = plan_writes(other, out)
+    with pytest.raises(InputError, match="not empty") as info:
+        apply_writes(changes, out, require_fresh=True)
+    assert info.value.path == str(out)
+    assert {p: (out / p).read_text() for p in load_manifest(out)} == {f.path: f.content for f in FILES}
+    assert not (out / "b.txt").exists()
+    fresh = tmp_path / "fresh"
+    fresh.mkdir()
+    apply_writes(plan_writes(other, fresh), fresh, require_fresh=True)
+    assert (fresh / "b.txt").read_text() == "b\n"

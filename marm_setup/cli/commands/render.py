@@ -43,12 +43,7 @@ def render(
     changes = plan_writes(rendered, dir)
     clashing = conflicts(changes)
     for change in changes:
-        suffix = (
-            f" (overwritten: --force; yours kept as {change.path}.orig)"
-            if force and change.status == "conflict" and not dry_run
-            else ""
-        )
-        typer.echo(format_change(change) + suffix)
+        typer.echo(format_change(change, forced=force and not dry_run))
     for path in stale_files(changes, dir, keep=[SETUP_FILE]):
         typer.echo(f"{'stale':<10}{path} (no longer generated; left in place)")
     if dry_run:
