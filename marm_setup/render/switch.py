@@ -19,21 +19,24 @@ import json
 import os
 import re
 import shutil
-import stat
 import tempfile
 import time
 from collections.abc import Iterator
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 
 from marm_setup.errors import ConflictError, InputError
+from marm_setup.render.commit_record import (
+    COMMIT,
+    STAGE_PREFIX,
+    STATE_DIR,
+    TEMP_NAME,
+    read_commit,
+    refuse_linked_state,
+)
+from marm_setup.render.safe_fs import mount_points_below, remove_tree, unsafe_path
 
-STATE_DIR = ".marm_setup"
-COMMIT = f"{STATE_DIR}/commit.json"
-STAGE_PREFIX = "stage-"
 EXECUTABLE_SUFFIXES = (".py", ".sh")
 _NO_EXCHANGE = {errno.EBUSY, errno.EXDEV, errno.EINVAL, errno.ENOSYS, errno.EPERM, errno.EACCES, errno.EROFS}
-_TEMP_NAME = "[a-z0-9_]+"  # what tempfile.mkdtemp appends to a prefix
-_DIR_FLAGS = os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW
 
 
 @contextlib.contextmanager
@@ -90,95 +93,6 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
             return
         raise
     remove_tree(stage)  # the old package now
-
-
-def unsafe_path(root: Path, rel: str, mounts: set[Path]) -> str | None:
-    """Why writing `root/rel` could leave `root` (a symlink or a mount point on the way), else None."""
-    current, dev = root, os.lstat(root).st_dev
-    for part in PurePosixPath(rel).parts:
-        current = current / part
-        try:
-            info = os.lstat(current)
-        except OSError:  # missing (created by the write) or below a file (the write says so)
-            return None
-        where = current.relative_to(root)
-        if stat.S_ISLNK(info.st_mode):
-            return (
-                f"'{where}' is a symlink (to {os.readlink(current)}): not written through; "
-                "replace it with a real file or folder"
-            )
-        if info.st_dev != dev or current in mounts:
-            return f"'{where}' is a mount point (another file system): not written into"
-    return None
-
-
-def mount_points_below(root: Path) -> set[Path]:
-    """Mount points strictly inside the folder `root` (a real path): /proc/self/mountinfo's,
-    and folders whose device differs from `root`'s (where /proc is missing)."""
-    found = {m for m in _mount_table() if root in m.parents}
-    dev = os.lstat(root).st_dev
-    for folder, dirs, _files in os.walk(root):
-        for name in list(dirs):
-            path = Path(folder) / name
-            with contextlib.suppress(OSError):
-                if path in found or os.lstat(path).st_dev != dev:
-                    found.add(path)
-                    dirs.remove(name)
-    return found
-
-
-def _mount_table() -> set[Path]:
-    """Every mount point of this mount namespace (empty when /proc is not mounted)."""
-    try:
-        lines = Path("/proc/self/mountinfo").read_bytes().splitlines()
-    except OSError:
-        return set()
-    unescape = re.compile(rb"\\([0-7]{3})")  # mountinfo writes space, tab, newline, \ as \ooo
-    points = set()
-    for line in lines:
-        fields = line.split()
-        if len(fields) > 4:
-            points.add(Path(os.fsdecode(unescape.sub(lambda m: bytes([int(m[1], 8)]), fields[4]))))
-    return points
-
-
-def remove_tree(path: Path) -> None:
-    """Delete the folder `path` and what it holds, on its own file system only: never through a
-    symlink and never into a mount point (those, and what cannot be deleted, stay)."""
-    try:
-        fd = os.open(path, _DIR_FLAGS)
-    except OSError:  # gone, a symlink or not a folder: not ours to delete
-        return
-    try:
-        dev, table = os.fstat(fd).st_dev, _mount_table()
-        if os.lstat(path.parent).st_dev != dev or path in table:
-            return
-        _empty_folder(fd, path, dev, {m for m in table if path in m.parents})
-    finally:
-        os.close(fd)
-    with contextlib.suppress(OSError):
-        os.rmdir(path)
-
-
-def _empty_folder(fd: int, path: Path, dev: int, mounts: set[Path]) -> None:
-    """Delete what the open folder `fd` (at `path`) holds on device `dev`, outside `mounts`."""
-    with os.scandir(fd) as entries:
-        names = [(e.name, e.is_dir(follow_symlinks=False)) for e in entries]
-    for name, is_dir in names:
-        with contextlib.suppress(OSError):
-            if not is_dir:
-                os.unlink(name, dir_fd=fd)
-                continue
-            if path / name in mounts:
-                continue
-            child = os.open(name, _DIR_FLAGS, dir_fd=fd)
-            try:
-                if os.fstat(child).st_dev != dev:
-                    continue
-                _empty_folder(child, path / name, dev, mounts)
-            finally:
-                os.close(child)
-            os.rmdir(name, dir_fd=fd)
 
 
 def _copy_tree(real: Path, stage: Path) -> None:
@@ -239,7 +153,7 @@ def _exchange(a: Path, b: Path) -> None:
 def _switch_in_place(real: Path, files: dict[str, str | None], keep: dict[str, str], shown: str) -> None:
     """Stage inside the package, record the commit, move each file in, drop the record."""
     (real / STATE_DIR).mkdir(exist_ok=True)
-    _refuse_linked_state(real, shown)
+    refuse_linked_state(real, shown)
     stage = Path(tempfile.mkdtemp(prefix=STAGE_PREFIX, dir=real / STATE_DIR))
     try:
         _write_all(stage, files, {}, shown)
@@ -272,8 +186,8 @@ def finish_interrupted(real: Path, shown: str | None = None) -> None:
                 os.replace(source, real / rel)
         (real / COMMIT).unlink()
         remove_tree(stage)
-    _drop_leftovers(real / STATE_DIR, STAGE_PREFIX + _TEMP_NAME)
-    _drop_leftovers(real.parent, re.escape(f".{real.name}.marm-setup-") + _TEMP_NAME)
+    _drop_leftovers(real / STATE_DIR, STAGE_PREFIX + TEMP_NAME)
+    _drop_leftovers(real.parent, re.escape(f".{real.name}.marm-setup-") + TEMP_NAME)
 
 
 def _drop_leftovers(folder: Path, pattern: str) -> None:
@@ -285,116 +199,3 @@ def _drop_leftovers(folder: Path, pattern: str) -> None:
     for name in names:
         if re.fullmatch(pattern, name):
             remove_tree(folder / name)
-
-
-def _refuse_linked_state(real: Path, shown: str) -> None:
-    """`.marm_setup` must be a real folder: stages and records are never kept through a link."""
-    state = real / STATE_DIR
-    if state.is_symlink():
-        raise InputError(
-            f"'{STATE_DIR}' is a symlink (to {os.readlink(state)}): not written through; "
-            "replace it with a real folder",
-            path=shown,
-            element=STATE_DIR,
-        )
-
-
-def read_commit(real: Path, shown: str) -> tuple[Path, list[str]] | None:
-    """(stage, files) of the package's commit record, None when there is none; a record whose
-    stage is not one of our staging folders or whose files leave the package is an InputError."""
-    _refuse_linked_state(real, shown)
-    commit = real / COMMIT
-    if not os.path.lexists(commit):
-        return None
-    record, problem = _parse_record(commit)
-    problem = problem or _record_problem(real, record)
-    if problem:
-        element, what = problem
-        raise InputError(
-            f"{what}; not a commit record marm-setup wrote, nothing done "
-            "(delete this file to write the package)",
-            path=f"{shown}/{COMMIT}",
-            element=element,
-        )
-    return real / record["stage"], record["files"]
-
-
-def pending_files(real: Path) -> dict[str, Path]:
-    """{relative path: staged file} an interrupted in-place switch has yet to move in (the next
-    write does so first); {} without a record, or with one the next write refuses."""
-    try:
-        record = read_commit(real, str(real))
-    except (InputError, OSError):
-        return {}
-    if record is None:
-        return {}
-    stage, moves = record
-    return {rel: stage / rel for rel in moves if os.path.lexists(stage / rel)}
-
-
-Problem = tuple[str | None, str]  # (the record's element or None for the whole file, what is wrong)
-
-
-def _parse_record(commit: Path) -> tuple[dict, Problem | None]:
-    """The record as JSON with a string `stage` and a list of string `files`, or what it lacks."""
-    if not stat.S_ISREG(os.lstat(commit).st_mode):
-        return {}, (None, "not a regular file")
-    try:
-        record = json.loads(commit.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
-        return {}, (None, f"unreadable ({exc})")
-    if not isinstance(record, dict) or not isinstance(record.get("stage"), str):
-        return {}, ("stage", "missing or not a string")
-    moves = record.get("files")
-    if not isinstance(moves, list) or not all(isinstance(m, str) for m in moves):
-        return {}, ("files", "missing or not a list of paths")
-    return record, None
-
-
-def _record_problem(real: Path, record: dict) -> Problem | None:
-    """What makes a parsed record unsafe to replay: its stage, or a file that leaves the package."""
-    why = _bad_stage(real, record["stage"])
-    if why:
-        return "stage", f"'{record['stage']}' {why}"
-    stage, mounts = real / record["stage"], mount_points_below(real)
-    for rel in record["files"]:
-        why = _bad_move(rel) or unsafe_path(real, rel, mounts) or _bad_source(stage, rel, mounts)
-        if why:
-            return "files", f"'{rel}': {why}"
-    return None
-
-
-def _bad_stage(real: Path, name: str) -> str | None:
-    """Why `name` is not a staging folder _switch_in_place makes (a real folder
-    `.marm_setup/stage-*` on the package's file system), else None."""
-    if not re.fullmatch(re.escape(f"{STATE_DIR}/{STAGE_PREFIX}") + _TEMP_NAME, name):
-        return f"is not a staging folder ({STATE_DIR}/{STAGE_PREFIX}...)"
-    try:
-        info = os.lstat(real / name)
-    except FileNotFoundError:
-        return None  # already dropped: nothing left to move
-    if not stat.S_ISDIR(info.st_mode):
-        return "is not a folder (a symlink?)"
-    if info.st_dev != os.lstat(real).st_dev or (real / name) in _mount_table():
-        return "is a mount point (another file system)"
-    return None
-
-
-def _bad_move(rel: str) -> str | None:
-    """Why `rel` is not a plain relative path to a generated file, else None."""
-    path = PurePosixPath(rel)
-    if not rel or "\0" in rel or path.is_absolute() or str(path) != rel or ".." in path.parts:
-        return "not a plain relative path inside the package"
-    if path.parts[0] == STATE_DIR and rel != f"{STATE_DIR}/manifest.json":
-        return "the writer's own state"
-    return None
-
-
-def _bad_source(stage: Path, rel: str, mounts: set[Path]) -> str | None:
-    """Why `stage/rel` is not a staged file to move in (missing is fine: moved already), else None."""
-    if not os.path.lexists(stage):
-        return None
-    why = unsafe_path(stage, rel, mounts)
-    if why or not os.path.lexists(stage / rel):
-        return why
-    return None if stat.S_ISREG(os.lstat(stage / rel).st_mode) else "not a file in the stage"

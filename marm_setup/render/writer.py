@@ -19,7 +19,8 @@ from pathlib import Path
 from typing import Literal
 
 from marm_setup.errors import ConflictError, InputError
-from marm_setup.render.switch import COMMIT, package_lock, pending_files, switch_package
+from marm_setup.render.commit_record import COMMIT, pending_files
+from marm_setup.render.switch import package_lock, switch_package
 from marm_setup.templating import RenderedFile
 
 MANIFEST = ".marm_setup/manifest.json"

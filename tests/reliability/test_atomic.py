@@ -12,7 +12,7 @@ import sys
 
 import pytest
 
-from marm_setup.render import switch, writer
+from marm_setup.render import commit_record, switch, writer
 from tests.conftest import FIXTURES, MARM_URDF
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
 from tests.reliability.snapshots import snapshot
@@ -107,10 +107,12 @@ def test_the_in_place_switch_and_its_roll_forward(pkg):
     stage = pkg / ".marm_setup" / "stage-x"
     (stage / "config").mkdir(parents=True)
     (stage / "config" / "kinematics.yaml").write_text("{}\n")
-    (pkg / switch.COMMIT).write_text('{"stage": ".marm_setup/stage-x", "files": ["config/kinematics.yaml"]}')
+    (pkg / commit_record.COMMIT).write_text(
+        '{"stage": ".marm_setup/stage-x", "files": ["config/kinematics.yaml"]}'
+    )
     switch.finish_interrupted(pkg)
     assert (pkg / "config" / "kinematics.yaml").read_text() == "{}\n"
-    assert not stage.exists() and not (pkg / switch.COMMIT).exists()
+    assert not stage.exists() and not (pkg / commit_record.COMMIT).exists()
 
 
 def test_two_concurrent_inits_into_one_new_folder(tmp_path):
@@ -242,7 +244,7 @@ FORGED = [
 @pytest.mark.parametrize("case", FORGED)
 def test_a_forged_commit_record_is_refused_and_nothing_touched(pkg, tmp_path, case):
     victim = _victim(tmp_path)
-    (pkg / switch.COMMIT).write_text(_forge(pkg, victim, case))
+    (pkg / commit_record.COMMIT).write_text(_forge(pkg, victim, case))
     _edit_setup(pkg)
     before, around = snapshot(pkg), snapshot(tmp_path)
     links = sorted(p for p in pkg.rglob("*") if p.is_symlink())
@@ -420,9 +422,9 @@ def test_a_killed_in_place_switch_is_completed_by_the_next_render(pkg, tmp_path,
     finish = switch.finish_interrupted
 
     def killed_while_moving(real, shown=None):
-        if not (real / switch.COMMIT).exists():
+        if not (real / commit_record.COMMIT).exists():
             return finish(real, shown)
-        record = json.loads((real / switch.COMMIT).read_text())
+        record = json.loads((real / commit_record.COMMIT).read_text())
         for rel in record["files"][:moved]:
             os.replace(real / record["stage"] / rel, real / rel)
         raise _Killed
@@ -433,7 +435,7 @@ def test_a_killed_in_place_switch_is_completed_by_the_next_render(pkg, tmp_path,
     with pytest.raises(_Killed):
         writer.apply_writes(writer.plan_writes(rendered, pkg), pkg)
     monkeypatch.undo()
-    assert (pkg / switch.COMMIT).exists()
+    assert (pkg / commit_record.COMMIT).exists()
     result = run("render", pkg)
     assert_clean_exit(result, codes=(0,))
     assert not [line for line in result.stdout.splitlines() if line.startswith("conflict")]
