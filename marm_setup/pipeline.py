@@ -470,7 +470,14 @@ def _disabled_pairs(
     from marm_setup.collision.matrix import compute_collision_matrix
 
     matrix = compute_collision_matrix(
-        robot, scene, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs, progress=progress
+        robot,
+        scene,
+        trials=trials,
+        seed=seed,
+        min_collision_fraction=fraction,
+        jobs=jobs,
+        progress=progress,
+        distances=False,  # a setup keeps the pairs only
     )
     return matrix.disabled
 

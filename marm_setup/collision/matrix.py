@@ -89,11 +89,14 @@ def compute_collision_matrix(
     jobs: int = 1,
     progress: Progress | None = None,
     shortcuts: bool = True,
+    distances: bool = True,
 ) -> CollisionMatrix:
     """MoveIt's matrix for `robot` (scene: a CollisionScene, built when None).
 
     `shortcuts=False` checks every state that passes the bounding volumes exactly (no hull
     test, no certificates): the reference the shortcuts must match byte for byte.
+    `distances=False` leaves each Never pair's `min_distance` None (only the json and report
+    outputs show it; measuring it costs a distance query per pair and closest state).
     """
     if scene is None:
         from marm_setup.collision.scene import CollisionScene
@@ -117,9 +120,9 @@ def compute_collision_matrix(
         work = _run_trials(workers, seen, trials, progress)
         never = [p for p in remaining if p not in seen]
         reasons.update(dict.fromkeys(never, DisabledReason.NEVER))
-        distances, distance_work = workers.distances()
+        closest, distance_work = workers.distances() if distances else ({}, Work())
     stats = tuple(
-        PairStats(p[0], p[1], reasons.get(p), *counts.get(p, (0, 0)), p in seen, distances.get(p))
+        PairStats(p[0], p[1], reasons.get(p), *counts.get(p, (0, 0)), p in seen, closest.get(p))
         for p in scene.candidate_pairs
     )
     return CollisionMatrix(

@@ -259,3 +259,11 @@ def test_a_failing_worker_is_an_error_not_a_hang(marm, monkeypatch):
     monkeypatch.setattr(PairShard, "check", broken)  # forked workers inherit the patch
     with pytest.raises(WorkerFailed, match="boom"):
         compute_collision_matrix(marm, CollisionScene(marm), trials=CHUNK, jobs=2)
+
+
+def test_never_pair_distances_are_measured_only_when_asked(marm, marm_scene):
+    measured = compute_collision_matrix(marm, marm_scene, trials=500)
+    skipped = compute_collision_matrix(marm, marm_scene, trials=500, distances=False)
+    assert skipped.disabled == measured.disabled and skipped.enabled == measured.enabled
+    assert all(s.min_distance is None for s in skipped.stats)
+    assert any(s.min_distance is not None for s in measured.stats)

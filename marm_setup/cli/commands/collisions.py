@@ -128,6 +128,7 @@ def collisions(
             default_q=default_q,
             jobs=jobs,
             progress=progress,
+            distances=format is OutputFormat.json or report is not None,
         )
     disabled = _write_srdf(robot.name, matrix, srdf, srdf_text, output, keep)
     if srdf_text is not None:
@@ -214,7 +215,7 @@ def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: in
 
     model, robot = load_package_setup(pkg)
     matrix = compute_collision_matrix(
-        robot, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs
+        robot, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs, distances=False
     )
     computed = {p.pair for p in matrix.disabled}
     user = [p for p in model.collision.disabled if p.reason is DisabledReason.USER and p.pair not in computed]
