@@ -19,6 +19,7 @@ from marm_setup.collision.pairs import DisabledReason
 from marm_setup.collision.scene import CollisionScene
 from marm_setup.collision.trials import PairShard
 from marm_setup.collision.workers import WorkerFailed
+from marm_setup.robot.kinematics import sample_configurations
 from marm_setup.robot.load import load_robot
 from tests.collision_robots import TOY
 from tests.conftest import realworld
@@ -267,3 +268,26 @@ def test_never_pair_distances_are_measured_only_when_asked(marm, marm_scene):
     assert skipped.disabled == measured.disabled and skipped.enabled == measured.enabled
     assert all(s.min_distance is None for s in skipped.stats)
     assert any(s.min_distance is not None for s in measured.stats)
+
+
+@pytest.mark.parametrize(
+    "robot_path",
+    [
+        ("ros1", "panda_description", "urdf", "panda_arm_hand.urdf.xacro"),
+        ("ros1", "pr2_description", "urdf", "robot.xml"),
+    ],
+)
+def test_no_break_distance_gives_coals_default_verdicts(robot_path):
+    """The scene asks coal for no distance lower bound (break_distance 0): every pair's verdict in
+    every state is the one coal's default request (break_distance 1 mm) gives, padded or not."""
+    robot = load_robot(realworld(*robot_path))
+    q = sample_configurations(robot, np.random.default_rng(7), 60)
+    for padding in (0.0, 0.01):
+        ours, default = CollisionScene(robot, padding), CollisionScene(robot, padding)
+        for request in (default._request, default._hull_request):
+            request.break_distance = 1e-3
+        ids = ours.pair_ids(ours.candidate_pairs)
+        for hulls in (False, True):
+            expected = default.collision_counts(default.link_poses(q), ids, hulls)
+            np.testing.assert_array_equal(ours.collision_counts(ours.link_poses(q), ids, hulls), expected)
+        assert expected.sum() > 0
