@@ -11,25 +11,96 @@ from marm_setup.setup.model import Group
 def _expand(
     group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: frozenset[str]
 ) -> tuple[list[str], list[str]]:
-    """(joints, links) of a group and its subgroups, duplicates allowed (callers order them).
+    """(joints, links) of a group and its subgroups (callers order them and drop repeats).
 
-    Each group reachable through subgroups is expanded once, whatever the shape (a diamond of
-    subgroups is not exponential) or depth (iterative), and cycles end where they close.
-    """
-    joints: list[str] = []
-    links: list[str] = []
-    visited = set(seen) | {group.name}
-    stack = [group]
-    while stack:
-        current = stack.pop()
-        own_joints, own_links = _own_members(current, robot)
-        joints += own_joints
-        links += own_links
-        for sub in current.subgroups:
-            if sub in groups and sub not in visited:
-                visited.add(sub)
-                stack.append(groups[sub])
+    Every group of `groups` is expanded once per mapping (`_members_of_all`, cached), whatever
+    the shape (a diamond of subgroups is not exponential, a 3000-deep chain not quadratic) or
+    depth (iterative); cycles end where they close."""
+    members = _members_of_all(groups, robot)
+    if groups.get(group.name) is group:
+        return list(members[group.name][0]), list(members[group.name][1])
+    joints, links = _own_members(group, robot)
+    for sub in group.subgroups:
+        if sub in members and sub not in seen:
+            joints += members[sub][0]
+            links += members[sub][1]
     return joints, links
+
+
+Members = dict[str, tuple[tuple[str, ...], tuple[str, ...]]]
+_CACHE: list[tuple[Mapping[str, Group], RobotModel, Members]] = []  # by identity, newest first
+
+
+def _members_of_all(groups: Mapping[str, Group], robot: RobotModel) -> Members:
+    """(joints, links) of every group with its subgroups, for this mapping (computed once)."""
+    for cached_groups, cached_robot, members in _CACHE:
+        if cached_groups is groups and cached_robot is robot:
+            return members
+    members = _expand_all(groups, robot)
+    _CACHE.insert(0, (groups, robot, members))
+    del _CACHE[8:]
+    return members
+
+
+def _expand_all(groups: Mapping[str, Group], robot: RobotModel) -> Members:
+    """Each strongly connected set of groups (one group, or a subgroup cycle) in turn, subgroups
+    first: its own members plus its subgroups', without repeats."""
+    out: Members = {}
+    for component in _components(groups):
+        joints: dict[str, None] = {}
+        links: dict[str, None] = {}
+        for name in component:
+            own_joints, own_links = _own_members(groups[name], robot)
+            joints.update(dict.fromkeys(own_joints))
+            links.update(dict.fromkeys(own_links))
+            for sub in groups[name].subgroups:
+                if sub in out:  # an earlier component (a later one in this: a cycle member)
+                    joints.update(dict.fromkeys(out[sub][0]))
+                    links.update(dict.fromkeys(out[sub][1]))
+        for name in component:
+            out[name] = (tuple(joints), tuple(links))
+    return out
+
+
+def _components(groups: Mapping[str, Group]) -> list[list[str]]:
+    """The subgroup graph's strongly connected components, each after those it reaches
+    (Tarjan's algorithm, iterative; unknown subgroups ignored)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    out: list[list[str]] = []
+    for start in groups:
+        if start in index:
+            continue
+        work = [(start, iter(groups[start].subgroups))]
+        index[start] = low[start] = len(index)
+        stack.append(start)
+        on_stack.add(start)
+        while work:
+            node, children = work[-1]
+            child = next((c for c in children if c in groups), None)
+            if child is None:
+                work.pop()
+                if work:
+                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
+                if low[node] == index[node]:
+                    component = []
+                    while True:
+                        member = stack.pop()
+                        on_stack.discard(member)
+                        component.append(member)
+                        if member == node:
+                            break
+                    out.append(component)
+            elif child not in index:
+                index[child] = low[child] = len(index)
+                stack.append(child)
+                on_stack.add(child)
+                work.append((child, iter(groups[child].subgroups)))
+            elif child in on_stack:
+                low[node] = min(low[node], index[child])
+    return out
 
 
 def _own_members(group: Group, robot: RobotModel) -> tuple[list[str], list[str]]:

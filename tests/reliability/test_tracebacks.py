@@ -60,7 +60,7 @@ def test_a_thousand_link_chain(tmp_path):
 
 
 @pytest.mark.parametrize(
-    "spec", [subgroup_chain(1200), subgroup_diamonds(40)], ids=["chain-1200", "diamonds-40"]
+    "spec", [subgroup_chain(3000), subgroup_diamonds(40)], ids=["chain-3000", "diamonds-40"]
 )
 def test_deep_and_diamond_subgroups(tmp_path, spec):
     path = _write(tmp_path / "spec.yaml", yaml.safe_dump(spec))

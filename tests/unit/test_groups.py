@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.groups import chain_joint_names, group_joints, groups_by_name
@@ -54,3 +56,34 @@ def test_chain_joints_follow_moveits_walk(tree, base, tip, joints):
 def test_a_chain_group_holds_its_walk_in_tree_order(tree):
     group = Group(name="legs_to_arm", chain=Chain(base="a2", tip="l2"))
     assert group_joints(group, groups_by_name((group,)), tree) == ("j1", "j2", "ja1", "ja2", "jl1", "jl2")
+
+
+def _reference_joints(name: str, groups: dict, robot) -> set[str]:
+    """Every joint reachable through subgroups, walked naively (breadth first, visited set)."""
+    seen, queue, joints = {name}, [name], set()
+    while queue:
+        group = groups[queue.pop(0)]
+        joints |= set(group.joints)
+        for sub in group.subgroups:
+            if sub in groups and sub not in seen:
+                seen.add(sub)
+                queue.append(sub)
+    return joints
+
+
+@settings(max_examples=60)
+@given(st.lists(st.lists(st.integers(0, 9), max_size=3), min_size=1, max_size=10), st.data())
+def test_memoised_expansion_matches_a_naive_walk(tree, edges, data):
+    """Random subgroup graphs (cycles, self-loops, diamonds, names that are no group)."""
+    names = [f"g{i}" for i in range(len(edges))]
+    joints = ("j1", "j2", "ja1", "ja2", "jl1", "jl2")
+    groups = {
+        name: Group(
+            name=name,
+            joints=(data.draw(st.sampled_from(joints)),),
+            subgroups=tuple(f"g{k}" for k in subs),  # g9 may be no group
+        )
+        for name, subs in zip(names, edges, strict=True)
+    }
+    for name, group in groups.items():
+        assert set(group_joints(group, groups, tree)) == _reference_joints(name, groups, tree)
