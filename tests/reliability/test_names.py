@@ -165,7 +165,7 @@ def test_names_that_need_escaping_make_parseable_packages(tmp_path, target):
         assert {"group": "arm", "pose": "home"} in fake["initial"]
 
 
-@pytest.mark.parametrize("robot_name", ["my robot", ".hidden", "a:b"])
+@pytest.mark.parametrize("robot_name", ["my robot", ".hidden", "a:b", ""])
 def test_robot_names_that_cannot_name_files_or_macros(tmp_path, robot_name):
     urdf = tmp_path / "robot.urdf"
     urdf.write_text(TWO_BOXES.replace('name="test_robot"', f'name="{robot_name}"'))

@@ -272,3 +272,28 @@ def test_a_folder_we_may_not_read_is_one_line(tmp_path, monkeypatch):
     assert found.exit_code == 2 and json.loads(found.stdout)["findings"][0]["rule"] == "input.unreadable"
     monkeypatch.setattr("marm_setup.render.writer.plan_writes", _denied)
     assert_one_line_error(run("render", pkg), "error: /pkg/config: permission denied")
+
+
+def test_memory_does_not_grow_with_the_trials():
+    """--trials 1e8: the states come in chunks drawn where they are checked, so memory stays
+    what a few chunks need (the run is stopped after three chunks)."""
+    import tracemalloc
+
+    from marm_setup.collision.matrix import CHUNK, compute_collision_matrix
+    from marm_setup.robot.load import load_robot
+
+    marm = load_robot(MARM_URDF)
+
+    class Enough(Exception):
+        pass
+
+    def stop_after_three_chunks(done: int, total: int) -> None:
+        if done >= 3 * CHUNK:
+            raise Enough
+
+    tracemalloc.start()
+    with pytest.raises(Enough):
+        compute_collision_matrix(marm, trials=100_000_000, jobs=1, progress=stop_after_three_chunks)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert peak < 64 * 2**20  # all 1e8 states at once would be 0.6 GB for the marm's 7 joints
