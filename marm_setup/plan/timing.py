@@ -31,17 +31,29 @@ __all__ = [
 ]
 
 
+# [rad/s or m/s] what MoveIt's time parameterisations take for a joint without a velocity bound
+# (iterative_time_parameterization.cpp DEFAULT_VEL_MAX, time_optimal_trajectory_generation.cpp,
+# ruckig_traj_smoothing.cpp DEFAULT_MAX_VELOCITY, which warns "Joint velocity limits are not
+# defined. Using the default")
+DEFAULT_VELOCITY = 1.0
+
+
 @dataclass(frozen=True, eq=False)
 class JointLimits:
-    """Per joint maximum velocity [rad/s or m/s] and acceleration [rad/s^2 or m/s^2]."""
+    """Per joint maximum velocity [rad/s or m/s] and acceleration [rad/s^2 or m/s^2]; `unbounded`
+    names the joints without a velocity limit, timed at MoveIt's DEFAULT_VELOCITY."""
 
     joint_names: tuple[str, ...]
     max_velocity: np.ndarray
     max_acceleration: np.ndarray
+    unbounded: tuple[str, ...] = ()
 
     def scaled(self, velocity: float, acceleration: float) -> JointLimits:
         return JointLimits(
-            self.joint_names, self.max_velocity * velocity, self.max_acceleration * acceleration
+            self.joint_names,
+            self.max_velocity * velocity,
+            self.max_acceleration * acceleration,
+            self.unbounded,
         )
 
 
@@ -82,16 +94,17 @@ def limits_from_config(
     """Limits as MoveIt reads them: `joint_limits.yaml` entries over the URDF's velocity.
 
     Acceleration falls back to `default_acceleration` where none is given (as MoveIt does);
-    a joint with no velocity limit anywhere raises ValueError.
+    a joint with no positive velocity limit anywhere gets MoveIt's DEFAULT_VELOCITY.
     """
-    v_max, a_max = [], []
+    v_max, a_max, unbounded = [], [], []
     for name in joint_names:
         entry = joint_limits.get(name)
         entry = entry if isinstance(entry, Mapping) else {}
         v = _number(entry, "max_velocity", name) if entry.get("has_velocity_limits", True) else None
         v = v if v is not None else robot.joint(name).velocity
         if v is None or v <= 0:
-            raise ValueError(f"no positive velocity limit for joint {name}")
+            v = DEFAULT_VELOCITY
+            unbounded.append(name)
         a = _number(entry, "max_acceleration", name) if entry.get("has_acceleration_limits", False) else None
         for key, rate in (("max_velocity", v), ("max_acceleration", a)):
             if rate is not None and 0 < rate < MIN_RATE:
@@ -100,7 +113,7 @@ def limits_from_config(
                 )
         a_max.append(a if a is not None and a > 0 else default_acceleration)
         v_max.append(float(v))
-    return JointLimits(tuple(joint_names), np.array(v_max), np.array(a_max))
+    return JointLimits(tuple(joint_names), np.array(v_max), np.array(a_max), tuple(unbounded))
 
 
 def _number(entry: Mapping, key: str, joint: str) -> float | None:

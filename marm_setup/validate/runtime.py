@@ -50,6 +50,13 @@ def check_runtime(
         except InputError as exc:
             findings.append(error("runtime.limits", exc.path or srdf_file, f"group[{group}]", exc.message))
             continue
+        if problem.limits.unbounded:
+            joints = ", ".join(problem.limits.unbounded)
+            message = (
+                f"no velocity limit for {joints}: MoveIt times trajectories at its default 1 rad/s (m/s)"
+            )
+            hint = "set max_velocity in joint_limits.yaml (or the URDF)"
+            findings.append(warning("runtime.default-velocity", srdf_file, f"group[{group}]", message, hint))
         findings += _check_group(problem, robot, srdf_file, seed, options, planned)
     return findings
 

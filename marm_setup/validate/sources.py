@@ -81,8 +81,9 @@ def srdf_robot_name(root: Path, rel: str | None) -> str | None:
     from lxml import etree
 
     try:
-        for _event, elem in etree.iterparse(str(root / rel), events=("start",)):
-            return elem.get("name") or None
+        with open(root / rel, "rb") as stream:  # closed also when the first element returns
+            for _event, elem in etree.iterparse(stream, events=("start",)):
+                return elem.get("name") or None
     except (etree.XMLSyntaxError, OSError):
         return None
     return None

@@ -86,7 +86,9 @@ def test_unplannable_pair_and_rejected_execution(marm):
     assert all("acceleration limit: joint" in f.message for f in findings)
 
 
-def test_missing_velocity_limits_are_a_finding(marm, tmp_path):
+def test_missing_velocity_limits_are_moveits_default_and_a_warning(marm, tmp_path):
+    """MoveIt's time parameterisations time a joint without a velocity bound at 1 rad/s: the
+    plans still run, and validate says which joints got the default."""
     package, robot, scene = marm
     stripped = robot.__class__(
         robot.name,
@@ -98,8 +100,12 @@ def test_missing_velocity_limits_are_a_finding(marm, tmp_path):
     )
     bare = dataclasses.replace(package, joint_limits=None)
     findings = check_runtime(bare, stripped, scene)
-    assert [(f.rule, f.element) for f in findings] == [("runtime.limits", "group[arm]")]
-    assert findings[0].message == "no positive velocity limit for joint joint1"
+    assert [(f.rule, f.severity, f.element) for f in findings] == [
+        ("runtime.default-velocity", "warning", "group[arm]")
+    ]
+    assert findings[0].message.startswith(
+        "no velocity limit for joint1, joint2, joint3, joint4, joint5, joint6: MoveIt"
+    )
 
 
 def test_two_named_poses_with_the_same_values_are_clean(marm):

@@ -77,5 +77,12 @@ def _summary(problem: PlanningProblem, outcome: Executed) -> str:
             f"acceleration scaling {problem.acceleration_scaling:g})",
             f"  planning time: {result.planning_time_s * 1000:.1f} ms ({result.iterations} iterations)",
             f"  fake execution: ok ({outcome.execution.samples} states checked)",
+            *(
+                [
+                    f"  note: no velocity limit for {', '.join(problem.limits.unbounded)}: timed at MoveIt's default 1 rad/s"
+                ]
+                if problem.limits.unbounded
+                else []
+            ),
         ]
     )
