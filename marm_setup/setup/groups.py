@@ -45,6 +45,7 @@ def _members_of_all(groups: Mapping[str, Group], robot: RobotModel) -> Members:
 def _expand_all(groups: Mapping[str, Group], robot: RobotModel) -> Members:
     """Each strongly connected set of groups (one group, or a subgroup cycle) in turn, subgroups
     first: its own members plus its subgroups', without repeats."""
+    groups = {name: groups[name] for name in groups}  # one lookup per group, whatever the mapping
     out: Members = {}
     for component in _components(groups):
         joints: dict[str, None] = {}
