@@ -87,16 +87,18 @@ class UniqueKeyLoader(BoundedSafeLoader):
     silently): for our own files, where a repeated key is a mistake."""
 
     def construct_mapping(self, node, deep=False):
+        if isinstance(node, yaml.MappingNode):
+            self.flatten_mapping(node)  # merge keys (`<<: *anchor`) first, as SafeLoader does
         seen: set = set()
         for key_node, _ in node.value:
             key = self.construct_object(key_node, deep=True)
             if not isinstance(key, str | int | float | bool):
                 continue  # an unhashable key is PyYAML's to refuse
-            if key in seen:
+            if (type(key), key) in seen:  # 1 and true are different keys
                 raise yaml.constructor.ConstructorError(
                     None, None, f"key '{key}' given twice", key_node.start_mark
                 )
-            seen.add(key)
+            seen.add((type(key), key))
         return super().construct_mapping(node, deep)
 
 

@@ -3,28 +3,24 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from types import MappingProxyType
 
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.model import Group
 
 
-def _expand(
-    group: Group, groups: Mapping[str, Group], robot: RobotModel, seen: frozenset[str]
-) -> tuple[list[str], list[str]]:
+def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[list[str], list[str]]:
     """(joints, links) of a group and its subgroups (callers order them and drop repeats).
 
-    Every group of `groups` is expanded once per mapping (`_members_of_all`, cached), whatever
-    the shape (a diamond of subgroups is not exponential, a 3000-deep chain not quadratic) or
-    depth (iterative); cycles end where they close."""
-    members = _members_of_all(groups, robot)
+    Every group of `groups` is expanded once per mapping (`_members_of_all`, cached by identity:
+    `groups_by_name` mappings are read-only), whatever the shape (a diamond of subgroups is not
+    exponential, a 3000-deep chain not quadratic) or depth; cycles end where they close. A group
+    that is not the mapping's own (an edited copy) is expanded with it in the mapping's place."""
     if groups.get(group.name) is group:
-        return list(members[group.name][0]), list(members[group.name][1])
-    joints, links = _own_members(group, robot)
-    for sub in group.subgroups:
-        if sub in members and sub not in seen:
-            joints += members[sub][0]
-            links += members[sub][1]
-    return joints, links
+        members = _members_of_all(groups, robot)
+    else:
+        members = _expand_all({**groups, group.name: group}, robot)
+    return list(members[group.name][0]), list(members[group.name][1])
 
 
 Members = dict[str, tuple[tuple[str, ...], tuple[str, ...]]]
@@ -162,13 +158,13 @@ def _tree_ordered(names: list[str], order: tuple[str, ...]) -> tuple[str, ...]:
 
 def group_joints(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
     """Every joint of the group (fixed and mimic included), in tree order."""
-    joints, _ = _expand(group, groups, robot, frozenset({group.name}))
+    joints, _ = _expand(group, groups, robot)
     return _tree_ordered(joints, tuple(j.name for j in robot.joints_in_tree_order))
 
 
 def group_links(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[str, ...]:
     """Every link of the group, in tree order."""
-    _, links = _expand(group, groups, robot, frozenset({group.name}))
+    _, links = _expand(group, groups, robot)
     return _tree_ordered(links, robot.links_in_tree_order)
 
 
@@ -209,5 +205,6 @@ def planning_joints(
     return tuple(sorted(names))
 
 
-def groups_by_name(groups: tuple[Group, ...]) -> dict[str, Group]:
-    return {g.name: g for g in groups}
+def groups_by_name(groups: tuple[Group, ...]) -> Mapping[str, Group]:
+    """Groups by name (the last of a repeated name), read-only: expansions are cached per mapping."""
+    return MappingProxyType({g.name: g for g in groups})

@@ -21,6 +21,7 @@ What is skipped, from the sources:
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
@@ -96,7 +97,7 @@ def _loaded_members(group: Group, robot: RobotModel, joints: set[str], notes: li
 
 
 def _loaded_state(
-    state: GroupState, groups: dict[str, Group], robot: RobotModel, joints: set[str], notes: list[str]
+    state: GroupState, groups: Mapping[str, Group], robot: RobotModel, joints: set[str], notes: list[str]
 ) -> GroupState | None:
     where = f"group_state[{state.name}]"
     group = groups.get(state.group)
@@ -130,7 +131,7 @@ def _clamped(robot: RobotModel, joint: str, value: float, where: str, notes: lis
 
 
 def _loaded_effector(
-    ee: EndEffector, groups: dict[str, Group], robot: RobotModel, notes: list[str]
+    ee: EndEffector, groups: Mapping[str, Group], robot: RobotModel, notes: list[str]
 ) -> EndEffector | None:
     where = f"end_effector[{ee.name}]"
     if ee.group not in groups:

@@ -87,3 +87,16 @@ def test_memoised_expansion_matches_a_naive_walk(tree, edges, data):
     }
     for name, group in groups.items():
         assert set(group_joints(group, groups, tree)) == _reference_joints(name, groups, tree)
+
+
+def test_groups_by_name_is_read_only_and_an_edited_copy_replaces_its_group(tree):
+    """Expansions are cached per mapping, so the mappings are read-only; a group that is not the
+    mapping's own (an edited copy) is expanded with it in its original's place."""
+    groups = groups_by_name(
+        (Group("c", joints=("j1",), subgroups=("d",)), Group("d", joints=("j2",), subgroups=("c",)))
+    )
+    with pytest.raises(TypeError):
+        groups["c"] = Group("c")  # type: ignore[index]
+    edited = Group("c", joints=("ja1",), subgroups=("d",))
+    assert set(group_joints(edited, groups, tree)) == {"ja1", "j2"}  # not the original c's j1
+    assert set(group_joints(groups["c"], groups, tree)) == {"j1", "j2"}

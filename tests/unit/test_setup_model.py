@@ -230,3 +230,12 @@ def test_round_trip_property():
         assert dump_setup(loaded) == text
 
     check()
+
+
+def test_yaml_merge_keys_still_work_in_setup_files(tmp_path):
+    """The duplicate-key check flattens `<<: *anchor` first, as PyYAML's SafeLoader does."""
+    from marm_setup.setup.yaml_io import read_yaml_mapping
+
+    path = tmp_path / "s.yaml"
+    path.write_text("base: &who {name: Ann}\nauthor: {<<: *who, email: ann@example.com}\n", encoding="utf-8")
+    assert read_yaml_mapping(path)["author"] == {"name": "Ann", "email": "ann@example.com"}

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from numbers import Real
 from typing import TYPE_CHECKING
 
@@ -52,7 +53,7 @@ def _check_entry(
     where: str,
     entry: dict,
     group: Group,
-    by_name: dict[str, Group],
+    by_name: Mapping[str, Group],
     srdf: Srdf,
     robot: RobotModel,
 ) -> list[Finding]:
