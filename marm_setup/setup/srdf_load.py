@@ -8,14 +8,18 @@ What is skipped, from the sources:
   ("has unsatisfied subgroups": unknown ones, or a subgroup cycle); `loadGroupStates` skips a
   state of an unknown group and a value of an unknown joint; `loadEndEffectors` one whose group
   or parent link is unknown; `loadVirtualJoints` one whose child link is unknown;
-  `loadPassiveJoints` an unknown joint. Elements missing an attribute are skipped while reading
+  `loadPassiveJoints` an unknown joint; `loadCollisionPairs` a pair naming an unknown link.
+  Elements missing an attribute are skipped while reading
   (`parse_srdf_root(..., skipped)`).
 - moveit_core robot_model.cpp: `addJointModelGroup` keeps the first of two groups of one name
   ("already exists. Not adding"); `buildGroupStates` drops a value of a joint outside the group
-  ("that joint is not part of group"); an end effector's unknown parent group is ignored.
+  ("that joint is not part of group") and adds no state left without values (`if
+  (!state.empty())`); an end effector's unknown parent group is ignored.
 - A value outside its joint's limits by no more than START_BOUNDS_TOLERANCE is clamped: what
   MoveIt's FixStartStateBounds adapter does to a start state by default
   (`start_state_max_bounds_error`, 0.05); a larger violation stays for the rules to refuse.
+A group left with nothing stays (srdfdom keeps it; the setup keeps it with a warning, so an
+SRDF round-trips), though MoveIt's RobotModel will not build it.
 """
 
 from __future__ import annotations
@@ -53,6 +57,11 @@ def as_moveit_loads(srdf: Srdf, robot: RobotModel) -> tuple[Srdf, tuple[str, ...
     )
     passive = tuple(j for j in srdf.passive_joints if j in joints)
     notes += [f"passive_joint[{j}]: unknown joint" for j in srdf.passive_joints if j not in joints]
+    known = set(robot.link_map)
+    disabled = tuple(p for p in srdf.disabled if {p.link1, p.link2} <= known)
+    notes += [
+        f"disable_collisions[{p.link1} {p.link2}]: unknown link" for p in srdf.disabled if p not in disabled
+    ]
     loaded = dataclasses.replace(
         srdf,
         groups=groups,
@@ -60,6 +69,7 @@ def as_moveit_loads(srdf: Srdf, robot: RobotModel) -> tuple[Srdf, tuple[str, ...
         end_effectors=effectors,
         virtual_joints=virtual,
         passive_joints=passive,
+        disabled=disabled,
     )
     return loaded, tuple(notes)
 
@@ -115,6 +125,9 @@ def _loaded_state(
             values.append((joint, _clamped(robot, joint, value, f"{where}.joint[{joint}]", notes)))
     multi = tuple((j, v) for j, v in state.multi_dof if j in joints)
     notes += [f"{where}.joint[{j}]: unknown joint" for j, _ in state.multi_dof if j not in joints]
+    if not values and not multi:  # robot_model.cpp buildGroupStates: `if (!state.empty())` only
+        notes.append(f"{where}: no joint value left (MoveIt adds no such state)")
+        return None
     return dataclasses.replace(state, values=tuple(values), multi_dof=multi)
 
 

@@ -59,3 +59,18 @@ def test_unknown_virtual_and_passive_joints_and_parent_groups(marm):
         "end_effector[e]: parent group 'arms' is not loaded (ignored)",
         "passive_joint[jointQ]: unknown joint",
     )
+
+
+def test_a_state_left_without_values_and_pairs_of_unknown_links_are_left_out(marm):
+    body = ARM + (
+        "<group_state name='ghost' group='arm'><joint name='jointX' value='0'/></group_state>"
+        "<disable_collisions link1='base_link' link2='link9' reason='Never'/>"
+        "<disable_collisions link1='base_link' link2='link1' reason='Adjacent'/>"
+    )
+    srdf, notes = load(marm, body)
+    assert srdf.group_states == () and [p.pair for p in srdf.disabled] == [("base_link", "link1")]
+    assert notes == (
+        "group_state[ghost].joint[jointX]: unknown joint",
+        "group_state[ghost]: no joint value left (MoveIt adds no such state)",
+        "disable_collisions[base_link link9]: unknown link",
+    )
