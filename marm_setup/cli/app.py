@@ -52,6 +52,8 @@ def handle_errors(fn: Callable[P, R]) -> Callable[P, R]:
             raise
         except Exception as exc:
             if _DEBUG["on"]:
+                if getattr(exc, "detail", ""):  # e.g. the traceback a worker process sent
+                    typer.echo(exc.detail, err=True)  # type: ignore[attr-defined]
                 raise
             echo_err(
                 f"error: internal error: {internal_error_text(exc)} (please report; --debug shows where)"

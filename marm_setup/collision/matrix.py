@@ -116,7 +116,7 @@ def compute_collision_matrix(
     trial_pairs = tuple(p for p in remaining if p not in seen)
     costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
     shards = plan_shards(trial_pairs, costs, jobs)
-    with Workers(scene, seed, trials, shortcuts, shards) as workers:
+    with Workers(scene, seed, trials, shortcuts, shards, distances) as workers:
         work = _run_trials(workers, seen, trials, progress)
         never = [p for p in remaining if p not in seen]
         reasons.update(dict.fromkeys(never, DisabledReason.NEVER))

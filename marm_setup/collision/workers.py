@@ -17,7 +17,12 @@ from marm_setup.collision.trials import Pair, PairShard, Work
 
 
 class WorkerFailed(RuntimeError):
-    """A worker process raised (its traceback is the message) or died without an answer."""
+    """A worker process raised (the message is its exception's last line; `detail` the child's
+    traceback, which --debug prints) or died without an answer."""
+
+    def __init__(self, message: str, detail: str = "") -> None:
+        super().__init__(message)
+        self.detail = detail
 
 
 class Workers:
@@ -25,8 +30,16 @@ class Workers:
     process when there is one shard, else in one process per shard (forked workers inherit
     the built scene; spawned ones build it again)."""
 
-    def __init__(self, scene, seed: int, trials: int, shortcuts: bool, shards: list[tuple[Pair, ...]]):
-        self.scene, self.seed, self.trials, self.shortcuts = scene, seed, trials, shortcuts
+    def __init__(
+        self,
+        scene,
+        seed: int,
+        trials: int,
+        shortcuts: bool,
+        shards: list[tuple[Pair, ...]],
+        distances: bool = True,
+    ):
+        self.scene, self.distances_wanted = scene, distances  # distances: each shard's, after its chunks
         self.shards = [PairShard(scene, seed, trials, shortcuts, pairs) for pairs in shards]
         self._procs: list[tuple[Any, Any]] = []  # (process, parent end of its pipe)
 
@@ -43,7 +56,8 @@ class Workers:
             for shard in self.shards:
                 ours, theirs = context.Pipe(duplex=False)
                 spec = shard if fork else _ShardSpec.of(shard)
-                proc = context.Process(target=_work, args=(spec, theirs), daemon=True)  # type: ignore[attr-defined]
+                args = (spec, theirs, self.distances_wanted)
+                proc = context.Process(target=_work, args=args, daemon=True)  # type: ignore[attr-defined]
                 proc.start()
                 theirs.close()
                 self._procs.append((proc, ours))
@@ -51,10 +65,10 @@ class Workers:
 
     def __exit__(self, *exc) -> None:
         for proc, conn in self._procs:
-            conn.close()
-            if proc.is_alive():
+            if proc.is_alive():  # done (or abandoned on an error): stop it before its pipe closes
                 proc.terminate()
             proc.join()
+            conn.close()
         self._procs = []
 
     def chunks(self) -> Iterator[tuple[set[Pair], Work]]:
@@ -90,9 +104,10 @@ class Workers:
             try:
                 kind, payload = conn.recv()
             except EOFError:
+                proc.join(timeout=1.0)
                 raise WorkerFailed(f"collision worker {proc.pid} died (exit {proc.exitcode})") from None
             if kind == "error":
-                raise WorkerFailed(payload)
+                raise WorkerFailed(payload[0], detail=f"in the collision worker:\n{payload[1]}")
             out.append(payload)
         return out
 
@@ -115,18 +130,21 @@ class _ShardSpec:
         return PairShard(CollisionScene(robot, padding), seed, trials, shortcuts, pairs)
 
 
-def _work(spec: PairShard | _ShardSpec, conn) -> None:
-    """A worker process: every chunk in order, then the distances, one message each."""
+def _work(spec: PairShard | _ShardSpec, conn, distances: bool) -> None:
+    """A worker process: every chunk in order, then (when wanted) the distances, one message
+    each; an exception is sent as (its last line, the traceback)."""
     try:
         shard = spec.build() if isinstance(spec, _ShardSpec) else spec
         for index in range(shard.chunks):
             before = Work.of(shard.scene)
             seen = shard.check(index)
             conn.send(("ok", (seen, Work.of(shard.scene) - before)))
-        before = Work.of(shard.scene)
-        distances = shard.distances()
-        conn.send(("ok", (distances, Work.of(shard.scene) - before)))
-    except BaseException:  # report, then end: the parent raises WorkerFailed
-        conn.send(("error", traceback.format_exc()))
+        if distances:
+            before = Work.of(shard.scene)
+            found = shard.distances()
+            conn.send(("ok", (found, Work.of(shard.scene) - before)))
+    except BaseException as exc:  # report, then end: the parent raises WorkerFailed
+        last = traceback.format_exception_only(exc)[-1].strip()
+        conn.send(("error", (last, traceback.format_exc())))
     finally:
         conn.close()

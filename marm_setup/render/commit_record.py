@@ -12,7 +12,7 @@ import stat
 from pathlib import Path, PurePosixPath
 
 from marm_setup.errors import InputError
-from marm_setup.render.safe_fs import mount_points_below, mount_table, unsafe_path
+from marm_setup.render.safe_fs import mount_points_below, mount_table, relative_path_problem, unsafe_path
 
 STATE_DIR = ".marm_setup"
 COMMIT = f"{STATE_DIR}/commit.json"
@@ -115,10 +115,10 @@ def _bad_stage(real: Path, name: str) -> str | None:
 
 def _bad_move(rel: str) -> str | None:
     """Why `rel` is not a plain relative path to a generated file, else None."""
-    path = PurePosixPath(rel)
-    if not rel or "\0" in rel or path.is_absolute() or str(path) != rel or ".." in path.parts:
-        return "not a plain relative path inside the package"
-    if path.parts[0] == STATE_DIR and rel != f"{STATE_DIR}/manifest.json":
+    problem = relative_path_problem(rel)
+    if problem:
+        return problem
+    if PurePosixPath(rel).parts[0] == STATE_DIR and rel != f"{STATE_DIR}/manifest.json":
         return "the writer's own state"
     return None
 

@@ -12,6 +12,22 @@ from pathlib import Path, PurePosixPath
 _DIR_FLAGS = os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW
 
 
+def relative_path_problem(rel: str) -> str | None:
+    """Why `rel` is not a plain relative path inside a folder (empty, '.', a NUL, absolute, not
+    normalised, or a '..' part), else None."""
+    path = PurePosixPath(rel)
+    if (
+        not rel
+        or "\0" in rel
+        or path.is_absolute()
+        or str(path) != rel
+        or not path.parts
+        or ".." in path.parts
+    ):
+        return "not a plain relative path inside the package"
+    return None
+
+
 def unsafe_path(root: Path, rel: str, mounts: set[Path]) -> str | None:
     """Why writing `root/rel` could leave `root` (a symlink or a mount point on the way), else None."""
     current, dev = root, os.lstat(root).st_dev

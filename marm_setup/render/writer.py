@@ -20,6 +20,7 @@ from typing import Literal
 
 from marm_setup.errors import ConflictError, InputError
 from marm_setup.render.commit_record import COMMIT, pending_files
+from marm_setup.render.safe_fs import relative_path_problem
 from marm_setup.render.switch import package_lock, switch_package
 from marm_setup.templating import RenderedFile
 
@@ -103,8 +104,7 @@ def _status(path: Path, new: bytes, recorded: str | None) -> Status:
 
 
 def _check_path(rel: str) -> None:
-    parts = Path(rel).parts
-    if not parts or Path(rel).is_absolute() or ".." in parts:
+    if relative_path_problem(rel):
         raise InputError("rendered path escapes the package", element=rel)
 
 

@@ -124,8 +124,10 @@ def chain_joint_names(robot: RobotModel, base: str, tip: str) -> tuple[str, ...]
     robot_model.cpp, RobotModel::addJointModelGroup): up from the tip to the base; when the base is
     not above the tip ("from one end-effector to another ... the root is in between"), up from the
     tip to where the base's own path up meets it, the joint above that meeting link included (as
-    MoveIt's walk does), plus the base's path up to there. The root link's joint is the virtual
-    joint, not a URDF joint: left out. Unknown links give nothing (srdfdom skips the chain)."""
+    MoveIt's walk does), plus the base's path up to there. Where the paths meet at the root,
+    MoveIt's walk also takes the root's joint, the virtual joint: not a URDF joint, it is left
+    out here (a planar or floating one gives MoveIt's group more variables than ours). Unknown
+    links give nothing (srdfdom skips the chain)."""
     if base not in robot.link_map or tip not in robot.link_map:
         return ()
     from_tip = _parent_joints_up(robot, tip, stop=base)

@@ -20,7 +20,7 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.model import GroupState, SetupModel, StartPose
 from marm_setup.setup.srdf import allowed_pairs, setup_to_srdf
-from marm_setup.setup.start_state import model_start_values, start_pose
+from marm_setup.setup.start_state import model_start_values, pose_configuration, start_pose
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -209,18 +209,10 @@ def _with_start(model: SetupModel, chosen: dict[str, str | None]) -> SetupModel:
 
 
 def _start_score(model: SetupModel, robot: RobotModel, space: _Space) -> tuple[int, int, tuple[str, str]]:
-    """(pairs in collision at the start, named poses in collision over it, the first pair)."""
-    values = model_start_values(model, robot)
-    start = np.array([values.get(n, robot.joint(n).default_position) for n in space.names])
-    states = [start]
-    by_name = groups_by_name(model.groups)
-    for state in model.group_states:
-        group = by_name.get(state.group)
-        q = start.copy()
-        active = set(active_group_joints(group, by_name, robot, model.passive_joints)) if group else set()
-        for joint, value in state.values:
-            if joint in active:
-                q[space.index[joint]] = value
-        states.append(q)
+    """(pairs in collision at the start, named poses in collision over it, the first pair): the
+    start state and each pose over it as validate's pose rules build them."""
+    start_values = model_start_values(model, robot)
+    start = GroupState("start", "", ())
+    states = [pose_configuration(s, robot, start_values) for s in (start, *model.group_states)]
     hits = space.hits(np.array(states))
     return (int(hits[0] is not None), sum(h is not None for h in hits[1:]), hits[0] or ("", ""))

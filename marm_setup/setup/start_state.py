@@ -14,8 +14,10 @@ Joints neither sets stay at MoveIt's default (0, or mid-range where 0 is outside
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import Any, Protocol
+
+import numpy as np
 
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
@@ -44,6 +46,20 @@ def model_start_values(model: SetupModel, robot: RobotModel) -> dict[str, float]
     for joint in robot.joints:
         if joint.mimic is not None and joint.name in q and joint.mimic.joint in q:
             q[joint.name] = joint.mimic.multiplier * q[joint.mimic.joint] + joint.mimic.offset
+    return q
+
+
+def pose_configuration(
+    state: GroupState, robot: RobotModel, base: Mapping[str, float] | None = None
+) -> np.ndarray:
+    """The full active configuration of a named pose: its values over `base` over the default state."""
+    from marm_setup.robot.kinematics import default_configuration
+
+    q = default_configuration(robot)
+    index = {name: i for i, name in enumerate(robot.active_joint_names)}
+    for joint, value in [*(base or {}).items(), *state.values]:
+        if joint in index:
+            q[index[joint]] = value
     return q
 
 

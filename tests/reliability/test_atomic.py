@@ -221,6 +221,9 @@ def _forge(pkg, victim, case):
         record = {"stage": 3, "files": 1}
     elif case == "a nul byte":
         record["stage"] = ".marm_setup/stage-x\u0000"
+    elif case == "the package itself":
+        _stage_with(pkg)
+        record["files"] = ["."]
     return json.dumps(record)
 
 
@@ -238,6 +241,7 @@ FORGED = [
     "not a record",
     "wrong types",
     "a nul byte",
+    "the package itself",
 ]
 
 

@@ -258,8 +258,10 @@ def test_a_failing_worker_is_an_error_not_a_hang(marm, monkeypatch):
 
     monkeypatch.setattr(matrix_module, "WORTH_A_PROCESS", 0.0)
     monkeypatch.setattr(PairShard, "check", broken)  # forked workers inherit the patch
-    with pytest.raises(WorkerFailed, match="boom"):
+    with pytest.raises(WorkerFailed, match="boom") as failed:
         compute_collision_matrix(marm, CollisionScene(marm), trials=CHUNK, jobs=2)
+    assert str(failed.value) == "ValueError: boom"  # one line; the child's traceback is the detail
+    assert "Traceback" in failed.value.detail and "in broken" in failed.value.detail
 
 
 def test_never_pair_distances_are_measured_only_when_asked(marm, marm_scene):

@@ -8,32 +8,16 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from marm_setup.findings import Finding, error
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.srdf import allowed_pairs
+from marm_setup.setup.start_state import pose_configuration
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
-    from marm_setup.setup.model import GroupState
     from marm_setup.setup.srdf import Srdf
     from marm_setup.validate.discovery import ConfigSection
-
-
-def pose_configuration(
-    state: GroupState, robot: RobotModel, base: Mapping[str, float] | None = None
-) -> np.ndarray:
-    """The full active configuration of a named pose: its values over `base` over the default state."""
-    from marm_setup.robot.kinematics import default_configuration
-
-    q = default_configuration(robot)
-    index = {name: i for i, name in enumerate(robot.active_joint_names)}
-    for joint, value in [*(base or {}).items(), *state.values]:
-        if joint in index:
-            q[index[joint]] = value
-    return q
 
 
 def check_pose_collisions(
