@@ -116,11 +116,8 @@ def compute_collision_matrix(
     trial_pairs = tuple(p for p in remaining if p not in seen)
     costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
     shards = plan_shards(trial_pairs, costs, jobs)
-    with Workers(scene, seed, trials, shortcuts, shards, distances) as workers:
-        work = _run_trials(workers, seen, trials, progress)
-        never = [p for p in remaining if p not in seen]
-        reasons.update(dict.fromkeys(never, DisabledReason.NEVER))
-        closest, distance_work = workers.distances() if distances else ({}, Work())
+    closest, work = _never_phase(scene, shards, seen, seed, trials, shortcuts, distances, progress)
+    reasons.update(dict.fromkeys((p for p in remaining if p not in seen), DisabledReason.NEVER))
     stats = tuple(
         PairStats(p[0], p[1], reasons.get(p), *counts.get(p, (0, 0)), p in seen, closest.get(p))
         for p in scene.candidate_pairs
@@ -133,8 +130,20 @@ def compute_collision_matrix(
         seed=seed,
         min_collision_fraction=min_collision_fraction,
         padding=scene.padding,
-        work=Work.of(scene) - before + work + distance_work,
+        work=Work.of(scene) - before + work,
     )
+
+
+def _never_phase(
+    scene, shards, seen: set[Pair], seed: int, trials: int, shortcuts: bool, distances: bool, progress
+) -> tuple[dict[Pair, float], Work]:
+    """The trials over `shards` of pairs (one process each when several): adds the pairs seen
+    colliding to `seen`; returns each never-seen pair's smallest distance (when `distances`) and
+    the work of worker processes."""
+    with Workers(scene, seed, trials, shortcuts, shards, distances) as workers:
+        work = _run_trials(workers, seen, trials, progress)
+        closest, distance_work = workers.distances() if distances else ({}, Work())
+    return closest, work + distance_work
 
 
 def _disable_default(scene, q0: np.ndarray, reasons: dict[Pair, DisabledReason], hulls: bool) -> None:

@@ -39,7 +39,7 @@ class Workers:
         shards: list[tuple[Pair, ...]],
         distances: bool = True,
     ):
-        self.scene, self.distances_wanted = scene, distances  # distances: each shard's, after its chunks
+        self.distances_wanted = distances  # each shard's Never distances, after its chunks
         self.shards = [PairShard(scene, seed, trials, shortcuts, pairs) for pairs in shards]
         self._procs: list[tuple[Any, Any]] = []  # (process, parent end of its pipe)
 
