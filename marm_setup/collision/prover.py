@@ -75,6 +75,8 @@ class PairProver:
             if self._timed_exact(poses[n], pair_id, hulls=False):
                 return True
         rows = rows[EXACT_FIRST:]
+        if not self._any_shortcut_pays(pair_id):
+            return self._exact_only(poses, pair_id, rows)
         alive = np.ones(len(rows), dtype=bool)
         for i, n in enumerate(rows):
             if (
@@ -84,6 +86,27 @@ class PairProver:
             ):
                 return True
         return False
+
+    def _any_shortcut_pays(self, pair_id: int) -> bool:
+        """Whether a certificate or the hull test still pays on this pair (one that does not at
+        the start of a chunk will not start to within it: its ledger only grows when it is used)."""
+        exact = self._exact_seconds(pair_id)
+        kinds = ("hull", "exact", "hull test") if self.scene.has_hulls(pair_id) else ("hull", "exact")
+        return any(self._ledger.pays(pair_id, kind, exact) for kind in kinds)
+
+    def _exact_only(self, poses: np.ndarray, pair_id: int, rows: np.ndarray) -> bool:
+        """The exact check of each state in turn, timed as a whole (no shortcut pays here)."""
+        collide, started, done = self.scene.collide, time.perf_counter(), 0
+        hit = False
+        for n in rows:
+            done += 1
+            if collide(poses[n], pair_id):
+                hit = True
+                break
+        record = self._exact.setdefault(pair_id, [0, 0.0])
+        record[0] += done
+        record[1] += time.perf_counter() - started
+        return hit
 
     def _exact_seconds(self, pair_id: int) -> float:
         count, seconds = self._exact.get(pair_id, (0, 0.0))
