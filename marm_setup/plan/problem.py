@@ -9,7 +9,6 @@ wrapped into [-pi, pi), as MoveIt's enforceBounds does (a pose may say 4.0 rad).
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -27,11 +26,11 @@ from marm_setup.plan.planner import (
     plan_joint_path,
 )
 from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_config, time_parameterize
-from marm_setup.robot.kinematics import default_configuration, wrap_continuous
+from marm_setup.robot.kinematics import wrap_continuous
 from marm_setup.robot.model import MIN_RATE, RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.srdf import Srdf, allowed_pairs
-from marm_setup.setup.start_state import package_start_values
+from marm_setup.setup.start_state import package_start_values, pose_configuration, start_configuration
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -96,18 +95,9 @@ class Executed:
     execution: ExecutionReport
 
 
-def _overlay(robot: RobotModel, q: np.ndarray, values: Iterable[tuple[object, object]]) -> np.ndarray:
-    q = q.copy()
-    names = robot.active_joint_names
-    for joint, value in values:
-        if joint in names and isinstance(value, int | float) and not isinstance(value, bool):
-            q[names.index(joint)] = float(value)
-    return q
-
-
 def initial_configuration(package: PackageConfig, robot: RobotModel) -> np.ndarray:
     """The active configuration the package's demo starts in (`setup.start_state`)."""
-    return _overlay(robot, default_configuration(robot), package_start_values(package, robot).items())
+    return start_configuration(robot, package_start_values(package, robot))
 
 
 def _limits_section(package: PackageConfig) -> tuple[dict, float, float]:
@@ -171,9 +161,9 @@ def planning_problem(
             f"the scaled velocity or acceleration limits fall below {MIN_RATE:g}: no trajectory can be timed"
         )
         raise InputError(msg, path=_limits_file(package), element="default_velocity_scaling_factor")
-    q_initial = initial_configuration(package, robot)
+    start = package_start_values(package, robot)
     poses = {
-        s.name: wrap_continuous(robot, _overlay(robot, q_initial, s.values))
+        s.name: wrap_continuous(robot, pose_configuration(s, robot, start))
         for s in srdf.group_states
         if s.group == group
     }

@@ -20,7 +20,12 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.model import GroupState, SetupModel, StartPose
 from marm_setup.setup.srdf import allowed_pairs, setup_to_srdf
-from marm_setup.setup.start_state import model_start_values, pose_configuration, start_pose
+from marm_setup.setup.start_state import (
+    model_start_values,
+    pose_configuration,
+    start_configuration,
+    start_pose,
+)
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -212,7 +217,7 @@ def _start_score(model: SetupModel, robot: RobotModel, space: _Space) -> tuple[i
     """(pairs in collision at the start, named poses in collision over it, the first pair): the
     start state and each pose over it as validate's pose rules build them."""
     start_values = model_start_values(model, robot)
-    start = GroupState("start", "", ())
-    states = [pose_configuration(s, robot, start_values) for s in (start, *model.group_states)]
+    poses = [pose_configuration(s, robot, start_values) for s in model.group_states]
+    states = [start_configuration(robot, start_values), *poses]
     hits = space.hits(np.array(states))
     return (int(hits[0] is not None), sum(h is not None for h in hits[1:]), hits[0] or ("", ""))

@@ -63,6 +63,11 @@ def pose_configuration(
     return q
 
 
+def start_configuration(robot: RobotModel, values: Mapping[str, float] | None = None) -> np.ndarray:
+    """The full active configuration of `values` (a start state) over the default state."""
+    return pose_configuration(GroupState("start", "", ()), robot, values)
+
+
 class _Parsed(Protocol):
     @property
     def data(self) -> Any: ...

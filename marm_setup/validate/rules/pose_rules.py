@@ -12,7 +12,7 @@ from marm_setup.findings import Finding, error
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.srdf import allowed_pairs
-from marm_setup.setup.start_state import pose_configuration
+from marm_setup.setup.start_state import pose_configuration, start_configuration
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -100,17 +100,15 @@ def check_start_state(
     MoveIt 2's CheckStartStateCollision adapter refuses every plan from a state in collision
     (default_planning_request_adapters, check_start_state_collision.cpp), MoveIt 1's
     FixStartStateCollision only tries small random moves of it."""
-    from marm_setup.setup.model import GroupState
 
     if not base:
         return []
-    _START = GroupState("start", "", ())
     pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
     # a pair touching at the default state too is the collision matrix's problem, not the start's
-    default = pose_configuration(_START, robot)[None]
+    default = start_configuration(robot)[None]
     while pairs and (touching := scene.first_collisions(default, pairs)[0]) is not None:
         pairs = tuple(p for p in pairs if p != touching)
-    q = pose_configuration(_START, robot, base)[None]
+    q = start_configuration(robot, base)[None]
     hit = scene.first_collisions(q, pairs)[0] if pairs else None
     if hit is None:
         return []
