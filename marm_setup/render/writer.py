@@ -173,21 +173,23 @@ def apply_writes(
         with package_lock(real, shown):
             if require_fresh:
                 check_output_dir(real, force=False, shown=shown)
-            _recheck(changes, real, shown)
+            # the lock completed any interrupted switch: the folder is the disk as it is
+            manifest = _read_manifest(real / MANIFEST)
+            _recheck(changes, real, manifest, shown)
+            disk = _Disk(real, {})
             keep = {
-                c.path: c.kept_as or _free_orig_name(_Disk.of(real), c.path)
-                for c in changes
-                if c.status == "conflict"
+                c.path: c.kept_as or _free_orig_name(disk, c.path) for c in changes if c.status == "conflict"
             }
-            switch_package(real, _files_to_write(changes, real), keep, shown)
+            switch_package(real, _files_to_write(changes, manifest), keep, shown)
     except OSError as exc:
         raise _write_error(exc, out_dir) from None
     return [c for c in changes if c.writes]
 
 
-def _files_to_write(changes: list[FileChange], real: Path) -> dict[str, str | None]:
-    """{relative path: text} of the changed files and of the manifest recording every one."""
-    manifest = {} if _is_fresh(real) else load_manifest(real)
+def _files_to_write(changes: list[FileChange], manifest: dict[str, str]) -> dict[str, str | None]:
+    """{relative path: text} of the changed files and of the manifest (`manifest`, the one on
+    disk, updated) recording every one."""
+    manifest = dict(manifest)
     files: dict[str, str | None] = {}
     for change in changes:
         manifest[change.path] = sha256(_encode(change.content))
@@ -197,9 +199,8 @@ def _files_to_write(changes: list[FileChange], real: Path) -> dict[str, str | No
     return files
 
 
-def _recheck(changes: list[FileChange], real: Path, shown: str) -> None:
+def _recheck(changes: list[FileChange], real: Path, manifest: dict[str, str], shown: str) -> None:
     """The disk still is what the changes were planned from (no other run wrote meanwhile)."""
-    manifest = load_manifest(real)
     for change in changes:
         now = _status(real / change.path, _encode(change.content), manifest.get(change.path))
         taken = change.kept_as is not None and os.path.lexists(real / change.kept_as)
