@@ -71,9 +71,8 @@ class PairProver:
             covered = store.covers(q[rows])
             self.scene.certified += int(covered.sum())
             rows = rows[~covered]
-        for n in rows[:EXACT_FIRST]:
-            if self._timed_exact(poses[n], pair_id, hulls=False):
-                return True
+        if self._exact_only(poses, pair_id, rows[:EXACT_FIRST]):
+            return True
         rows = rows[EXACT_FIRST:]
         if not self._any_shortcut_pays(pair_id):
             return self._exact_only(poses, pair_id, rows)
@@ -103,22 +102,23 @@ class PairProver:
             if collide(poses[n], pair_id):
                 hit = True
                 break
-        record = self._exact.setdefault(pair_id, [0, 0.0])
-        record[0] += done
-        record[1] += time.perf_counter() - started
+        self._record_exact(pair_id, done, time.perf_counter() - started)
         return hit
+
+    def _record_exact(self, pair_id: int, checks: int, seconds: float) -> None:
+        record = self._exact.setdefault(pair_id, [0, 0.0])
+        record[0] += checks
+        record[1] += seconds
 
     def _exact_seconds(self, pair_id: int) -> float:
         count, seconds = self._exact.get(pair_id, (0, 0.0))
         return seconds / count if count else 0.0
 
-    def _timed_exact(self, poses: np.ndarray, pair_id: int, hulls: bool) -> bool:
+    def _timed_exact(self, poses: np.ndarray, pair_id: int) -> bool:
+        """The exact check at one state's link poses, timed for this pair's ledger."""
         started = time.perf_counter()
-        hit = self.scene.collide(poses, pair_id, hulls)
-        if not hulls:
-            record = self._exact.setdefault(pair_id, [0, 0.0])
-            record[0] += 1
-            record[1] += time.perf_counter() - started
+        hit = self.scene.collide(poses, pair_id)
+        self._record_exact(pair_id, 1, time.perf_counter() - started)
         return hit
 
     def _collide(self, poses: np.ndarray, pair_id: int) -> bool:
@@ -126,7 +126,7 @@ class PairProver:
         if not self.scene.has_hulls(pair_id) or not self._ledger.pays(
             pair_id, "hull test", self._exact_seconds(pair_id)
         ):
-            return self._timed_exact(poses, pair_id, hulls=False)
+            return self._timed_exact(poses, pair_id)
         entry = self._ledger.entry(pair_id, "hull test")
         started = time.perf_counter()
         apart = self.scene.hulls_apart(poses, pair_id)
@@ -135,7 +135,7 @@ class PairProver:
         if apart:
             entry[1] += 1
             return False
-        return self._timed_exact(poses, pair_id, hulls=False)
+        return self._timed_exact(poses, pair_id)
 
     def _certified(self, q, poses, pair_id: int, rows, i: int, alive) -> bool:
         """Try the cheap, then the costly certificate at state rows[i] (while they pay)."""

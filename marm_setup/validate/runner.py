@@ -1,7 +1,7 @@
 """validate: every static check of a MoveIt config package, plus the runtime seam.
 
-Rule families live in `marm_setup/checks/`; this module reads the package (via
-`package_discovery`), loads the robot and the collision scene once, and runs them all. The
+Rule families live in `validate/rules/`; this module reads the package (via
+`validate.discovery`), loads the robot and the collision scene once, and runs them all. The
 runtime checks (plan between named poses, execute as a fake controller) come from
 `marm_setup.validate.runtime.check_runtime(package, robot, scene)` when `plan` is true.
 """

@@ -7,7 +7,7 @@ collision matrix; the reason is informational), authors disable touching pairs o
 gripper linkage), and a pair that collides at the default state is what the Setup Assistant
 itself would label Default (compute_default_collisions.cpp, phase "default state").
 
-The resample uses the matrix computation's own sampler (`collision_matrix.trial_samples`) and
+The resample uses the matrix computation's own sampler (`collision.trials.trial_samples`) and
 the seed in marm_setup.yaml (else 0), so its states are a prefix of the ones `init`/`collisions`
 drew: a matrix we computed for an unchanged URDF can never fail it, while a URDF change (new
 geometry, wider limits) shows up at once. For a matrix from the Setup Assistant (another
