@@ -29,8 +29,13 @@ from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_con
 from marm_setup.robot.kinematics import wrap_continuous
 from marm_setup.robot.model import MIN_RATE, RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.srdf import Srdf, allowed_pairs
-from marm_setup.setup.start_state import package_start_values, pose_configuration, start_configuration
+from marm_setup.setup.srdf import allowed_pairs
+from marm_setup.setup.start_state import (
+    StartSources,
+    package_start_values,
+    pose_configuration,
+    start_configuration,
+)
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -46,29 +51,18 @@ class ConfigFile(Protocol):
     def data(self) -> Any: ...
 
 
-class PackageConfig(Protocol):
-    """What planning reads from a config package (validate's `ConfigPackage` is one)."""
+class PackageConfig(StartSources, Protocol):
+    """What planning reads from a config package (validate's `ConfigPackage` is one): the start
+    state's sources, and these."""
 
     @property
     def shown(self) -> str: ...
-
-    @property
-    def target(self) -> str: ...
-
-    @property
-    def srdf(self) -> Srdf | None: ...
 
     @property
     def srdf_path(self) -> str | None: ...
 
     @property
     def joint_limits(self) -> ConfigFile | None: ...
-
-    @property
-    def fake_controllers(self) -> ConfigFile | None: ...
-
-    @property
-    def initial_positions(self) -> ConfigFile | None: ...
 
     def user_path(self, rel: str | None) -> str: ...
 
