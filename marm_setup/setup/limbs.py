@@ -191,7 +191,7 @@ class _Finder:
             self.loose_hands.append(seg)
         else:
             seg = self._split_wheel(self._split_torso(seg))
-            own, tail = _split_hand(seg.joints)
+            own, tail = _split_tail(seg.joints, "hand")
             if tail or self._ends_in_fingers(seg, own):
                 self.raw.append(_RawLimb("arm", seg.start, own, True))
                 return
@@ -349,14 +349,9 @@ def _limb_name(raw: _RawLimb, unique: bool, number: int) -> str:
     return "_".join(prefix) if prefix else f"{raw.kind}_{number}"
 
 
-def _split_hand(joints: list[Joint]) -> tuple[list[Joint], list[Joint]]:
-    """(limb joints, trailing hand joints) of a segment that does not start as a hand; a joint
-    whose own name says wrist or arm stays in the limb whatever its child link is called."""
-    return _split_tail(joints, "hand")
-
-
 def _split_tail(joints: list[Joint], kind: str) -> tuple[list[Joint], list[Joint]]:
-    """`joints` cut after the last active joint that is not of `kind`."""
+    """`joints` cut after the last active joint that is not of `kind` (a joint's own name decides
+    before its child link's: `wrist_3_joint` stays in the arm whatever its link is called)."""
     last = max((i for i, j in enumerate(joints) if j.is_active and kind not in joint_kinds(j)), default=-1)
     return joints[: last + 1], joints[last + 1 :]
 
