@@ -255,13 +255,7 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
 def _build(request: InitRequest, robot: RobotModel) -> _Built:
     from marm_setup.names import ros_package_name
     from marm_setup.setup.checks import check_setup, package_name_problem
-    from marm_setup.setup.infer import (
-        REFERENCE,
-        fill_group_settings,
-        fit_to_spec,
-        home_poses,
-        infer,
-    )
+    from marm_setup.setup.infer import REFERENCE, infer
 
     if request.name and (problem := package_name_problem(request.name)):
         raise InputError(problem, element="--name")
@@ -283,12 +277,7 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
     if request.from_srdf is not None:
         model, notes = _import_srdf(request.from_srdf, model, notes, robot)
     if spec:
-        model = _make_room_for_spec(model, spec)
-        model = fit_to_spec(_apply_spec(model, spec, request), robot, spec)
-        if not inferred_groups:
-            model = fill_group_settings(model, robot)
-        if "group_states" not in spec and request.from_srdf is None:
-            model = dataclasses.replace(model, group_states=home_poses(model, robot))
+        model = _with_spec(model, spec, request, robot, inferred_groups)
     model = dataclasses.replace(model, ros_distro=_distro(request, spec, model.target))
     if not model.groups:
         raise InputError(
@@ -299,6 +288,22 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
     check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
     poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
     return _Built(model, (*notes, *_empty_group_warnings(model)), poses_given)
+
+
+def _with_spec(
+    model: SetupModel, spec: dict, request: InitRequest, robot: RobotModel, inferred_groups: bool
+) -> SetupModel:
+    """`model` with the SPEC's sections in place of its own, fitted to the robot; group settings
+    filled when the groups are all the SPEC's, home poses when neither SPEC nor SRDF gives poses."""
+    from marm_setup.setup.infer import fill_group_settings, fit_to_spec, home_poses
+
+    model = _make_room_for_spec(model, spec)
+    model = fit_to_spec(_apply_spec(model, spec, request), robot, spec)
+    if not inferred_groups:
+        model = fill_group_settings(model, robot)
+    if "group_states" not in spec and request.from_srdf is None:
+        model = dataclasses.replace(model, group_states=home_poses(model, robot))
+    return model
 
 
 def _import_srdf(
