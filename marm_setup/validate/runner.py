@@ -261,7 +261,7 @@ def check_with_scene(
     """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
     with the number of pose pairs the runtime checks planned (None when they did not run)."""
     from marm_setup.collision.scene import CollisionScene
-    from marm_setup.validate.rules.matrix_rules import check_matrix_fresh
+    from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing
     from marm_setup.validate.rules.pose_rules import check_pose_collisions, check_start_state
 
     try:
@@ -276,9 +276,8 @@ def check_with_scene(
         out += guarded("pose", check_start_state, pkg.srdf, robot, scene, pkg.initial_positions.file, start)
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
-    out += guarded(
-        "matrix", check_matrix_fresh, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed
-    )
+    for check in (check_matrix_missing, check_matrix_fresh):
+        out += guarded("matrix", check, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed)
     if not plan:
         return out, None
     planned: list = []

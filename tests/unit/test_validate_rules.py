@@ -343,6 +343,14 @@ POSE_CASES = [
         "pose.out-of-limits",
         also=("pose.collision",),
     ),
+    Case(
+        "marm-matrix-missing-adjacent",
+        "marm_ros1",
+        text("config/marm.srdf", '<disable_collisions link1="link2" link2="link3" reason="Adjacent"/>', ""),
+        "matrix.always-colliding",
+        match="link2 link3",
+        also=("pose.collision",),  # every pose collides in the pair too
+    ),
 ]
 
 KINEMATICS_CASES = [

@@ -1,4 +1,11 @@
-"""Collision-matrix freshness: a pair the SRDF marks Never should not collide in a quick resample.
+"""The SRDF's collision matrix against a quick resample of the robot's states.
+
+Missing: a pair the matrix leaves enabled yet in collision in (nearly) every state (the Setup
+Assistant's Always, compute_default_collisions.cpp, `min_collision_fraction` 0.95; typically an
+SRDF written for a URDF whose links were renamed since) is an ERROR: MoveIt checks it, finds
+the whole robot in collision almost everywhere, and no plan of any group can start or end.
+
+Stale: a pair the SRDF marks Never should not collide in the resample.
 
 A hit is a WARNING with its evidence (hit rate, one colliding configuration, the command that
 recomputes the matrix), never an error: MoveIt never checks a disabled pair whatever its reason
@@ -21,7 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from marm_setup.collision.pairs import DisabledReason
-from marm_setup.findings import Finding, warning
+from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.model import RobotModel
 
 if TYPE_CHECKING:
@@ -30,6 +37,43 @@ if TYPE_CHECKING:
 
 DEFAULT_TRIALS = 1000
 DEFAULT_SEED = 0
+ALWAYS_FRACTION = 0.95  # the Setup Assistant's default min_collision_fraction
+
+
+def check_matrix_missing(
+    srdf: Srdf,
+    robot: RobotModel,
+    scene: CollisionScene,
+    file: str,
+    *,
+    trials: int = DEFAULT_TRIALS,
+    seed: int = DEFAULT_SEED,
+) -> list[Finding]:
+    """Enabled pairs in collision in at least ALWAYS_FRACTION of the first (at most) ROUND
+    resampled states, the size of one Always round."""
+    from marm_setup.collision.matrix import ROUND, trial_samples
+    from marm_setup.setup.srdf import allowed_pairs
+
+    pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
+    samples = min(trials, ROUND)
+    if not pairs or samples <= 0:
+        return []
+    adjacent = robot.adjacent_geometry_pairs()
+    q = trial_samples(robot, seed, samples)
+    counts = scene.collision_counts(scene.link_poses(q), scene.pair_ids(pairs))
+    return [
+        error(
+            "matrix.always-colliding",
+            file,
+            f"disable_collisions[{pair[0]} {pair[1]}]",
+            f"missing: the pair collides in {n} of {samples} random states, so MoveIt finds the robot "
+            "in collision almost everywhere and no plan can start or end",
+            hint=f'add it with reason="{"Adjacent" if pair in adjacent else "Always"}" '
+            "(or recompute: marm-setup collisions URDF --srdf SRDF)",
+        )
+        for pair, n in zip(pairs, counts.tolist(), strict=True)
+        if n >= ALWAYS_FRACTION * samples
+    ]
 
 
 def check_matrix_fresh(
