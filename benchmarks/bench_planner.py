@@ -100,7 +100,7 @@ def queries(robot, problem, rng: np.random.Generator, n: int) -> list[Query]:
 
 def hard_queries(robot, problem, rng: np.random.Generator, n: int, candidates: int) -> list[Query]:
     """Up to `n` random collision-free pairs whose straight line collides (out of `candidates`)."""
-    out = []
+    out: list[Query] = []
     for item in queries(robot, problem, rng, candidates)[-candidates:]:
         if len(out) == n:
             break
@@ -160,7 +160,7 @@ def _ompl_setup(robot, problem, item: Query, batched: bool):
 def _batched_validator(ob, si, space, check, values):
     from marm_setup.plan.rrt import interpolate
 
-    class BatchedMotionValidator(ob.MotionValidator):
+    class BatchedMotionValidator(ob.MotionValidator):  # type: ignore[name-defined]  # ob: ompl.base
         """Checks a whole edge (after its first state) in one checker call."""
 
         def checkMotion(self, s1, s2):  # noqa: N802 (OMPL's name)

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 from marm_setup.validate.discovery import discover_package
-from marm_setup.validate.rules.matrix_rules import check_matrix_fresh
+from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing
 from marm_setup.validate.runner import check_static, load_package_robot, run_runtime_checks, validate
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -33,12 +33,14 @@ def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
     _, t_static = timed(lambda: check_static(pkg, robot))
     scene, t_scene = timed(lambda: CollisionScene(robot))
     _, t_matrix = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path))
-    _, t_runtime = timed(lambda: run_runtime_checks(pkg, robot, scene))
+    _, t_missing = timed(lambda: check_matrix_missing(pkg.srdf, robot, scene, pkg.srdf_path))
+    _, t_runtime = timed(lambda: run_runtime_checks(pkg, robot, scene, []))
     found, t_total = timed(lambda: validate(path, package_paths=package_paths).findings)
     _, t_noplan = timed(lambda: validate(path, package_paths=package_paths, plan=False))
     print(
         f"{path.parent.name}/{path.name}: discover+SRDF {t_discover:.2f} s, robot {t_robot:.2f} s, "
         f"static rules {t_static:.3f} s, scene {t_scene:.2f} s, matrix (1000 states) {t_matrix:.2f} s, "
+        f"enabled pairs (200 states) {t_missing:.2f} s, "
         f"runtime {t_runtime:.2f} s | whole (warm) {t_total:.2f} s, --no-plan {t_noplan:.2f} s, "
         f"{len(found)} findings"
     )
