@@ -3,7 +3,8 @@ share), and the one "did you mean" of every message about an unknown name.
 
 ROS constrains some kinds and we follow it there:
 - package: REP 144 (`[a-z][a-z0-9_]*`), as catkin and ament require.
-- group, controller, action namespace: ROS graph / parameter names. MoveIt 1 reads a group's
+- group, controller, action namespace, topic, sensor: ROS graph / parameter names (a sensor
+  names a move_group parameter namespace in MoveIt 2). MoveIt 1 reads a group's
   settings as parameters named after it (`robot_description_kinematics/<group>/...`,
   moveit_ros_planning kinematics_plugin_loader.cpp) and roscpp rejects a parameter name outside
   `[A-Za-z_/~][A-Za-z0-9_/]*` (ros_comm names.cpp `validate`); a ros2_control controller is a
@@ -41,6 +42,8 @@ _PATTERNS = {
     "group": re.compile(_ROS_SEGMENT),
     "controller": re.compile(rf"{_ROS_SEGMENT}(/{_ROS_SEGMENT})*"),
     "action_ns": re.compile(rf"{_ROS_SEGMENT}(/{_ROS_SEGMENT})*"),
+    "topic": re.compile(rf"(~/|/)?{_ROS_SEGMENT}(/{_ROS_SEGMENT})*"),
+    "sensor": re.compile(_ROS_SEGMENT),
 }
 _RULES = {
     "package": "lowercase letters, digits and '_', starting with a letter",
@@ -51,6 +54,8 @@ _RULES = {
     "group": "letters, digits and '_', starting with a letter or '_' (a ROS name)",
     "controller": "ROS names (letters, digits, '_', starting with a letter or '_') joined by '/'",
     "action_ns": "ROS names (letters, digits, '_', starting with a letter or '_') joined by '/'",
+    "topic": "ROS names (letters, digits, '_', starting with a letter or '_') joined by '/', after an optional '/' or '~/'",
+    "sensor": "letters, digits and '_', starting with a letter or '_' (MoveIt 2 reads `<sensor>.sensor_plugin`)",
 }
 REFERENCE_KINDS = ("link", "joint", "frame", "virtual joint")
 LABEL_KINDS = ("pose", "end effector", "property")

@@ -5,7 +5,7 @@ The SRDF's part (names, chains, subgroup cycles, poses, end effectors, virtual a
 joints, disabled pairs) is `setup.rules`, the rule set `validate` runs too; here are only
 the checks of what `marm_setup.yaml` adds: package name, duplicate list items, groups that say
 nothing, controllers the target's driver cannot serve, servo ids, a ros_distro not of the target, numbers that must be positive
-(fractions in (0, 1]).
+(fractions in (0, 1]); MoveIt Servo (`setup.servo`) and 3D sensors (`setup.sensors`).
 """
 
 from __future__ import annotations
@@ -20,6 +20,8 @@ from marm_setup.robot.model import MIN_RATE, RobotModel
 from marm_setup.setup.model import ROS_DISTROS, Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
 from marm_setup.setup.rules import Style, check_semantics, setup_element
+from marm_setup.setup.sensors import check_sensors
+from marm_setup.setup.servo import check_servos
 from marm_setup.setup.srdf import setup_to_srdf
 
 MAX_SERVO_ID = 253  # Dynamixel ids on an ArbotiX bus (254 is broadcast)
@@ -61,6 +63,8 @@ def check_setup(
     _check_ranges(c)
     _check_ros2_control(c)
     _check_pipelines(c)
+    check_servos(model, robot, path)
+    check_sensors(model, path)
 
 
 def raise_first_error(findings: Iterable[Finding], path: str | None) -> None:

@@ -165,3 +165,71 @@ OMPL_PLANNERS = (
     ("TRRT", "geometric::TRRT"),
 )
 OMPL_PLANNER_NAMES = tuple(name for name, _ in OMPL_PLANNERS)
+
+# -- MoveIt Servo --------------------------------------------------------------------------------
+
+# What servo publishes (`servo[].command_out`): a trajectory to a FollowJointTrajectory
+# controller, or positions to a forward position controller (ros2_control, added for it).
+SERVO_TRAJECTORY = "trajectory"
+SERVO_POSITION = "position"
+SERVO_OUTPUTS = (SERVO_TRAJECTORY, SERVO_POSITION)
+# moveit_servo's command_in_type values (noetic servo.cpp readParameters, humble
+# servo_parameters.cpp validate, jazzy servo_parameters.yaml `one_of`).
+SERVO_COMMAND_IN_TYPES = ("unitless", "speed_units")
+# The forward controller servo's `position` output drives (ros2_controllers, package
+# position_controllers: subscribes to `<name>/commands`, std_msgs/Float64MultiArray).
+FORWARD_POSITION_CONTROLLER = "position_controllers/JointGroupPositionController"
+
+# -- 3D perception -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class SensorType:
+    """An occupancy map updater plugin: its pluginlib name, the parameter its topic goes in, and
+    the other parameters it reads with the value MoveIt's Setup Assistant writes for them (its
+    `templates/config/sensors_3d.yaml`, noetic and jazzy alike; the skip_*_pixels the
+    Setup Assistant does not write: the updater's constructor defaults), in the order MoveIt 2's
+    `setParams` reads them."""
+
+    plugin: str
+    topic_key: str
+    defaults: tuple[tuple[str, float | int | str], ...]
+
+
+# moveit_ros_perception's updaters. MoveIt 2's setParams (humble and jazzy,
+# pointcloud_octomap_updater.cpp l.75-86, depth_image_octomap_updater.cpp l.92-108) fails the
+# sensor when one of these is missing (the depth image updater stops reading at the first one
+# missing); `ns` alone is optional (get_parameter_or), so it is written only when given.
+SENSOR_TYPES = {
+    "pointcloud": SensorType(
+        "occupancy_map_monitor/PointCloudOctomapUpdater",
+        "point_cloud_topic",
+        (
+            ("max_range", 5.0),
+            ("padding_offset", 0.1),
+            ("padding_scale", 1.0),
+            ("point_subsample", 1),
+            ("max_update_rate", 1.0),
+            ("filtered_cloud_topic", "filtered_cloud"),
+        ),
+    ),
+    "depth_image": SensorType(
+        "occupancy_map_monitor/DepthImageOctomapUpdater",
+        "image_topic",
+        (
+            ("queue_size", 5),
+            ("near_clipping_plane_distance", 0.3),
+            ("far_clipping_plane_distance", 5.0),
+            ("shadow_threshold", 0.2),
+            ("padding_scale", 4.0),
+            ("padding_offset", 0.03),
+            ("max_update_rate", 1.0),
+            ("skip_vertical_pixels", 4),
+            ("skip_horizontal_pixels", 6),
+            ("filtered_cloud_topic", "filtered_cloud"),
+        ),
+    ),
+}
+# The Setup Assistant's noetic sensor_manager.launch.xml value (MoveIt's occupancy map monitor
+# assumes 0.1 and warns when none is given).
+DEFAULT_OCTOMAP_RESOLUTION = 0.025

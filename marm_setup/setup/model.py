@@ -213,6 +213,59 @@ class SrdfExtras:
 
 
 @dataclass(frozen=True, slots=True)
+class ServoScale:
+    """moveit_servo's `scale`: the speed a full unitless command means, linear [m/s], rotational
+    [rad/s] and joint [rad/s or m/s]; None keeps the distro's moveit_servo default."""
+
+    linear: float | None = None
+    rotational: float | None = None
+    joint: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Servo:
+    """MoveIt Servo for one group (`setup.servo` fills in what is None).
+
+    `command_out` is `trajectory` (trajectory_msgs/JointTrajectory to a FollowJointTrajectory
+    controller's command topic) or `position` (std_msgs/Float64MultiArray to a forward position
+    controller added to ros2_controllers.yaml, ros2 only); `controller` names that controller."""
+
+    group: str
+    command_out: str = "trajectory"
+    controller: str | None = None
+    planning_frame: str | None = None
+    ee_frame: str | None = None
+    command_frame: str | None = None
+    command_in_type: str | None = None
+    scale: ServoScale = field(default_factory=ServoScale)
+    publish_period: float | None = None  # [s]
+    check_collisions: bool | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Sensor:
+    """A 3D sensor feeding MoveIt's octomap: its occupancy map updater's parameters (None: MoveIt's
+    default for the type, `setup.sensors`); distances in [m], rates in [Hz]."""
+
+    name: str
+    type: str  # pointcloud | depth_image
+    topic: str
+    max_range: float | None = None  # pointcloud
+    point_subsample: int | None = None  # pointcloud
+    queue_size: int | None = None  # depth_image
+    near_clipping_plane_distance: float | None = None  # depth_image
+    far_clipping_plane_distance: float | None = None  # depth_image
+    shadow_threshold: float | None = None  # depth_image
+    skip_vertical_pixels: int | None = None  # depth_image
+    skip_horizontal_pixels: int | None = None  # depth_image
+    padding_offset: float | None = None
+    padding_scale: float | None = None
+    max_update_rate: float | None = None
+    filtered_cloud_topic: str | None = None
+    ns: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class SetupModel:
     package_name: str
     robot_name: str
@@ -241,6 +294,11 @@ class SetupModel:
     default_velocity_scaling: float = 0.1
     default_acceleration_scaling: float = 0.1
     default_acceleration: float = 1.0  # [rad/s^2] or [m/s^2] where the URDF gives none
+    # MoveIt Servo per group; None: one for every arm group (setup.servo.default_servos), (): none
+    servo: tuple[Servo, ...] | None = None
+    sensors: tuple[Sensor, ...] = ()  # 3D sensors; none: no perception files
+    octomap_resolution: float | None = None  # [m]; None: setup.sensors.DEFAULT_OCTOMAP_RESOLUTION
+    octomap_frame: str | None = None  # None: the planning frame (what move_group builds it in)
     srdf_extras: SrdfExtras = field(default_factory=SrdfExtras)
 
     @property

@@ -63,6 +63,7 @@ def setup_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
         yield "joint", lim.joint, f"joint_limits[{lim.joint}]"
     yield from _extras_names(m)
     yield from _ros2_control_names(m)
+    yield from _servo_and_sensor_names(m)
 
 
 def _listed(kind: str, names: Iterable[str], where: str) -> Iterator[tuple[str, str, str]]:
@@ -127,3 +128,18 @@ def _ros2_control_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
     yield from _listed("interface", hardware.state_interfaces, "ros2_control.state_interfaces")
     for key, _ in hardware.parameters:
         yield "parameter", key, f"ros2_control.parameters.{key}"
+
+
+def _servo_and_sensor_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
+    for servo in m.servo or ():
+        w = f"servo[{servo.group}]"
+        yield "group", servo.group, f"{w}.group"
+        if servo.controller is not None:
+            yield "controller", servo.controller, f"{w}.controller"
+        for key in ("planning_frame", "ee_frame", "command_frame"):
+            if getattr(servo, key) is not None:
+                yield "link", getattr(servo, key), f"{w}.{key}"
+    for sensor in m.sensors:
+        yield "sensor", sensor.name, f"sensors[{sensor.name}]"
+    if m.octomap_frame is not None:
+        yield "frame", m.octomap_frame, "octomap_frame"

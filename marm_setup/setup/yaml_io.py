@@ -23,11 +23,21 @@ from marm_setup.collision.pairs import DisabledPair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.safe_yaml import UniqueKeyLoader, load_yaml
-from marm_setup.setup.domain import DRIVERS, MOVEIT_CONTROLLER_TYPES, OMPL_PLANNER_NAMES, VIRTUAL_JOINT_TYPES
+from marm_setup.setup.domain import (
+    DRIVERS,
+    MOVEIT_CONTROLLER_TYPES,
+    OMPL_PLANNER_NAMES,
+    SENSOR_TYPES,
+    SERVO_COMMAND_IN_TYPES,
+    SERVO_OUTPUTS,
+    VIRTUAL_JOINT_TYPES,
+)
 from marm_setup.setup.model import (
     TARGETS,
     Controller,
     PlannerDefaults,
+    Sensor,
+    Servo,
     SetupModel,
     VirtualJoint,
 )
@@ -41,6 +51,9 @@ CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (VirtualJoint, "type"): VIRTUAL_JOINT_TYPES,
     (Controller, "type"): MOVEIT_CONTROLLER_TYPES,
     (PlannerDefaults, "default_planner"): OMPL_PLANNER_NAMES,
+    (Servo, "command_out"): SERVO_OUTPUTS,
+    (Servo, "command_in_type"): SERVO_COMMAND_IN_TYPES,
+    (Sensor, "type"): tuple(SENSOR_TYPES),
 }
 # Keys that name a list item in key paths (`groups[arm]`), tried in order.
 ITEM_KEYS = ("name", "group", "joint", "link")

@@ -305,6 +305,20 @@ BAD_SPECS = {
         "controllers[gripper_controller].action_ns: 'gripper_cmd' is not served by the arbotix driver: "
         "a GripperCommand controller serves 'gripper_controller/gripper_action' (set action_ns: gripper_action)",
     ),
+    "servo of an unknown group": (
+        {"servo": [{"group": "amr"}]},
+        "servo[amr].group: unknown group 'amr' (did you mean 'arm'?)",
+    ),
+    "servo planning frame that is no link": (
+        {"servo": [{"group": "arm", "planning_frame": "world"}]},
+        "servo[arm].planning_frame: 'world' is not a link of the robot: moveit_servo computes its transform "
+        "from the robot model",
+    ),
+    "sensor parameter of another type": (
+        {"sensors": [{"name": "cam", "type": "pointcloud", "topic": "/cam/points", "queue_size": 3}]},
+        "sensors[cam].queue_size: a pointcloud sensor has no 'queue_size' "
+        "(occupancy_map_monitor/PointCloudOctomapUpdater does not read it; a depth_image sensor does)",
+    ),
 }
 
 
