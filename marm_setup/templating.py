@@ -119,6 +119,15 @@ def yaml_bool(value: bool) -> str:
     return "true" if value else "false"
 
 
+def yaml_scalar(value: str | bool | int | float) -> str:
+    """A parameter value as YAML of its own type: a string, a bool, an int, a float (`1.0`)."""
+    if isinstance(value, str):
+        return yaml_str(value)
+    if isinstance(value, bool):
+        return yaml_bool(value)
+    return str(value) if isinstance(value, int) else fmt_float(value)
+
+
 @lru_cache(maxsize=1)
 def environment() -> jinja2.Environment:
     """The one Jinja environment: strict undefined, XML autoescape for .xml/.srdf/.launch."""
@@ -138,6 +147,7 @@ def environment() -> jinja2.Environment:
         fmt_float=fmt_float,
         yaml_str=yaml_str,
         yaml_bool=yaml_bool,
+        yaml_scalar=yaml_scalar,
         py_repr=py_repr,
         xml_comment=xml_comment,
         xacro_text=xacro_text,

@@ -32,6 +32,8 @@ from marm_setup.setup.model import (
     Ros2ControlHardware,
     SetupModel,
 )
+from marm_setup.setup.sensors import plan_perception
+from marm_setup.setup.servo import forward_controllers, plan_servos
 from marm_setup.setup.start_state import model_start_values, start_pose
 
 XACRO_ARG_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -299,6 +301,7 @@ def ros2_control_macro(robot_name: str) -> str:
 
 def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None = None) -> dict:
     """Everything the templates read, keyed by the names they use."""
+    servos = plan_servos(model, robot)
     return {
         "model": model,
         "robot": robot,
@@ -324,4 +327,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "ompl_planners": OMPL_PLANNERS,
         "cartesian_limits": CARTESIAN_LIMITS,
         "arbotix_gripper_action_ns": ARBOTIX_GRIPPER_ACTION_NS,
+        "servos": servos,
+        "forward_controllers": forward_controllers(servos) if model.target == "ros2" else [],
+        "perception": plan_perception(model, robot),
     }

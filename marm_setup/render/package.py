@@ -110,6 +110,28 @@ def pipeline_templates(model: SetupModel) -> list[tuple[str, str, dict]]:
     return out
 
 
+def servo_and_sensor_templates(target: str, context: dict) -> list[tuple[str, str, dict]]:
+    """(template, path, extra context) of the servo files (a config per servo group and one launch
+    file) and the perception files (ros1: the Setup Assistant's sensors_3d.yaml and sensor
+    manager launch files; ros2: sensors_3d.yaml, loaded by move_group)."""
+    out = [
+        (f"{target}/config/servo.yaml.j2", f"config/{plan.group}_servo.yaml", {"servo": plan})
+        for plan in context["servos"]
+    ]
+    if context["servos"]:
+        launch = "launch/servo.launch" if target == "ros1" else "launch/servo.launch.xml"
+        out.append((f"{target}/{launch}.j2", launch, {}))
+    if context["perception"] is not None:
+        out.append((f"{target}/config/sensors_3d.yaml.j2", "config/sensors_3d.yaml", {}))
+        if target == "ros1":
+            for launch in (
+                "launch/sensor_manager.launch.xml",
+                "launch/robot_moveit_sensor_manager.launch.xml",
+            ):
+                out.append((f"ros1/{launch}.j2", launch, {}))
+    return out
+
+
 def description_package(urdf: Path) -> tuple[str, str] | None:
     """(package, path inside it) of the ROS package holding the URDF file, if any."""
     urdf = urdf.resolve()
@@ -158,7 +180,8 @@ def render_package(
     templates: list[tuple[str, str, dict]] = [
         (t, p, {}) for t, p in target_templates(model.target, model.driver)
     ]
-    for template, path, extra in templates + pipeline_templates(model):
+    templates += pipeline_templates(model) + servo_and_sensor_templates(model.target, context)
+    for template, path, extra in templates:
         content = render_template(template, target=model.target, **context, **extra)
         files.append(RenderedFile(output_path(path, model.robot_name), content))
     return sorted(files, key=lambda f: f.path)

@@ -52,6 +52,7 @@ ROS1_PACKAGE = (
     ".setup_assistant",
     "CMakeLists.txt",
     "config/arbotix.yaml",
+    "config/arm_servo.yaml",
     "config/controllers.yaml",
     "config/fake_controllers.yaml",
     "config/joint_limits.yaml",
@@ -72,6 +73,7 @@ ROS1_PACKAGE = (
     "launch/planning_context.launch",
     "launch/planning_pipeline.launch.xml",
     "launch/ros_control_moveit_controller_manager.launch.xml",
+    "launch/servo.launch",
     "launch/simple_moveit_controller_manager.launch.xml",
     "launch/trajectory_execution.launch.xml",
     "launch/warehouse.launch",
@@ -84,6 +86,7 @@ ROS1_PACKAGE = (
 ROS2_PACKAGE = (
     ".setup_assistant",
     "CMakeLists.txt",
+    "config/arm_servo.yaml",
     "config/initial_positions.yaml",
     "config/marm.ros2_control.xacro",
     "config/marm.srdf",
@@ -93,6 +96,7 @@ ROS2_PACKAGE = (
     "config/ros2_controllers.yaml",
     "launch/demo.launch.xml",
     "launch/move_group.launch.xml",
+    "launch/servo.launch.xml",
     "marm_setup.yaml",
     "package.xml",
 )
@@ -253,13 +257,16 @@ def test_ros1_trajectory_demo_drives_the_arbotix_arm_controller():
 
 def test_ros1_launch_references_exist():
     """Every config and launch file is loaded by a launch file, directly or as the
-    `$(arg moveit_controller_manager)` / `$(arg pipeline)` choice the Setup Assistant's layout uses."""
+    `$(arg moveit_controller_manager)` / `$(arg pipeline)` choice the Setup Assistant's layout uses
+    (and servo.launch's `$(arg group)`)."""
     files = rendered("ros1")
     text = "\n".join(v for k, v in files.items() if k.startswith("launch/"))
-    chosen = ("_moveit_controller_manager.launch.xml", "_planning_pipeline.launch.xml")
+    chosen = ("_moveit_controller_manager.launch.xml", "_planning_pipeline.launch.xml", "_servo.yaml")
+    top = ("demo.launch", "arbotix_moveit.launch", "servo.launch")
     for path in files:
         if path.startswith(("config/", "launch/")) and not path.endswith(chosen):
-            assert path in text or path.endswith(("demo.launch", "arbotix_moveit.launch")), path
+            assert path in text or path.endswith(top), path
+    assert "$(find marm_moveit_config)/config/$(arg group)_servo.yaml" in text
     launch = "$(find marm_moveit_config)/launch/"
     assert f"{launch}$(arg moveit_controller_manager)_moveit_controller_manager.launch.xml" in text
     assert f"{launch}$(arg pipeline)_planning_pipeline.launch.xml" in text
