@@ -35,3 +35,45 @@ def _inferred(target: str, out: str, distro: str | None) -> tuple[SetupModel, Ro
 @functools.lru_cache(maxsize=1)
 def marm_robot() -> RobotModel:
     return load_robot(MARM_URDF)
+
+
+def marm_with(target: str = "ros2", distro: str | None = None, **changes) -> tuple[SetupModel, RobotModel]:
+    """The inferred marm setup for `target` / `distro` with some fields replaced."""
+    import dataclasses
+
+    model, robot = inferred_marm(target, Path(f"/nonexistent/{target}-{distro}"), distro)
+    return dataclasses.replace(model, **changes), robot
+
+
+def rendered_files(model: SetupModel, robot: RobotModel) -> dict[str, str]:
+    from marm_setup.render.package import render_package
+
+    return {f.path: f.content for f in render_package(model, robot)}
+
+
+def assert_check_error(model: SetupModel, robot: RobotModel, element: str, message: str) -> None:
+    """check_setup refuses the setup with one InputError naming `element` and saying `message`."""
+    import pytest
+
+    from marm_setup.errors import InputError
+    from marm_setup.setup.checks import check_setup
+
+    with pytest.raises(InputError) as err:
+        check_setup(model, robot, "marm_setup.yaml")
+    assert (err.value.path, err.value.element) == ("marm_setup.yaml", element)
+    assert message in err.value.message
+
+
+def assert_yaml_errors(model: SetupModel, cases: list[tuple[dict, str, str]]) -> None:
+    """Each (top-level keys, element, message): the setup's YAML with those keys replaced fails to
+    load with an InputError naming `element` and saying `message`."""
+    import pytest
+
+    from marm_setup.errors import InputError
+    from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
+
+    data = setup_to_dict(model)
+    for extra, element, message in cases:
+        with pytest.raises(InputError) as err:
+            setup_from_dict({**data, **extra}, "spec.yaml")
+        assert err.value.element == element and message in err.value.message, (element, err.value)

@@ -9,29 +9,17 @@ import pytest
 import yaml
 from lxml import etree
 
-from marm_setup.errors import InputError
-from marm_setup.render.package import render_package
 from marm_setup.setup.checks import check_setup
 from marm_setup.setup.domain import SENSOR_TYPES
 from marm_setup.setup.model import Sensor
 from marm_setup.setup.sensors import plan_sensor
 from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
-from tests.conftest import FIXTURES
-from tests.render_helpers import inferred_marm
+from tests.render_helpers import assert_check_error, assert_yaml_errors, marm_with, rendered_files
 
 CAMERA = Sensor("wrist_camera", "pointcloud", "/wrist_camera/depth/points")
 DEPTH = Sensor(
     "head_camera", "depth_image", "/head_camera/depth/image_raw", far_clipping_plane_distance=3.0, ns="head"
 )
-
-
-def marm(target: str = "ros2", distro: str | None = None, **changes):
-    model, robot = inferred_marm(target, FIXTURES / "out" / f"{target}-{distro}", distro)
-    return dataclasses.replace(model, **changes), robot
-
-
-def rendered(model, robot) -> dict[str, str]:
-    return {f.path: f.content for f in render_package(model, robot)}
 
 
 def test_moveits_defaults_per_type_and_given_values():
@@ -54,16 +42,16 @@ def test_moveits_defaults_per_type_and_given_values():
 
 @pytest.mark.parametrize(("target", "distro"), [("ros1", "noetic"), ("ros2", "humble"), ("ros2", "jazzy")])
 def test_nothing_without_the_key(target, distro):
-    files = rendered(*marm(target, distro))
+    files = rendered_files(*marm_with(target, distro))
     assert not [p for p in files if "sensor" in p]
     text = "\n".join(files.values())
     assert "octomap" not in text and "moveit_ros_perception" not in text
 
 
 def test_ros1_setup_assistant_layout():
-    model, robot = marm("ros1", sensors=(CAMERA, DEPTH), octomap_resolution=0.05)
+    model, robot = marm_with("ros1", sensors=(CAMERA, DEPTH), octomap_resolution=0.05)
     check_setup(model, robot)
-    files = rendered(model, robot)
+    files = rendered_files(model, robot)
     sensors = yaml.safe_load(files["config/sensors_3d.yaml"])["sensors"]
     assert [s["sensor_plugin"] for s in sensors] == [
         SENSOR_TYPES["pointcloud"].plugin,
@@ -85,9 +73,9 @@ def test_ros1_setup_assistant_layout():
 
 @pytest.mark.parametrize("distro", ["humble", "jazzy"])
 def test_ros2_sensors_are_move_groups_alone(distro):
-    model, robot = marm("ros2", distro, sensors=(CAMERA, DEPTH), octomap_frame="base_link")
+    model, robot = marm_with("ros2", distro, sensors=(CAMERA, DEPTH), octomap_frame="base_link")
     check_setup(model, robot)
-    files = rendered(model, robot)
+    files = rendered_files(model, robot)
     params = yaml.safe_load(files["config/sensors_3d.yaml"])["/**"]["ros__parameters"]
     assert params["sensors"] == ["wrist_camera", "head_camera"]
     assert params["octomap_frame"] == "base_link" and params["octomap_resolution"] == 0.025
@@ -107,7 +95,7 @@ def test_ros2_sensors_are_move_groups_alone(distro):
 
 
 def test_sensors_round_trip_with_only_what_was_given():
-    model, _ = marm("ros2", sensors=(CAMERA, DEPTH), octomap_resolution=0.05)
+    model, _ = marm_with("ros2", sensors=(CAMERA, DEPTH), octomap_resolution=0.05)
     data = setup_to_dict(model)
     assert data["sensors"][0] == {"name": "wrist_camera", "type": "pointcloud", "topic": CAMERA.topic}
     assert setup_from_dict(data) == model
@@ -167,16 +155,11 @@ BAD = {
 @pytest.mark.parametrize("case", list(BAD))
 def test_bad_sensors_name_the_key(case):
     changes, element, message = BAD[case]
-    model, robot = marm("ros2", "humble", **changes)
-    with pytest.raises(InputError) as err:
-        check_setup(model, robot, "marm_setup.yaml")
-    assert (err.value.path, err.value.element) == ("marm_setup.yaml", element)
-    assert message in err.value.message
+    assert_check_error(*marm_with("ros2", "humble", **changes), element, message)
 
 
 def test_yaml_errors_in_the_sensors_key_name_the_path():
-    model, _ = marm("ros2", "humble")
-    data = setup_to_dict(model)
+    model, _ = marm_with("ros2", "humble")
     cases = [
         (
             {"sensors": [{"name": "c", "type": "point_cloud", "topic": "/p"}]},
@@ -196,7 +179,4 @@ def test_yaml_errors_in_the_sensors_key_name_the_path():
         ),
         ({"octomap_resolutoin": 0.1}, "octomap_resolutoin", "did you mean 'octomap_resolution'"),
     ]
-    for extra, element, message in cases:
-        with pytest.raises(InputError) as err:
-            setup_from_dict({**data, **extra}, "spec.yaml")
-        assert err.value.element == element and message in err.value.message, (element, err.value)
+    assert_yaml_errors(model, cases)

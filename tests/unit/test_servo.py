@@ -11,27 +11,17 @@ from lxml import etree
 
 from marm_setup.errors import InputError
 from marm_setup.pipeline import InitRequest, build_setup
-from marm_setup.render.package import render_package
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
 from marm_setup.setup.model import Controller, Kinematics, Ros2ControlHardware, Servo, ServoScale
 from marm_setup.setup.servo import default_servos, plan_servos
 from marm_setup.setup.yaml_io import dump_setup, setup_from_dict, setup_to_dict
 from tests.conftest import FIXTURES
-from tests.render_helpers import inferred_marm, marm_robot
-
-
-def marm(target: str = "ros2", distro: str | None = None, **changes):
-    model, robot = inferred_marm(target, FIXTURES / "out" / f"{target}-{distro}", distro)
-    return dataclasses.replace(model, **changes), robot
-
-
-def rendered(model, robot) -> dict[str, str]:
-    return {f.path: f.content for f in render_package(model, robot)}
+from tests.render_helpers import assert_check_error, assert_yaml_errors, marm_robot, marm_with, rendered_files
 
 
 def test_the_marm_arm_gets_a_servo_by_default():
-    model, robot = marm()
+    model, robot = marm_with()
     assert default_servos(model, robot) == (Servo("arm"),)
     (plan,) = plan_servos(model, robot)
     # the planning frame is the link the arm's Jacobian is in (not the virtual joint's `world`,
@@ -62,13 +52,13 @@ def test_default_servos_are_the_arms(urdf, expected, tmp_path):
 
 
 def test_no_servo_key_is_the_default_and_an_empty_list_is_none():
-    model, robot = marm("ros1", servo=())
-    files = rendered(model, robot)
+    model, robot = marm_with("ros1", servo=())
+    files = rendered_files(model, robot)
     assert not [p for p in files if "servo" in p]
     assert "moveit_servo" not in files["package.xml"]
     assert yaml.safe_load(files["marm_setup.yaml"])["servo"] == []
-    default, _ = marm("ros1")
-    assert "servo" not in yaml.safe_load(rendered(default, robot)["marm_setup.yaml"])
+    default, _ = marm_with("ros1")
+    assert "servo" not in yaml.safe_load(rendered_files(default, robot)["marm_setup.yaml"])
 
 
 def test_servo_settings_round_trip_and_reach_the_file():
@@ -82,10 +72,10 @@ def test_servo_settings_round_trip_and_reach_the_file():
         publish_period=0.02,
         check_collisions=False,
     )
-    model, robot = marm("ros2", "humble", servo=(servo,))
+    model, robot = marm_with("ros2", "humble", servo=(servo,))
     assert setup_from_dict(setup_to_dict(model)) == model
     check_setup(model, robot)
-    params = yaml.safe_load(rendered(model, robot)["config/arm_servo.yaml"])["/**"]["ros__parameters"]
+    params = yaml.safe_load(rendered_files(model, robot)["config/arm_servo.yaml"])["/**"]["ros__parameters"]
     servo_params = params["moveit_servo"]
     assert servo_params["planning_frame"] == "link1" and servo_params["ee_frame_name"] == "link6"
     assert servo_params["robot_link_command_frame"] == "grasping_frame"
@@ -95,9 +85,9 @@ def test_servo_settings_round_trip_and_reach_the_file():
 
 
 def test_position_output_adds_an_inactive_forward_controller():
-    model, robot = marm("ros2", "jazzy", servo=(Servo("arm", command_out="position"),))
+    model, robot = marm_with("ros2", "jazzy", servo=(Servo("arm", command_out="position"),))
     check_setup(model, robot)
-    files = rendered(model, robot)
+    files = rendered_files(model, robot)
     for path, text in files.items():
         if path.endswith(".yaml"):
             yaml.safe_load(text)
@@ -197,32 +187,27 @@ BAD = {
 @pytest.mark.parametrize("case", list(BAD))
 def test_bad_servos_name_the_key(case):
     changes, element, message = BAD[case]
-    model, robot = marm("ros2", "humble", **changes)
-    with pytest.raises(InputError) as err:
-        check_setup(model, robot, "marm_setup.yaml")
-    assert (err.value.path, err.value.element) == ("marm_setup.yaml", element)
-    assert message in err.value.message
+    assert_check_error(*marm_with("ros2", "humble", **changes), element, message)
 
 
 def test_position_output_needs_ros2_control():
-    model, robot = marm("ros1", servo=(Servo("arm", command_out="position"),))
+    model, robot = marm_with("ros1", servo=(Servo("arm", command_out="position"),))
     with pytest.raises(InputError, match="a ros1 package has none") as err:
         check_setup(model, robot)
     assert err.value.element == "servo[arm].command_out"
 
 
 def test_jazzy_servo_needs_the_groups_ik_solver():
-    model, robot = marm("ros2", "jazzy", servo=(Servo("arm"),), kinematics=())
+    model, robot = marm_with("ros2", "jazzy", servo=(Servo("arm"),), kinematics=())
     with pytest.raises(InputError, match="Jazzy's servo takes its planning and end-effector frames"):
         check_setup(model, robot)
-    humble, _ = marm("ros2", "humble", servo=(Servo("arm"),), kinematics=())
+    humble, _ = marm_with("ros2", "humble", servo=(Servo("arm"),), kinematics=())
     check_setup(humble, robot)  # humble's servo reads its frames from its parameters
     assert default_servos(dataclasses.replace(humble, servo=None), robot) == ()  # no solver: no arm
 
 
 def test_yaml_errors_in_the_servo_key_name_the_path():
-    model, _ = marm("ros2", "humble")
-    data = setup_to_dict(model)
+    model, _ = marm_with("ros2", "humble")
     cases = [
         (
             {"servo": [{"group": "arm", "scale": {"lineer": 1.0}}]},
@@ -241,14 +226,11 @@ def test_yaml_errors_in_the_servo_key_name_the_path():
         ),
         ({"servo": [{"group": "arm", "planing_frame": "x"}]}, "servo[arm].planing_frame", "'planning_frame'"),
     ]
-    for extra, element, message in cases:
-        with pytest.raises(InputError) as err:
-            setup_from_dict({**data, **extra}, "spec.yaml")
-        assert err.value.element == element and message in err.value.message, (element, err.value)
+    assert_yaml_errors(model, cases)
 
 
 def test_dump_of_default_servo_leaves_the_key_out():
-    model, robot = marm()
+    model, robot = marm_with()
     assert "servo" not in yaml.safe_load(dump_setup(model))
     explicit = dataclasses.replace(model, servo=(Servo("arm"),))
     assert yaml.safe_load(dump_setup(explicit))["servo"] == [{"group": "arm", "command_out": "trajectory"}]
@@ -259,7 +241,7 @@ def test_a_servo_for_a_second_chain_with_its_own_controller():
     """A chain sub-arm (joint1..joint3) servoed through a controller of exactly its joints."""
     from marm_setup.setup.model import Chain, Group
 
-    model, robot = marm("ros2", "humble")
+    model, robot = marm_with("ros2", "humble")
     short = Group("shoulder", chain=Chain("base_link", "link3"))
     ctl = Controller(
         "shoulder_controller",
