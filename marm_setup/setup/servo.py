@@ -50,7 +50,6 @@ class ServoPlan:
     joints: tuple[str, ...]
     output_controller: str
     trajectory_controller: str
-    has_kinematics: bool
 
     @property
     def group(self) -> str:
@@ -100,13 +99,10 @@ def forward_controller_name(group: str) -> str:
 def plan_servos(model: SetupModel, robot: RobotModel) -> list[ServoPlan]:
     """Every servo of the setup, resolved (the setup has passed `check_servos`)."""
     by_name = groups_by_name(model.groups)
-    solved = {k.group for k in model.kinematics}
-    return [_plan(model, robot, by_name, s, s.group in solved) for s in servo_entries(model, robot)]
+    return [_plan(model, robot, by_name, s) for s in servo_entries(model, robot)]
 
 
-def _plan(
-    model: SetupModel, robot: RobotModel, by_name: Mapping[str, Group], servo: Servo, solved: bool
-) -> ServoPlan:
+def _plan(model: SetupModel, robot: RobotModel, by_name: Mapping[str, Group], servo: Servo) -> ServoPlan:
     group = by_name[servo.group]
     joints = group_joints(group, by_name, robot)
     base = robot.joint(joints[0]).parent  # getJacobian's reference link
@@ -126,7 +122,6 @@ def _plan(
         joints=active_group_joints(group, by_name, robot, model.passive_joints),
         output_controller=output,
         trajectory_controller=trajectory,
-        has_kinematics=solved,
     )
 
 
