@@ -274,8 +274,10 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
     )
     model, notes = inference.model, inference.notes
     inferred_groups = bool(model.groups)
+    srdf_args: frozenset[str] | None = None
     if request.from_srdf is not None:
-        model, notes = _import_srdf(request.from_srdf, model, notes, robot)
+        model, notes, srdf_args = _import_srdf(request, model, notes, robot)
+    _check_xacro_args(request, robot, srdf_args)
     if spec:
         model = _with_spec(model, spec, request, robot, inferred_groups)
     model = dataclasses.replace(model, ros_distro=_distro(request, spec, model.target))
@@ -307,20 +309,34 @@ def _with_spec(
 
 
 def _import_srdf(
-    path: Path, model: SetupModel, notes: tuple[str, ...], robot: RobotModel
-) -> tuple[SetupModel, tuple[str, ...]]:
+    request: InitRequest, model: SetupModel, notes: tuple[str, ...], robot: RobotModel
+) -> tuple[SetupModel, tuple[str, ...], frozenset[str] | None]:
     """`model` with the SRDF's elements, as srdfdom and MoveIt load them: what they skip is
-    dropped with a warning line each (setup/srdf_load.py); the rest must pass the rules. An SRDF
-    without groups keeps the inferred ones (and their notes)."""
+    dropped with a warning line each (setup/srdf_load.py); the rest must pass the rules. A
+    `.srdf.xacro` is expanded first with the `--xacro-arg`s (also returned: the arguments it
+    takes). An SRDF without groups keeps the inferred ones (and their notes); one whose groups
+    all fail to load is refused: MoveIt would have nothing to plan for."""
     from marm_setup.setup.checks import check_setup
     from marm_setup.setup.infer import derive_group_settings
     from marm_setup.setup.rules import srdf_element
-    from marm_setup.setup.srdf import read_srdf, srdf_to_setup
+    from marm_setup.setup.srdf import load_srdf, srdf_to_setup
     from marm_setup.setup.srdf_load import as_moveit_loads
 
+    path = request.from_srdf
+    assert path is not None
     skipped: list[InputError] = []
-    srdf, dropped = as_moveit_loads(read_srdf(path, skipped), robot)
+    args = parse_xacro_args(list(request.xacro_args))
+    raw, declared = load_srdf(path, skipped, xacro_args=args, package_paths=request.package_paths)
+    srdf, dropped = as_moveit_loads(raw, robot)
     lines = [f"{e.element}: {e.message}" if e.element else e.message for e in skipped] + list(dropped)
+    named = len(raw.groups) + sum(1 for e in skipped if (e.element or "").startswith("group["))
+    if named and not any(g.chain or g.joints or g.links for g in srdf.groups):  # subgroups hold nothing else
+        why = f" (first: {lines[0]})" if lines else ""
+        raise InputError(
+            f"none of its {named} groups holds a joint or link of robot '{robot.name}' as MoveIt loads it{why}",
+            path=str(path),
+            element="groups",
+        )
     warnings = tuple(f"warning: {path}: {line} (as MoveIt loads it: left out or changed)" for line in lines)
     if srdf.groups:
         model, notes = derive_group_settings(srdf_to_setup(srdf, model), robot), ()
@@ -328,7 +344,19 @@ def _import_srdf(
         model = srdf_to_setup(srdf, model)
         notes = (*notes, f"{path} defines no groups: the inferred ones are kept, with its collision pairs")
     check_setup(model, robot, str(path), srdf_element)
-    return model, (*notes, *warnings)
+    return model, (*notes, *warnings), declared
+
+
+def _check_xacro_args(request: InitRequest, robot: RobotModel, srdf_args: frozenset[str] | None) -> None:
+    """Every `--xacro-arg` must be an argument of the robot's xacro or of the SRDF xacro."""
+    from marm_setup.robot.xacro_expand import check_xacro_args
+
+    given = parse_xacro_args(list(request.xacro_args))
+    if srdf_args is None:
+        check_xacro_args(given, robot.xacro_args, path=str(request.urdf))
+        return
+    declared = {*(robot.xacro_args or ()), *srdf_args}
+    check_xacro_args(given, declared, path=str(request.urdf), others=(str(request.from_srdf),))
 
 
 def _empty_group_warnings(model: SetupModel) -> tuple[str, ...]:

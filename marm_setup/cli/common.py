@@ -34,12 +34,19 @@ class OutputFormat(str, enum.Enum):
 
 
 def load_robot_from_cli(
-    urdf: Path, xacro_args: list[str] | None, package_paths: list[Path] | None
+    urdf: Path, xacro_args: list[str] | None, package_paths: list[Path] | None, *, check_args: bool = True
 ) -> RobotModel:
-    """Load a robot from command-line options (the import stays out of --help)."""
+    """Load a robot from command-line options (the import stays out of --help); a `--xacro-arg`
+    the description does not take is an InputError, unless `check_args` is false (the caller
+    checks it against more files: init's SRDF xacro)."""
     from marm_setup.robot.load import load_robot, parse_xacro_args
+    from marm_setup.robot.xacro_expand import check_xacro_args
 
-    return load_robot(urdf, parse_xacro_args(xacro_args or []), package_paths or [])
+    args = parse_xacro_args(xacro_args or [])
+    robot = load_robot(urdf, args, package_paths or [])
+    if check_args:
+        check_xacro_args(args, robot.xacro_args, path=str(urdf))
+    return robot
 
 
 def one_line(text: str) -> str:

@@ -9,7 +9,8 @@ from marm_setup.exports import lazy_api
 __all__, __getattr__, __dir__ = lazy_api(
     __name__,
     {
-        "load": "load_robot parse_xacro_args expand_xacro",
+        "load": "load_robot parse_xacro_args",
+        "xacro_expand": "expand_xacro run_xacro check_xacro_args",
         "model": "RobotModel Link Joint",
         "kinematics": "forward_kinematics sample_configurations default_configuration",
         "meshes": "load_mesh",

@@ -152,6 +152,8 @@ class RobotModel:
     urdf_xml: str = field(default="", repr=False, compare=False)
     # ROS packages the description used: (name, folder, found by "package.xml" | "folder name")
     packages: tuple[tuple[str, str, str], ...] = field(default=(), compare=False)
+    # the arguments its xacro declares or reads, sorted (robot/xacro_expand.py); None: no xacro
+    xacro_args: tuple[str, ...] | None = field(default=None, compare=False)
 
     # -- lookups -------------------------------------------------------------------------------
     @cached_property

@@ -8,8 +8,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from os import PathLike
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason, link_pair
 from marm_setup.errors import InputError
@@ -27,6 +30,9 @@ from marm_setup.setup.model import (
     SrdfExtras,
     VirtualJoint,
 )
+
+if TYPE_CHECKING:
+    from marm_setup.robot.xacro_expand import XacroOutput
 
 
 @dataclass(frozen=True, slots=True)
@@ -95,6 +101,40 @@ def read_srdf(path: str | PathLike, skipped: list[InputError] | None = None) -> 
     except etree.XMLSyntaxError as exc:
         raise _syntax_error(exc, shown) from None
     return parse_srdf_root(root, shown, skipped)
+
+
+def expand_srdf_xacro(
+    path: str | PathLike,
+    xacro_args: Mapping[str, str],
+    package_paths: Iterable[str | PathLike] = (),
+    *,
+    shown: str | None = None,
+) -> XacroOutput:
+    """The SRDF a `.srdf.xacro` makes: the real xacro with `xacro_args`, `$(find pkg)` from
+    `package_paths` and the folders around it, in the bounded child process (robot/xacro_expand)."""
+    from marm_setup.robot.ros_packages import find_packages
+    from marm_setup.robot.xacro_expand import run_xacro
+
+    file = Path(path)
+    packages = find_packages([Path(p) for p in package_paths], near=file)
+    return run_xacro(file, xacro_args, packages, shown=str(path) if shown is None else shown)
+
+
+def load_srdf(
+    path: str | PathLike,
+    skipped: list[InputError] | None = None,
+    *,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | PathLike] = (),
+) -> tuple[Srdf, frozenset[str] | None]:
+    """`read_srdf`, a `.xacro` expanded first (`expand_srdf_xacro`); with the arguments the
+    xacro takes (None for a plain SRDF)."""
+    if Path(path).suffix != ".xacro":
+        return read_srdf(path, skipped), None
+    if not Path(path).is_file():
+        raise InputError("file not found", path=str(path))
+    expanded = expand_srdf_xacro(path, xacro_args or {}, package_paths)
+    return parse_srdf_string(expanded.xml, str(path), skipped), expanded.declared
 
 
 def parse_srdf_string(text: str, path: str = "<srdf>", skipped: list[InputError] | None = None) -> Srdf:

@@ -147,10 +147,9 @@ def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...], args: dict) -> str
             return file.read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError) as exc:
             raise InputError(f"cannot read: {exc}", path=rel) from None
-    from marm_setup.robot.load import expand_xacro
-    from marm_setup.robot.ros_packages import find_packages
+    from marm_setup.setup.srdf import expand_srdf_xacro
 
-    return expand_xacro(file, args, find_packages(paths, near=file), shown=rel)
+    return expand_srdf_xacro(file, args, paths, shown=rel).xml
 
 
 def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths, robot_name=None):

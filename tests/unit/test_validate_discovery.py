@@ -95,13 +95,13 @@ def test_marm_setup_yaml_xacro_args_and_package_paths(tmp_path):
         "--out",
         str(out),
         "--xacro-arg",
-        "foo:=bar",
+        "with_gripper:=false",
         "--package-path",
         str(FIXTURES),
     ]
     assert CliRunner().invoke(app, args).exit_code == 0
     pkg = discover_package(out)
-    assert pkg.xacro_args == (("foo", "bar"),)
+    assert pkg.xacro_args == (("with_gripper", "false"),)
     assert FIXTURES.resolve() in pkg.package_paths
     assert pkg.package_paths[0] == out.resolve()  # $(find <itself>) is this copy
 

@@ -162,7 +162,7 @@ def init(
         package_paths=tuple(package_path or ()),
     )
     check_output_dir(out, force=force, shown=str(out))
-    robot = load_robot_from_cli(urdf, xacro_arg, package_path)
+    robot = load_robot_from_cli(urdf, xacro_arg, package_path, check_args=False)  # run_init checks them
     with SamplingProgress() as progress:
         result = run_init(request, robot, progress)
     sources = ["inferred", *(f"{o} {p}" for o, p in (("SRDF", from_srdf), ("SPEC", setup)) if p)]

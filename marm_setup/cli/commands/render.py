@@ -73,6 +73,7 @@ def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupMo
     from marm_setup.errors import InputError
     from marm_setup.robot.load import load_robot
     from marm_setup.robot.ros_packages import description_file
+    from marm_setup.robot.xacro_expand import check_xacro_args
     from marm_setup.setup.checks import check_setup
     from marm_setup.setup.yaml_io import load_setup
 
@@ -88,6 +89,7 @@ def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupMo
     package_paths = [p for p in (_relative_to(pkg_dir, p) for p in source.package_paths) if p.is_dir()]
     urdf = description_file(source.urdf, pkg_dir, package_paths) if urdf is None else urdf
     robot = load_robot(urdf, dict(source.xacro_args), package_paths)
+    check_xacro_args(dict(source.xacro_args), robot.xacro_args, path=str(setup_path), key="robot.xacro_args")
     check_setup(model, robot, str(setup_path))  # an edit may name unknown joints or leave limits
     return model, robot
 
