@@ -243,7 +243,10 @@ def _package_robot(pkg: ConfigPackage) -> RobotModel:
     if robot is None:
         from marm_setup.setup.checks import as_input_error
 
-        raise as_input_error(problems[0])
+        found = problems[0]
+        if found.rule == "urdf.missing":  # its hint is validate's --urdf: init says how it takes one
+            raise InputError(found.message, path=found.file, element=found.element or None, needs="--urdf")
+        raise as_input_error(found)
     return robot
 
 

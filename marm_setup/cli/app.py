@@ -15,7 +15,7 @@ import typer
 
 from marm_setup import __version__
 from marm_setup.cli.common import echo_err
-from marm_setup.errors import MarmError, permission_error
+from marm_setup.errors import MarmError, permission_error, remedy
 
 app = typer.Typer(
     name="marm-setup",
@@ -33,17 +33,17 @@ R = TypeVar("R")
 _DEBUG = {"on": False}  # set by the global --debug option
 
 
-def handle_errors(fn: Callable[P, R]) -> Callable[P, R]:
-    """Turn a MarmError into one `error: ...` line on stderr and its exit code, and any other
-    exception (a bug) into one `error: internal error: ...` line with exit 2; the traceback only
-    with the global `--debug`."""
+def handle_errors(fn: Callable[P, R], command: str | None = None) -> Callable[P, R]:
+    """Turn a MarmError into one `error: ...` line on stderr (with what to do about what it
+    needs, as `command` takes it) and its exit code, and any other exception (a bug) into one
+    `error: internal error: ...` line with exit 2; the traceback only with the global `--debug`."""
 
     @functools.wraps(fn)
     def wrapper(*args: P.args, **kwargs: P.kwargs) -> R:
         try:
             return fn(*args, **kwargs)
         except MarmError as exc:
-            echo_err(f"error: {exc}")
+            echo_err(error_line(exc, command))
             raise typer.Exit(exc.exit_code) from None
         except PermissionError as exc:  # a file or folder of the user's we may not read: input
             echo_err(f"error: {permission_error(exc)}")
@@ -61,6 +61,23 @@ def handle_errors(fn: Callable[P, R]) -> Callable[P, R]:
             raise typer.Exit(2) from None
 
     return wrapper
+
+
+def error_line(exc: MarmError, command: str | None) -> str:
+    """`error: <path>: <element>: <message> (<remedy>)`: the remedy names an option only when
+    `command` has it (errors.remedy), so no message sends a user to an option that is not there."""
+    fix = remedy(exc.needs, command_options(command) if command else None)
+    return f"error: {exc} ({fix})" if fix else f"error: {exc}"
+
+
+def command_options(command: str) -> frozenset[str]:
+    """The options (`--urdf`) and argument names (`URDF`) of `command`, as the app defines them."""
+    import typer.main
+
+    click_command = typer.main.get_command(app).commands[command]  # type: ignore[attr-defined]
+    return frozenset(
+        name for p in click_command.params for name in (*p.opts, *p.secondary_opts, p.metavar or "") if name
+    )
 
 
 def internal_error_text(exc: BaseException) -> str:
@@ -92,7 +109,7 @@ def _register() -> None:
     from marm_setup.cli.commands import load_commands
 
     for name, fn in load_commands():
-        app.command(name)(handle_errors(fn))
+        app.command(name)(handle_errors(fn, name))
 
 
 _register()

@@ -27,8 +27,9 @@ from marm_setup.plan.planner import (
 )
 from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_config, time_parameterize
 from marm_setup.robot.kinematics import wrap_continuous
-from marm_setup.robot.model import MIN_RATE, RobotModel
+from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.limits import timing_problem
 from marm_setup.setup.srdf import allowed_pairs
 from marm_setup.setup.start_state import (
     StartSources,
@@ -149,12 +150,7 @@ def planning_problem(
         limits = limits_from_config(robot, joints, entries)
     except ValueError as exc:
         raise InputError(str(exc), path=_limits_file(package)) from None
-    scaled = limits.scaled(scale_v, scale_a)
-    if min(scaled.max_velocity.min(), scaled.max_acceleration.min()) < MIN_RATE:
-        msg = (
-            f"the scaled velocity or acceleration limits fall below {MIN_RATE:g}: no trajectory can be timed"
-        )
-        raise InputError(msg, path=_limits_file(package), element="default_velocity_scaling_factor")
+    _check_timeable(limits, scale_v, scale_a, _limits_file(package))
     start = package_start_values(package, robot)
     poses = {
         s.name: wrap_continuous(robot, pose_configuration(s, robot, start))
@@ -165,6 +161,18 @@ def planning_problem(
     return PlanningProblem(
         group, joints, poses, limits, scale_v, scale_a, lambda q: scene.first_collisions(q, pairs)
     )
+
+
+def _check_timeable(limits: JointLimits, scale_v: float, scale_a: float, file: str) -> None:
+    """The group's limits, scaled by the package's factors, pass the timing rule init runs too
+    (setup/limits.py); else an InputError naming the factor."""
+    for kind, rates, scaling in (
+        ("velocity", limits.max_velocity, scale_v),
+        ("acceleration", limits.max_acceleration, scale_a),
+    ):
+        for name, rate in zip(limits.joint_names, rates, strict=True):
+            if problem := timing_problem(name, f"max_{kind}", float(rate), scaling):
+                raise InputError(problem, path=file, element=f"default_{kind}_scaling_factor")
 
 
 def _limits_file(package: PackageConfig) -> str:

@@ -20,7 +20,8 @@ import numpy as np
 
 from marm_setup.errors import InputError
 from marm_setup.plan.rrt import merge_collinear
-from marm_setup.robot.model import MIN_RATE, RobotModel
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.limits import timing_problem
 
 __all__ = [
     "JointLimits",
@@ -107,10 +108,8 @@ def limits_from_config(
             unbounded.append(name)
         a = _number(entry, "max_acceleration", name) if entry.get("has_acceleration_limits", False) else None
         for key, rate in (("max_velocity", v), ("max_acceleration", a)):
-            if rate is not None and 0 < rate < MIN_RATE:
-                raise ValueError(
-                    f"{key} {rate:g} of joint {name} is below {MIN_RATE:g}: no trajectory can be timed"
-                )
+            if problem := timing_problem(name, key, rate):
+                raise ValueError(problem)
         a_max.append(a if a is not None and a > 0 else default_acceleration)
         v_max.append(float(v))
     return JointLimits(tuple(joint_names), np.array(v_max), np.array(a_max), tuple(unbounded))

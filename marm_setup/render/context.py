@@ -23,7 +23,8 @@ from marm_setup.setup.domain import (
     PIPELINES,
     ROS2_CONTROLLER_TYPES,
 )
-from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
+from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup.limits import joint_limits
 from marm_setup.setup.model import (
     Controller,
     GroupState,
@@ -70,16 +71,6 @@ class GroupInfo:
         """OMPL's projection for KPIECE, BKPIECE, LBKPIECE, EST, SBL: the first two active joints,
         as the Setup Assistant writes it; a one-joint group gets none."""
         return self.active_joints[:2] if len(self.active_joints) >= 2 else ()
-
-
-@dataclass(frozen=True, slots=True)
-class JointLimit:
-    """One `joint_limits.yaml` entry; velocity in [rad/s] or [m/s], acceleration per [s^2]."""
-
-    joint: str
-    max_velocity: float | None
-    max_acceleration: float | None
-    max_jerk: float | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -171,20 +162,6 @@ def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
         )
         for g in model.groups
     ]
-
-
-def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
-    """URDF velocity limits, the setup's default acceleration, then the setup's overrides."""
-    overrides = {o.joint: o for o in model.joint_limits}
-    out = []
-    for name in planning_joints(model.groups, robot, model.passive_joints):
-        joint = robot.joint(name)
-        o = overrides.get(name)
-        velocity = o.max_velocity if o and o.max_velocity is not None else joint.velocity
-        accel = o.max_acceleration if o and o.max_acceleration is not None else model.default_acceleration
-        jerk = o.max_jerk if o else None
-        out.append(JointLimit(name, velocity if velocity else None, accel, jerk))
-    return out
 
 
 def controller_infos(model: SetupModel) -> list[ControllerInfo]:

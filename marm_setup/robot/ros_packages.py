@@ -172,8 +172,7 @@ def find_package(name: str, packages: PackageMap, *, path: str, element: str) ->
         return found
     known = ", ".join(sorted(packages)) or "none"
     raise PackageNotFound(
-        f"unknown package '{name}' (no package.xml or folder of that name; known packages: {known}; "
-        "add --package-path DIR)",
+        f"unknown package '{name}' (no package.xml or folder of that name; known packages: {known})",
         package=name,
         path=path,
         element=element,

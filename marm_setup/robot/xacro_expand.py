@@ -143,7 +143,7 @@ def _run_xacro(file: Path, text: str, args: dict[str, str], packages: PackageMap
             inner = getattr(exc, "exc", None)
             if isinstance(inner, InputError):  # ours, wrapped by XacroException
                 raise inner from None
-            raise InputError(_xacro_message(exc), path=shown, element="xacro") from None
+            raise _xacro_error(exc, shown) from None
         finally:
             xacro.substitution_args_context["arg"] = {}
     if captured.getvalue().strip():
@@ -166,14 +166,14 @@ def _file_text(name: str) -> str:
         return ""
 
 
-def _xacro_message(exc: Exception) -> str:
+def _xacro_error(exc: Exception, shown: str) -> InputError:
     if isinstance(exc, MemoryError):
-        return f"xacro needed more than {XACRO_MEMORY >> 30} GiB of memory"
+        return InputError(f"xacro needed more than {XACRO_MEMORY >> 30} GiB of memory", path=shown, element="xacro")
     text = " ".join(str(exc).split())
     undefined = re.search(r"Undefined substitution argument (\S+)", text)
     if undefined:
-        return f"undefined xacro arg '{undefined.group(1)}' (pass --xacro-arg NAME:=VALUE)"
-    return text or type(exc).__name__
+        return InputError(f"undefined xacro arg '{undefined.group(1)}'", path=shown, element="xacro", needs="--xacro-arg")
+    return InputError(text or type(exc).__name__, path=shown, element="xacro")
 
 
 @contextlib.contextmanager

@@ -17,6 +17,7 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
 from marm_setup.robot.model import MIN_RATE, RobotModel
+from marm_setup.setup.limits import joint_limits, timing_problem
 from marm_setup.setup.model import ROS_DISTROS, Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
 from marm_setup.setup.rules import Style, check_semantics, setup_element
@@ -61,6 +62,7 @@ def check_setup(
     _check_joint_lists(c)
     _check_controller_actions(c)
     _check_ranges(c)
+    _check_timing(c)
     _check_ros2_control(c)
     _check_pipelines(c)
     check_servos(model, robot, path)
@@ -243,6 +245,32 @@ def _check_ranges(c: _Checker) -> None:
             raise c.fail(
                 f"must be at least {MIN_RATE:g} (no trajectory could be timed), got {value:g}", where
             )
+
+
+def _check_timing(c: _Checker) -> None:
+    """The limits the package will give MoveIt pass the timing rule validate runs too
+    (setup/limits.py): a rate fine alone but not scaled is blamed on the scaling factor, a URDF
+    velocity on the URDF's element (naming the setup key that overrides it); a setup value is
+    checked by `_check_ranges`."""
+    m = c.model
+    overridden = {o.joint for o in m.joint_limits if o.max_velocity is not None}
+    scalings = {"velocity": m.default_velocity_scaling, "acceleration": m.default_acceleration_scaling}
+    for limit in joint_limits(m, c.robot):
+        for kind, scaling in scalings.items():
+            key, rate = f"max_{kind}", getattr(limit, f"max_{kind}")
+            problem = timing_problem(limit.joint, key, rate, scaling)
+            if not problem:
+                continue
+            if rate >= MIN_RATE:
+                raise c.fail(problem, f"default_{kind}_scaling")
+            if kind == "velocity" and limit.joint not in overridden:
+                raise InputError(
+                    f"{problem}; override it with joint_limits[{limit.joint}].{key}",
+                    path=c.robot.source or None,
+                    element=f"joint[{limit.joint}]/limit@velocity",
+                    needs="--setup",
+                )
+            raise c.fail(problem, f"joint_limits[{limit.joint}].{key}")
 
 
 def _ranged_values(m: SetupModel) -> Iterator[tuple[str, float | None, float]]:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound
+from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound, remedy
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
 from marm_setup.setup.start_state import package_start_values
 from marm_setup.validate.discovery import ConfigPackage, discover_package
@@ -191,7 +191,7 @@ def _package_hint(exc: InputError) -> str:
     in_package = isinstance(exc, MeshNotFound) and exc.uri.startswith("package://")
     if isinstance(exc, PackageNotFound) or in_package:
         return "pass --package-path DIR for packages outside this folder"
-    return ""
+    return remedy(exc.needs)
 
 
 def check_static(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from marm_setup.errors import InputError, MarmError
+from marm_setup.errors import InputError, MarmError, remedy
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import package_name
 
@@ -102,7 +102,7 @@ def read_srdf_source(
         text = _srdf_text(file, rel, paths, args or {})
         srdf = parse_srdf_string(text, rel, skipped)
     except MarmError as exc:
-        problems.append(error("srdf.parse", rel, exc.element or "", exc.message))
+        problems.append(error("srdf.parse", rel, exc.element or "", exc.message, remedy(exc.needs)))
         return None, None
     problems += [_skipped_element(rel, exc) for exc in skipped]
     return _without_skipped_groups(srdf, skipped), text
@@ -183,7 +183,8 @@ def find_urdf(root, shown, urdf, xacro_args, marm, setup_assistant, paths, robot
     raise InputError(
         f"cannot find the robot description of package '{name}' ({_why_no_urdf(root, marm, setup_assistant)})",
         path=shown,
-        element="--urdf",
+        element="robot description",
+        needs="--urdf",
     )
 
 
@@ -191,12 +192,12 @@ def _why_no_urdf(root: Path, marm: Any, setup_assistant: Any) -> str:
     """Why none of the robot description sources gave a URDF, naming the files that exist."""
     for rel, data in (("marm_setup.yaml", marm), (".setup_assistant", setup_assistant)):
         if (root / rel).is_file() and data is None:
-            return f"{rel} is not readable YAML; fix it or pass --urdf URDF"
+            return f"{rel} is not readable YAML"
     if (root / ".setup_assistant").is_file():
-        return ".setup_assistant gives no URDF package and relative_path; pass --urdf URDF"
+        return ".setup_assistant gives no URDF package and relative_path"
     if (root / "marm_setup.yaml").is_file():
-        return "marm_setup.yaml gives no robot.urdf; pass --urdf URDF"
-    return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro; pass --urdf URDF"
+        return "marm_setup.yaml gives no robot.urdf"
+    return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro"
 
 
 def setup_assistant_urdf(root: Path, shown: str, paths: tuple[Path, ...]):

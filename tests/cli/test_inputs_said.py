@@ -4,6 +4,8 @@ message names an option of the command that prints it."""
 
 from __future__ import annotations
 
+import json
+
 import pytest
 from typer.testing import CliRunner
 
@@ -129,4 +131,174 @@ def test_render_refuses_a_xacro_arg_of_marm_setup_yaml_the_xacro_does_not_take(t
     assert _one_error_line(result) == (
         f"error: {setup}: robot.xacro_args.with_griper: not an argument of the robot's xacro "
         "(did you mean 'with_gripper'?); it takes: with_gripper"
+    )
+
+
+# -- every message names an option of the command that prints it ----------------------------------
+
+
+def _options(command: str) -> set[str]:
+    """The options and argument metavars of `command`, from the app itself."""
+    import typer.main
+
+    params = typer.main.get_command(app).commands[command].params  # type: ignore[attr-defined]
+    return {o for p in params for o in (*p.opts, *p.secondary_opts)} | {p.metavar or "" for p in params}
+
+
+def _named_options(text: str) -> set[str]:
+    import re
+
+    return set(re.findall(r"(?<![\w-])--[a-z][a-z-]*", text))
+
+
+def _bare_package(tmp_path):
+    """A config package with an SRDF and nothing that names the robot description."""
+    return build_file_tree(
+        tmp_path / "bare_moveit_config",
+        {"package.xml": "<package><name>bare_moveit_config</name></package>", "config/bare.srdf": "<robot name='bare'/>"},
+    )
+
+
+def test_init_from_package_without_a_description_names_its_own_way_to_give_one(tmp_path):
+    pkg = _bare_package(tmp_path)
+    result = runner.invoke(app, ["init", "--from-package", str(pkg), "--out", str(tmp_path / "out")])
+    line = _one_error_line(result)
+    assert "--urdf" not in line
+    assert line.endswith("(give the robot's URDF as the URDF argument)")
+    assert _named_options(line) <= _options("init")
+    shown = runner.invoke(app, ["validate", str(pkg)])
+    assert shown.stderr.strip().endswith("(pass --urdf URDF)")
+
+
+def test_render_names_marm_setup_yaml_for_what_it_has_no_option_for(tmp_path):
+    """render takes no --package-path and no --xacro-arg: the robot's are marm_setup.yaml's."""
+    out = tmp_path / "pkg"
+    assert runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), *TRIALS]).exit_code == 0
+    setup = out / "marm_setup.yaml"
+    text = setup.read_text()
+    setup.write_text(text.replace("package://marm_description/", "package://nowhere_description/"))
+    line = _one_error_line(runner.invoke(app, ["render", str(out)]))
+    assert "unknown package 'nowhere_description'" in line
+    assert line.endswith("(add its folder to robot.package_paths in marm_setup.yaml)")
+    assert _named_options(line) <= _options("render")
+
+
+def test_collisions_on_a_package_overwrites_a_hand_edited_srdf_with_the_force_it_asks_for(tmp_path):
+    out = tmp_path / "pkg"
+    assert runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), *TRIALS]).exit_code == 0
+    srdf = out / "config" / "marm.srdf"
+    srdf.write_text(srdf.read_text().replace("</robot>", "<!-- mine --></robot>"))
+    line = _one_error_line(runner.invoke(app, ["collisions", str(out), *TRIALS, "--seed", "1"]))
+    assert "(use --force to overwrite)" in line and _named_options(line) <= _options("collisions")
+    forced = runner.invoke(app, ["collisions", str(out), *TRIALS, "--seed", "1", "--force"])
+    assert forced.exit_code == 0, forced.output
+    assert "<!-- mine -->" in (out / "config" / "marm.srdf.orig").read_text()
+
+
+@pytest.mark.parametrize("option", [["--xacro-arg", "with_gripper:=false"], ["--package-path", "."]])
+def test_collisions_on_a_package_refuses_the_robot_options_it_would_ignore(tmp_path, option):
+    out = tmp_path / "pkg"
+    assert runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), *TRIALS]).exit_code == 0
+    line = _one_error_line(runner.invoke(app, ["collisions", str(out), *TRIALS, *option]))
+    assert line == (
+        f"error: {option[0]}: not used with a package DIR (its marm_setup.yaml names the robot, "
+        "its xacro args and package paths)"
+    )
+
+
+NEEDS_ARG = """<robot name="needy" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="arm"><collision><geometry><box size="$(arg size) 0.1 0.1"/></geometry></collision></link>
+  <link name="tip"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="end"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.2"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="arm"/><child link="tip"/><origin xyz="0 0 0.3"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
+  <joint name="j3" type="revolute"><parent link="tip"/><child link="end"/><origin xyz="0 0 0.3"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
+</robot>
+"""
+
+
+def test_every_command_says_how_it_takes_a_missing_xacro_arg(tmp_path):
+    """The same failure (the description needs a xacro argument nobody gives) through every
+    command: each says how it takes one, and names no option it does not have."""
+    urdf = tmp_path / "needy.urdf.xacro"
+    urdf.write_text(NEEDS_ARG)
+    pkg = tmp_path / "pkg"
+    made = runner.invoke(app, ["init", str(urdf), "--out", str(pkg), "--xacro-arg", "size:=0.1", *TRIALS])
+    assert made.exit_code == 0, made.output
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(setup.read_text().replace("  xacro_args:\n    size: '0.1'\n", ""))
+    runs = {
+        "inspect": [str(urdf)],
+        "collisions": [str(urdf), *TRIALS],
+        "init": [str(urdf), "--out", str(tmp_path / "new"), *TRIALS],
+        "render": [str(pkg)],
+        "plan": [str(pkg), "--group", "arm", "--from", "home", "--to", "ready"],
+    }
+    remedies = {}
+    for command, args in runs.items():
+        line = _one_error_line(runner.invoke(app, [command, *args]))
+        assert "undefined xacro arg 'size'" in line, line
+        assert _named_options(line) <= _options(command), line
+        remedies[command] = line.rsplit("'size'", 1)[1]
+    assert remedies == {
+        **{c: " (pass --xacro-arg NAME:=VALUE)" for c in ("inspect", "collisions", "init")},
+        "render": " (set it in robot.xacro_args of marm_setup.yaml)",
+        "plan": "",  # plan takes the package's own arguments only
+    }
+    report = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--format", "json"])
+    (load,) = [f for f in json.loads(report.stdout)["findings"] if f["rule"] == "urdf.load"]
+    assert load["hint"] == "pass --xacro-arg NAME:=VALUE"
+
+
+# -- one timing rule at init and validate ----------------------------------------------------------
+
+TWO_LINK = FIXTURES / "two_link" / "urdf" / "two_link.urdf.xacro"
+
+
+def _slow_two_link(tmp_path, velocity: str):
+    urdf = tmp_path / "slow.urdf.xacro"
+    urdf.write_text(TWO_LINK.read_text().replace('velocity="1.0"', f'velocity="{velocity}"'))
+    return urdf
+
+
+def _timing_errors(pkg) -> list[str]:
+    report = json.loads(runner.invoke(app, ["validate", str(pkg), "--format", "json"]).stdout)
+    return [f"{f['element']}: {f['message']}" for f in report["findings"] if f["rule"] == "runtime.limits"]
+
+
+def test_init_refuses_a_velocity_limit_validate_would_find_untimeable(tmp_path):
+    """init used to write max_velocity 1e-320 without a word; validate of that package reports
+    it: the same rule now refuses it at init, with the same words, naming the URDF's element."""
+    urdf = _slow_two_link(tmp_path, "1e-320")
+    line = _one_error_line(runner.invoke(app, ["init", str(urdf), "--out", str(tmp_path / "pkg"), *TRIALS]))
+    assert line == (
+        f"error: {urdf}: joint[shoulder]/limit@velocity: max_velocity 9.99989e-321 of joint shoulder is below "
+        "1e-06: no trajectory can be timed; override it with joint_limits[shoulder].max_velocity "
+        "(in a SPEC: --setup SPEC)"
+    )
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("joint_limits:\n- {joint: elbow, max_velocity: 1.0}\n- {joint: shoulder, max_velocity: 1.0}\n")
+    pkg = tmp_path / "pkg"
+    made = runner.invoke(app, ["init", str(urdf), "--out", str(pkg), "--setup", str(spec), *TRIALS])
+    assert made.exit_code == 0, made.output
+    assert _timing_errors(pkg) == []
+    limits = pkg / "config" / "moveit.yaml"
+    limits.write_text(limits.read_text().replace("max_velocity: 1.0\n", "max_velocity: 1.0e-320\n", 1))
+    (found,) = _timing_errors(pkg)
+    assert found.endswith("max_velocity 9.99989e-321 of joint elbow is below 1e-06: no trajectory can be timed")
+
+
+def test_init_refuses_a_scaled_velocity_validate_would_find_untimeable(tmp_path):
+    urdf = _slow_two_link(tmp_path, "0.001")
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("default_velocity_scaling: 0.0001\n")
+    args = ["init", str(urdf), "--out", str(tmp_path / "pkg"), "--setup", str(spec), *TRIALS]
+    line = _one_error_line(runner.invoke(app, args))
+    assert line == (
+        f"error: {spec}: default_velocity_scaling: max_velocity 0.001 of joint shoulder scaled by 0.0001 is "
+        "below 1e-06: no trajectory can be timed"
     )

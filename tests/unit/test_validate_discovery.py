@@ -77,9 +77,9 @@ def test_not_a_package(tmp_path):
 def test_no_robot_description(tmp_path):
     (tmp_path / "config").mkdir()
     (tmp_path / "config" / "a.srdf").write_text('<robot name="a"/>', encoding="utf-8")
-    with pytest.raises(InputError, match="--urdf") as info:
+    with pytest.raises(InputError, match="cannot find the robot description") as info:
         discover_package(tmp_path)
-    assert info.value.element == "--urdf"
+    assert (info.value.element, info.value.needs) == ("robot description", "--urdf")
 
 
 def test_marm_setup_yaml_xacro_args_and_package_paths(tmp_path):
@@ -119,4 +119,4 @@ def test_no_robot_description_names_the_broken_setup_assistant(tmp_path, text, r
     (tmp_path / ".setup_assistant").write_text(text, encoding="utf-8")
     with pytest.raises(InputError, match=reason) as info:
         discover_package(tmp_path)
-    assert info.value.element == "--urdf"
+    assert (info.value.element, info.value.needs) == ("robot description", "--urdf")

@@ -81,7 +81,12 @@ def collisions(
     ] = None,
     format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
     force: Annotated[
-        bool, typer.Option("--force", help="With --srdf: update it even if it names another robot or links.")
+        bool,
+        typer.Option(
+            "--force",
+            help="With --srdf: update it even if it names another robot or links; with a package DIR: "
+            "overwrite hand-edited files (kept as .orig).",
+        ),
     ] = False,
     verbose: Annotated[
         bool, typer.Option("--verbose", help="With --srdf: list the pairs added and removed.")
@@ -95,7 +100,8 @@ def collisions(
     jobs = default_jobs(jobs)
     if urdf.is_dir():  # a package made by init: its marm_setup.yaml and SRDF, together
         _check_options(min_collision_fraction, seed, padding, None, False, None)
-        _update_package(urdf, count, seed, min_collision_fraction, jobs)
+        _refuse_unused(xacro_arg=xacro_arg, package_path=package_path)
+        _update_package(urdf, count, seed, min_collision_fraction, jobs, force=force)
         return
     _check_options(min_collision_fraction, seed, padding, srdf, keep, report)
     if default_pose is not None and srdf is None:
@@ -201,9 +207,22 @@ def _write_srdf(
     return disabled
 
 
-def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: int) -> None:
+def _refuse_unused(**given: object) -> None:
+    """A package DIR's marm_setup.yaml names the robot: an option that would choose it is refused."""
+    for name, value in given.items():
+        if value:
+            option = "--" + name.replace("_", "-")
+            raise InputError(
+                "not used with a package DIR (its marm_setup.yaml names the robot, its xacro args and "
+                "package paths)",
+                element=option,
+            )
+
+
+def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: int, *, force: bool) -> None:
     """Recompute a generated package's matrix into its marm_setup.yaml and SRDF together (its
-    User pairs kept), so the next `render` has nothing to disagree with."""
+    User pairs kept), so the next `render` has nothing to disagree with; with `force` a
+    hand-edited file is overwritten (kept as `.orig`, as render does)."""
     import dataclasses
 
     from marm_setup.cli.commands.render import load_package_setup
@@ -223,8 +242,8 @@ def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: in
     settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
     new = dataclasses.replace(model, collision=settings)
     changes = plan_writes(render_package(new, robot), pkg)
-    apply_writes(changes, pkg)
-    for line in (format_change(c) for c in changes):
+    apply_writes(changes, pkg, force=force)
+    for line in (format_change(c, forced=force) for c in changes):
         if not line.startswith("unchanged"):
             typer.echo(line)
     summary = _pair_changes(model.collision.disabled, disabled)

@@ -12,6 +12,8 @@ if TYPE_CHECKING:
     from marm_setup.robot.model import RobotModel
     from marm_setup.setup.model import SetupModel
 
+# What a robot loaded from marm_setup.yaml needs is given there, not by an option
+SETUP_KEYS = {"--package-path": "robot.package_paths", "--xacro-arg": "robot.xacro_args"}
 DirArg = Annotated[Path, typer.Argument(help="Config package folder holding marm_setup.yaml.", metavar="DIR")]
 
 
@@ -87,8 +89,12 @@ def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupMo
     model = load_setup(setup_path)
     source = model.robot
     package_paths = [p for p in (_relative_to(pkg_dir, p) for p in source.package_paths) if p.is_dir()]
-    urdf = description_file(source.urdf, pkg_dir, package_paths) if urdf is None else urdf
-    robot = load_robot(urdf, dict(source.xacro_args), package_paths)
+    try:
+        urdf = description_file(source.urdf, pkg_dir, package_paths) if urdf is None else urdf
+        robot = load_robot(urdf, dict(source.xacro_args), package_paths)
+    except InputError as exc:  # the robot's package paths and xacro args are the setup file's
+        exc.needs = SETUP_KEYS.get(exc.needs or "", exc.needs)
+        raise
     check_xacro_args(dict(source.xacro_args), robot.xacro_args, path=str(setup_path), key="robot.xacro_args")
     check_setup(model, robot, str(setup_path))  # an edit may name unknown joints or leave limits
     return model, robot

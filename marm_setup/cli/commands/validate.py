@@ -68,15 +68,17 @@ def _run(package: Path, options: dict) -> Validation:
 def _run_for_json(package: Path, options: dict) -> Validation:
     """The validation, or (after printing a JSON document with the one finding) exit 2:
     `--format json` always prints JSON, whatever goes wrong."""
-    from marm_setup.errors import MarmError, permission_error
+    from marm_setup.errors import MarmError, permission_error, remedy
     from marm_setup.findings import INTERNAL, error, format_json
 
     try:
         return _run(package, options)
     except (MarmError, PermissionError) as caught:
         exc = permission_error(caught) if isinstance(caught, PermissionError) else caught
-        finding = error("input.unreadable", exc.path or str(package), exc.element or "", exc.message)
-        echo_err(f"error: {exc}")
+        finding = error(
+            "input.unreadable", exc.path or str(package), exc.element or "", exc.message, remedy(exc.needs)
+        )
+        echo_err(f"error: {exc}" + (f" ({finding.hint})" if finding.hint else ""))
     except Exception as exc:  # noqa: BLE001 - a bug still gives a JSON document (and exit 2)
         import traceback
 
