@@ -292,6 +292,8 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
         )
     check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
     poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
+    if not (request.name or spec.get("package_name")):
+        notes = (*notes, *_taken_name_warnings(str(name), request))
     return _Built(model, (*notes, *_empty_group_warnings(model)), poses_given)
 
 
@@ -360,6 +362,27 @@ def _check_xacro_args(request: InitRequest, robot: RobotModel, srdf_args: frozen
         return
     declared = {*(robot.xacro_args or ()), *srdf_args}
     check_xacro_args(given, declared, path=str(request.urdf), others=(str(request.from_srdf),))
+
+
+# Config packages people have installed or cloned under their default name (<robot>_moveit_config)
+WELL_KNOWN_PACKAGES = {
+    "panda_moveit_config": "MoveIt's own panda_moveit_config",  # github.com/moveit/panda_moveit_config
+}
+
+
+def _taken_name_warnings(name: str, request: InitRequest) -> tuple[str, ...]:
+    """A warning when the default package name is another package's: one the package paths (and
+    the environment, the folders around the URDF) hold, or a well-known one."""
+    from marm_setup.robot.ros_packages import find_packages
+
+    found = find_packages(request.package_paths, near=Path(request.urdf)).lookup(name)
+    if found is not None and found.resolve() != request.out.resolve():
+        other = f"is also the package at {found}: two packages of one name break a workspace"
+    elif name in WELL_KNOWN_PACKAGES:
+        other = f"is the name of {WELL_KNOWN_PACKAGES[name]}"
+    else:
+        return ()
+    return (f"warning: package name '{name}' (the default) {other}; pass --name",)
 
 
 def _empty_group_warnings(model: SetupModel) -> tuple[str, ...]:

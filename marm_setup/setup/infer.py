@@ -147,20 +147,21 @@ def _left_out(limbs: Limbs) -> list[str]:
 
 
 def home_poses(model: SetupModel, robot: RobotModel) -> tuple[GroupState, ...]:
-    """`home` for every group without subgroups: zero for each active joint, clamped into its limits."""
+    """`home` for every group without subgroups: zero for each active joint, kept off its limits
+    as `setup.poses.home_value` says (an end effector's group only within them)."""
+    from marm_setup.setup.poses import home_value
+
     by_name = groups_by_name(model.groups)
+    hands = {ee.group for ee in model.end_effectors}
     out = []
     for group in by_name.values():  # one pose per name (duplicate groups are the checks' to report)
         joints = active_group_joints(group, by_name, robot, model.passive_joints)
         if joints and not group.subgroups:
-            out.append(
-                GroupState(HOME, group.name, tuple((j, _clamp(0.0, robot.joint(j).bounds)) for j in joints))
+            values = tuple(
+                (j, home_value(robot.joint(j).bounds, at_limits=group.name in hands)) for j in joints
             )
+            out.append(GroupState(HOME, group.name, values))
     return tuple(out)
-
-
-def _clamp(value: float, bounds: tuple[float, float]) -> float:
-    return min(max(value, bounds[0]), bounds[1])
 
 
 def fill_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:

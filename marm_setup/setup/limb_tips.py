@@ -1,10 +1,11 @@
-"""Where a limb ends: an arm at its tool frame (fixed, geometry-less frames after its last
-link), a leg at its foot (a sole, foot or toe frame fixed to it), a torso at its last link."""
+"""Where a limb ends: an arm at its tool frame (a TCP, tool or flange frame fixed below its last
+link, past a hand's palm), a leg at its foot (a sole, foot or toe frame fixed to it), a torso at
+its last link."""
 
 from __future__ import annotations
 
 from marm_setup.robot.model import RobotModel
-from marm_setup.setup.limb_words import FOOT_WORDS, MOUNT_WORDS, TOOL_WORDS, tokens
+from marm_setup.setup.limb_words import FINGER_WORDS, FOOT_WORDS, MOUNT_WORDS, TOOL_RANKS, TOOL_WORDS, tokens
 
 
 def limb_tip(robot: RobotModel, kind: str, last: str) -> str:
@@ -16,8 +17,35 @@ def limb_tip(robot: RobotModel, kind: str, last: str) -> str:
 
 
 def tool_frame(robot: RobotModel, link: str) -> str:
+    """Where an arm whose last joint moves `link` ends: its tool frame, the best-named link
+    fixed below it, through a hand's palm too (as MoveIt's panda_manipulator ends at
+    panda_hand_tcp, past panda_hand): a TCP or grasp frame before a tool / end-effector frame
+    before a gripper frame before a flange, then a frame without geometry before a link with
+    it, the nearest first; sensors and fingertips are none. Without one, the geometry-less
+    frames fixed to `link` (the only one, or the one named like a tool frame: a flange)."""
+    named = [
+        (rank, robot.link(frame).has_geometry, depth, order, frame)
+        for order, (depth, frame) in enumerate(_fixed_frames(robot, link)[1:])
+        if (rank := _tool_rank(robot, frame)) is not None
+    ]
+    return min(named)[-1] if named else _bare_frame(robot, link)
+
+
+def _tool_rank(robot: RobotModel, frame: str) -> int | None:
+    """How well `frame`'s name says tool frame (TOOL_RANKS, lower is better); None: not at all."""
+    words = set(tokens(frame))
+    if words & set(FINGER_WORDS) or words & set(MOUNT_WORDS):
+        return None
+    for rank, vocabulary in enumerate(TOOL_RANKS):
+        if words & set(vocabulary):
+            body = robot.link(frame).has_geometry and "gripper" in vocabulary  # the gripper itself
+            return None if body else rank
+    return None
+
+
+def _bare_frame(robot: RobotModel, link: str) -> str:
     """`link` extended through fixed joints to geometry-less frames: the only such child, or
-    the one named like a tool frame (`tool0`, `tcp`, `grasping_frame`, `end_effector`)."""
+    the one named like a tool frame."""
     while True:
         frames = [
             j.child

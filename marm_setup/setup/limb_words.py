@@ -33,6 +33,14 @@ FOOT_WORDS = ("sole", "foot", "toe")  # a leg's tip frame, in this order of pref
 SIDES = {"l": "left", "left": "left", "r": "right", "right": "right"}
 CORNERS = {"f": "front", "h": "hind", "b": "back", "r": "rear"}
 TOOL_WORDS = ("tool", "tcp", "grasp", "grasping", "end", "effector", "ee", "flange", "tip", "gripper")
+# An arm's tool frame by its name, best first: the grasp point, the tool / end effector frame,
+# a gripper frame (a gripper's body is the hand), the flange (limb_tips.tool_frame)
+TOOL_RANKS = (
+    ("tcp", "grasp", "grasping", "grasptarget"),
+    ("tool", "tool0", "effector", "ee", "eef", "tip"),
+    ("gripper",),
+    ("flange",),
+)
 
 
 def tokens(name: str) -> list[str]:

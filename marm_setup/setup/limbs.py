@@ -280,14 +280,20 @@ class _Finder:
         last = raw.joints[-1].child
         tip = limb_tip(self.robot, raw.kind, last)
         active = tuple(j.name for j in raw.joints if j.is_active)
-        hand = self._hand(name, last, tip) if raw.has_hand else None
+        hand = self._hand(name, last) if raw.has_hand else None
         return Limb(name, raw.kind, raw.base, tip, active, hand)
 
-    def _hand(self, arm: str, last: str, tip: str) -> Hand:
+    def _hand(self, arm: str, last: str) -> Hand:
+        """The hand after an arm whose last joint moves `last`: its actuated joints, the links
+        they move, and the bodies fixed to it (a palm); not the frames without geometry (a
+        flange, a TCP, a camera's optical frame) nor a sensor's body, as MoveIt's panda hand
+        group holds panda_hand and its fingers, not panda_link8 or panda_hand_tcp."""
         robot = self.robot
-        arm_links = {j.child for j in robot.chain(last, tip) or ()} | {last}
         joints = [j for j in robot.subtree_joints(last) if j.is_actuated]
-        links = tuple(link for link in robot.subtree_links(last) if link not in arm_links)
+        moved = {link for j in joints for link in robot.subtree_links(j.child)}
+        links = tuple(
+            link for link in robot.subtree_links(last)[1:] if link in moved or _is_body(robot, link)
+        )
         word = _hand_word(joints)
         parts = tokens(arm)
         name = "_".join(word if t == "arm" else t for t in parts) if "arm" in parts else f"{arm}_{word}"
@@ -301,6 +307,11 @@ class _Finder:
             palms.setdefault(seg.start, []).append(seg)
         numbers = [0] if len(palms) == 1 else list(range(1, len(palms) + 1))
         return tuple(_loose_hand(segs, n) for segs, n in zip(palms.values(), numbers, strict=True))
+
+
+def _is_body(robot: RobotModel, link: str) -> bool:
+    """A link with collision geometry that is no sensor (a camera on the hand is not the hand)."""
+    return robot.link(link).has_geometry and not set(tokens(link)) & set(MOUNT_WORDS)
 
 
 def _loose_hand(segs: list[_Segment], number: int) -> Hand:

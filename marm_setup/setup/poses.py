@@ -1,9 +1,10 @@
 """Named poses that work (DESIGN.md §2): a collision-free `home` for every group and a second
 pose, `ready`, for every limb group, so `validate` and `plan` have a pose pair out of the box.
 
-`home` is every group's joints at zero, clamped into the limits; when that state is in
-collision under the setup's matrix, the nearest collision-free state found by a seeded search
-around it. `ready` bends each joint of a limb group away from home (other joints at home) and
+`home` is every group's joints at zero, kept a tenth of their range (at most 0.3) inside
+their limits (a hand's joints only within them: a gripper rests open or closed); when that
+state is in collision under the setup's matrix, the nearest collision-free state found by a
+seeded search around it, inside the same band. `ready` bends each joint of a limb group away from home (other joints at home) and
 is kept only when it and the straight path to it are collision-free; else a seeded random
 pose near home is taken. All values are rounded to 4 decimals before they are checked.
 """
@@ -33,6 +34,7 @@ if TYPE_CHECKING:
 HOME, READY = "home", "ready"
 SEARCH_SCALES = (0.05, 0.1, 0.2, 0.4, 0.8)  # [rad] (or that share of a prismatic joint's range)
 BATCH = 64
+HOME_MARGIN = 0.3  # [rad or m]: at most this far inside a limit is far enough for home
 READY_BEND = 0.4  # [rad]: how far `ready` bends each joint from home
 MIN_MOVE = 0.1  # [rad]: `ready` moves some joint at least this far
 PATH_STEPS = 12
@@ -82,9 +84,10 @@ def infer_poses(model: SetupModel, robot: RobotModel, scene: CollisionScene, *, 
     joints = {g.name: active_group_joints(g, by_name, robot, model.passive_joints) for g in leaves}
     leaves = [g for g in leaves if joints[g.name]]
     rng = np.random.default_rng(seed)
-    q, notes = _home(space, [j for g in leaves for j in joints[g.name]], rng)
-    states = [_state(HOME, g.name, joints[g.name], q, space) for g in leaves]
     hands = {ee.group for ee in model.end_effectors}
+    at_limits = {j for g in leaves if g.name in hands for j in joints[g.name]}
+    q, notes = _home(space, [j for g in leaves for j in joints[g.name]], at_limits, rng)
+    states = [_state(HOME, g.name, joints[g.name], q, space) for g in leaves]
     for group in (g for g in leaves if g.name not in hands and len(joints[g.name]) > 1):
         ready, note = _ready(space, q, joints[group.name], rng)
         notes += [f"group {group.name}: {note}"] if note else []
@@ -97,32 +100,63 @@ def _state(name: str, group: str, joints: tuple[str, ...], q: np.ndarray, space:
     return GroupState(name, group, tuple((j, float(q[space.index[j]])) for j in joints))
 
 
-def _home(space: _Space, joints: list[str], rng: np.random.Generator) -> tuple[np.ndarray, list[str]]:
-    """Zeros clamped into the limits, or the nearest collision-free state found around them."""
+def _home(
+    space: _Space, joints: list[str], at_limits: set[str], rng: np.random.Generator
+) -> tuple[np.ndarray, list[str]]:
+    """Zeros kept off the limits (`home_band`; the `at_limits` joints, a hand's, only within
+    them), or the nearest collision-free state found around them inside the same band."""
     q = default_configuration(space.robot)
     idx = np.array([space.index[j] for j in joints], dtype=np.intp)
-    q[idx] = np.clip(0.0, space.lo[idx], space.hi[idx])
+    lo, hi = home_band(space.lo[idx], space.hi[idx])
+    hand = np.array([j in at_limits for j in joints], dtype=bool)
+    lo, hi = np.where(hand, space.lo[idx], lo), np.where(hand, space.hi[idx], hi)
+    q[idx] = np.clip(0.0, lo, hi)
     q = space.round(q)
+    moved = [f"{j} {q[i]:g}" for j, i in zip(joints, idx, strict=True) if q[i] != 0.0]
+    notes = [f"home: {', '.join(moved)} (zero is at or beyond their limits)"] if moved else []
     hit = space.hits(q)[0]
     if hit is None:
-        return q, []
+        return q, notes
     for scale in SEARCH_SCALES:
-        found = _nearest_free(space, q, idx, scale, rng)
+        found = _nearest_free(space, q, idx, scale, rng, (lo, hi))
         if found is not None:
-            moved = float(np.max(np.abs(found - q)))
+            moved_by = float(np.max(np.abs(found - q)))
             return found, [
-                f"home: zeros are in collision ({hit[0]} - {hit[1]}); moved up to {moved:.3g} from zero"
+                *notes,
+                f"home: zeros are in collision ({hit[0]} - {hit[1]}); moved up to {moved_by:.3g} from "
+                + ("there" if moved else "zero"),
             ]
     return q, [
-        f"home is in collision ({hit[0]} - {hit[1]}) and no free state was found near it: give one in a SPEC"
+        *notes,
+        f"home is in collision ({hit[0]} - {hit[1]}) and no free state was found near it: give one in a SPEC",
     ]
 
 
+def home_value(bounds: tuple[float, float], *, at_limits: bool = False) -> float:
+    """A joint's home: zero kept inside `home_band` (within `bounds` only, `at_limits`)."""
+    lo, hi = bounds if at_limits else home_band(np.array(bounds[0]), np.array(bounds[1]))
+    return round(float(np.clip(0.0, lo, hi)), DECIMALS)
+
+
+def home_band(lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where a home value may lie: a tenth of the joint's range (at most HOME_MARGIN) inside each
+    limit. A pose on a limit is one a real arm stops short of (soft limits, the controller's
+    position tolerance) and from which `ready` and every plan can leave only one way."""
+    margin = np.minimum(0.1 * (hi - lo), HOME_MARGIN)
+    return lo + margin, hi - margin
+
+
 def _nearest_free(
-    space: _Space, q: np.ndarray, idx: np.ndarray, scale: float, rng: np.random.Generator
+    space: _Space,
+    q: np.ndarray,
+    idx: np.ndarray,
+    scale: float,
+    rng: np.random.Generator,
+    band: tuple[np.ndarray, np.ndarray],
 ) -> np.ndarray | None:
     cand = np.repeat(q[None], BATCH, axis=0)
     cand[:, idx] += rng.uniform(-1.0, 1.0, (BATCH, len(idx))) * space.steps(idx, scale)
+    cand[:, idx] = np.clip(cand[:, idx], *band)
     cand = space.round(cand)
     free = [k for k, hit in enumerate(space.hits(cand)) if hit is None]
     if not free:

@@ -155,7 +155,10 @@ def _bare_package(tmp_path):
     """A config package with an SRDF and nothing that names the robot description."""
     return build_file_tree(
         tmp_path / "bare_moveit_config",
-        {"package.xml": "<package><name>bare_moveit_config</name></package>", "config/bare.srdf": "<robot name='bare'/>"},
+        {
+            "package.xml": "<package><name>bare_moveit_config</name></package>",
+            "config/bare.srdf": "<robot name='bare'/>",
+        },
     )
 
 
@@ -281,7 +284,9 @@ def test_init_refuses_a_velocity_limit_validate_would_find_untimeable(tmp_path):
         "(in a SPEC: --setup SPEC)"
     )
     spec = tmp_path / "spec.yaml"
-    spec.write_text("joint_limits:\n- {joint: elbow, max_velocity: 1.0}\n- {joint: shoulder, max_velocity: 1.0}\n")
+    spec.write_text(
+        "joint_limits:\n- {joint: elbow, max_velocity: 1.0}\n- {joint: shoulder, max_velocity: 1.0}\n"
+    )
     pkg = tmp_path / "pkg"
     made = runner.invoke(app, ["init", str(urdf), "--out", str(pkg), "--setup", str(spec), *TRIALS])
     assert made.exit_code == 0, made.output
@@ -289,7 +294,9 @@ def test_init_refuses_a_velocity_limit_validate_would_find_untimeable(tmp_path):
     limits = pkg / "config" / "moveit.yaml"
     limits.write_text(limits.read_text().replace("max_velocity: 1.0\n", "max_velocity: 1.0e-320\n", 1))
     (found,) = _timing_errors(pkg)
-    assert found.endswith("max_velocity 9.99989e-321 of joint elbow is below 1e-06: no trajectory can be timed")
+    assert found.endswith(
+        "max_velocity 9.99989e-321 of joint elbow is below 1e-06: no trajectory can be timed"
+    )
 
 
 def test_init_refuses_a_scaled_velocity_validate_would_find_untimeable(tmp_path):
@@ -301,4 +308,48 @@ def test_init_refuses_a_scaled_velocity_validate_would_find_untimeable(tmp_path)
     assert line == (
         f"error: {spec}: default_velocity_scaling: max_velocity 0.001 of joint shoulder scaled by 0.0001 is "
         "below 1e-06: no trajectory can be timed"
+    )
+
+
+# -- a default package name that is already taken --------------------------------------------------
+
+
+def test_a_default_package_name_another_package_has_is_said(tmp_path):
+    """The shared panda's folder also holds MoveIt's panda_moveit_config: the default name
+    <robot>_moveit_config would be a second package of that name in one workspace."""
+    root = realworld("ros1")
+    urdf = root / "panda_description/urdf/panda_arm_hand.urdf.xacro"
+    out = tmp_path / "pkg"
+    result = runner.invoke(app, ["init", str(urdf), "--out", str(out), "--package-path", str(root), *TRIALS])
+    assert result.exit_code == 0, result.output
+    (line,) = [x.strip() for x in result.stdout.splitlines() if "package name" in x]
+    assert line == (
+        f"warning: package name 'panda_moveit_config' (the default) is also the package at "
+        f"{(root / 'panda_moveit_config').resolve()}: two packages of one name break a workspace; pass --name"
+    )
+    named = runner.invoke(
+        app,
+        [
+            "init",
+            str(urdf),
+            "--out",
+            str(tmp_path / "o2"),
+            "--package-path",
+            str(root),
+            "--name",
+            "my_panda_moveit_config",
+            *TRIALS,
+        ],
+    )
+    assert named.exit_code == 0 and "package name" not in named.stdout
+
+
+def test_a_default_package_name_of_a_well_known_package_is_said(tmp_path):
+    urdf = tmp_path / "panda.urdf"
+    urdf.write_text(NEEDS_ARG.replace("$(arg size)", "0.1").replace('name="needy"', 'name="panda"'))
+    result = runner.invoke(app, ["init", str(urdf), "--out", str(tmp_path / "pkg"), *TRIALS])
+    assert result.exit_code == 0, result.output
+    assert (
+        "warning: package name 'panda_moveit_config' (the default) is the name of MoveIt's own "
+        "panda_moveit_config; pass --name" in result.stdout
     )

@@ -342,9 +342,9 @@ def test_pr2_is_a_wheeled_two_armed_robot():
     model = _infer(robot).model
     by_name = groups_by_name(model.groups)
     assert by_name["right_arm"].chain.base == "torso_lift_link"
-    assert by_name["right_arm"].chain.tip == "r_wrist_roll_link"
+    assert by_name["right_arm"].chain.tip == "r_gripper_tool_frame"  # the TCP past its palm
     assert model.virtual_joints[0].type == "planar"
-    assert {e.parent_link for e in model.end_effectors} == {"l_wrist_roll_link", "r_wrist_roll_link"}
+    assert {e.parent_link for e in model.end_effectors} == {"l_gripper_tool_frame", "r_gripper_tool_frame"}
     assert not any("caster" in j for c in model.controllers for j in c.joints)
 
 
