@@ -148,6 +148,10 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
     check_output_dir(request.out, force=request.force, shown=str(request.out))
     pkg, notes = _discover_for_port(request)
     robot = _package_robot(pkg)
+    if request.xacro_args:
+        from marm_setup.validate.runner import check_given_xacro_args
+
+        check_given_xacro_args(pkg, robot, parse_xacro_args(list(request.xacro_args)))
     target = request.target or "ros2"
     if target not in TARGETS:
         raise InputError(f"'{target}' is not one of: {', '.join(TARGETS)}", element="--target")

@@ -110,6 +110,8 @@ def validate(
     findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch_files, pkg.target)
     robot, problems = load_package_robot(pkg)
     findings += problems
+    if robot is not None and xacro_args:
+        check_given_xacro_args(pkg, robot, xacro_args)
     if pkg.srdf_path is None:
         findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
     pairs = None
@@ -128,6 +130,27 @@ def validate(
         planned_pairs=pairs,
         skipped=skipped_families(pkg, robot),
     )
+
+
+def check_given_xacro_args(pkg: ConfigPackage, robot: RobotModel, given: Mapping[str, str]) -> None:
+    """The `--xacro-arg`s the user gave for a package must each be an argument of its robot
+    description's xacro or of its SRDF xacro (expanded again only when the description's
+    arguments do not cover them); else an InputError (robot/xacro_expand.check_xacro_args)."""
+    from marm_setup.robot.xacro_expand import check_xacro_args
+
+    left = set(given) - set(robot.xacro_args or ())
+    srdf = pkg.path(pkg.srdf_path) if pkg.srdf_path and pkg.srdf_path.endswith(".xacro") else None
+    if not left or srdf is None:
+        check_xacro_args(given, robot.xacro_args, path=user_urdf(pkg))
+        return
+    from marm_setup.setup.srdf import expand_srdf_xacro
+
+    try:
+        srdf_args = expand_srdf_xacro(srdf, dict(given), pkg.package_paths).declared
+    except InputError:
+        srdf_args = frozenset()  # validate reports the SRDF's own failure
+    declared = {*(robot.xacro_args or ()), *srdf_args}
+    check_xacro_args(given, declared, path=user_urdf(pkg), others=(pkg.user_path(pkg.srdf_path),))
 
 
 def without_skipped_group_cascade(findings: list[Finding], pkg: ConfigPackage) -> list[Finding]:

@@ -353,3 +353,22 @@ def test_a_default_package_name_of_a_well_known_package_is_said(tmp_path):
         "warning: package name 'panda_moveit_config' (the default) is the name of MoveIt's own "
         "panda_moveit_config; pass --name" in result.stdout
     )
+
+
+@pytest.mark.parametrize("command", ["validate", "init"])
+def test_a_misspelled_xacro_arg_for_a_package_is_an_error(tmp_path, command):
+    """validate and init --from-package take --xacro-arg for the package's own description (and
+    SRDF xacro): one neither takes is an error there too."""
+    pkg = tmp_path / "pkg"
+    assert runner.invoke(app, ["init", str(MARM_URDF), "--out", str(pkg), *TRIALS]).exit_code == 0
+    args = {
+        "validate": ["validate", str(pkg), "--no-plan"],
+        "init": ["init", "--from-package", str(pkg), "--out", str(tmp_path / "new"), "--no-plan"],
+    }[command]
+    line = _one_error_line(runner.invoke(app, [*args, "--xacro-arg", "with_griper:=false"]))
+    assert line.startswith("error: ") and line.endswith(
+        ": --xacro-arg with_griper: not an argument of this xacro (did you mean 'with_gripper'?); "
+        "it takes: with_gripper"
+    )
+    taken = runner.invoke(app, [*args, "--xacro-arg", "with_gripper:=true"])
+    assert taken.exit_code in (0, 1), taken.output
