@@ -375,11 +375,11 @@ WELL_KNOWN_PACKAGES = {
 
 
 def _taken_name_warnings(name: str, request: InitRequest) -> tuple[str, ...]:
-    """A warning when the default package name is another package's: one the package paths (and
-    the environment, the folders around the URDF) hold, or a well-known one."""
+    """A warning when the default package name is another package's: one whose package.xml the
+    package paths (and the environment, the folders around the URDF) hold, or a well-known one."""
     from marm_setup.robot.ros_packages import find_packages
 
-    found = find_packages(request.package_paths, near=Path(request.urdf)).lookup(name)
+    found = find_packages(request.package_paths, near=Path(request.urdf)).manifests.get(name)
     if found is not None and found.resolve() != request.out.resolve():
         other = f"is also the package at {found}: two packages of one name break a workspace"
     elif name in WELL_KNOWN_PACKAGES:

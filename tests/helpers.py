@@ -30,3 +30,34 @@ TWO_BOXES = urdf(
     </joint>
     """
 )
+
+
+# A three-joint arm base -> l1 -> l2 -> l3 (j1 with zero outside its limits, j2 with zero near one),
+# and a gripper's two fingers on a link `hand`.
+BOX = '<collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision>'
+ARM = f"""
+    <link name="base">{BOX}</link><link name="l1">{BOX}</link><link name="l2">{BOX}</link>
+    <link name="l3">{BOX}</link>
+    <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="0 0 0.1"/>
+      <axis xyz="0 0 1"/><limit lower="0.5" upper="1.0" velocity="1" effort="1"/></joint>
+    <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0 0.1"/>
+      <axis xyz="0 1 0"/><limit lower="-3.1416" upper="0.0873" velocity="1" effort="1"/></joint>
+    <joint name="j3" type="revolute"><parent link="l2"/><child link="l3"/><origin xyz="0 0 0.1"/>
+      <axis xyz="0 1 0"/><limit lower="-2" upper="2" velocity="1" effort="1"/></joint>
+"""
+
+
+def fixed_link(parent: str, child: str, geometry: bool = False) -> str:
+    """A link fixed to `parent` (with a small box when `geometry`)."""
+    link = f'<link name="{child}">{BOX if geometry else ""}</link>'
+    return f'{link}<joint name="{child}_joint" type="fixed"><parent link="{parent}"/><child link="{child}"/></joint>'
+
+
+FINGERS = f"""
+    <link name="finger_l">{BOX}</link><link name="finger_r">{BOX}</link>
+    <joint name="finger_joint_l" type="prismatic"><parent link="hand"/><child link="finger_l"/>
+      <origin xyz="0 0.02 0.05"/><axis xyz="0 1 0"/><limit lower="0" upper="0.04" velocity="0.1" effort="1"/></joint>
+    <joint name="finger_joint_r" type="prismatic"><parent link="hand"/><child link="finger_r"/>
+      <origin xyz="0 -0.02 0.05"/><axis xyz="0 -1 0"/><limit lower="0" upper="0.04" velocity="0.1" effort="1"/>
+      <mimic joint="finger_joint_l"/></joint>
+"""

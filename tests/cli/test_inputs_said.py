@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 
 from marm_setup.cli.app import app
 from tests.conftest import FIXTURES, MARM_URDF, realworld
-from tests.helpers import build_file_tree
+from tests.helpers import ARM, build_file_tree, urdf
 
 runner = CliRunner()
 TRIALS = ["--trials", "300", "--jobs", "1"]
@@ -81,7 +81,7 @@ def test_init_imports_the_shared_moveit2_panda_srdf_xacro(tmp_path):
     args = ["init", str(urdf), "--out", str(out), "--package-path", str(root), "--from-srdf", str(srdf)]
     result = runner.invoke(app, [*args, *TRIALS])
     assert result.exit_code == 0, result.output
-    assert "warning" not in result.stdout
+    assert "as MoveIt loads it" not in result.stdout  # nothing of the SRDF left out
     for line in (
         "group panda_arm: chain panda_link0 -> panda_link8",
         "group panda_arm_hand: subgroups panda_arm, hand",
@@ -209,19 +209,14 @@ def test_collisions_on_a_package_refuses_the_robot_options_it_would_ignore(tmp_p
     )
 
 
-NEEDS_ARG = """<robot name="needy" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <link name="base"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <link name="arm"><collision><geometry><box size="$(arg size) 0.1 0.1"/></geometry></collision></link>
-  <link name="tip"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <link name="end"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="arm"/><child link="tip"/><origin xyz="0 0 0.3"/>
-    <axis xyz="0 1 0"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
-  <joint name="j3" type="revolute"><parent link="tip"/><child link="end"/><origin xyz="0 0 0.3"/>
-    <axis xyz="0 1 0"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>
-</robot>
-"""
+NEEDS_ARG = urdf(
+    ARM.replace(
+        '<link name="l1"><collision><geometry><box size="0.05',
+        '<link name="l1"><collision><geometry><box size="$(arg size)',
+        1,
+    ),
+    name="needy",
+)
 
 
 def test_every_command_says_how_it_takes_a_missing_xacro_arg(tmp_path):
@@ -315,38 +310,38 @@ def test_init_refuses_a_scaled_velocity_validate_would_find_untimeable(tmp_path)
 
 
 def test_a_default_package_name_another_package_has_is_said(tmp_path):
-    """The shared panda's folder also holds MoveIt's panda_moveit_config: the default name
-    <robot>_moveit_config would be a second package of that name in one workspace."""
-    root = realworld("ros1")
-    urdf = root / "panda_description/urdf/panda_arm_hand.urdf.xacro"
+    """A workspace on the package paths already holds a marm_moveit_config: the default name
+    <robot>_moveit_config would be a second package of that name in it."""
+    ws = build_file_tree(
+        tmp_path / "ws", {"old/package.xml": "<package><name>marm_moveit_config</name></package>"}
+    )
     out = tmp_path / "pkg"
-    result = runner.invoke(app, ["init", str(urdf), "--out", str(out), "--package-path", str(root), *TRIALS])
+    result = runner.invoke(
+        app, ["init", str(MARM_URDF), "--out", str(out), "--package-path", str(ws), *TRIALS]
+    )
     assert result.exit_code == 0, result.output
     (line,) = [x.strip() for x in result.stdout.splitlines() if "package name" in x]
     assert line == (
-        f"warning: package name 'panda_moveit_config' (the default) is also the package at "
-        f"{(root / 'panda_moveit_config').resolve()}: two packages of one name break a workspace; pass --name"
+        f"warning: package name 'marm_moveit_config' (the default) is also the package at "
+        f"{(ws / 'old').resolve()}: two packages of one name break a workspace; pass --name"
     )
-    named = runner.invoke(
-        app,
-        [
-            "init",
-            str(urdf),
-            "--out",
-            str(tmp_path / "o2"),
-            "--package-path",
-            str(root),
-            "--name",
-            "my_panda_moveit_config",
-            *TRIALS,
-        ],
-    )
+    args = [
+        "init",
+        str(MARM_URDF),
+        "--out",
+        str(tmp_path / "o2"),
+        "--package-path",
+        str(ws),
+        "--name",
+        "marm2_moveit_config",
+    ]
+    named = runner.invoke(app, [*args, *TRIALS])
     assert named.exit_code == 0 and "package name" not in named.stdout
 
 
 def test_a_default_package_name_of_a_well_known_package_is_said(tmp_path):
     urdf = tmp_path / "panda.urdf"
-    urdf.write_text(NEEDS_ARG.replace("$(arg size)", "0.1").replace('name="needy"', 'name="panda"'))
+    urdf.write_text(NEEDS_ARG.replace("$(arg size)", "0.1").replace('name="needy"', 'name="panda"', 1))
     result = runner.invoke(app, ["init", str(urdf), "--out", str(tmp_path / "pkg"), *TRIALS])
     assert result.exit_code == 0, result.output
     assert (

@@ -13,7 +13,7 @@ from marm_setup.setup.infer import derive_group_settings, infer, merge_spec
 from marm_setup.setup.limb_tips import tool_frame
 from marm_setup.setup.model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
 from tests.conftest import MARM_URDF, realworld
-from tests.helpers import build_file_tree, urdf
+from tests.helpers import ARM, FINGERS, build_file_tree, fixed_link, urdf
 
 SOURCE = RobotSource("robot.urdf")
 
@@ -94,34 +94,12 @@ def test_shared_panda_arm_to_flange_and_hand_group(target):
     check_setup(model, robot, "x")
 
 
-BOX = '<collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision>'
-ARM = f"""
-    <link name="base">{BOX}</link><link name="l1">{BOX}</link><link name="l2">{BOX}</link>
-    <link name="l3">{BOX}</link>
-    <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="0 0 0.1"/>
-      <axis xyz="0 0 1"/><limit lower="0.5" upper="1.0" velocity="1" effort="1"/></joint>
-    <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="0 0 0.1"/>
-      <axis xyz="0 1 0"/><limit lower="-3.1416" upper="0.0873" velocity="1" effort="1"/></joint>
-    <joint name="j3" type="revolute"><parent link="l2"/><child link="l3"/><origin xyz="0 0 0.1"/>
-      <axis xyz="0 1 0"/><limit lower="-2" upper="2" velocity="1" effort="1"/></joint>
-"""
-
-
-def _fixed(parent: str, child: str, geometry: bool = False) -> str:
-    link = f'<link name="{child}">{BOX if geometry else ""}</link>'
-    return f'{link}<joint name="{child}_joint" type="fixed"><parent link="{parent}"/><child link="{child}"/></joint>'
-
-
-FINGERS = f"""
-    <link name="finger_l">{BOX}</link><link name="finger_r">{BOX}</link>
-    <joint name="finger_joint_l" type="prismatic"><parent link="hand"/><child link="finger_l"/>
-      <origin xyz="0 0.02 0.05"/><axis xyz="0 1 0"/><limit lower="0" upper="0.04" velocity="0.1" effort="1"/></joint>
-    <joint name="finger_joint_r" type="prismatic"><parent link="hand"/><child link="finger_r"/>
-      <origin xyz="0 -0.02 0.05"/><axis xyz="0 -1 0"/><limit lower="0" upper="0.04" velocity="0.1" effort="1"/>
-      <mimic joint="finger_joint_l"/></joint>
-"""
 PANDA_LIKE = (
-    ARM + _fixed("l3", "flange") + _fixed("flange", "hand", True) + _fixed("hand", "hand_tcp") + FINGERS
+    ARM
+    + fixed_link("l3", "flange")
+    + fixed_link("flange", "hand", True)
+    + fixed_link("hand", "hand_tcp")
+    + FINGERS
 )
 
 
@@ -135,7 +113,7 @@ def test_an_arm_ends_at_its_tcp_past_the_hands_fixed_links(tmp_path):
     """As MoveIt's panda_manipulator (panda_moveit_config, config/panda.srdf.xacro: chain to
     panda_hand_tcp, end effector on it): the tip is the tool frame below the hand; the hand group
     holds the hand and its fingers, not the flange, the TCP or a camera's frames."""
-    camera = _fixed("hand", "camera_link") + _fixed("camera_link", "camera_color_optical_frame")
+    camera = fixed_link("hand", "camera_link") + fixed_link("camera_link", "camera_color_optical_frame")
     robot, model = _model(tmp_path, PANDA_LIKE + camera)
     arm, hand = model.groups
     assert arm == Group("arm", chain=Chain("base", "hand_tcp"))
@@ -148,15 +126,15 @@ def test_an_arm_ends_at_its_tcp_past_the_hands_fixed_links(tmp_path):
     ("frames", "tip"),
     [
         # no tool frame past the hand: the geometry-less frames after the last link (a flange)
-        (_fixed("l3", "flange") + _fixed("flange", "hand", True), "flange"),
+        (fixed_link("l3", "flange") + fixed_link("flange", "hand", True), "flange"),
         # UR, Fanuc: flange, then tool0 (a tool frame before a flange)
-        (_fixed("l3", "flange") + _fixed("flange", "tool0"), "tool0"),
+        (fixed_link("l3", "flange") + fixed_link("flange", "tool0"), "tool0"),
         # a grasp frame in the hand before a tool frame at the wrist
-        (_fixed("l3", "tool0") + _fixed("tool0", "hand", True) + _fixed("hand", "grasping_frame"), "grasping_frame"),
+        (fixed_link("l3", "tool0") + fixed_link("tool0", "hand", True) + fixed_link("hand", "grasping_frame"), "grasping_frame"),
         # a gripper frame (Baxter's right_gripper) but not the gripper's body; no fingertip
-        (_fixed("l3", "gripper_base", True) + _fixed("gripper_base", "gripper") + _fixed("l3", "finger_tip", True), "gripper"),
+        (fixed_link("l3", "gripper_base", True) + fixed_link("gripper_base", "gripper") + fixed_link("l3", "finger_tip", True), "gripper"),
         # an end effector frame (Kinova); a camera's frame is none
-        (_fixed("l3", "camera_tool_frame") + _fixed("l3", "end_effector_link"), "end_effector_link"),
+        (fixed_link("l3", "camera_tool_frame") + fixed_link("l3", "end_effector_link"), "end_effector_link"),
     ],
 )  # fmt: skip
 def test_the_tool_frame_is_the_best_named_frame_fixed_below_the_arm(tmp_path, frames, tip):
