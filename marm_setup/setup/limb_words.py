@@ -29,6 +29,11 @@ MOUNT_WORDS = (
     "camera", "cam", "laser", "lidar", "imu", "sensor", "sonar", "kinect", "xtion", "realsense", "hokuyo",
     "velodyne", "rgbd", "depth", "optical", "ft", "fsr", "motor", "screw", "transmission", "gear", "belt",
 )  # fmt: skip
+# Sensors that see (their bodies on a hand are not the hand: a grasped object may not touch them)
+VISION_WORDS = (
+    "camera", "cam", "kinect", "xtion", "realsense", "rgbd", "depth", "optical", "laser", "lidar", "hokuyo",
+    "velodyne", "sonar",
+)  # fmt: skip
 FOOT_WORDS = ("sole", "foot", "toe")  # a leg's tip frame, in this order of preference
 SIDES = {"l": "left", "left": "left", "r": "right", "right": "right"}
 CORNERS = {"f": "front", "h": "hind", "b": "back", "r": "rear"}

@@ -20,6 +20,7 @@ from marm_setup.setup.limb_words import (
     BASE_KINDS,
     KIND_WORDS,
     MOUNT_WORDS,
+    VISION_WORDS,
     common_prefix,
     is_kind,
     joint_kinds,
@@ -310,8 +311,9 @@ class _Finder:
 
 
 def _is_body(robot: RobotModel, link: str) -> bool:
-    """A link with collision geometry that is no sensor (a camera on the hand is not the hand)."""
-    return robot.link(link).has_geometry and not set(tokens(link)) & set(MOUNT_WORDS)
+    """A link with collision geometry that is no camera or range sensor (one on the hand is not
+    the hand: MoveIt lets an object the end effector holds touch its links)."""
+    return robot.link(link).has_geometry and not set(tokens(link)) & set(VISION_WORDS)
 
 
 def _loose_hand(segs: list[_Segment], number: int) -> Hand:

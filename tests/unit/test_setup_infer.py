@@ -112,12 +112,12 @@ def _model(tmp_path, body: str):
 def test_an_arm_ends_at_its_tcp_past_the_hands_fixed_links(tmp_path):
     """As MoveIt's panda_manipulator (panda_moveit_config, config/panda.srdf.xacro: chain to
     panda_hand_tcp, end effector on it): the tip is the tool frame below the hand; the hand group
-    holds the hand and its fingers, not the flange, the TCP or a camera's frames."""
-    camera = fixed_link("hand", "camera_link") + fixed_link("camera_link", "camera_color_optical_frame")
-    robot, model = _model(tmp_path, PANDA_LIKE + camera)
+    holds the hand and its fingers, not the flange, the TCP or a camera (its body or frames)."""
+    camera = fixed_link("hand", "camera_link", True) + fixed_link("camera_link", "camera_color_optical_frame")
+    robot, model = _model(tmp_path, PANDA_LIKE + camera + fixed_link("hand", "hand_motor", True))
     arm, hand = model.groups
     assert arm == Group("arm", chain=Chain("base", "hand_tcp"))
-    assert hand.links == ("hand", "finger_l", "finger_r")
+    assert hand.links == ("hand", "finger_l", "finger_r", "hand_motor")  # a motor's body is the hand's
     assert model.end_effectors == (EndEffector("hand", "hand", "hand_tcp", "arm"),)
     check_setup(model, robot, "x")
 
