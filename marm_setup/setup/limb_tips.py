@@ -21,10 +21,11 @@ def tool_frame(robot: RobotModel, link: str) -> str:
     fixed below it, through a hand's palm too (as MoveIt's panda_manipulator ends at
     panda_hand_tcp, past panda_hand): a TCP or grasp frame before a tool / end-effector frame
     before a gripper frame before a flange, then a frame without geometry before a link with
-    it, the nearest first; sensors and fingertips are none. Without one, the geometry-less
+    it, the farthest first (Kinova's tool_frame, the TCP, below its end_effector_link); sensors
+    and fingertips are none. Without one, the geometry-less
     frames fixed to `link` (the only one, or the one named like a tool frame: a flange)."""
     named = [
-        (rank, robot.link(frame).has_geometry, depth, order, frame)
+        (rank, robot.link(frame).has_geometry, -depth, order, frame)
         for order, (depth, frame) in enumerate(_fixed_frames(robot, link)[1:])
         if (rank := _tool_rank(robot, frame)) is not None
     ]

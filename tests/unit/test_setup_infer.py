@@ -133,8 +133,11 @@ def test_an_arm_ends_at_its_tcp_past_the_hands_fixed_links(tmp_path):
         (fixed_link("l3", "tool0") + fixed_link("tool0", "hand", True) + fixed_link("hand", "grasping_frame"), "grasping_frame"),
         # a gripper frame (Baxter's right_gripper) but not the gripper's body; no fingertip
         (fixed_link("l3", "gripper_base", True) + fixed_link("gripper_base", "gripper") + fixed_link("l3", "finger_tip", True), "gripper"),
-        # an end effector frame (Kinova); a camera's frame is none
+        # an end effector frame; a camera's frame is none
         (fixed_link("l3", "camera_tool_frame") + fixed_link("l3", "end_effector_link"), "end_effector_link"),
+        # Kinova's tool_frame (its gripper's TCP, kortex_description gen3_lite_2f_macro.xacro) below
+        # its end_effector_link: the farther of two frames named alike
+        (fixed_link("l3", "end_effector_link") + fixed_link("end_effector_link", "tool_frame"), "tool_frame"),
     ],
 )  # fmt: skip
 def test_the_tool_frame_is_the_best_named_frame_fixed_below_the_arm(tmp_path, frames, tip):
