@@ -147,11 +147,7 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
 
     check_output_dir(request.out, force=request.force, shown=str(request.out))
     pkg, notes = _discover_for_port(request)
-    robot = _package_robot(pkg)
-    if request.xacro_args:
-        from marm_setup.validate.runner import check_given_xacro_args
-
-        check_given_xacro_args(pkg, robot, parse_xacro_args(list(request.xacro_args)))
+    robot = _package_robot(pkg, request.xacro_args)
     target = request.target or "ros2"
     if target not in TARGETS:
         raise InputError(f"'{target}' is not one of: {', '.join(TARGETS)}", element="--target")
@@ -239,9 +235,10 @@ def _discover_for_port(request: PortInitRequest) -> tuple[ConfigPackage, tuple[P
     return pkg, (note,)
 
 
-def _package_robot(pkg: ConfigPackage) -> RobotModel:
-    """The package's robot; its load failure is the one error line."""
-    from marm_setup.validate.runner import load_package_robot
+def _package_robot(pkg: ConfigPackage, xacro_args: tuple[str, ...] = ()) -> RobotModel:
+    """The package's robot; its load failure is the one error line, and so is a `--xacro-arg`
+    (`xacro_args`) that neither its description nor its SRDF xacro takes."""
+    from marm_setup.validate.runner import check_given_xacro_args, load_package_robot
 
     robot, problems = load_package_robot(pkg)
     if robot is None:
@@ -251,6 +248,8 @@ def _package_robot(pkg: ConfigPackage) -> RobotModel:
         if found.rule == "urdf.missing":  # its hint is validate's --urdf: init says how it takes one
             raise InputError(found.message, path=found.file, element=found.element or None, needs="--urdf")
         raise as_input_error(found)
+    if xacro_args:
+        check_given_xacro_args(pkg, robot, parse_xacro_args(list(xacro_args)))
     return robot
 
 
@@ -370,7 +369,7 @@ def _check_xacro_args(request: InitRequest, robot: RobotModel, srdf_args: frozen
 
 # Config packages people have installed or cloned under their default name (<robot>_moveit_config)
 WELL_KNOWN_PACKAGES = {
-    "panda_moveit_config": "MoveIt's own panda_moveit_config",  # github.com/moveit/panda_moveit_config
+    "panda_moveit_config": "MoveIt's own panda_moveit_config",  # the moveit/panda_moveit_config repository
 }
 
 
