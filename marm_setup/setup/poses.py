@@ -113,7 +113,11 @@ def _home(
     q[idx] = np.clip(0.0, lo, hi)
     q = space.round(q)
     moved = [f"{j} {q[i]:g}" for j, i in zip(joints, idx, strict=True) if q[i] != 0.0]
-    notes = [f"home: {', '.join(moved)} (zero is at or beyond their limits)"] if moved else []
+    notes = (
+        [f"home: {', '.join(moved)} (zero is on or near a limit of each: home keeps off them)"]
+        if moved
+        else []
+    )
     hit = space.hits(q)[0]
     if hit is None:
         return q, notes
