@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterable
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, field
 
 ERROR = "error"
 WARNING = "warning"
@@ -17,8 +17,26 @@ _RESET = "\x1b[0m"
 
 
 @dataclass(frozen=True, slots=True)
+class Evidence:
+    """A robot state that shows a finding: the links involved (e.g. two in contact) and the
+    active joints' values [rad or m], in the robot's active-joint order."""
+
+    links: tuple[str, ...]
+    state: tuple[tuple[str, float], ...]
+
+    @classmethod
+    def of(cls, links: Iterable[str], names: Iterable[str], values: Iterable[float]) -> Evidence:
+        """Evidence of `links` at the state giving each of `names` its value in `values`."""
+        return cls(tuple(links), tuple((n, float(v)) for n, v in zip(names, values, strict=True)))
+
+    def as_dict(self) -> dict:
+        return {"links": list(self.links), "state": dict(self.state)}
+
+
+@dataclass(frozen=True, slots=True)
 class Finding:
-    """One problem: a stable rule id (`srdf.unknown-link`), severity, where it is, what, and a fix."""
+    """One problem: a stable rule id (`srdf.unknown-link`), severity, where it is, what, and a fix;
+    `evidence` (not part of its identity) a state that shows it, where one does."""
 
     rule: str
     severity: str  # error | warning
@@ -26,6 +44,7 @@ class Finding:
     element: str  # e.g. `group[arm]/chain`, `panda_arm.kinematics_solver`, `line 12`
     message: str
     hint: str = ""
+    evidence: Evidence | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
         if self.severity not in SEVERITIES:
@@ -36,12 +55,16 @@ class Finding:
         return self.severity == ERROR
 
 
-def error(rule: str, file: str, element: str, message: str, hint: str = "") -> Finding:
-    return Finding(rule, ERROR, file, element, message, hint)
+def error(
+    rule: str, file: str, element: str, message: str, hint: str = "", evidence: Evidence | None = None
+) -> Finding:
+    return Finding(rule, ERROR, file, element, message, hint, evidence)
 
 
-def warning(rule: str, file: str, element: str, message: str, hint: str = "") -> Finding:
-    return Finding(rule, WARNING, file, element, message, hint)
+def warning(
+    rule: str, file: str, element: str, message: str, hint: str = "", evidence: Evidence | None = None
+) -> Finding:
+    return Finding(rule, WARNING, file, element, message, hint, evidence)
 
 
 def sort_findings(findings: Iterable[Finding]) -> list[Finding]:
@@ -95,7 +118,16 @@ def format_json(findings: Iterable[Finding], *, checked: dict | None = None) -> 
     as indented JSON."""
     items = sort_findings(findings)
     errors, warnings = count(items)
-    doc = {"findings": [asdict(f) for f in items], "errors": errors, "warnings": warnings}
+    doc = {"findings": [finding_dict(f) for f in items], "errors": errors, "warnings": warnings}
     if checked is not None:
         doc["validated"] = checked
     return json.dumps(doc, indent=2) + "\n"
+
+
+def finding_dict(f: Finding) -> dict:
+    """A finding as plain data; `evidence` only where the finding has one."""
+    keys = ("rule", "severity", "file", "element", "message", "hint")
+    out: dict = {key: getattr(f, key) for key in keys}
+    if f.evidence is not None:
+        out["evidence"] = f.evidence.as_dict()
+    return out

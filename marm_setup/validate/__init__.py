@@ -10,7 +10,7 @@ __all__, __getattr__, __dir__ = lazy_api(
     __name__,
     {
         "discovery": "discover_package",
-        "runner": "validate",
-        "runtime": "check_runtime",
+        "runner": "validate validate_package matrix_settings Validation ValidatedPackage",
+        "runtime": "check_runtime PlannedPair",
     },
 )

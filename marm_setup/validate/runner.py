@@ -42,6 +42,7 @@ from marm_setup.validate.sources import skipped_groups
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.robot.model import RobotModel
+    from marm_setup.validate.runtime import PlannedPair, Progress
 
 MATRIX_TRIALS = 1000
 
@@ -90,6 +91,18 @@ def guarded(family: str, fn: Callable[..., Iterable[Finding]], *args: Any, **kwa
         return [error(INTERNAL, "", family, msg, "please report this with the package")]
 
 
+@dataclass(frozen=True)
+class ValidatedPackage:
+    """A validation and what it read and computed on the way (what the report draws): the package
+    as discovered, its robot (None when it did not load) and every pose pair the runtime checks
+    planned, with its trajectory."""
+
+    validation: Validation
+    package: ConfigPackage
+    robot: RobotModel | None
+    plans: tuple[PlannedPair, ...] = ()
+
+
 def validate(
     path: str | Path,
     *,
@@ -99,8 +112,37 @@ def validate(
     package_paths: Iterable[str | Path] = (),
     plan: bool = True,
     matrix_trials: int = MATRIX_TRIALS,
+    progress: Progress | None = None,
 ) -> Validation:
-    """Validate the package at `path`: its findings and what was checked.
+    """Validate the package at `path`: its findings and what was checked (`validate_package`).
+
+    Raises InputError (exit 2) only when `path` is not a readable config package at all.
+    """
+    return validate_package(
+        path,
+        urdf=urdf,
+        srdf=srdf,
+        xacro_args=xacro_args,
+        package_paths=package_paths,
+        plan=plan,
+        matrix_trials=matrix_trials,
+        progress=progress,
+    ).validation
+
+
+def validate_package(
+    path: str | Path,
+    *,
+    urdf: str | Path | None = None,
+    srdf: str | Path | None = None,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | Path] = (),
+    plan: bool = True,
+    matrix_trials: int = MATRIX_TRIALS,
+    progress: Progress | None = None,
+) -> ValidatedPackage:
+    """Validate the package at `path`, keeping what was read and planned; `progress(done, total)`
+    hears of each pose pair the runtime checks plan.
 
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
@@ -114,12 +156,14 @@ def validate(
         check_given_xacro_args(pkg, robot, xacro_args)
     if pkg.srdf_path is None:
         findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
-    pairs = None
+    planned = None
     if robot is not None and pkg.srdf is not None:
         findings += without_skipped_group_cascade(check_static(pkg, robot), pkg)
-        scene_findings, pairs = check_with_scene(pkg, robot, plan=plan, matrix_trials=matrix_trials)
+        scene_findings, planned = check_with_scene(
+            pkg, robot, plan=plan, matrix_trials=matrix_trials, progress=progress
+        )
         findings += scene_findings
-    return Validation(
+    validation = Validation(
         findings=tuple(sort_findings(findings)),
         package=pkg.name,
         target=pkg.target,
@@ -127,9 +171,10 @@ def validate(
         urdf=user_urdf(pkg),
         urdf_origin=pkg.urdf_origin,
         robot=robot.name if robot is not None else None,
-        planned_pairs=pairs,
+        planned_pairs=None if planned is None else len(planned),
         skipped=skipped_families(pkg, robot),
     )
+    return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
 
 
 def check_given_xacro_args(pkg: ConfigPackage, robot: RobotModel, given: Mapping[str, str]) -> None:
@@ -279,10 +324,10 @@ def gripper_nodes(pkg: ConfigPackage) -> dict[str, tuple[str, str]]:
 
 
 def check_with_scene(
-    pkg: ConfigPackage, robot: RobotModel, *, plan: bool, matrix_trials: int
-) -> tuple[list[Finding], int | None]:
+    pkg: ConfigPackage, robot: RobotModel, *, plan: bool, matrix_trials: int, progress: Progress | None = None
+) -> tuple[list[Finding], list[PlannedPair] | None]:
     """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
-    with the number of pose pairs the runtime checks planned (None when they did not run)."""
+    with the pose pairs the runtime checks planned (None when they did not run)."""
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing
     from marm_setup.validate.rules.pose_rules import check_pose_collisions, check_start_state
@@ -303,9 +348,9 @@ def check_with_scene(
         out += guarded("matrix", check, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed)
     if not plan:
         return out, None
-    planned: list = []
-    out += guarded("runtime", run_runtime_checks, pkg, robot, scene, planned)
-    return out, len(planned)
+    planned: list[PlannedPair] = []
+    out += guarded("runtime", run_runtime_checks, pkg, robot, scene, planned, progress)
+    return out, planned
 
 
 def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
@@ -323,9 +368,13 @@ def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
 
 
 def run_runtime_checks(
-    pkg: ConfigPackage, robot: RobotModel, scene: CollisionScene, planned: list
+    pkg: ConfigPackage,
+    robot: RobotModel,
+    scene: CollisionScene,
+    planned: list[PlannedPair],
+    progress: Progress | None = None,
 ) -> list[Finding]:
     """The planner's runtime checks; `planned` receives each pose pair planned."""
     from marm_setup.validate.runtime import check_runtime
 
-    return list(check_runtime(pkg, robot, scene, planned=planned))
+    return list(check_runtime(pkg, robot, scene, planned=planned, progress=progress))

@@ -10,8 +10,12 @@ trajectory breaks a limit, collides between checked states, or misses the goal) 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from itertools import permutations
 from typing import TYPE_CHECKING
+
+import numpy as np
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error, warning
@@ -26,9 +30,23 @@ from marm_setup.robot.model import RobotModel
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
-    from marm_setup.plan.problem import PackageConfig
+    from marm_setup.plan.problem import Executed, PackageConfig
 
 RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
+Progress = Callable[[int, int], None]  # (pose pairs done, pose pairs in all)
+
+
+@dataclass(frozen=True, eq=False)
+class PlannedPair:
+    """One pose pair the runtime checks planned: the group, the two poses, the full start
+    configuration (joints outside the group stay there) and the outcome (a timed,
+    fake-executed trajectory of the group's joints, or why there is none)."""
+
+    group: str
+    start: str
+    goal: str
+    q_start: np.ndarray
+    outcome: Executed | PlanFailed
 
 
 def check_runtime(
@@ -38,17 +56,21 @@ def check_runtime(
     *,
     seed: int = 0,
     options: PlannerOptions = RUNTIME_OPTIONS,
-    planned: list[tuple[str, str, str]] | None = None,
+    planned: list[PlannedPair] | None = None,
+    progress: Progress | None = None,
 ) -> list[Finding]:
     """Findings for every group with two or more named poses (see the module docstring);
-    `planned`, when given, receives (group, from, to) of every pose pair planned."""
+    `planned`, when given, receives every pose pair planned; `progress` hears of each pair."""
     findings: list[Finding] = []
     srdf_file = package.srdf_path or package.shown
-    for group in group_names_with_poses(package):
+    groups = group_names_with_poses(package)
+    tick = _ticker(package, groups, progress)
+    for group in groups:
         try:
             problem = planning_problem(package, robot, scene, group)
         except InputError as exc:
             findings.append(error("runtime.limits", exc.path or srdf_file, f"group[{group}]", exc.message))
+            tick(group, None)
             continue
         if problem.limits.unbounded:
             joints = ", ".join(problem.limits.unbounded)
@@ -57,8 +79,25 @@ def check_runtime(
             )
             hint = "set max_velocity in joint_limits.yaml (or the URDF)"
             findings.append(warning("runtime.default-velocity", srdf_file, f"group[{group}]", message, hint))
-        findings += _check_group(problem, robot, srdf_file, seed, options, planned)
+        findings += _check_group(problem, robot, srdf_file, seed, options, planned, tick)
     return findings
+
+
+def _ticker(
+    package: PackageConfig, groups: tuple[str, ...], progress: Progress | None
+) -> Callable[[str, int | None], None]:
+    """`tick(group, pairs)`: `pairs` more pose pairs of `group` are done (None: all of them)."""
+    states = package.srdf.group_states if package.srdf is not None else ()
+    sizes = {g: len({s.name for s in states if s.group == g}) for g in groups}
+    pairs = {g: n * (n - 1) for g, n in sizes.items()}
+    total, done = sum(pairs.values()), [0]
+
+    def tick(group: str, n: int | None) -> None:
+        done[0] += pairs[group] if n is None else n
+        if progress is not None:
+            progress(min(done[0], total), total)
+
+    return tick
 
 
 def _check_group(
@@ -67,7 +106,8 @@ def _check_group(
     srdf_file: str,
     seed: int,
     options: PlannerOptions,
-    planned: list[tuple[str, str, str]] | None = None,
+    planned: list[PlannedPair] | None = None,
+    tick: Callable[[str, int | None], None] = lambda group, n: None,
 ) -> list[Finding]:
     findings, usable = [], []
     for name in sorted(problem.poses):
@@ -78,10 +118,12 @@ def _check_group(
         element = f"group_state[{name}]"
         message = f"plans from and to '{name}' skipped: {found[0]}"
         findings.append(warning("runtime.pose-skipped", srdf_file, element, message))
+    tick(problem.group, len(problem.poses) * (len(problem.poses) - 1) - len(usable) * (len(usable) - 1))
     for a, b in permutations(usable, 2):
-        if planned is not None:
-            planned.append((problem.group, a, b))
         outcome = plan_between(problem, robot, problem.poses[a], problem.poses[b], seed, options)
+        if planned is not None:
+            planned.append(PlannedPair(problem.group, a, b, problem.poses[a], outcome))
+        tick(problem.group, 1)
         element = f"group[{problem.group}]/{a} -> {b}"
         if isinstance(outcome, PlanFailed):
             findings.append(error("runtime.no-plan", srdf_file, element, f"no plan: {outcome.reason}"))

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from marm_setup.collision.pairs import DisabledReason
-from marm_setup.findings import Finding, error, warning
+from marm_setup.findings import Evidence, Finding, error, warning
 from marm_setup.robot.model import RobotModel
 
 if TYPE_CHECKING:
@@ -126,4 +126,5 @@ def _stale(
         f"marked Never but collides in {n} of {trials} random states ({100 * n / trials:.1f} %), "
         f"e.g. {state}; MoveIt never checks this pair",
         hint="recompute the matrix for this URDF (marm-setup collisions URDF --srdf SRDF)",
+        evidence=Evidence.of(pair, robot.active_joint_names, q[row]),
     )

@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Evidence, Finding, error
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.srdf import allowed_pairs
@@ -40,8 +40,8 @@ def check_pose_collisions(
     for state in states:
         moved = {j for j in group_joints(by_name[state.group], by_name, robot) if robot.joint(j).is_actuated}
         mine = [p for p in pairs if _moves_pair(p, moved, robot)]
-        q = pose_configuration(state, robot, base)[None]
-        hit = scene.first_collisions(q, mine)[0] if mine else None
+        q = pose_configuration(state, robot, base)
+        hit = scene.first_collisions(q[None], mine)[0] if mine else None
         if hit is not None:
             out.append(
                 error(
@@ -50,6 +50,7 @@ def check_pose_collisions(
                     f"group_state[{state.name}]",
                     f"in collision: {hit[0]} - {hit[1]}{_context(base)}",
                     hint="move the pose, or disable the pair if the contact is intended",
+                    evidence=Evidence.of(hit, robot.active_joint_names, q),
                 )
             )
     return out
@@ -108,9 +109,11 @@ def check_start_state(
     default = start_configuration(robot)[None]
     while pairs and (touching := scene.first_collisions(default, pairs)[0]) is not None:
         pairs = tuple(p for p in pairs if p != touching)
-    q = start_configuration(robot, base)[None]
-    hit = scene.first_collisions(q, pairs)[0] if pairs else None
+    q = start_configuration(robot, base)
+    hit = scene.first_collisions(q[None], pairs)[0] if pairs else None
     if hit is None:
         return []
     msg = f"the demo starts in collision: {hit[0]} - {hit[1]}; MoveIt refuses to plan from it"
-    return [error("pose.start-collision", file, "initial state", msg, "start at a collision-free named pose")]
+    hint = "start at a collision-free named pose"
+    evidence = Evidence.of(hit, robot.active_joint_names, q)
+    return [error("pose.start-collision", file, "initial state", msg, hint, evidence)]
