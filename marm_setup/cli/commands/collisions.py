@@ -122,7 +122,7 @@ def collisions(
     if default_pose is not None and srdf_text is not None:  # --default-pose needs --srdf (checked above)
         default_q = _pose_configuration(robot, srdf_text, default_pose, str(srdf))
     scene = CollisionScene(robot, padding)
-    with SamplingProgress() as progress:
+    with SamplingProgress(enabled=format is OutputFormat.text) as progress:
         matrix = compute_collision_matrix(
             robot,
             scene,
@@ -226,6 +226,7 @@ def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: in
     import dataclasses
 
     from marm_setup.cli.commands.render import load_package_setup
+    from marm_setup.cli.progress import SamplingProgress
     from marm_setup.collision.matrix import compute_collision_matrix
     from marm_setup.collision.pairs import DisabledReason
     from marm_setup.render.package import render_package
@@ -233,9 +234,16 @@ def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: in
     from marm_setup.setup.model import CollisionSettings
 
     model, robot = load_package_setup(pkg)
-    matrix = compute_collision_matrix(
-        robot, trials=trials, seed=seed, min_collision_fraction=fraction, jobs=jobs, distances=False
-    )
+    with SamplingProgress() as progress:
+        matrix = compute_collision_matrix(
+            robot,
+            trials=trials,
+            seed=seed,
+            min_collision_fraction=fraction,
+            jobs=jobs,
+            progress=progress,
+            distances=False,
+        )
     computed = {p.pair for p in matrix.disabled}
     user = [p for p in model.collision.disabled if p.reason is DisabledReason.USER and p.pair not in computed]
     disabled = tuple(sorted((*matrix.disabled, *user)))

@@ -212,7 +212,7 @@ def _port(
         plan=plan,
         jobs=default_jobs(jobs),
     )
-    with SamplingProgress() as progress:
+    with SamplingProgress(enabled=format is OutputFormat.text) as progress:
         result = run_port(request, progress)
     validation = result.validation
     if format is OutputFormat.json:

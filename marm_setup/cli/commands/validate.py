@@ -59,10 +59,13 @@ def validate(
         raise typer.Exit(1)
 
 
-def _run(package: Path, options: dict) -> Validation:
+def _run(package: Path, options: dict, *, show_progress: bool = True) -> Validation:
+    """The validation; planning's progress drawn on a terminal (stderr), never for json."""
+    from marm_setup.cli.progress import StageProgress
     from marm_setup.validate.runner import validate as run_validation
 
-    return run_validation(package, **options)
+    with StageProgress(enabled=show_progress) as progress:
+        return run_validation(package, progress=progress.stage("planning pose pairs"), **options)
 
 
 def _run_for_json(package: Path, options: dict) -> Validation:
@@ -72,7 +75,7 @@ def _run_for_json(package: Path, options: dict) -> Validation:
     from marm_setup.findings import INTERNAL, error, format_json
 
     try:
-        return _run(package, options)
+        return _run(package, options, show_progress=False)
     except (MarmError, PermissionError) as caught:
         exc = permission_error(caught) if isinstance(caught, PermissionError) else caught
         finding = error(
