@@ -70,3 +70,13 @@ def test_validate_shows_its_planning_on_a_terminal_never_for_json(package):
     assert result.returncode == 0 and "planning pose pairs" in terminal
     result, terminal = _run_on_terminal("validate", package, "--format", "json")
     assert result.returncode == 0 and json.loads(result.stdout)["errors"] == 0 and terminal == ""
+
+
+def test_report_shows_each_stage_on_a_terminal(package, tmp_path):
+    result, terminal = _run_on_terminal("report", package, "-o", tmp_path / "r.html")
+    assert result.returncode == 0, terminal
+    assert all(stage in terminal for stage in ("checking", "planning", "collision matrix"))
+    out = subprocess.run(
+        [*SCRIPT, "report", str(package), "-o", str(tmp_path / "p.html")], capture_output=True, text=True
+    )
+    assert out.returncode == 0 and out.stderr == "" and out.stdout.startswith("wrote ")

@@ -107,7 +107,7 @@ def _run(cmd: list[str]) -> None:
 
 def test_wheel_contains_every_template(wheel):
     names = set(zipfile.ZipFile(wheel).namelist())
-    templates = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "templates").rglob("*.j2"))
+    templates = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "templates").rglob("*") if p.is_file())
     assert templates, "no templates in the checkout"
     missing = [t for t in templates if f"marm_setup/{t}" not in names]
     assert not missing
@@ -164,6 +164,24 @@ def test_render(installed, ros1_package):
 def test_validate_with_planning(installed, ros1_package):
     report = json.loads(installed.run("validate", ros1_package, "--format", "json").stdout)
     assert report["errors"] == 0 and report["validated"]["planned_pairs"] > 0
+
+
+def test_report(installed, ros1_package):
+    """The page needs MeshCat's viewer script from the user's site-packages (read at run time)."""
+    page = installed.workdir / "report.html"
+    out = installed.run("report", ros1_package, "-o", page, "--trials", "300")
+    assert out.stdout.startswith(f"wrote {page}") and "MeshCat" in page.read_text(encoding="utf-8")
+
+
+def test_mesh_decimation(installed):
+    """Decimation needs fast-simplification (trimesh's quadric decimation), never imported by name."""
+    code = (
+        "import trimesh; from marm_setup.report.geometry import _decimated; "
+        "print(len(_decimated(trimesh.creation.icosphere(subdivisions=4), 1000).faces) <= 1000)"
+    )
+    out = subprocess.run([str(installed.python), "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "True"
 
 
 def test_plan(installed, ros1_package):

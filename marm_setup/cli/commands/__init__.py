@@ -15,6 +15,7 @@ COMMAND_SPECS = (
     ("collisions", "collisions", "collisions"),
     ("render", "render", "render"),
     ("validate", "validate", "validate"),
+    ("report", "report", "report"),
     ("plan", "plan", "plan"),
     ("inspect", "inspect", "inspect"),
 )

@@ -1,0 +1,81 @@
+"""`marm-setup report`: one offline HTML page showing a config package's robot at every pose."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from marm_setup.cli.common import JobsOption, PackagePaths, XacroArgs, default_jobs, parse_count
+
+
+def report(
+    package: Annotated[Path, typer.Argument(help="The MoveIt config package folder.", metavar="PKG")],
+    output: Annotated[
+        Path, typer.Option("--output", "-o", help="The HTML file to write.", metavar="report.html")
+    ] = Path("report.html"),
+    urdf: Annotated[
+        Path | None,
+        typer.Option("--urdf", help="Robot description to use instead of the one the package names."),
+    ] = None,
+    srdf: Annotated[
+        Path | None,
+        typer.Option("--srdf", help="SRDF (or .srdf.xacro) to use instead of the one the package names."),
+    ] = None,
+    xacro_arg: XacroArgs = None,
+    package_path: PackagePaths = None,
+    no_plan: Annotated[
+        bool, typer.Option("--no-plan", help="Skip planning between named poses (no trajectories).")
+    ] = False,
+    trials: Annotated[
+        str | None,
+        typer.Option(
+            "--trials",
+            help="Random states for the matrix's hit counts [default: the package's, else 10000].",
+            metavar="N",
+        ),
+    ] = None,
+    jobs: JobsOption = None,
+) -> None:
+    """Write one self-contained HTML page (works offline): the robot in 3D at each named pose,
+    groups lit, contacts in red, end effectors and the virtual joint's frame, every validate
+    finding, the collision matrix with each pair's reason, hits and distance, and the planned
+    trajectories animated. Exit 0 when the package has no errors, 1 when it has (the page is
+    written either way), 2 when it cannot be read."""
+    from marm_setup.cli.progress import StageProgress
+    from marm_setup.errors import InputError
+    from marm_setup.findings import INTERNAL, count
+    from marm_setup.render.writer import write_text_atomic
+    from marm_setup.report.build import build_report
+    from marm_setup.robot.load import parse_xacro_args
+
+    if output.suffix.lower() not in (".html", ".htm"):
+        raise InputError(f"expected an .html file, got '{output.name}'", path=str(output), element="--output")
+    with StageProgress() as progress:
+        result = build_report(
+            package,
+            urdf=urdf,
+            srdf=srdf,
+            xacro_args=parse_xacro_args(xacro_arg or []),
+            package_paths=package_path or [],
+            plan=not no_plan,
+            trials=None if trials is None else parse_count(trials, element="--trials"),
+            jobs=default_jobs(jobs),
+            progress=progress,
+        )
+    write_text_atomic(output, result.html, shown=str(output))
+    findings = result.validated.validation.findings
+    errors, warnings = count(findings)
+    megabytes = len(result.html.encode()) / 1e6
+    faces = sum(len(m.indices) for m in result.meshes)
+    before = sum(m.faces_before for m in result.meshes)
+    typer.echo(
+        f"wrote {output} ({megabytes:.1f} MB): {errors} error{'' if errors == 1 else 's'}, "
+        f"{warnings} warning{'' if warnings == 1 else 's'}; {len(result.meshes)} meshes, "
+        f"{faces} triangles (of {before})"
+    )
+    if any(f.rule == INTERNAL for f in findings):
+        raise typer.Exit(2)
+    if errors:
+        raise typer.Exit(1)

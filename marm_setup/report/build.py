@@ -1,0 +1,145 @@
+"""`build_report`: validate a package, then gather what the page draws and render it.
+
+validate (through its public API) gives the findings, the package's SRDF and robot and the
+trajectories its runtime checks planned; the collision scene gives the contacts of each state;
+the collision matrix is recomputed (the package's seed and trials) for each pair's hits and
+closest distance, the reasons staying the SRDF's.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.report.content import Drawing, MatrixSection, drawn_links, page_content
+from marm_setup.report.geometry import MAX_FACES, MeshArrays, RobotGeometry, robot_geometry
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.robot.model import RobotModel
+    from marm_setup.setup.srdf import Srdf
+    from marm_setup.validate import ValidatedPackage
+
+Progress = Callable[[str, int, int], None]  # (stage, done, total)
+DEFAULT_TRIALS = 10000  # the Setup Assistant's default sampling density
+
+
+@dataclass(frozen=True)
+class Report:
+    """The page, and what went into it (`drawing` None when the robot or SRDF did not load)."""
+
+    html: str
+    validated: ValidatedPackage
+    drawing: Drawing | None
+
+    @property
+    def meshes(self) -> tuple[MeshArrays, ...]:
+        """The mesh files drawn (decimated)."""
+        return self.drawing.geometry.meshes if self.drawing is not None else ()
+
+
+def build_report(
+    path: str | Path,
+    *,
+    urdf: str | Path | None = None,
+    srdf: str | Path | None = None,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | Path] = (),
+    plan: bool = True,
+    trials: int | None = None,
+    jobs: int = 1,
+    max_faces: int = MAX_FACES,
+    progress: Progress | None = None,
+) -> Report:
+    """The report of the package at `path`; `trials` for the matrix (default: the package's,
+    else DEFAULT_TRIALS). Raises InputError (exit 2) when `path` is no config package at all."""
+    from marm_setup.report.page import render_page
+    from marm_setup.validate import validate_package
+
+    step = _stages(progress)
+    checking = step("checking")
+    checking(0, 0)  # no count to show: an open bar while the static rules run
+    validated = validate_package(
+        path,
+        urdf=urdf,
+        srdf=srdf,
+        xacro_args=xacro_args,
+        package_paths=package_paths,
+        plan=plan,
+        progress=step("planning") if progress else None,
+    )
+    checking(1, 1)
+    robot, srdf_model = validated.robot, validated.package.srdf
+    drawing = None
+    if robot is not None and srdf_model is not None:
+        drawing = _drawing(validated, robot, srdf_model, robot_geometry(robot, max_faces), trials, jobs, step)
+    name = robot.name if robot is not None else validated.validation.package
+    content = page_content(name, drawing, validated.validation.findings, _summary(validated))
+    return Report(render_page(content), validated, drawing)
+
+
+def _stages(progress: Progress | None) -> Callable[[str], Callable[[int, int], None]]:
+    """`step(stage)`: a `(done, total)` callback reporting `stage` to `progress` (or nothing)."""
+
+    def step(stage: str) -> Callable[[int, int], None]:
+        def report(done: int, total: int) -> None:
+            if progress is not None:
+                progress(stage, done, total)
+
+        return report
+
+    return step
+
+
+def _drawing(
+    validated: ValidatedPackage,
+    robot: RobotModel,
+    srdf: Srdf,
+    geometry: RobotGeometry,
+    trials: int | None,
+    jobs: int,
+    step: Callable[[str], Callable[[int, int], None]],
+) -> Drawing:
+    """What the 3D view draws for a package whose robot and SRDF loaded."""
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.report.motions import motions
+    from marm_setup.report.states import robot_states
+    from marm_setup.setup.start_state import package_start_values
+
+    scene = CollisionScene(robot)
+    start = package_start_values(validated.package, robot)
+    states = robot_states(srdf, robot, scene, start, validated.validation.findings)
+    matrix = _matrix_section(validated, robot, srdf, scene, trials, jobs, step("collision matrix"))
+    moves = motions(robot, validated.plans, drawn_links(robot, geometry, srdf))
+    return Drawing(robot, srdf, geometry, states, moves, matrix)
+
+
+def _matrix_section(
+    validated: ValidatedPackage,
+    robot: RobotModel,
+    srdf: Srdf,
+    scene: CollisionScene,
+    trials: int | None,
+    jobs: int,
+    progress: Callable[[int, int], None],
+) -> MatrixSection | None:
+    """The matrix picture and pairs: reasons from the SRDF, counts from a fresh computation."""
+    from marm_setup.collision.matrix import compute_collision_matrix
+    from marm_setup.collision.report import describe_matrix, render_matrix_svg
+    from marm_setup.validate import matrix_settings
+
+    if not scene.candidate_pairs:
+        return None
+    seed, computed = matrix_settings(validated.package)
+    count = trials or computed or DEFAULT_TRIALS
+    matrix = compute_collision_matrix(robot, scene, trials=count, seed=seed, jobs=jobs, progress=progress)
+    links = [name for name in robot.links_in_tree_order if robot.link(name).has_geometry]
+    svg = render_matrix_svg(matrix, robot.name, links, srdf.disabled)
+    return MatrixSection(svg, describe_matrix(matrix, robot.name, srdf.disabled))
+
+
+def _summary(validated: ValidatedPackage) -> dict:
+    v = validated.validation
+    return {"package": v.package, "target": v.target, "layout": v.layout, "validated": v.describe()}

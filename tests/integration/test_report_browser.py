@@ -1,0 +1,249 @@
+"""The report page in a real browser: Debian's chromium, headless, driven by Playwright (no browser
+download), with every request that is not the page's own file blocked and counted.
+
+For the marm (good and broken), the panda (the Setup Assistant's MoveIt 1 package), the PR2 (a
+package `init` generates) and a vendor package (Kinova Gen3 + Robotiq, MoveIt 2): the page loads
+with no console error and fetches nothing; every state draws the robot (pixels differ from the
+empty scene); picking a pose that moves the robot changes the picture; links in contact are red
+exactly where a state has contacts; a group lights up; a trajectory moves. Skips only where
+chromium or playwright is missing (`.ci/run` installs chromium). Sizes and build times are
+printed (`pytest -s`).
+"""
+
+from __future__ import annotations
+
+import shutil
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from marm_setup.cli.app import app
+from tests.conftest import realworld, realworld2
+from tests.report_helpers import broken_marm, marm_package
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--enable-unsafe-swiftshader",  # WebGL on the CPU (no GPU here)
+]
+# Pictures are grabbed from the viewer's canvas and compared inside the page: `shoot(name, action)`
+# does the action, renders and keeps the pixels under `name`; `changed(a, b)` counts pixels whose
+# colour differs (any channel by more than 24); `count(name, kind)` counts red or orange pixels.
+PICTURES = """() => {
+  const v = report.viewer;
+  const shots = {};
+  const grab = () => new Promise((done) => {
+    const img = new Image();
+    img.onload = () => {
+      const c = document.createElement("canvas");
+      c.width = img.width; c.height = img.height;
+      const g = c.getContext("2d");
+      g.drawImage(img, 0, 0);
+      done(g.getImageData(0, 0, c.width, c.height).data);
+    };
+    img.src = v.capture_image();
+  });
+  const kinds = {
+    red: (r, g, b) => r > 140 && g < 80 && b < 80,
+    orange: (r, g, b) => r > 170 && g > 90 && g < 190 && b < 80 && r - g > 50,
+  };
+  window.pictures = {
+    async shoot(name, action) {
+      if (action.kind === "empty") v.set_property(["robot"], "visible", false);
+      if (action.kind === "state") report.showState(action.key);
+      if (action.kind === "group") report.highlightGroup(action.key);
+      if (action.kind === "motion") { report.playMotion(action.index); report.stopMotion(); report.showMotionAt(action.t); }
+      shots[name] = await grab();
+      v.set_property(["robot"], "visible", true);
+    },
+    changed(a, b) {
+      const x = shots[a], y = shots[b];
+      let n = 0;
+      for (let k = 0; k < x.length; k += 4) {
+        if (Math.max(Math.abs(x[k] - y[k]), Math.abs(x[k + 1] - y[k + 1]), Math.abs(x[k + 2] - y[k + 2])) > 24) n++;
+      }
+      return n;
+    },
+    count(name, kind) {
+      const x = shots[name];
+      let n = 0;
+      for (let k = 0; k < x.length; k += 4) if (kinds[kind](x[k], x[k + 1], x[k + 2])) n++;
+      return n;
+    },
+  };
+}"""
+
+
+@dataclass(frozen=True)
+class Page:
+    name: str
+    path: Path
+    megabytes: float
+    seconds: float
+
+
+def _chromium_and_playwright():
+    if not Path(CHROMIUM).exists():
+        pytest.skip("chromium is not installed (apt-get install chromium)")
+    return pytest.importorskip("playwright.sync_api")
+
+
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory):
+    api = _chromium_and_playwright()
+    with api.sync_playwright() as p:
+        profile = tmp_path_factory.mktemp("chromium-profile")  # a fresh user data dir
+        context = p.chromium.launch_persistent_context(
+            str(profile), executable_path=CHROMIUM, args=FLAGS, viewport={"width": 1200, "height": 760}
+        )
+        yield context
+        context.close()
+
+
+@pytest.fixture(scope="module")
+def root(tmp_path_factory) -> Path:
+    return tmp_path_factory.mktemp("pages")
+
+
+def _build(root: Path, name: str, package: Path, *options: str | Path) -> Page:
+    page = root / f"{name}.html"
+    started = time.perf_counter()
+    result = CliRunner().invoke(app, ["report", str(package), "-o", str(page), *map(str, options)])
+    seconds = time.perf_counter() - started
+    assert result.exit_code in (0, 1), result.output
+    built = Page(name, page, page.stat().st_size / 1e6, seconds)
+    print(f"\nreport {name}: {built.megabytes:.2f} MB in {seconds:.1f} s ({result.stdout.strip()})")
+    return built
+
+
+def _pr2_package(root: Path) -> Path:
+    urdf = realworld("ros1", "pr2_description", "urdf", "robot.xml")
+    out = root / "pr2_moveit_config"
+    result = CliRunner().invoke(app, ["init", str(urdf), "--out", str(out), "--trials", "1000"])
+    assert result.exit_code == 0, result.output
+    return out
+
+
+_BUILT: dict[tuple[Path, str], Page] = {}
+
+
+def _page(root: Path, name: str) -> Page:
+    """The page of robot `name`, built once per test module."""
+    if (root, name) not in _BUILT:
+        _BUILT[root, name] = _build_page(root, name)
+    return _BUILT[root, name]
+
+
+def _build_page(root: Path, name: str) -> Page:
+    if name == "marm":
+        return _build(root, name, marm_package(root))
+    if name == "marm_broken":
+        return _build(root, name, broken_marm(root))
+    if name == "panda":
+        return _build(
+            root, name, realworld("ros1", "panda_moveit_config"), "--package-path", realworld("ros1")
+        )
+    if name == "pr2":
+        return _build(root, name, _pr2_package(root))
+    kortex = realworld2("ros2_kortex")
+    package = kortex / "kortex_moveit_config" / "kinova_gen3_6dof_robotiq_2f_85_moveit_config"
+    return _build(
+        root, name, package, "--package-path", kortex, "--package-path", realworld2("ros2_robotiq_gripper")
+    )
+
+
+class Opened:
+    """A page open in the browser, with what it logged and tried to fetch."""
+
+    def __init__(self, context, path: Path):
+        self.errors: list[str] = []
+        self.fetched: list[str] = []
+        self.page = context.new_page()
+        self.page.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
+        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+        self.page.route("**/*", self._only_the_file)
+        self.page.goto(path.resolve().as_uri())
+        self.page.wait_for_selector("body[data-ready=true]", state="attached", timeout=60_000)
+        self.page.evaluate("report.showMarkers(false)")  # frames and labels aside: the robot alone
+        self.page.evaluate(PICTURES)
+
+    def _only_the_file(self, route) -> None:
+        url = route.request.url
+        if url.startswith("file:"):
+            route.continue_()
+        else:
+            self.fetched.append(url)
+            route.abort()
+
+    def shoot(self, name: str, kind: str, **action) -> None:
+        self.page.evaluate(
+            "([name, action]) => pictures.shoot(name, action)", [name, {"kind": kind, **action}]
+        )
+
+    def changed(self, a: str, b: str) -> int:
+        return self.page.evaluate("([a, b]) => pictures.changed(a, b)", [a, b])
+
+    def count(self, name: str, kind: str) -> int:
+        return self.page.evaluate("([name, kind]) => pictures.count(name, kind)", [name, kind])
+
+
+ROBOTS = ("marm", "marm_broken", "panda", "pr2", "kinova_gen3")
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_the_page_draws_the_robot_at_every_pose(browser, root, name):
+    built = _page(root, name)
+    opened = Opened(browser, built.path)
+    data = opened.page.evaluate("JSON.parse(document.getElementById('report-data').textContent)")
+    opened.shoot("empty", "empty")
+    opened.shoot("start", "state", key="start")
+    start_joints = next(s["joints"] for s in data["states"] if s["key"] == "start")
+    for state in data["states"]:
+        key = state["key"]
+        opened.shoot(key, "state", key=key)
+        assert opened.changed(key, "empty") > 300, f"{key} draws nothing"
+        red = opened.count(key, "red")
+        if state["contacts"]:
+            assert red > 20, f"{key}: links in contact {state['contacts']} are not red"
+        else:
+            assert red < 5, f"{key}: red without a contact"
+        moved = any(abs(v - start_joints[j]) > 0.05 for j, v in state["joints"].items())
+        if key.startswith("pose:") and moved:
+            assert opened.changed(key, "start") > 50, f"picking {key} does not change the picture"
+    opened.shoot("start", "state", key="start")
+    group = next(g for g in data["groups"] if g["links"])
+    opened.shoot("lit", "group", key=group["name"])
+    assert opened.count("lit", "orange") > 50, f"group {group['name']} does not light up"
+    opened.shoot("unlit", "group", key=group["name"])  # a second pick turns it off
+    for index, motion in enumerate(data["motions"][:2]):
+        opened.shoot("begin", "motion", index=index, t=0.0)
+        opened.shoot("end", "motion", index=index, t=motion["duration"])
+        assert opened.changed("begin", "end") > 50, (
+            f"trajectory {motion['start']} -> {motion['goal']} does not move"
+        )
+    opened.page.screenshot(path=str(root / f"{name}.png"))
+    assert opened.errors == [] and opened.fetched == []
+    opened.page.close()
+
+
+def test_the_broken_marm_shows_its_errors(browser, root):
+    opened = Opened(browser, _page(root, "marm_broken").path)
+    rules = opened.page.evaluate(
+        "[...document.querySelectorAll('#findings td.sev')].map(td => td.textContent)"
+    )
+    assert "error" in rules and "warning" in rules
+    titles = opened.page.evaluate("[...document.querySelectorAll('#states button')].map(b => b.textContent)")
+    assert any(t.startswith("matrix.stale:") for t in titles) and any(
+        t.startswith("pose.collision:") for t in titles
+    )
+    assert opened.errors == [] and opened.fetched == []
