@@ -449,6 +449,7 @@
   fillFindings();
   fillMatrix();
   if (states.size > 0) showState(states.has("start") ? "start" : data.states[0].key);
+  else document.getElementById("state-title").textContent = "robot not drawn: its URDF or SRDF did not load (see the findings)";
   const radius = fitCamera();
   drawFrames(Math.max(radius * 0.2, 0.02));
   paint();
