@@ -27,6 +27,15 @@ PackagePaths = Annotated[
     ),
 ]
 
+PackageUrdf = Annotated[
+    Path | None,
+    typer.Option("--urdf", help="Robot description to use instead of the one the package names."),
+]
+PackageSrdf = Annotated[
+    Path | None,
+    typer.Option("--srdf", help="SRDF (or .srdf.xacro) to use instead of the one the package names."),
+]
+
 
 class OutputFormat(str, enum.Enum):
     text = "text"

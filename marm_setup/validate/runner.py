@@ -163,7 +163,13 @@ def validate_package(
             pkg, robot, plan=plan, matrix_trials=matrix_trials, progress=progress
         )
         findings += scene_findings
-    validation = Validation(
+    return ValidatedPackage(_validation(pkg, robot, findings, planned), pkg, robot, tuple(planned or ()))
+
+
+def _validation(
+    pkg: ConfigPackage, robot: RobotModel | None, findings: list[Finding], planned: list[PlannedPair] | None
+) -> Validation:
+    return Validation(
         findings=tuple(sort_findings(findings)),
         package=pkg.name,
         target=pkg.target,
@@ -174,7 +180,6 @@ def validate_package(
         planned_pairs=None if planned is None else len(planned),
         skipped=skipped_families(pkg, robot),
     )
-    return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
 
 
 def check_given_xacro_args(pkg: ConfigPackage, robot: RobotModel, given: Mapping[str, str]) -> None:

@@ -7,7 +7,15 @@ from typing import Annotated
 
 import typer
 
-from marm_setup.cli.common import JobsOption, PackagePaths, XacroArgs, default_jobs, parse_count
+from marm_setup.cli.common import (
+    JobsOption,
+    PackagePaths,
+    PackageSrdf,
+    PackageUrdf,
+    XacroArgs,
+    default_jobs,
+    parse_count,
+)
 
 
 def report(
@@ -15,14 +23,8 @@ def report(
     output: Annotated[
         Path, typer.Option("--output", "-o", help="The HTML file to write.", metavar="report.html")
     ] = Path("report.html"),
-    urdf: Annotated[
-        Path | None,
-        typer.Option("--urdf", help="Robot description to use instead of the one the package names."),
-    ] = None,
-    srdf: Annotated[
-        Path | None,
-        typer.Option("--srdf", help="SRDF (or .srdf.xacro) to use instead of the one the package names."),
-    ] = None,
+    urdf: PackageUrdf = None,
+    srdf: PackageSrdf = None,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
     no_plan: Annotated[

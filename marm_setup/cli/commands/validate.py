@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from marm_setup.cli.common import OutputFormat, PackagePaths, XacroArgs, echo_err
+from marm_setup.cli.common import OutputFormat, PackagePaths, PackageSrdf, PackageUrdf, XacroArgs, echo_err
 
 if TYPE_CHECKING:
     from marm_setup.validate.runner import Validation
@@ -16,14 +16,8 @@ if TYPE_CHECKING:
 
 def validate(
     package: Annotated[Path, typer.Argument(help="The MoveIt config package folder.", metavar="DIR")],
-    urdf: Annotated[
-        Path | None,
-        typer.Option("--urdf", help="Robot description to use instead of the one the package names."),
-    ] = None,
-    srdf: Annotated[
-        Path | None,
-        typer.Option("--srdf", help="SRDF (or .srdf.xacro) to use instead of the one the package names."),
-    ] = None,
+    urdf: PackageUrdf = None,
+    srdf: PackageSrdf = None,
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
     no_plan: Annotated[
