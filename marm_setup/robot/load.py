@@ -13,6 +13,7 @@ from lxml import etree
 
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
+from marm_setup.robot.ros2_control import systems_in_urdf
 from marm_setup.robot.ros_packages import find_packages
 from marm_setup.robot.urdf import parse_urdf
 from marm_setup.robot.xacro_expand import expand_xacro, run_xacro
@@ -45,16 +46,22 @@ def load_robot(
     if not file.is_file():
         raise InputError("file not found", path=shown)
     packages = find_packages(package_paths, near=file)
-    declared = None
-    if file.suffix == ".xacro":
-        expanded = run_xacro(file, dict(xacro_args or {}), packages, shown=shown)
-        xml, declared = expanded.xml, tuple(sorted(expanded.declared))
-    else:
-        xml = read_text(file, shown=shown)
+    args = dict(xacro_args or {})
+    expanded = run_xacro(file, args, packages, shown=shown) if file.suffix == ".xacro" else None
+    xml = expanded.xml if expanded is not None else read_text(file, shown=shown)
+    declared = tuple(sorted(expanded.declared)) if expanded is not None else None
     root = parse_xml(xml, shown=shown)
     robot = parse_urdf(root, xml, file.parent, packages, shown=shown)
+    switch = None
+    if expanded is not None and systems_in_urdf(xml):
+        from marm_setup.robot.mock_switch import find_mock_switch
+
+        def expand(values: Mapping[str, str]) -> str:
+            return run_xacro(file, values, packages, shown=shown).xml
+
+        switch = find_mock_switch(expand, args, dict(expanded.values))
     used = tuple((u.name, u.path, u.found_by) for u in sorted(packages.used.values(), key=lambda u: u.name))
-    return dataclasses.replace(robot, packages=used, xacro_args=declared)
+    return dataclasses.replace(robot, packages=used, xacro_args=declared, mock_switch=switch)
 
 
 def read_text(file: Path, *, shown: str) -> str:

@@ -5,6 +5,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from marm_setup.robot.ros2_control import MockSwitch
 
 Vec3 = tuple[float, float, float]
 
@@ -154,6 +158,9 @@ class RobotModel:
     packages: tuple[tuple[str, str, str], ...] = field(default=(), compare=False)
     # the arguments its xacro declares or reads, sorted (robot/xacro_expand.py); None: no xacro
     xacro_args: tuple[str, ...] | None = field(default=None, compare=False)
+    # the xacro arg that provably puts the description's own <ros2_control> systems on mock
+    # hardware (robot/mock_switch.py); None: none found, or no such systems
+    mock_switch: MockSwitch | None = field(default=None, compare=False)
 
     # -- lookups -------------------------------------------------------------------------------
     @cached_property

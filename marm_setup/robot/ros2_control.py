@@ -1,12 +1,27 @@
 """The `<ros2_control>` systems a robot description already declares (vendor descriptions often
 do): a second system for the same joints makes the controller manager refuse the duplicate
-interfaces, so a generated package adds its own system only for the joints no system covers."""
+interfaces, so a generated package adds its own system only for the joints no system covers.
+
+Mock hardware, per ROS 2 distro (ros-controls/ros2_control, hardware_interface/*_plugin_description.xml):
+Humble exports `mock_components/GenericSystem` and the deprecated `fake_components/GenericSystem`;
+Jazzy only `mock_components/GenericSystem` (fake_components is gone). Both are SystemInterfaces:
+the resource manager loads a `type="actuator"` or `"sensor"` element through the actuator or
+sensor loader instead (humble hardware_interface/src/resource_manager.cpp l.699-720), which
+does not know them, so a mocked element must also be `type="system"`.
+"""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from marm_setup.robot.model import RobotModel
+
+MOCK_PLUGIN = "mock_components/GenericSystem"
+MOCK_PLUGINS = {
+    "humble": frozenset({MOCK_PLUGIN, "fake_components/GenericSystem"}),
+    "jazzy": frozenset({MOCK_PLUGIN}),
+}
+ANY_MOCK = frozenset().union(*MOCK_PLUGINS.values())
 
 
 @dataclass(frozen=True, slots=True)
@@ -16,23 +31,71 @@ class Ros2ControlSystem:
     name: str
     plugin: str
     joints: tuple[str, ...]
+    type: str = "system"
+
+    def is_mock(self, distro: str | None = None) -> bool:
+        """Its plugin is mock hardware (of `distro`, or of any distro when None)."""
+        return self.plugin in (MOCK_PLUGINS.get(distro, ANY_MOCK) if distro else ANY_MOCK)
 
 
-def described_systems(robot: RobotModel) -> tuple[Ros2ControlSystem, ...]:
-    """The `<ros2_control>` elements directly under the (expanded) URDF's `<robot>`."""
-    if not robot.urdf_xml:
+@dataclass(frozen=True, slots=True)
+class MockSwitch:
+    """A xacro arg of the description that puts its own systems on mock hardware: `arg:=true`
+    gives `mock` (every plugin mock), `arg:=false` gives `real` (some plugin not mock); both
+    found by expanding the description (robot/mock_switch.py)."""
+
+    arg: str
+    mock: tuple[Ros2ControlSystem, ...] = field(default=())
+    real: tuple[Ros2ControlSystem, ...] = field(default=())
+
+    def works_on(self, distro: str | None) -> bool:
+        """Every system of the mock side is a mock `distro` has."""
+        return all(s.is_mock(distro) for s in self.mock)
+
+
+def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
+    """The `<ros2_control>` elements directly under a URDF's `<robot>` (empty for unparsable XML)."""
+    if not xml:
         return ()
     from lxml import etree
 
-    root = etree.fromstring(robot.urdf_xml.encode(), parser=etree.XMLParser(remove_comments=True))
+    try:
+        root = etree.fromstring(xml.encode(), parser=etree.XMLParser(remove_comments=True))
+    except etree.XMLSyntaxError:
+        return ()
     systems = []
     for element in root.findall("ros2_control"):
         plugin = element.findtext("hardware/plugin") or ""
         joints = tuple(j.get("name", "") for j in element.findall("joint"))
-        systems.append(Ros2ControlSystem(element.get("name", ""), plugin.strip(), joints))
+        kind = element.get("type", "system")
+        systems.append(Ros2ControlSystem(element.get("name", ""), plugin.strip(), joints, kind))
     return tuple(systems)
 
 
+def described_systems(robot: RobotModel) -> tuple[Ros2ControlSystem, ...]:
+    """The `<ros2_control>` elements directly under the (expanded) URDF's `<robot>`."""
+    return systems_in_urdf(robot.urdf_xml)
+
+
 def described_joints(robot: RobotModel) -> frozenset[str]:
-    """Joints some `<ros2_control>` of the description already drives or reports."""
-    return frozenset(j for system in described_systems(robot) for j in system.joints)
+    """Joints some `<ros2_control>` of the description drives or reports, with the setup's xacro
+    args or with its mock switch on (a switch may add systems or joints, e.g. mimic joints)."""
+    systems = described_systems(robot) + (robot.mock_switch.mock if robot.mock_switch else ())
+    return frozenset(j for system in systems for j in system.joints)
+
+
+def on_mock_hardware(xml: str) -> str:
+    """The URDF with every top-level `<ros2_control>` a mock system: its `<hardware>` (plugin and
+    params) replaced by MOCK_PLUGIN and its type `system`; what the generated
+    scripts/with_mock_hardware.py does on the mock path (a test holds the two to the same result)."""
+    from lxml import etree
+
+    root = etree.fromstring(xml.encode())
+    for system in root.findall("ros2_control"):
+        system.set("type", "system")
+        for old in system.findall("hardware"):
+            system.remove(old)
+        hardware = etree.Element("hardware")
+        etree.SubElement(hardware, "plugin").text = MOCK_PLUGIN
+        system.insert(0, hardware)
+    return etree.tostring(root, encoding="unicode")

@@ -40,10 +40,14 @@ _DECLARED_IN_TEXT = re.compile(
 
 @dataclass(frozen=True)
 class XacroOutput:
-    """The expanded XML and the names of the arguments the xacro declares or reads."""
+    """The expanded XML, the names of the arguments the xacro declares or reads, every argument
+    its table held at the end with its value (given, or a declared default), and what xacro
+    wrote to stderr (its warnings: launch's $(command) fails on them by default)."""
 
     xml: str
     declared: frozenset[str]
+    values: tuple[tuple[str, str], ...] = ()
+    stderr: str = ""
 
 
 class _ArgTable(dict):
@@ -149,7 +153,8 @@ def _run_xacro(file: Path, text: str, args: dict[str, str], packages: PackageMap
     if captured.getvalue().strip():
         log.debug("xacro: %s", captured.getvalue().strip())
     read = [text, *(_file_text(f) for f in xacro.all_includes[first_include:])]
-    return XacroOutput(doc.toxml(), frozenset(table.asked) | _declared_in(read))
+    values = tuple(sorted((str(k), str(v)) for k, v in dict.items(table)))
+    return XacroOutput(doc.toxml(), frozenset(table.asked) | _declared_in(read), values, captured.getvalue())
 
 
 def _declared_in(texts: Iterable[str]) -> frozenset[str]:
