@@ -564,15 +564,18 @@ def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
 
 
 def reused_ros2_control(model: SetupModel, robot: RobotModel) -> list[str]:
-    """One line per `<ros2_control>` system the description already has (ros2 reuses it)."""
+    """What the package's ros2_control systems are and what use_mock_hardware does to each
+    (ros2): the generated system, each `<ros2_control>` system the description already has
+    (reused), and how the demo puts those on mock hardware (render/hardware.py)."""
     if model.target != "ros2":
         return []
-    from marm_setup.robot.ros2_control import described_systems
+    from marm_setup.render.context import ros2_control_joints
+    from marm_setup.render.hardware import description_hardware, hardware_lines
+    from marm_setup.setup.model import Ros2ControlHardware
 
-    return [
-        f"ros2_control: reusing the description's system {s.name} ({s.plugin}) for {', '.join(s.joints)}"
-        for s in described_systems(robot)
-    ]
+    own = model.ros2_control or Ros2ControlHardware()
+    joints = len(ros2_control_joints(model, robot))
+    return hardware_lines(description_hardware(robot, model.distro), own, joints)
 
 
 def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool) -> list[FileChange]:

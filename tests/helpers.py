@@ -61,3 +61,28 @@ FINGERS = f"""
       <origin xyz="0 -0.02 0.05"/><axis xyz="0 -1 0"/><limit lower="0" upper="0.04" velocity="0.1" effort="1"/>
       <mimic joint="finger_joint_l"/></joint>
 """
+
+
+# A `xacro` command for launchers (roslaunch's command=, the generated mock-hardware script) that
+# runs marm-setup's real-xacro expansion: `$(find pkg)` through ROS_PACKAGE_PATH and the folders
+# around the file (pip's xacro has no ament index).
+XACRO_SHIM = """#!{python}
+import sys
+from pathlib import Path
+from marm_setup.robot.ros_packages import find_packages
+from marm_setup.robot.load import expand_xacro, parse_xacro_args
+args = [a for a in sys.argv[1:] if not a.startswith("-")]
+file = Path(args[0])
+sys.stdout.write(expand_xacro(file, parse_xacro_args(args[1:]), find_packages([], near=file), shown=str(file)))
+"""
+
+
+def write_xacro_shim(folder: Path) -> Path:
+    """`folder/xacro` (XACRO_SHIM for this interpreter), executable; returns the folder."""
+    import sys
+
+    folder.mkdir(parents=True, exist_ok=True)
+    shim = folder / "xacro"
+    shim.write_text(XACRO_SHIM.format(python=sys.executable))
+    shim.chmod(0o755)
+    return folder

@@ -48,9 +48,14 @@ CARTESIAN_LIMITS = (
 )
 
 
+DESCRIPTION_COPY_DIR = "description"
+
+
 @dataclass(frozen=True, slots=True)
 class DescriptionRef:
-    """How launch files find the URDF: `$(find package)/path`, or our package when package is None."""
+    """How launch files find the URDF: `$(find package)/path`; package None: a copy in our own
+    package at `path` (a URDF in no ROS package: ament installs only share/<pkg>, so a path
+    climbing out of our package breaks once installed)."""
 
     package: str | None
     path: str
@@ -123,9 +128,19 @@ def description_ref(model: SetupModel, robot: RobotModel, package: tuple[str, st
     if package is not None:
         ref = DescriptionRef(package[0], package[1], is_xacro, model.robot.xacro_args)
     else:
-        ref = DescriptionRef(None, PurePosixPath(urdf).as_posix(), is_xacro, model.robot.xacro_args)
+        ref = DescriptionRef(None, f"{DESCRIPTION_COPY_DIR}/{copy_name(urdf)}", False)
     check_description_ref(ref)
     return ref
+
+
+def copy_name(urdf: str) -> str:
+    """The file name of the description's copy: a xacro is copied expanded (`arm.urdf.xacro`,
+    `arm.xacro` -> `arm.urdf`), a URDF as it is."""
+    name = PurePosixPath(urdf).name
+    if name.endswith(".xacro"):
+        name = name[: -len(".xacro")]
+        return name if name.endswith(".urdf") else f"{name}.urdf"
+    return name
 
 
 def check_description_ref(ref: DescriptionRef) -> None:
@@ -276,10 +291,32 @@ def ros2_control_macro(robot_name: str) -> str:
     return f"{prefix}{robot_name}_ros2_control"
 
 
+def hardware_context(model: SetupModel, robot: RobotModel, own_joints: list[Ros2ControlJoint]) -> dict:
+    """The ros2_control hardware the templates switch with use_mock_hardware (render/hardware.py)."""
+    from marm_setup.render.hardware import (
+        command_comment,
+        description_command,
+        description_hardware,
+        use_mock_hardware_help,
+    )
+
+    hw = description_hardware(robot, model.distro)
+    own = model.ros2_control or Ros2ControlHardware()
+    return {
+        "hardware": own,
+        "description_hardware": hw,
+        "description_command": description_command(hw, model.package_name, model.robot_name),
+        "description_command_comment": command_comment(hw),
+        "use_mock_hardware_help": use_mock_hardware_help(hw, own, bool(own_joints)),
+    }
+
+
 def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None = None) -> dict:
     """Everything the templates read, keyed by the names they use."""
     servos = plan_servos(model, robot)
+    own_joints = ros2_control_joints(model, robot)
     return {
+        **hardware_context(model, robot, own_joints),
         "model": model,
         "robot": robot,
         "pkg": model.package_name,
@@ -293,12 +330,11 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "follow_controllers": [c for c in model.controllers if c.type == FOLLOW_JOINT_TRAJECTORY],
         "arbotix_servos": arbotix_servos(model, robot),
         "gripper_nodes": gripper_nodes(model, robot),
-        "ros2_control_joints": ros2_control_joints(model, robot),
+        "ros2_control_joints": own_joints,
         "trajectory_demo": trajectory_demo(model, robot) if model.target == "ros1" else None,
         # the Setup Assistant's demo publishes an identity TF for every virtual joint, whatever its type
         "static_tfs": model.virtual_joints,
         "rviz": rviz_view(model, robot),
-        "hardware": model.ros2_control or Ros2ControlHardware(),
         "pipelines": [(name, PIPELINES[name]) for name in model.planning_pipelines],
         "mock_hardware": MOCK_HARDWARE,
         "ompl_planners": OMPL_PLANNERS,

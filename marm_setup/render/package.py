@@ -181,7 +181,28 @@ def render_package(
         (t, p, {}) for t, p in target_templates(model.target, model.driver)
     ]
     templates += pipeline_templates(model) + servo_and_sensor_templates(model.target, context)
+    templates += hardware_templates(model, context)
     for template, path, extra in templates:
         content = render_template(template, target=model.target, **context, **extra)
         files.append(RenderedFile(output_path(path, model.robot_name), content))
-    return sorted(files, key=lambda f: f.path)
+    return sorted(files + description_copy(context, robot), key=lambda f: f.path)
+
+
+def hardware_templates(model: SetupModel, context: dict) -> list[tuple[str, str, dict]]:
+    """The script that puts the description's own ros2_control systems on mock hardware, for
+    a ros2 package whose description has no proven switch (render/hardware.py)."""
+    from marm_setup.render.hardware import MOCK_SCRIPT
+
+    if model.target != "ros2" or context["description_hardware"].mode != "replace":
+        return []
+    return [(f"ros2/{MOCK_SCRIPT}.j2", MOCK_SCRIPT, {})]
+
+
+def description_copy(context: dict, robot: RobotModel) -> list[RenderedFile]:
+    """The URDF (a xacro expanded with the setup's args) copied into the package when it lives
+    in no ROS package: launch files can reach nothing outside share/<pkg> once it is installed."""
+    ref = context["description"]
+    if ref.package is not None:
+        return []
+    text = robot.urdf_xml if robot.urdf_xml.endswith("\n") else robot.urdf_xml + "\n"
+    return [RenderedFile(ref.path, text)]

@@ -8,7 +8,6 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -20,19 +19,11 @@ from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.robot.load import expand_xacro
 from marm_setup.robot.ros_packages import find_packages
 from tests.conftest import FIXTURES, realworld
+from tests.helpers import write_xacro_shim
 from tests.render_helpers import inferred_marm
 
 needs_roslaunch = pytest.mark.skipif(shutil.which("roslaunch") is None, reason="roslaunch not on PATH")
 
-XACRO_SHIM = """#!{python}
-import sys
-from pathlib import Path
-from marm_setup.robot.ros_packages import find_packages
-from marm_setup.robot.load import expand_xacro, parse_xacro_args
-args = [a for a in sys.argv[1:] if not a.startswith("-")]
-file = Path(args[0])
-sys.stdout.write(expand_xacro(file, parse_xacro_args(args[1:]), find_packages([], near=file), shown=str(file)))
-"""
 
 
 def write_package(tmp_path: Path, target: str) -> Path:
@@ -44,11 +35,7 @@ def write_package(tmp_path: Path, target: str) -> Path:
 
 def dump_params(launch: Path, package_roots: list[Path], tmp_path: Path, *args: str) -> dict:
     """`roslaunch --dump-params` with a `xacro` command (our real-xacro expansion) on PATH."""
-    shim_dir = tmp_path / "bin"
-    shim_dir.mkdir(exist_ok=True)
-    shim = shim_dir / "xacro"
-    shim.write_text(XACRO_SHIM.format(python=sys.executable))
-    shim.chmod(0o755)
+    shim_dir = write_xacro_shim(tmp_path / "bin")
     env = {
         **os.environ,
         "PATH": f"{shim_dir}{os.pathsep}{os.environ.get('PATH', '')}",

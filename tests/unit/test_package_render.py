@@ -428,10 +428,20 @@ def test_description_package_and_fallback(tmp_path):
     loose = tmp_path / "robot.urdf"
     loose.write_text("<robot name='x'/>")
     assert description_package(loose) is None
-    model = dataclasses.replace(marm_model("ros1"), robot=RobotSource(urdf="../robot.urdf"))
     robot = dataclasses.replace(marm_robot(), source=str(loose))
-    files = {f.path: f.content for f in render_package(model, robot)}
-    assert 'textfile="$(find marm_moveit_config)/../robot.urdf"' in files["launch/planning_context.launch"]
+    files = {}
+    for target in TARGETS:
+        model = dataclasses.replace(marm_model(target), robot=RobotSource(urdf="../robot.urdf"))
+        files[target] = {f.path: f.content for f in render_package(model, robot)}
+        # a URDF in no ROS package is copied in: only share/<pkg> is installed, '../' is not
+        copy = files[target]["description/robot.urdf"]
+        assert copy.rstrip("\n") == robot.urdf_xml.rstrip("\n")
+        assert "install(DIRECTORY launch config description " in files[target]["CMakeLists.txt"]
+        assert not any("/.." in text for path, text in files[target].items() if path.startswith(("launch/", "config/")))
+    planning_context = files["ros1"]["launch/planning_context.launch"]
+    assert 'textfile="$(find marm_moveit_config)/description/robot.urdf"' in planning_context
+    wrapper = files["ros2"]["config/marm.urdf.xacro"]
+    assert 'filename="$(find marm_moveit_config)/description/robot.urdf"' in wrapper
 
 
 def test_unknown_target_is_input_error():

@@ -96,14 +96,19 @@ def test_a_real_vendor_description_keeps_its_system(tmp_path):
         urdf=urdf, out=tmp_path / "pkg", target="ros2", xacro_args=xacro_args, package_paths=tuple(roots)
     )
     pkg = write(build_setup(request, robot), robot, tmp_path / "pkg")
-    systems = expanded_systems(pkg, "gen3", roots)
-    assert systems["KortexMultiInterfaceHardware"] == [f"joint_{i}" for i in range(1, 7)]
-    assert systems["RobotiqGripperHardwareInterface"] == ["robotiq_85_left_knuckle_joint"]
-    counts = Counter(j for joints in systems.values() for j in joints)
-    assert set(counts.values()) == {1}, counts
-    # the gripper's mimic joints follow a leader of the vendor's system: robot_state_publisher
-    # computes them, and mock hardware could not resolve a leader outside its own system
-    assert set(systems) == {"KortexMultiInterfaceHardware", "RobotiqGripperHardwareInterface"}
+    real = expanded_systems(pkg, "gen3", roots, use_mock_hardware="false")
+    assert real["KortexMultiInterfaceHardware"] == [f"joint_{i}" for i in range(1, 7)]
+    assert real["RobotiqGripperHardwareInterface"] == ["robotiq_85_left_knuckle_joint"]
+    # the mock side is Kinova's own use_fake_hardware:=true: its mock gripper system also lists
+    # the mimic joints (none of which marm-setup's own system may repeat)
+    mock = expanded_systems(pkg, "gen3", roots)
+    assert len(mock["RobotiqGripperHardwareInterface"]) == 6
+    for systems in (real, mock):
+        counts = Counter(j for joints in systems.values() for j in joints)
+        assert set(counts.values()) == {1}, counts
+        # the gripper's mimic joints follow a leader of the vendor's system: robot_state_publisher
+        # computes them, and mock hardware could not resolve a leader outside its own system
+        assert set(systems) == {"KortexMultiInterfaceHardware", "RobotiqGripperHardwareInterface"}
 
 
 def test_hardware_keys_and_use_mock_hardware(tmp_path):
@@ -131,13 +136,19 @@ def test_hardware_keys_and_use_mock_hardware(tmp_path):
 
 
 def test_init_says_it_reuses_the_descriptions_system(tmp_path):
+    """...and what use_mock_hardware does to each system: a plain URDF has no switch, so the
+    launch files replace its hardware; marm-setup's own system has no real plugin to switch to."""
     from marm_setup.pipeline import reused_ros2_control
 
     urdf = vendor_description(tmp_path, ["joint1"])
     robot = load_robot(urdf, {}, [FIXTURES / "marm"])
     model = inferred_marm("ros2", tmp_path / "pkg")[0]
     assert reused_ros2_control(model, robot) == [
-        "ros2_control: reusing the description's system vendor_arm (vendor_driver/ArmSystem) for joint1"
+        "ros2_control: marm-setup's system for 7 joint(s): use_mock_hardware:=true mock_components/GenericSystem, "
+        "false nothing real: marm_setup.yaml names no hardware plugin (ros2_control.plugin)",
+        "ros2_control: reusing the description's system vendor_arm (vendor_driver/ArmSystem) for joint1",
+        "ros2_control: use_mock_hardware:=true puts the description's systems on mock hardware: no xacro arg "
+        "of it makes every system mock, so the launch files replace the hardware (scripts/with_mock_hardware.py)",
     ]
     assert reused_ros2_control(dataclasses.replace(model, target="ros1"), robot) == []
 
