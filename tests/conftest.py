@@ -87,3 +87,19 @@ def assert_golden(request):
         obtained.unlink(missing_ok=True)
 
     return check
+
+
+@pytest.fixture(autouse=True)
+def no_sourced_ros(monkeypatch):
+    """validate uses the real ROS launcher where ROS is sourced (validate/consumers.py): tests
+    see no ROS unless they name one (MARM_SETUP_ROS2_PYTHON, MARM_SETUP_ROSLAUNCH)."""
+    for name in ("ROS_DISTRO", "MARM_SETUP_ROS2_PYTHON", "MARM_SETUP_ROSLAUNCH"):
+        monkeypatch.delenv(name, raising=False)
+
+
+@pytest.fixture(scope="session")
+def ros2_packages(tmp_path_factory):
+    """Every ROS 2 package the tests generate, made once per session (tests/generated_packages.py)."""
+    from tests.generated_packages import GeneratedPackages
+
+    return GeneratedPackages(tmp_path_factory.mktemp("ros2_packages"))

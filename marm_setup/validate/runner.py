@@ -60,6 +60,7 @@ class Validation:
     robot: str | None  # the URDF's robot name; None when it did not load
     planned_pairs: int | None  # pose pairs planned by the runtime checks; None when they did not run
     skipped: tuple[str, ...] = ()  # rule families that did not run, each with why
+    launched_by: str = ""  # what ran the launch files: the user's ROS, or the static rules only
 
     def describe(self) -> str:
         """One line: what was validated, against which robot, and whether planning ran."""
@@ -68,14 +69,15 @@ class Validation:
         runtime = "runtime planning skipped" if n is None else f"planned {n} pose pair{'' if n == 1 else 's'}"
         runtime += " (no group has two usable named poses)" if n == 0 else ""
         skipped = "".join(f"; skipped {s}" for s in self.skipped)
+        launched = f"; launch files: {self.launched_by}" if self.launched_by else ""
         return (
             f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
-            f"from {self.urdf} ({self.urdf_origin}); {runtime}{skipped}"
+            f"from {self.urdf} ({self.urdf_origin}); {runtime}{launched}{skipped}"
         )
 
     def as_dict(self) -> dict:
         """The json `validated` object (everything but the findings)."""
-        keys = ("package", "target", "layout", "urdf", "urdf_origin", "robot", "planned_pairs")
+        keys = ("package", "target", "layout", "urdf", "urdf_origin", "robot", "planned_pairs", "launched_by")
         return {**{key: getattr(self, key) for key in keys}, "skipped": list(self.skipped)}
 
 
@@ -154,6 +156,8 @@ def validate_package(
     findings += problems
     if robot is not None and xacro_args:
         check_given_xacro_args(pkg, robot, xacro_args)
+    launched, launched_by = check_as_launched(pkg, robot)
+    findings += launched
     if pkg.srdf_path is None:
         findings.append(error("srdf.missing", "config", "", "no SRDF found (config/<robot>.srdf)"))
     planned = None
@@ -163,11 +167,16 @@ def validate_package(
             pkg, robot, plan=plan, matrix_trials=matrix_trials, progress=progress
         )
         findings += scene_findings
-    return ValidatedPackage(_validation(pkg, robot, findings, planned), pkg, robot, tuple(planned or ()))
+    validation = _validation(pkg, robot, findings, planned, launched_by)
+    return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
 
 
 def _validation(
-    pkg: ConfigPackage, robot: RobotModel | None, findings: list[Finding], planned: list[PlannedPair] | None
+    pkg: ConfigPackage,
+    robot: RobotModel | None,
+    findings: list[Finding],
+    planned: list[PlannedPair] | None,
+    launched_by: str,
 ) -> Validation:
     return Validation(
         findings=tuple(sort_findings(findings)),
@@ -179,6 +188,7 @@ def _validation(
         robot=robot.name if robot is not None else None,
         planned_pairs=None if planned is None else len(planned),
         skipped=skipped_families(pkg, robot),
+        launched_by=launched_by,
     )
 
 
@@ -201,6 +211,24 @@ def check_given_xacro_args(pkg: ConfigPackage, robot: RobotModel, given: Mapping
         srdf_args = frozenset()  # validate reports the SRDF's own failure
     declared = {*(robot.xacro_args or ()), *srdf_args}
     check_xacro_args(given, declared, path=user_urdf(pkg), others=(pkg.user_path(pkg.srdf_path),))
+
+
+def check_as_launched(pkg: ConfigPackage, robot: RobotModel | None) -> tuple[list[Finding], str]:
+    """The launch files and parameter files as ROS runs them: the static rules (validate/rules/
+    ros2_launch_rules.py, ros2_params_rules.py), then the user's own ROS when it is there
+    (validate/consumers.py); with the summary's words for what ran."""
+    from marm_setup.validate.consumers import run_consumer
+    from marm_setup.validate.rules.distro_rules import package_distro
+    from marm_setup.validate.rules.ros2_launch_rules import check_install_paths, check_ros2_launch
+    from marm_setup.validate.rules.ros2_params_rules import check_params_files
+
+    distro = package_distro(pkg)
+    out = guarded("launch", check_install_paths, pkg)
+    if pkg.target == "ros2":
+        out += guarded("launch", check_ros2_launch, pkg, distro)
+        out += guarded("params", check_params_files, pkg.root)
+    run = run_consumer(pkg, robot, distro)
+    return out + list(run.findings), run.ran
 
 
 def without_skipped_group_cascade(findings: list[Finding], pkg: ConfigPackage) -> list[Finding]:

@@ -21,7 +21,7 @@ def test_clean_marm_package_exits_0(tmp_path):
     urdf = MARM_URDF.resolve()
     assert result.stdout.splitlines() == [
         f"validated marm_moveit_config (ros1, moveit1 layout) with robot 'marm' from {urdf} "
-        "(marm_setup.yaml); runtime planning skipped",
+        "(marm_setup.yaml); runtime planning skipped; launch files: static rules only (no roslaunch: source ROS 1)",
         "no findings",
     ]
 
@@ -32,7 +32,8 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
     text = runner.invoke(app, args).stdout.splitlines()
     assert text[-2] == (
         f"validated moveit_resources_panda_moveit_config (ros2, moveit2 layout) with robot 'panda' "
-        f"from {good.path / 'config/panda.urdf.xacro'} (config/<robot>.urdf.xacro); planned 4 pose pairs"
+        f"from {good.path / 'config/panda.urdf.xacro'} (config/<robot>.urdf.xacro); planned 4 pose pairs; "
+        "launch files: static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)"
     )
     assert text[-1] == "1 error, 3 warnings"
     doc = json.loads(runner.invoke(app, [*args, "--format", "json", "--no-plan"]).stdout)
@@ -44,6 +45,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         "urdf_origin": "config/<robot>.urdf.xacro",
         "robot": "panda",
         "planned_pairs": None,
+        "launched_by": "static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)",
         "skipped": [],
     }
     assert (doc["errors"], doc["warnings"]) == (1, 2)
@@ -184,9 +186,7 @@ def test_a_package_with_one_pose_per_group_says_why_nothing_was_planned(tmp_path
     assert result.exit_code == 0, result.output
     result = runner.invoke(app, ["validate", str(pkg)])
     assert result.exit_code == 0, result.output
-    assert result.stdout.splitlines()[-2].endswith(
-        "; planned 0 pose pairs (no group has two usable named poses)"
-    )
+    assert "; planned 0 pose pairs (no group has two usable named poses);" in result.stdout.splitlines()[-2]
 
 
 def test_json_is_printed_even_when_the_package_cannot_be_read(tmp_path):

@@ -1,0 +1,227 @@
+"""The user's own ROS in the loop: a package's launch files run by the real launcher, starting
+nothing, in a child process bounded in time (DESIGN §7).
+
+- ROS 2 (a `ros2` package): a Python that imports launch_ros, launch_xml and rclpy (ROS 2
+  sourced) runs `ros2_launch_check.py`: every launch file in that installation's launch
+  frontend, every node's command line and parameter file through rcl. Failures are errors
+  naming the launch file (`ros2.launch`, `ros2.params`, `demo.real-hardware`).
+- ROS 1 (a `ros1` package): `roslaunch --dump-params` on each top-level `launch/*.launch`
+  (`ros1.launch`); a file with an arg that has no value is meant to be included and is left out.
+Which interpreter: $MARM_SETUP_ROS2_PYTHON (ROS 2) and $MARM_SETUP_ROSLAUNCH (ROS 1) when set
+(empty: never), else `python3` / `roslaunch` on PATH when a ROS is sourced ($ROS_DISTRO set).
+Without one, only the static rules run, and the summary says so.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.findings import Finding, error
+
+if TYPE_CHECKING:
+    from marm_setup.robot.model import RobotModel
+    from marm_setup.validate.discovery import ConfigPackage
+
+ROS2_PYTHON_ENV = "MARM_SETUP_ROS2_PYTHON"
+ROSLAUNCH_ENV = "MARM_SETUP_ROSLAUNCH"
+TIMEOUT_ENV = "MARM_SETUP_CONSUMER_TIMEOUT"
+TIMEOUT = 300.0  # [s] for all the launch files of one package
+PROBE = "import launch, launch_ros, launch_xml, rclpy; from importlib.metadata import version; print(version('launch'))"
+MESSAGE_CHARS = 600  # of one launcher message in a finding
+
+
+@dataclass(frozen=True)
+class ConsumerRun:
+    """What the real consumer found, and the summary's words for what ran."""
+
+    findings: tuple[Finding, ...]
+    ran: str
+
+
+def _command(env_name: str, fallback: str) -> str | None:
+    """The executable named by `env_name` (empty: none), else `fallback` on PATH when a ROS is sourced."""
+    given = os.environ.get(env_name)
+    if given is not None:
+        return given or None
+    return shutil.which(fallback) if os.environ.get("ROS_DISTRO") else None
+
+
+def _environment(home: str) -> dict[str, str]:
+    """The child's environment: the user's, with ROS logs and discovery kept local."""
+    return {
+        **os.environ,
+        "ROS_HOME": home,
+        "ROS_LOG_DIR": os.path.join(home, "log"),
+        "ROS_AUTOMATIC_DISCOVERY_RANGE": "OFF",
+        "ROS_LOCALHOST_ONLY": "1",
+    }
+
+
+def _run(argv: list[str], env: dict[str, str], seconds: float) -> subprocess.CompletedProcess | None:
+    """`argv` in its own process group, killed with every child on timeout (None then)."""
+    with subprocess.Popen(
+        argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, start_new_session=True
+    ) as proc:
+        try:
+            out, err = proc.communicate(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, 9)
+            proc.communicate()
+            return None
+    return subprocess.CompletedProcess(argv, proc.returncode, out, err)
+
+
+def ros2_python() -> tuple[str, str] | None:
+    """(interpreter, launch version) of a ROS 2 installation, or None."""
+    python = _command(ROS2_PYTHON_ENV, "python3")
+    if python is None:
+        return None
+    try:
+        probe = subprocess.run([python, "-c", PROBE], capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    return (python, probe.stdout.strip()) if probe.returncode == 0 else None
+
+
+def run_consumer(pkg: ConfigPackage, robot: RobotModel | None, distro: str | None) -> ConsumerRun:
+    """The real consumer for the package's target, when the user has it."""
+    seconds = float(os.environ.get(TIMEOUT_ENV, TIMEOUT))
+    if pkg.target == "ros2":
+        found = ros2_python()
+        if found is None:
+            return ConsumerRun((), "static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)")
+        return run_ros2(pkg, robot, distro, found, seconds)
+    roslaunch = _command(ROSLAUNCH_ENV, "roslaunch")
+    if roslaunch is None:
+        return ConsumerRun((), "static rules only (no roslaunch: source ROS 1)")
+    return run_ros1(pkg, roslaunch, seconds)
+
+
+def _packages(pkg: ConfigPackage, robot: RobotModel | None) -> dict[str, str]:
+    """Packages the launch files may name: every package.xml package on the package paths and
+    every package the robot description used."""
+    from marm_setup.robot.ros_packages import find_packages
+
+    found = find_packages(pkg.package_paths)
+    out = {name: str(found[name]) for name in found}
+    for name, path, _ in robot.packages if robot is not None else ():
+        out.setdefault(name, path)
+    out.pop(pkg.name, None)
+    return out
+
+
+def run_ros2(
+    pkg: ConfigPackage, robot: RobotModel | None, distro: str | None, found: tuple[str, str], seconds: float
+) -> ConsumerRun:
+    python, version = found
+    launch_files = [
+        rel for rel in pkg.launch_files if rel.endswith((".launch.xml", ".launch.py", ".launch.yaml"))
+    ]
+    script = Path(__file__).with_name("ros2_launch_check.py")
+    with tempfile.TemporaryDirectory(prefix="marm_ros2_") as home:
+        out = os.path.join(home, "report.json")
+        argv = [python, str(script), str(pkg.root), "--out", out]
+        argv += [f"--package={n}={p}" for n, p in sorted(_packages(pkg, robot).items())]
+        argv += [f"--launch={rel}" for rel in launch_files]
+        done = _run(argv, _environment(home), seconds)
+        ran = f"ROS 2 launch {version} and rcl ({python}), and the static rules"
+        if done is None:
+            return ConsumerRun((_stopped(pkg, seconds),), ran)
+        if done.returncode != 0 or not os.path.isfile(out):
+            tail = " ".join(done.stderr.strip().splitlines()[-1:]) or f"exit {done.returncode}"
+            msg = f"the ROS 2 check could not run ({tail}): the static rules ran"
+            return ConsumerRun((error("ros2.consumer", "launch", "", msg[:MESSAGE_CHARS]),), ran)
+        with open(out, encoding="utf-8") as f:
+            report = json.load(f)
+    return ConsumerRun(tuple(ros2_findings(report, distro)), ran)
+
+
+def _stopped(pkg: ConfigPackage, seconds: float) -> Finding:
+    msg = f"the launch files did not finish within {seconds:g} s in the real launcher (set {TIMEOUT_ENV})"
+    return error("consumer.timeout", "launch", "", msg)
+
+
+def ros2_findings(report: dict, distro: str | None) -> list[Finding]:
+    """Findings from ros2_launch_check.py's report."""
+    from marm_setup.robot.ros2_control import ANY_MOCK, MOCK_PLUGINS
+
+    out = []
+    mocks = MOCK_PLUGINS.get(distro or "", ANY_MOCK)
+    for rel, entry in sorted(report.get("launch", {}).items()):
+        for message in entry.get("errors", []) if entry.get("code") else []:
+            text = " ".join(message.split())[:MESSAGE_CHARS]
+            out.append(error("ros2.launch", rel, "launch", f"the ROS 2 launcher fails: {text}"))
+        hardware: set[tuple[str, str]] = set()
+        for node in entry.get("nodes", []):
+            if node.get("error"):
+                msg = f"rcl refuses the parameters of {node['package']}/{node['executable']}: {node['error']}"
+                out.append(error("ros2.params", rel, f"node[{node['name']}]", msg[:MESSAGE_CHARS]))
+            if Path(rel).name.startswith("demo") and node.get("executable") in (
+                "robot_state_publisher",
+                "ros2_control_node",
+            ):
+                hardware |= {(s, p) for s, p in node.get("ros2_control", {}).items() if p not in mocks}
+        for system, plugin in sorted(hardware):
+            msg = f"run by the real launcher, the demo starts ros2_control system '{system}' on '{plugin}', not mock hardware"
+            out.append(error("demo.real-hardware", rel, f"ros2_control[{system}]", msg))
+    for rel, errors in sorted(report.get("params", {}).items()):
+        for message in errors:
+            key, _, text = message.partition(": ")
+            out.append(
+                error("ros2.params", rel, key, f"rcl refuses this parameter file: {text}"[:MESSAGE_CHARS])
+            )
+    return out
+
+
+def run_ros1(pkg: ConfigPackage, roslaunch: str, seconds: float) -> ConsumerRun:
+    """`roslaunch --dump-params` on each top-level launch file that needs no arg."""
+    ran = f"roslaunch --dump-params ({roslaunch}), and the static rules"
+    out = []
+    with tempfile.TemporaryDirectory(prefix="marm_ros1_") as home:
+        roots = [str(pkg.root), *(str(p) for p in pkg.package_paths), os.environ.get("ROS_PACKAGE_PATH", "")]
+        env = {**_environment(home), "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r)}
+        for rel in pkg.launch_files:
+            if not rel.endswith(".launch") or _needs_args(pkg.path(rel)):
+                continue
+            done = _run([roslaunch, "--dump-params", str(pkg.path(rel))], env, seconds)
+            if done is None:
+                out.append(_stopped(pkg, seconds))
+                continue
+            problem = _dump_problem(done)
+            if problem:
+                out.append(error("ros1.launch", rel, "launch", f"roslaunch fails: {problem}"[:MESSAGE_CHARS]))
+    return ConsumerRun(tuple(out), ran)
+
+
+def _needs_args(path: Path) -> bool:
+    """The file declares an arg with neither default nor value: it is meant to be included."""
+    from lxml import etree
+
+    try:
+        root = etree.parse(str(path)).getroot()
+    except (OSError, etree.XMLSyntaxError):
+        return False
+    return any(a.get("default") is None and a.get("value") is None for a in root.findall("arg"))
+
+
+def _dump_problem(done: subprocess.CompletedProcess) -> str:
+    """Why a --dump-params run failed ('' when it printed a parameter tree)."""
+    import yaml
+
+    if done.returncode == 0:  # a parameter tree: every key a global name (roslaunch prints
+        try:  # some failures to stdout and exits 0, e.g. "Unable to load file ...")
+            tree = yaml.safe_load(done.stdout)
+            if isinstance(tree, dict) and all(str(key).startswith("/") for key in tree):
+                return ""
+        except yaml.YAMLError:
+            pass
+    noise = ("ROS path [", "The traceback for the exception", "... logging to", "Checking log directory")
+    lines = [line.strip() for line in (done.stderr + "\n" + done.stdout).splitlines() if line.strip()]
+    return " ".join([line for line in lines if not line.startswith(noise)][:3]) or f"exit {done.returncode}"
