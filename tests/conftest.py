@@ -43,7 +43,15 @@ _GOLDENS_READ: set[str] = set()
 
 
 def pytest_terminal_summary(terminalreporter):
-    """Report (never delete) golden files that no test of this run read."""
+    """Report golden files no test read (never deleted) and the ROS 2 consumer harness's figures."""
+    from tests.ros2_harness import RUNS
+
+    if RUNS:
+        total = sum(seconds for _, seconds in RUNS)
+        terminalreporter.write_line(
+            f"ros2-consumer harness: {len(RUNS)} runs on {len({name for name, _ in RUNS})} packages, "
+            f"{total:.1f} s (median {sorted(s for _, s in RUNS)[len(RUNS) // 2]:.2f} s per run)"
+        )
     if not _GOLDENS_READ:
         return
     on_disk = {p.relative_to(GOLDENS).as_posix() for p in GOLDENS.rglob("*") if p.is_file()}

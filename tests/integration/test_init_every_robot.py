@@ -13,56 +13,16 @@ import yaml
 from typer.testing import CliRunner
 
 from marm_setup.cli.app import app
-from tests.conftest import FIXTURES, realworld, realworld2
+from tests.generated_packages import SHARED, SYNTHETIC
 
 runner = CliRunner()
 
-# name: (URDF under ../shared, package path roots, xacro args)
-SHARED = {
-    "panda_ros1": ("realworld/ros1/panda_description/urdf/panda_arm_hand.urdf.xacro", ["realworld/ros1"], []),
-    "panda_ros2": ("realworld/ros2/panda_description/urdf/panda.urdf", ["realworld/ros2"], []),
-    "pr2": ("realworld/ros1/pr2_description/urdf/robot.xml", ["realworld/ros1"], []),
-    "ur5e": ("realworld2/universal_robot/ur_description/urdf/ur5e.xacro", ["realworld2/universal_robot"], []),
-    "fanuc_cr7ia": ("realworld2/fanuc/fanuc_cr7ia_support/urdf/cr7ia.xacro", ["realworld2/fanuc"], []),
-    "motoman_sda10f": (
-        "realworld2/motoman/motoman_sda10f_support/urdf/sda10f.xacro",
-        ["realworld2/motoman"],
-        [],
-    ),
-    "kinova_j2n6s300": (
-        "realworld2/kinova-ros/kinova_description/urdf/j2n6s300_standalone.xacro",
-        ["realworld2/kinova-ros"],
-        [],
-    ),
-    "dual_panda": (
-        "realworld2/moveit_resources_master/panda_description/urdf/dual_panda.urdf.xacro",
-        ["realworld2/moveit_resources_master"],
-        [],
-    ),
-    "kinova_gen3_robotiq": (
-        "realworld2/ros2_kortex/kortex_description/robots/gen3.xacro",
-        ["realworld2/ros2_kortex", "realworld2/ros2_robotiq_gripper"],
-        ["gripper:=robotiq_2f_85", "dof:=6"],
-    ),
-}
-SYNTHETIC = sorted(p.stem for p in (FIXTURES / "synthetic").glob("*.urdf"))
 
-
-def _shared(rel: str):
-    kind, _, rest = rel.partition("/")
-    return realworld(*rest.split("/")) if kind == "realworld" else realworld2(*rest.split("/"))
-
-
-def _init_and_validate(tmp_path, urdf, roots, xacro_args) -> tuple[dict, dict]:
-    out = tmp_path / "pkg"
-    paths = [a for root in roots for a in ("--package-path", str(root))]
-    args = [a for x in xacro_args for a in ("--xacro-arg", x)]
-    made = runner.invoke(
-        app, ["init", str(urdf), "--out", str(out), "--trials", "300", "--jobs", "1", *paths, *args]
-    )
-    assert made.exit_code == 0, made.output
-    checked = runner.invoke(app, ["validate", str(out), "--format", "json", *paths])
-    return yaml.safe_load((out / "marm_setup.yaml").read_text()), json.loads(checked.stdout)
+def _validate(generated) -> tuple[dict, dict]:
+    """The package `init` wrote (once per session: tests/generated_packages.py) and validate's report."""
+    paths = [a for root in generated.roots for a in ("--package-path", str(root))]
+    checked = runner.invoke(app, ["validate", str(generated.out), "--format", "json", *paths])
+    return yaml.safe_load((generated.out / "marm_setup.yaml").read_text()), json.loads(checked.stdout)
 
 
 def _check(setup: dict, report: dict) -> None:
@@ -82,11 +42,10 @@ def _check(setup: dict, report: dict) -> None:
 
 
 @pytest.mark.parametrize("name", list(SHARED))
-def test_init_on_a_real_robot_validates_and_plans(tmp_path, name):
-    urdf, roots, xacro_args = SHARED[name]
-    _check(*_init_and_validate(tmp_path, _shared(urdf), [_shared(r) for r in roots], xacro_args))
+def test_init_on_a_real_robot_validates_and_plans(ros2_packages, name):
+    _check(*_validate(ros2_packages.get(f"shared:{name}", "humble")))
 
 
 @pytest.mark.parametrize("name", SYNTHETIC)
-def test_init_on_a_synthetic_robot_validates_and_plans(tmp_path, name):
-    _check(*_init_and_validate(tmp_path, FIXTURES / "synthetic" / f"{name}.urdf", [], []))
+def test_init_on_a_synthetic_robot_validates_and_plans(ros2_packages, name):
+    _check(*_validate(ros2_packages.get(f"synthetic:{name}", "humble")))
