@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, error, warning
 
 if TYPE_CHECKING:
     from marm_setup.robot.model import RobotModel
@@ -35,6 +35,7 @@ TIMEOUT_ENV = "MARM_SETUP_CONSUMER_TIMEOUT"
 TIMEOUT = 300.0  # [s] for all the launch files of one package
 PROBE = "import launch, launch_ros, launch_xml, rclpy; from importlib.metadata import version; print(version('launch'))"
 MESSAGE_CHARS = 600  # of one launcher message in a finding
+MISSING_MODULE = "No module named"
 
 
 @dataclass(frozen=True)
@@ -121,9 +122,7 @@ def run_ros2(
     pkg: ConfigPackage, robot: RobotModel | None, distro: str | None, found: tuple[str, str], seconds: float
 ) -> ConsumerRun:
     python, version = found
-    launch_files = [
-        rel for rel in pkg.launch_files if rel.endswith((".launch.xml", ".launch.py", ".launch.yaml"))
-    ]
+    launch_files = ros2_launch_files(pkg)
     script = Path(__file__).with_name("ros2_launch_check.py")
     with tempfile.TemporaryDirectory(prefix="marm_ros2_") as home:
         out = os.path.join(home, "report.json")
@@ -143,6 +142,13 @@ def run_ros2(
     return ConsumerRun(tuple(ros2_findings(report, distro)), ran)
 
 
+def ros2_launch_files(pkg: ConfigPackage) -> list[str]:
+    """The package's ROS 2 launch files: XML (as discovery lists them), Python and YAML."""
+    xml = [rel for rel in pkg.launch_files if rel.endswith(".launch.xml")]
+    others = [p.relative_to(pkg.root).as_posix() for p in sorted((pkg.root / "launch").glob("*.launch.*"))]
+    return sorted({*xml, *(rel for rel in others if rel.endswith((".launch.py", ".launch.yaml")))})
+
+
 def _stopped(pkg: ConfigPackage, seconds: float) -> Finding:
     msg = f"the launch files did not finish within {seconds:g} s in the real launcher (set {TIMEOUT_ENV})"
     return error("consumer.timeout", "launch", "", msg)
@@ -157,7 +163,12 @@ def ros2_findings(report: dict, distro: str | None) -> list[Finding]:
     for rel, entry in sorted(report.get("launch", {}).items()):
         for message in entry.get("errors", []) if entry.get("code") else []:
             text = " ".join(message.split())[:MESSAGE_CHARS]
-            out.append(error("ros2.launch", rel, "launch", f"the ROS 2 launcher fails: {text}"))
+            if MISSING_MODULE in text:  # a Python launch file importing what this ROS lacks
+                msg = f"could not be run here (this ROS installation lacks a module it imports): {text}"
+                hint = "install it, or source the ROS that has it"
+                out.append(warning("ros2.launch-unrun", rel, "launch", msg, hint))
+            else:
+                out.append(error("ros2.launch", rel, "launch", f"the ROS 2 launcher fails: {text}"))
         hardware: set[tuple[str, str]] = set()
         for node in entry.get("nodes", []):
             if node.get("error"):

@@ -115,3 +115,12 @@ def test_a_launch_file_with_an_arg_without_value_is_an_include(tmp_path):
 )
 def test_a_dump_that_prints_no_parameter_tree_failed(code, stdout, stderr, problem):
     assert _dump_problem(subprocess.CompletedProcess([], code, stdout, stderr)) == problem
+
+
+def test_a_python_launch_file_needing_a_module_this_ros_lacks_is_a_warning():
+    """MoveIt Setup Assistant launch files import moveit_configs_utils: without MoveIt installed
+    the launcher cannot run them, which says nothing about the package."""
+    message = "Caught exception in launch: ModuleNotFoundError: No module named 'moveit_configs_utils'"
+    report = {"launch": {"launch/demo.launch.py": {"code": 1, "errors": [message], "nodes": []}}}
+    (finding,) = ros2_findings(report, "humble")
+    assert (finding.rule, finding.severity) == ("ros2.launch-unrun", "warning")
