@@ -31,6 +31,20 @@ class VendorDescription:
     switch: str | None = None
 
 
+def _described(
+    name: str,
+    urdf: Path,
+    root: Path,
+    real: frozenset[str],
+    switch: str | None = None,
+    args: tuple[str, ...] = (),
+    modes: dict[str, str] | None = None,
+) -> VendorDescription:
+    """A style's description: the same mode on both distros unless `modes` says otherwise."""
+    mode = "switch" if switch else "replace"
+    return VendorDescription(name, urdf, root, args, modes or {"humble": mode, "jazzy": mode}, real, switch)
+
+
 def _joints_xml(joints: list[str], fake_mimic: bool = False) -> str:
     out = []
     for joint in joints:
@@ -103,14 +117,14 @@ def franka_style(root: Path) -> VendorDescription:
         "gazebo": "false",
     }
     folder = _package(root, "franka_style", {"robots/fr3.urdf.xacro": _top("fr3", args, system, instance)})
-    return VendorDescription(
+    return _described(
         "franka_style",
         folder / "robots" / "fr3.urdf.xacro",
         root,
-        ("ros2_control:=true",),
-        {"humble": "switch", "jazzy": "replace"},
         frozenset({"franka_hardware/FrankaHardwareInterface"}),
-        "use_fake_hardware",
+        args=("ros2_control:=true",),
+        switch="use_fake_hardware",
+        modes={"humble": "switch", "jazzy": "replace"},
     )
 
 
@@ -154,14 +168,12 @@ def robotis_style(root: Path) -> VendorDescription:
         "ros2_control/omx.ros2_control.xacro": macro,
     }
     folder = _package(root, "robotis_style", files)
-    return VendorDescription(
+    return _described(
         "robotis_style",
         folder / "urdf" / "omx.urdf.xacro",
         root,
-        (),
-        {"humble": "switch", "jazzy": "switch"},
         frozenset({"dynamixel_hardware_interface/DynamixelHardware"}),
-        "use_mock_hardware",
+        switch="use_mock_hardware",
     )
 
 
@@ -187,14 +199,12 @@ def abb_style(root: Path) -> VendorDescription:
     instance = '<xacro:abb_ros2_control name="ABBMultiInterfaceHardware" use_fake_hardware="${use_fake_hardware}" rws_ip="$(arg rws_ip)"/>'
     args = {"use_fake_hardware": "true", "rws_ip": "None"}
     folder = _package(root, "abb_style", {"urdf/irb.xacro": _top("irb", args, system, instance)})
-    return VendorDescription(
+    return _described(
         "abb_style",
         folder / "urdf" / "irb.xacro",
         root,
-        (),
-        {"humble": "switch", "jazzy": "switch"},
         frozenset({"abb_hardware_interface/ABBSystemHardware"}),
-        "use_fake_hardware",
+        switch="use_fake_hardware",
     )
 
 
@@ -232,14 +242,12 @@ def ur_style(root: Path) -> VendorDescription:
         "use_mock_hardware": "false",
     }
     folder = _package(root, "ur_style", {"urdf/ur.urdf.xacro": _top("ur", args, system, "")})
-    return VendorDescription(
+    return _described(
         "ur_style",
         folder / "urdf" / "ur.urdf.xacro",
         root,
-        (),
-        {"humble": "switch", "jazzy": "switch"},
         frozenset({"ur_robot_driver/URPositionHardwareInterface"}),
-        "use_mock_hardware",
+        switch="use_mock_hardware",
     )
 
 
@@ -269,16 +277,14 @@ def kinova_style(root: Path) -> VendorDescription:
     )
     args = {"use_fake_hardware": "false", "fake_sensor_commands": "false", "sim_gazebo": "false"}
     folder = _package(root, "kinova_style", {"robots/gen3.xacro": _top("gen3", args, systems, "")})
-    return VendorDescription(
+    return _described(
         "kinova_style",
         folder / "robots" / "gen3.xacro",
         root,
-        (),
-        {"humble": "switch", "jazzy": "switch"},
         frozenset(
             {"kortex_driver/KortexMultiInterfaceHardware", "robotiq_driver/RobotiqGripperHardwareInterface"}
         ),
-        "use_fake_hardware",
+        switch="use_fake_hardware",
     )
 
 
@@ -295,13 +301,8 @@ def sim_only_style(root: Path) -> VendorDescription:
     folder = _package(
         root, "sim_only_style", {"urdf/arm.urdf.xacro": _top("arm", {"use_sim": "false"}, system, "")}
     )
-    return VendorDescription(
-        "sim_only_style",
-        folder / "urdf" / "arm.urdf.xacro",
-        root,
-        (),
-        {"humble": "replace", "jazzy": "replace"},
-        frozenset({"acme_driver/ArmActuator"}),
+    return _described(
+        "sim_only_style", folder / "urdf" / "arm.urdf.xacro", root, frozenset({"acme_driver/ArmActuator"})
     )
 
 
@@ -310,13 +311,8 @@ def plain_urdf_style(root: Path) -> VendorDescription:
     system = f'<ros2_control name="acme_arm" type="system"><hardware><plugin>acme_driver/ArmSystem</plugin></hardware>{_joints_xml(ARM_JOINTS)}</ros2_control>'
     text = f'<?xml version="1.0"?>\n<robot name="acme">\n  {_robot_body()}\n  {system}\n</robot>\n'
     folder = _package(root, "plain_urdf_style", {"urdf/acme.urdf": text})
-    return VendorDescription(
-        "plain_urdf_style",
-        folder / "urdf" / "acme.urdf",
-        root,
-        (),
-        {"humble": "replace", "jazzy": "replace"},
-        frozenset({"acme_driver/ArmSystem"}),
+    return _described(
+        "plain_urdf_style", folder / "urdf" / "acme.urdf", root, frozenset({"acme_driver/ArmSystem"})
     )
 
 

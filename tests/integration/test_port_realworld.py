@@ -13,6 +13,7 @@ from marm_setup.robot.load import load_robot
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.validate.discovery import discover_package
 from tests.conftest import realworld
+from tests.generated_packages import PORTS, shared_path
 
 runner = CliRunner()
 # The one error the source package has too (validate reports it on both upstream packages): the
@@ -87,36 +88,25 @@ def test_panda_ros1_to_ros2_matches_the_maintainers_port(tmp_path, distro):
     assert all(ours.get(k) == src.get(k) for k in UPSTREAM_EDITS)  # carried from MoveIt 1 as it was
 
 
-# ../shared/realworld2 packages and their --package-path values (its README).
-VENDOR = {
-    "ur5e": ("universal_robot/ur5e_moveit_config", ["universal_robot"]),
-    "fanuc_cr7ia": ("fanuc/moveit_cfgs/fanuc_cr7ia_moveit_config", ["fanuc"]),
-    "motoman_sda10f": ("motoman/motoman_sda10f_moveit_config", ["motoman"]),
-    "kinova_j2n6s300": ("kinova-ros/kinova_moveit/robot_configs/j2n6s300_moveit_config", ["kinova-ros"]),
-    "dual_panda": ("moveit_resources_master/dual_panda_moveit_config", ["moveit_resources_master"]),
-    "kinova_gen3_robotiq": (
-        "ros2_kortex/kortex_moveit_config/kinova_gen3_6dof_robotiq_2f_85_moveit_config",
-        ["ros2_kortex", "ros2_robotiq_gripper"],
-    ),
-}
+# ../shared/realworld2 packages (its README), as the session ports them (tests/generated_packages.py).
+VENDOR = sorted(name for name, (rel, _) in PORTS.items() if rel.startswith("realworld2/"))
 
 
 @pytest.mark.parametrize("target", ["ros2", "ros1"])
-@pytest.mark.parametrize("name", sorted(VENDOR))
+@pytest.mark.parametrize("name", VENDOR)
 def test_vendor_packages_port_with_no_validation_errors(tmp_path, ros2_packages, name, target):
     """Each vendor package ports to both targets and the new package validates (static rules)
     without errors, or each error has a port report line saying why. (The ros2 port is the
     session's, tests/generated_packages.py, which the ROS 2 consumer tests run too.)"""
-    from tests.conftest import realworld2
-
     if target == "ros2":
         port = ros2_packages.get(f"port:{name}", "humble")
         out, stdout, code = port.out, port.output, port.exit_code
     else:
-        rel, paths = VENDOR[name]
-        args = [arg for p in paths for arg in ("--package-path", str(realworld2(p)))]
+        rel, paths = PORTS[name]
+        args = [arg for p in paths for arg in ("--package-path", str(shared_path(p)))]
         out = tmp_path / name
-        cmd = ["init", "--from-package", str(realworld2(rel)), "--out", str(out), "--target", target, "--no-plan"]
+        source = shared_path(rel)
+        cmd = ["init", "--from-package", str(source), "--out", str(out), "--target", target, "--no-plan"]
         result = runner.invoke(app, [*cmd, *args, "--format", "json"])
         assert result.exit_code in (0, 1), result.output
         stdout, code = result.stdout, result.exit_code
