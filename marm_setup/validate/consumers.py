@@ -17,6 +17,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import signal
 import subprocess
 import tempfile
 from dataclasses import dataclass
@@ -73,7 +74,7 @@ def _run(argv: list[str], env: dict[str, str], seconds: float) -> subprocess.Com
         try:
             out, err = proc.communicate(timeout=seconds)
         except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, 9)
+            os.killpg(proc.pid, signal.SIGKILL)  # the launcher and every command it runs
             proc.communicate()
             return None
     return subprocess.CompletedProcess(argv, proc.returncode, out, err)

@@ -3,12 +3,14 @@ becomes findings naming the launch file. The real runs are in tests/integration/
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+import time
 
 import pytest
 
-from marm_setup.validate.consumers import _dump_problem, _needs_args, ros2_findings, ros2_python
+from marm_setup.validate.consumers import _dump_problem, _needs_args, _run, ros2_findings, ros2_python
 from tests.helpers import build_file_tree
 
 REPORT = {
@@ -124,3 +126,16 @@ def test_a_python_launch_file_needing_a_module_this_ros_lacks_is_a_warning():
     report = {"launch": {"launch/demo.launch.py": {"code": 1, "errors": [message], "nodes": []}}}
     (finding,) = ros2_findings(report, "humble")
     assert (finding.rule, finding.severity) == ("ros2.launch-unrun", "warning")
+
+
+def test_a_launcher_that_does_not_finish_is_killed_with_its_children(tmp_path):
+    """The consumer's child runs in its own process group: on timeout every process of it goes
+    (a launcher's $(command) children included)."""
+    pid_file = tmp_path / "child.pid"
+    script = f"sleep 60 & echo $! > {pid_file}; wait"
+    assert _run(["sh", "-c", script], dict(os.environ), 1.0) is None
+    child = int(pid_file.read_text())
+    with pytest.raises(ProcessLookupError):
+        for _ in range(50):  # reaped by init shortly after the kill
+            os.kill(child, 0)
+            time.sleep(0.1)
