@@ -12,8 +12,15 @@ import pytest
 
 from marm_setup.robot.ros2_control import MOCK_PLUGINS
 from tests.generated_packages import KEYS
-from tests.ros2_harness import DISTROS, check_package, node_processes, ros2_control_of
+from tests.ros2_harness import DISTROS, check_package, harness_python, node_processes, ros2_control_of
 from tests.vendor_descriptions import NAMES as VENDOR_STYLES
+
+
+@pytest.fixture(autouse=True)
+def harness():
+    """Skip before generating anything where ../shared (the harness) is absent."""
+    harness_python("humble")
+
 
 LAUNCH_FILES = {"launch/demo.launch.xml", "launch/move_group.launch.xml"}
 DEMO = "launch/demo.launch.xml"
