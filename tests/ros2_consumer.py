@@ -16,12 +16,9 @@ import subprocess
 from collections.abc import Iterator
 from pathlib import Path
 
-import pytest
+from tests.ros2_harness import HARNESS, harness_python
 
-from tests.conftest import ROOT
-
-CONSUMER = ROOT.parent / "shared" / "ros2-consumer"
-VENVS = Path.home() / ".cache" / "ros2-consumer"
+CONSUMER = HARNESS
 
 # Asks rcl, through the harness's own function, for the parameters a node started with this
 # argv gets: argv[1] is the JSON command line, argv[2] the node's name.
@@ -35,11 +32,8 @@ print(json.dumps({{"node": full, "error": error, "params": params}}))
 
 
 def consumer_python(distro: str) -> Path:
-    """The harness venv's python for `distro`, skipping the test when it is absent."""
-    python = VENVS / distro / "bin" / "python"
-    if not (CONSUMER / "check_ros2_pkg.py").is_file() or not python.is_file():
-        pytest.skip(f"ROS 2 consumer harness for {distro} not present ({CONSUMER}, {python})")
-    return python
+    """The harness venv's python for `distro` (tests/ros2_harness.py: skips without ../shared)."""
+    return harness_python(distro)
 
 
 @contextlib.contextmanager

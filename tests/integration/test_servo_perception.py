@@ -22,10 +22,6 @@ from tests.ros2_consumer import harness_report, launched, node_values
 CAMERA = "{name: wrist_camera, type: pointcloud, topic: /wrist_camera/depth/points}"
 TOPIC = "/wrist_camera/depth/points"
 POINTCLOUD = "occupancy_map_monitor/PointCloudOctomapUpdater"
-# The one harness error our packages have before issue 21: xacro's warning about the marm
-# description's own `pi` on stderr fails `$(command 'xacro ...')` (launch's default on_stderr);
-# the harness then re-runs leniently and reports every process.
-XACRO_STDERR = "executed command showed stderr output"
 
 
 def write_marm(tmp_path: Path, target: str, distro: str, extra: str = "") -> Path:
@@ -38,16 +34,6 @@ def write_marm(tmp_path: Path, target: str, distro: str, extra: str = "") -> Pat
     model = build_setup(InitRequest(urdf=MARM_URDF, out=out, spec=spec), robot)
     apply_writes(plan_writes(render_package(model, robot), out), out)
     return out
-
-
-def real_errors(report: dict) -> list[str]:
-    """The report's errors apart from the xacro-stderr one (with its launch's bare exit code)."""
-    failed = {e.split(":")[0] for e in report["errors"] if XACRO_STDERR in e}
-    return [
-        e
-        for e in report["errors"]
-        if XACRO_STDERR not in e and not (e.split(":")[0] in failed and e.endswith("launch returned 1"))
-    ]
 
 
 @needs_roslaunch
@@ -86,7 +72,7 @@ SERVO_INTEGERS = {
 def test_ros2_servo_node_and_move_group_sensor(tmp_path, distro):
     pkg = write_marm(tmp_path, "ros2", distro)
     with harness_report(pkg, distro, [FIXTURES / "marm"]) as report:
-        assert real_errors(report) == []
+        assert report["errors"] == []
         servo = node_values(
             launched(
                 report, "launch/servo.launch.xml", "servo_node_main" if distro == "humble" else "servo_node"
@@ -124,7 +110,7 @@ def test_ros2_forward_position_controller_is_loaded_inactive(tmp_path):
     extra = "servo:\n- {group: arm, command_out: position}\n"
     pkg = write_marm(tmp_path, "ros2", "jazzy", extra)
     with harness_report(pkg, "jazzy", [FIXTURES / "marm"]) as report:
-        assert real_errors(report) == []
+        assert report["errors"] == []
         servo = node_values(launched(report, "launch/servo.launch.xml", "servo_node"), "jazzy")
         spawners = [
             p["cmd"]
