@@ -165,7 +165,8 @@ def run_launch(path: str) -> tuple[int, list[str], list]:
         self.prepare(context)
         started.append(self)
 
-    def keep(entry: logging.LogRecord) -> bool:  # a filter on launch's screen handler: every record passes, errors are kept
+    def keep(entry: logging.LogRecord) -> bool:
+        """A filter on launch's screen handler: every record passes, errors are kept."""
         if entry.levelno >= logging.ERROR:
             messages.append(entry.getMessage())
         return True
