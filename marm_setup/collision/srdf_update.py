@@ -16,6 +16,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from marm_setup import bounded_read
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
 from marm_setup.robot.load import xml_syntax_message
@@ -173,7 +174,7 @@ def _indent_at(text: str, offset: int) -> str:
 def load_srdf_text(path: Path, *, shown: str) -> str:
     """The SRDF at `path` as text (UTF-8, line endings untouched)."""
     try:
-        return path.read_bytes().decode("utf-8")
+        return bounded_read.read_text(path, bounded_read.XML_BYTES, shown=shown)
     except FileNotFoundError:
         raise InputError("file not found", path=shown) from None
     except IsADirectoryError:

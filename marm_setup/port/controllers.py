@@ -8,8 +8,10 @@ import dataclasses
 import math
 from typing import Any
 
+from marm_setup.bounded_read import YAML_BYTES, FileTooLarge, read_text
 from marm_setup.port.report import PortLog, where
 from marm_setup.robot.model import RobotModel
+from marm_setup.safe_yaml import load_yaml
 from marm_setup.setup.domain import (
     DRIVER_ACTION_NS,
     DRIVER_CONTROLLERS,
@@ -89,8 +91,8 @@ def _report_manager_settings(pkg: ConfigPackage, section: ConfigSection, log: Po
     import yaml
 
     try:
-        raw = yaml.safe_load(pkg.path(section.file).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        raw = load_yaml(read_text(pkg.path(section.file), YAML_BYTES))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError, FileTooLarge):
         return
     if (
         not isinstance(raw, dict)

@@ -9,7 +9,9 @@ import re
 from pathlib import Path
 from typing import Any
 
+from marm_setup.bounded_read import XML_BYTES, YAML_BYTES, FileTooLarge, read_bytes, read_text
 from marm_setup.port.report import PortLog, where
+from marm_setup.safe_yaml import load_yaml
 from marm_setup.setup.model import Author, RobotSource
 from marm_setup.validate.discovery import ConfigPackage
 
@@ -70,8 +72,8 @@ def _setup_assistant_config(pkg: ConfigPackage) -> dict:
 
     file = pkg.root / ".setup_assistant"
     try:
-        data = yaml.safe_load(file.read_text(encoding="utf-8")) if file.is_file() else None
-    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        data = load_yaml(read_text(file, YAML_BYTES)) if file.is_file() else None
+    except (OSError, UnicodeDecodeError, yaml.YAMLError, FileTooLarge):
         return {}
     config = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
     entry = config.get("CONFIG", config.get("config")) if isinstance(config, dict) else None
@@ -84,8 +86,8 @@ def _package_xml(pkg: ConfigPackage) -> Any:
     if pkg.package_xml is None:
         return None
     try:
-        return etree.parse(str(pkg.path(pkg.package_xml))).getroot()
-    except (OSError, etree.XMLSyntaxError):
+        return etree.fromstring(read_bytes(pkg.path(pkg.package_xml), XML_BYTES))
+    except (OSError, etree.XMLSyntaxError, FileTooLarge):
         return None
 
 

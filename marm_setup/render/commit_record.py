@@ -11,6 +11,8 @@ import re
 import stat
 from pathlib import Path, PurePosixPath
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError
 from marm_setup.render.safe_fs import mount_points_below, mount_table, relative_path_problem, unsafe_path
 
@@ -73,8 +75,8 @@ def _parse_record(commit: Path) -> tuple[dict, Problem | None]:
     if not stat.S_ISREG(os.lstat(commit).st_mode):
         return {}, (None, "not a regular file")
     try:
-        record = json.loads(commit.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
+        record = json.loads(bounded_read.read_text(commit, bounded_read.JSON_BYTES))
+    except (OSError, ValueError, FileTooLarge) as exc:
         return {}, (None, f"unreadable ({exc})")
     if not isinstance(record, dict) or not isinstance(record.get("stage"), str):
         return {}, ("stage", "missing or not a string")

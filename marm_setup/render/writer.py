@@ -18,6 +18,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import ConflictError, InputError
 from marm_setup.render.commit_record import COMMIT, pending_files
 from marm_setup.render.safe_fs import relative_path_problem
@@ -80,8 +82,8 @@ def load_manifest(out_dir: Path) -> dict[str, str]:
 def _read_manifest(path: Path) -> dict[str, str]:
     """The manifest file at `path` as {relative path: sha256} ({} when none or unreadable)."""
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        data = json.loads(bounded_read.read_text(path, bounded_read.JSON_BYTES))
+    except (OSError, ValueError, FileTooLarge):
         return {}
     files = data.get("files") if isinstance(data, dict) else None
     if not isinstance(files, dict):
@@ -97,7 +99,10 @@ def _manifest_text(files: dict[str, str]) -> str:
 def _status(path: Path, new: bytes, recorded: str | None) -> Status:
     if not path.is_file():
         return "new"
-    old = path.read_bytes()
+    try:
+        old = bounded_read.read_bytes(path, bounded_read.XML_BYTES)
+    except FileTooLarge:  # larger than anything we render: not ours as we wrote it
+        return "conflict"
     if old == new:
         return "identical"
     return "update" if recorded is not None and sha256(old) == recorded else "conflict"

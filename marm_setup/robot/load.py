@@ -11,6 +11,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from marm_setup import bounded_read
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
 from marm_setup.robot.ros2_control import systems_in_urdf
@@ -65,9 +66,10 @@ def load_robot(
 
 
 def read_text(file: Path, *, shown: str) -> str:
-    """The UTF-8 text of `file`; unreadable or non-UTF-8 content is an InputError."""
+    """The UTF-8 text of `file` (at most XML_BYTES); unreadable, too large or non-UTF-8 content
+    is an InputError."""
     try:
-        return file.read_text(encoding="utf-8")
+        return bounded_read.read_text(file, bounded_read.XML_BYTES, shown=shown)
     except UnicodeDecodeError as exc:
         raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
     except OSError as exc:

@@ -10,6 +10,7 @@ URDF element that uses it.
 
 from __future__ import annotations
 
+import io
 import math
 import re
 from dataclasses import dataclass
@@ -18,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError, MeshNotFound
 from marm_setup.robot.model import Vec3
 
@@ -71,16 +74,37 @@ def _check_units(units: str) -> None:
         raise _MeshReadError(f"bad unit meter='{units}': must be a positive length in metres")
 
 
+MAX_TRIANGLES = 1_000_000  # a collision mesh of more costs over 1 GB and 10 s to build; simplify it
+
+
 def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    try:
+        data = bounded_read.read_bytes(path, bounded_read.MESH_BYTES)
+    except FileTooLarge as exc:
+        raise _MeshReadError(exc.message) from None
+    except OSError as exc:
+        raise _MeshReadError(exc.strerror or str(exc)) from None
     if path.suffix.lower() == ".stl":
-        return _read_stl(path.read_bytes())
+        return _read_stl(data)
+    vertices, faces = _read_with_trimesh(data, path)
+    _check_triangles(len(faces))
+    return vertices, faces
+
+
+def _read_with_trimesh(data: bytes, path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """DAE, OBJ, PLY, ... through trimesh, from the bytes already read (files the mesh names,
+    such as an OBJ's materials, are looked up next to it)."""
     import trimesh
 
     try:
-        mesh = trimesh.load(str(path), force="mesh", process=False)
+        resolver = trimesh.resolvers.FilePathResolver(str(path))
+        kind = path.suffix.lower().lstrip(".")
+        mesh = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh", process=False, resolver=resolver)
         if isinstance(mesh, trimesh.Trimesh) and mesh.units is not None:  # Collada <unit>; never guessed
             _check_units(mesh.units)
             mesh.convert_units("meters")
+    except _MeshReadError:
+        raise
     except Exception as exc:  # trimesh raises many types for unreadable files
         raise _MeshReadError(" ".join(str(exc).split()) or type(exc).__name__) from None
     if not isinstance(mesh, trimesh.Trimesh):
@@ -92,17 +116,39 @@ def _read(path: Path) -> tuple[np.ndarray, np.ndarray]:
     return vertices.copy(), faces.copy()
 
 
+def _check_triangles(count: int) -> None:
+    if count > MAX_TRIANGLES:
+        raise _MeshReadError(
+            f"{count:,} triangles, more than the {MAX_TRIANGLES:,} a collision mesh may have "
+            "(simplify it, e.g. to its convex hull)"
+        )
+
+
 def _read_stl(data: bytes) -> tuple[np.ndarray, np.ndarray]:
-    """Binary STL when its size matches the triangle count in its header, else ASCII."""
-    if len(data) >= 84:
-        count = int(np.frombuffer(data, dtype="<u4", count=1, offset=80)[0])
-        if count and len(data) == 84 + 50 * count:
-            rows = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
-            return _soup(rows["corners"].reshape(-1, 3).astype(float))
+    """Binary STL when its size is the one its header's triangle count gives, else ASCII when it
+    starts with `solid` and its first 500 bytes are ASCII, else neither: assimp's rule, which
+    MoveIt loads meshes with (code/AssetLib/STL/STLLoader.cpp, IsBinarySTL and IsAsciiSTL)."""
+    count = int(np.frombuffer(data, dtype="<u4", count=1, offset=80)[0]) if len(data) >= 84 else None
+    if count is not None and len(data) == 84 + 50 * count:
+        _check_triangles(count)
+        if not count:
+            raise _MeshReadError("no triangles")
+        rows = np.frombuffer(data, dtype=_STL_RECORD, count=count, offset=84)
+        return _soup(rows["corners"].reshape(-1, 3).astype(float))
+    head = data.lstrip()[:500]
+    if head[:5].lower() != b"solid" or max(head, default=0) > 127:
+        said = "" if count is None else f" (its header counts {count:,} triangles: {84 + 50 * count:,} bytes)"
+        raise _MeshReadError(
+            f"neither ASCII STL (no 'solid' at the start) nor binary STL{said}: the file has {len(data):,} bytes"
+        )
+    return _read_ascii_stl(data)
+
+
+def _read_ascii_stl(data: bytes) -> tuple[np.ndarray, np.ndarray]:
+    text = data.lower()
+    _check_triangles(text.count(b"vertex") // 3)
     try:
-        text = data.decode("utf-8", errors="replace").lower()
-        numbers = [m.split() for m in _STL_VERTEX.findall(text)]
-        corners = np.array(numbers, dtype=float).reshape(-1, 3)
+        corners = np.array(_STL_VERTEX.findall(text), dtype=bytes).astype(float).reshape(-1, 3)
     except ValueError as exc:
         raise _MeshReadError(f"bad ASCII STL vertex: {exc}") from None
     if len(corners) == 0 or len(corners) % 3:
@@ -111,7 +157,7 @@ def _read_stl(data: bytes) -> tuple[np.ndarray, np.ndarray]:
 
 
 _STL_RECORD = np.dtype([("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attr", "<u2")])
-_STL_VERTEX = re.compile(r"\bvertex\s+(\S+\s+\S+\s+\S+)")
+_STL_VERTEX = re.compile(rb"\bvertex\s+(\S+)\s+(\S+)\s+(\S+)")
 
 
 def _soup(corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -15,6 +15,8 @@ from pathlib import Path
 
 from lxml import etree
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError, MeshNotFound, PackageNotFound
 
 BY_MANIFEST, BY_FOLDER = "package.xml", "folder name"
@@ -80,8 +82,9 @@ def package_name(folder: Path) -> str | None:
     if not manifest.is_file():
         return None
     try:
-        name = etree.parse(str(manifest)).findtext("name")
-    except (etree.XMLSyntaxError, OSError):
+        data = bounded_read.read_bytes(manifest, bounded_read.XML_BYTES)
+        name = etree.fromstring(data, base_url=str(manifest)).findtext("name")
+    except (etree.XMLSyntaxError, OSError, FileTooLarge):
         return None
     return name.strip() if name else None
 

@@ -23,6 +23,8 @@ from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.robot.ros_packages import PackageMap, find_package
@@ -95,6 +97,8 @@ def run_xacro(file: Path, args: Mapping[str, str], packages: PackageMap, *, show
         ) from None
     except ChildDied as exc:
         raise InputError(f"xacro stopped: {exc}", path=shown, element="xacro") from None
+    except MemoryError:  # the child ran out while sending its answer
+        raise _xacro_error(MemoryError(), shown) from None
 
 
 def check_xacro_args(
@@ -134,11 +138,12 @@ def _run_xacro(file: Path, text: str, args: dict[str, str], packages: PackageMap
     captured = io.StringIO()
     table = _ArgTable(args)
     first_include = len(xacro.all_includes)
-    with _ament_index_stub(packages, shown), contextlib.redirect_stderr(captured):
+    with _ament_index_stub(packages, shown), _size_checked_opens(xacro), contextlib.redirect_stderr(captured):
         try:
             xacro.init_stacks(str(file))
             doc = xacro.parse(text, str(file))
             xacro.process_doc(doc, mappings=table)
+            xml = doc.toxml()
         except InputError:
             raise
         except ExpatError as exc:
@@ -152,9 +157,31 @@ def _run_xacro(file: Path, text: str, args: dict[str, str], packages: PackageMap
             xacro.substitution_args_context["arg"] = {}
     if captured.getvalue().strip():
         log.debug("xacro: %s", captured.getvalue().strip())
+    bounded_read.check_text_size(xml, bounded_read.XML_BYTES, shown=shown, element="xacro output")
     read = [text, *(_file_text(f) for f in xacro.all_includes[first_include:])]
     values = tuple(sorted((str(k), str(v)) for k, v in dict.items(table)))
-    return XacroOutput(doc.toxml(), frozenset(table.asked) | _declared_in(read), values, captured.getvalue())
+    return XacroOutput(xml, frozenset(table.asked) | _declared_in(read), values, captured.getvalue())
+
+
+@contextlib.contextmanager
+def _size_checked_opens(xacro_module: types.ModuleType) -> Iterator[None]:
+    """xacro's own file reads (`<xacro:include>`, `load_yaml`) refuse a file over XML_BYTES
+    before reading it, as every other read does (bounded_read): xacro calls `open` by name, so a
+    module global of that name stands in for the builtin while it runs."""
+
+    def open_checked(name, mode="r", *args, **kwargs):
+        stream = open(name, mode, *args, **kwargs)  # noqa: SIM115 - returned to xacro, which closes it
+        size = os.fstat(stream.fileno()).st_size
+        if size > bounded_read.XML_BYTES and "r" in mode:
+            stream.close()
+            raise bounded_read.too_large(size, bounded_read.XML_BYTES, shown=str(name), element="xacro")
+        return stream
+
+    xacro_module.__dict__["open"] = open_checked
+    try:
+        yield
+    finally:
+        xacro_module.__dict__.pop("open", None)
 
 
 def _declared_in(texts: Iterable[str]) -> frozenset[str]:
@@ -166,18 +193,21 @@ def _declared_in(texts: Iterable[str]) -> frozenset[str]:
 
 def _file_text(name: str) -> str:
     try:
-        return Path(name).read_text(encoding="utf-8", errors="replace")
-    except OSError:
+        return bounded_read.read_bytes(name, bounded_read.XML_BYTES).decode("utf-8", errors="replace")
+    except (OSError, FileTooLarge):
         return ""
 
 
 def _xacro_error(exc: Exception, shown: str) -> InputError:
     if isinstance(exc, MemoryError):
-        return InputError(f"xacro needed more than {XACRO_MEMORY >> 30} GiB of memory", path=shown, element="xacro")
+        message = f"xacro needed more than {bounded_read.format_size(XACRO_MEMORY)} of memory"
+        return InputError(message, path=shown, element="xacro")
     text = " ".join(str(exc).split())
     undefined = re.search(r"Undefined substitution argument (\S+)", text)
     if undefined:
-        return InputError(f"undefined xacro arg '{undefined.group(1)}'", path=shown, element="xacro", needs="--xacro-arg")
+        return InputError(
+            f"undefined xacro arg '{undefined.group(1)}'", path=shown, element="xacro", needs="--xacro-arg"
+        )
     return InputError(text or type(exc).__name__, path=shown, element="xacro")
 
 

@@ -14,6 +14,7 @@ from os import PathLike
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from marm_setup import bounded_read
 from marm_setup.collision.pairs import DisabledPair, DisabledReason, link_pair
 from marm_setup.errors import InputError
 from marm_setup.robot.urdf import strict_float
@@ -95,7 +96,8 @@ def read_srdf(path: str | PathLike, skipped: list[InputError] | None = None) -> 
 
     shown = str(path)
     try:
-        root = etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot()
+        data = bounded_read.read_bytes(path, bounded_read.XML_BYTES, shown=shown)
+        root = etree.fromstring(data, etree.XMLParser(remove_comments=True), base_url=str(path))
     except OSError as exc:
         raise InputError(f"cannot read: {exc}", path=shown) from None
     except etree.XMLSyntaxError as exc:

@@ -15,10 +15,10 @@ import types
 import typing
 from functools import cache
 from os import PathLike
-from pathlib import Path
 
 import yaml
 
+from marm_setup import bounded_read
 from marm_setup.collision.pairs import DisabledPair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
@@ -114,7 +114,7 @@ def load_setup(path: str | PathLike) -> SetupModel:
 def read_yaml_mapping(path: str | PathLike) -> dict:
     shown = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = bounded_read.read_text(path, bounded_read.YAML_BYTES, shown=shown)
     except OSError as exc:
         raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None
     except UnicodeDecodeError as exc:

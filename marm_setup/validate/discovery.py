@@ -47,6 +47,7 @@ from typing import Any
 
 import yaml
 
+from marm_setup.bounded_read import YAML_BYTES, FileTooLarge, read_text
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import package_name
@@ -250,7 +251,7 @@ class _YamlReader:
         if not file.is_file():
             return None
         try:
-            data = load_ros_yaml(self._text(rel, file.read_text(encoding="utf-8")))
+            data = load_ros_yaml(self._text(rel, read_text(file, YAML_BYTES, shown=rel)))
         except yaml.YAMLError as exc:
             mark = getattr(exc, "problem_mark", None)
             where = f"line {mark.line + 1}" if mark is not None else ""
@@ -262,6 +263,9 @@ class _YamlReader:
             return None
         except (OSError, UnicodeDecodeError) as exc:
             self.problems.append(error("yaml.parse", rel, "", f"cannot read: {exc}"))
+            return None
+        except FileTooLarge as exc:
+            self.problems.append(error("yaml.parse", rel, "", f"cannot read: {exc.message}"))
             return None
         return {} if data is None else data
 

@@ -25,6 +25,8 @@ from typing import Any
 
 import yaml
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.safe_yaml import BoundedSafeLoader, load_yaml
 
 SUBST = re.compile(r"\$\((arg|find|env|optenv|dirname|eval|anon)\b\s*([^()]*(?:\([^()]*\)[^()]*)*)\)")
@@ -253,8 +255,9 @@ def _parse(path):
     from lxml import etree
 
     try:
-        return etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot()
-    except (etree.XMLSyntaxError, OSError):
+        data = bounded_read.read_bytes(path, bounded_read.XML_BYTES)
+        return etree.fromstring(data, etree.XMLParser(remove_comments=True), base_url=str(path))
+    except (etree.XMLSyntaxError, OSError, FileTooLarge):
         return None
 
 

@@ -7,9 +7,12 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError, MarmError, remedy
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import package_name
@@ -21,7 +24,10 @@ def detect_target(root: Path, marm: Any) -> str:
     """ros2 for ament packages, ros1 for catkin; falls back on marm_setup.yaml and file names."""
     xml = root / "package.xml"
     if xml.is_file():
-        text = xml.read_text(encoding="utf-8", errors="replace")
+        try:
+            text = bounded_read.read_bytes(xml, bounded_read.XML_BYTES).decode("utf-8", errors="replace")
+        except (OSError, FileTooLarge):
+            text = ""
         if "ament_cmake" in text or "ament_python" in text:
             return "ros2"
         if "catkin" in text:
@@ -82,6 +88,8 @@ def srdf_robot_name(root: Path, rel: str | None) -> str | None:
 
     try:
         with open(root / rel, "rb") as stream:  # closed also when the first element returns
+            if os.fstat(stream.fileno()).st_size > bounded_read.XML_BYTES:
+                return None  # read_srdf_source reports it
             for _event, elem in etree.iterparse(stream, events=("start",)):
                 return elem.get("name") or None
     except (etree.XMLSyntaxError, OSError):
@@ -144,7 +152,7 @@ def _without_skipped_groups(srdf, skipped: list[InputError]):
 def _srdf_text(file: Path, rel: str, paths: tuple[Path, ...], args: dict) -> str:
     if not rel.endswith(".xacro"):
         try:
-            return file.read_text(encoding="utf-8")
+            return bounded_read.read_text(file, bounded_read.XML_BYTES, shown=rel)
         except (OSError, UnicodeDecodeError) as exc:
             raise InputError(f"cannot read: {exc}", path=rel) from None
     from marm_setup.setup.srdf import expand_srdf_xacro
@@ -205,9 +213,11 @@ def setup_assistant_urdf(root: Path, shown: str, paths: tuple[Path, ...]):
     and relative_path), or None when it names none; InputError when the package is not found."""
     import yaml
 
+    from marm_setup.safe_yaml import load_yaml
+
     try:
-        raw = yaml.safe_load((root / ".setup_assistant").read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        raw = load_yaml(bounded_read.read_text(root / ".setup_assistant", bounded_read.YAML_BYTES))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError, FileTooLarge):
         return None
     entry = _sa_entry(raw, "urdf")
     if not (entry.get("package") and entry.get("relative_path")):

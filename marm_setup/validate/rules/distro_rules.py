@@ -26,11 +26,15 @@ Sources (moveit/moveit2 humble and jazzy branches, ros-controls/ros2_control):
 from __future__ import annotations
 
 from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
+from marm_setup.safe_yaml import load_yaml
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 
 if TYPE_CHECKING:
@@ -195,11 +199,19 @@ def check_package_runtime(pkg: ConfigPackage, robot: RobotModel) -> list[Finding
     out += check_expanded_systems(robot)
     if not pkg.urdf.resolve().is_relative_to(pkg.root.resolve()):  # our layout: the user's description
         files = {
-            p.relative_to(pkg.root).as_posix(): p.read_text(encoding="utf-8", errors="replace")
+            p.relative_to(pkg.root).as_posix(): _text_or_empty(p)
             for p in sorted((pkg.root / "config").glob("*.ros2_control.xacro"))
         }
         out += check_ros2_control_systems(files, described_joints(robot))
     return out
+
+
+def _text_or_empty(path: Path) -> str:
+    """A package file's text for a textual check ('' when it cannot be read or is too large)."""
+    try:
+        return bounded_read.read_bytes(path, bounded_read.XML_BYTES).decode("utf-8", errors="replace")
+    except (OSError, FileTooLarge):
+        return ""
 
 
 def check_expanded_systems(robot: RobotModel) -> list[Finding]:
@@ -237,10 +249,9 @@ def _ros2_pipelines(pkg: ConfigPackage) -> tuple[dict, dict | None]:
 
     file = pkg.root / MOVEIT_YAML
     try:
-        params = (
-            move_group_params(yaml.safe_load(file.read_text(encoding="utf-8"))) if file.is_file() else None
-        )
-    except (OSError, yaml.YAMLError):
+        text = bounded_read.read_text(file, bounded_read.YAML_BYTES) if file.is_file() else None
+        params = move_group_params(load_yaml(text)) if text is not None else None
+    except (OSError, ValueError, yaml.YAMLError, FileTooLarge):
         params = None
     if params is None:
         return ({"ompl": pkg.ompl} if pkg.ompl is not None else {}), None

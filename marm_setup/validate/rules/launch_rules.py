@@ -8,6 +8,8 @@ import re
 import shlex
 from pathlib import Path
 
+from marm_setup import bounded_read
+from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
 
 FIND = re.compile(r"\$\((find|find-pkg-share)\s+([^\s)]+)\)|\$\((dirname)\)")
@@ -21,7 +23,8 @@ def parse_launch(path: Path, rel: str):
     from lxml import etree
 
     try:
-        return etree.parse(str(path), etree.XMLParser(remove_comments=True)).getroot(), []
+        data = bounded_read.read_bytes(path, bounded_read.XML_BYTES, shown=rel)
+        return etree.fromstring(data, etree.XMLParser(remove_comments=True), base_url=str(path)), []
     except etree.XMLSyntaxError as exc:
         line = exc.lineno or 0
         from marm_setup.robot.load import xml_syntax_message
@@ -31,6 +34,8 @@ def parse_launch(path: Path, rel: str):
         ]
     except OSError as exc:
         return None, [error("launch.malformed", rel, "", f"cannot read: {exc}")]
+    except FileTooLarge as exc:
+        return None, [error("launch.malformed", rel, "", f"cannot read: {exc.message}")]
 
 
 def check_launch_files(root: Path, package: str, files: tuple[str, ...], target: str) -> list[Finding]:
