@@ -39,15 +39,22 @@ def _link_label(robot: RobotModel, name: str) -> str:
     return f"{name} [{', '.join(describe_geometry(c.geometry) for c in link.collisions)}]"
 
 
+MAX_INDENT = 30  # levels drawn as indentation; deeper joints say their depth instead
+
+
 def format_tree(robot: RobotModel) -> str:
-    """The kinematic tree as indented text, plus a summary line."""
+    """The kinematic tree as indented text, plus a summary line. Indentation stops growing at
+    MAX_INDENT levels (a 20,000-link chain would otherwise print 600 MB of spaces): deeper
+    lines carry their depth, `[depth 31]`."""
     lines = [f"robot {robot.name}", _link_label(robot, robot.root)]
 
-    stack = [(joint, "") for joint in reversed(robot.child_joints_of[robot.root])]
+    stack = [(joint, 0) for joint in reversed(robot.child_joints_of[robot.root])]
     while stack:  # depth first, iterative: a 1,000-link chain is fine
-        joint, indent = stack.pop()
-        lines.append(f"{indent}└─ {describe_joint(joint)} -> {_link_label(robot, joint.child)}")
-        stack.extend((j, indent + "   ") for j in reversed(robot.child_joints_of[joint.child]))
+        joint, depth = stack.pop()
+        mark = f"[depth {depth + 1}] " if depth >= MAX_INDENT else ""
+        indent = "   " * min(depth, MAX_INDENT)
+        lines.append(f"{indent}{mark}└─ {describe_joint(joint)} -> {_link_label(robot, joint.child)}")
+        stack.extend((j, depth + 1) for j in reversed(robot.child_joints_of[joint.child]))
     lines += [f"package {name}: {path} (found by {how})" for name, path, how in robot.packages]
     n_mimic = sum(1 for j in robot.joints if j.mimic is not None)
     lines.append(

@@ -283,18 +283,22 @@ def _check_tree(links: tuple[Link, ...], joints: tuple[Joint, ...], ctx: _Ctx) -
             "several root links: " + ", ".join(roots) if roots else "no root link (the joints form a cycle)"
         )
         raise ctx.error("robot", what)
+    rooted: set[str] = set()  # links whose ancestors end at the root: each walked once
     for link in sorted(parent_of):
-        _check_no_cycle(link, parent_of, ctx)
+        _check_no_cycle(link, parent_of, rooted, ctx)
     return roots[0]
 
 
-def _check_no_cycle(link: str, parent_of: dict[str, str], ctx: _Ctx) -> None:
+def _check_no_cycle(link: str, parent_of: dict[str, str], rooted: set[str], ctx: _Ctx) -> None:
+    """Walk up from `link` to the root or to a link already known to reach it (so a long chain
+    costs linear time, not quadratic), else to a link seen twice: a cycle."""
     seen = {link}
-    while link in parent_of:
+    while link in parent_of and link not in rooted:
         link = parent_of[link]
         if link in seen:
             raise ctx.error(f"link[{link}]", "the joints form a cycle through this link")
         seen.add(link)
+    rooted |= seen
 
 
 def _check_mimics(joints: tuple[Joint, ...], ctx: _Ctx) -> None:

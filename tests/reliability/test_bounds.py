@@ -14,6 +14,7 @@ from marm_setup.robot import xacro_expand
 from tests.conftest import FIXTURES, MARM_URDF
 from tests.helpers import TWO_BOXES, urdf
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
+from tests.reliability.inputs import chain_urdf
 
 SPEC = FIXTURES / "marm" / "marm_setup.yaml"
 TRIALS = ("--trials", "10")
@@ -206,3 +207,16 @@ def test_xacro_out_of_memory_is_one_line(tmp_path, monkeypatch):
     monkeypatch.setattr(xacro_expand, "XACRO_MEMORY", _address_space() + (256 << 20))
     path = _write(tmp_path / "r.urdf.xacro", XACRO_BIG_NAME.format(n=150 << 20))
     assert_one_line_error(run("inspect", path), f"error: {path}: xacro: xacro needed more than")
+
+
+def test_inspect_of_a_20000_link_chain(tmp_path):
+    """600 MB of indentation (O(depth^2)) and 45 s before: the indentation stops at MAX_INDENT
+    levels, deeper lines say their depth, and the cycle check walks each link once."""
+    from marm_setup.robot.describe import MAX_INDENT
+
+    path = _write(tmp_path / "chain.urdf", chain_urdf(20_000, geometry_every=100_000))
+    result = run("inspect", path)
+    assert_clean_exit(result, codes=(0,))
+    lines = result.stdout.splitlines()
+    assert len(lines) == 20_003 and max(map(len, lines)) < 3 * MAX_INDENT + 100
+    assert "[depth 20000] └─ j19999 (revolute [-1, 1] vel 1) -> l20000" in result.stdout
