@@ -29,6 +29,7 @@ from marm_setup.robot.model import Box, CollisionShape, Cylinder, Mesh, RobotMod
 
 Pair = tuple[str, str]
 _EPS = 1e-9
+PAIR_BATCH = 1 << 18  # (state, pair) entries filtered at once: temporaries of tens of MB at most
 HULL_MARGIN = 1e-5  # [m] added to the padding of hull tests (coal's GJK tolerance is 1e-6)
 
 
@@ -111,16 +112,31 @@ class CollisionScene:
         """World poses (N, L, 4, 4) of the geometry links (`self.links` order)."""
         return forward_kinematics(self.robot, q)[:, self._fk_rows]
 
+    def pair_batches(self, states: int, pairs: int) -> list[slice]:
+        """Consecutive slices of `pairs` pairs to filter together over `states` states, so that no
+        batch holds more than PAIR_BATCH (state, pair) entries (a 1000-link chain has 500,500
+        pairs: all at once over a 200-state round took 7 GB)."""
+        step = max(1, PAIR_BATCH // max(states, 1))
+        return [slice(start, start + step) for start in range(0, pairs, step)]
+
     def first_collisions(self, q: np.ndarray, pairs: Sequence[tuple[str, str]]) -> list[Pair | None]:
         """Per configuration, the first pair of `pairs` (in order) in collision, or None."""
         pairs = tuple(pairs)
         ids = self.pair_ids(pairs)
         poses = self.link_poses(q)
-        maybe = self.maybe_colliding(poses, ids)
-        out: list[Pair | None] = []
-        for n in range(len(poses)):
-            hit = next((k for k in np.flatnonzero(maybe[n]) if self.collide(poses[n], ids[k])), None)
-            out.append(None if hit is None else link_pair(*pairs[hit]))
+        centers = self.link_centers(poses)
+        out: list[Pair | None] = [None] * len(poses)
+        open_rows = list(range(len(poses)))
+        for part in self.pair_batches(len(poses), len(ids)):
+            maybe = self.maybe_colliding(poses, ids[part], self.sphere_gaps(poses, ids[part], centers))
+            for n in open_rows:
+                hit = next(
+                    (k for k in np.flatnonzero(maybe[n]) if self.collide(poses[n], ids[part][k])), None
+                )
+                out[n] = None if hit is None else link_pair(*pairs[part][hit])
+            open_rows = [n for n in open_rows if out[n] is None]
+            if not open_rows:
+                break
         return out
 
     def collision_counts(
@@ -134,15 +150,17 @@ class CollisionScene:
         """How many of the configurations in `poses` have each pair of `ids` in collision.
         `opened` / `seconds` (arrays per pair), when given, add up the states that reached the
         exact check and the seconds those checks took."""
-        maybe = self.maybe_colliding(poses, ids)
         counts = np.zeros(len(ids), dtype=np.int64)
-        for n, k in zip(*np.nonzero(maybe), strict=True):
-            started = time.perf_counter()
-            counts[k] += self.collide(poses[n], ids[k], hulls)
-            if seconds is not None:
-                seconds[k] += time.perf_counter() - started
-        if opened is not None:
-            opened += maybe.sum(axis=0)
+        centers = self.link_centers(poses)
+        for part in self.pair_batches(len(poses), len(ids)):
+            maybe = self.maybe_colliding(poses, ids[part], self.sphere_gaps(poses, ids[part], centers))
+            for n, k in zip(*np.nonzero(maybe), strict=True):
+                started = time.perf_counter()
+                counts[part.start + k] += self.collide(poses[n], ids[part.start + k], hulls)
+                if seconds is not None:
+                    seconds[part.start + k] += time.perf_counter() - started
+            if opened is not None:
+                opened[part] += maybe.sum(axis=0)
         return counts
 
     def work(self) -> tuple[int, int, int, int, int]:
@@ -151,11 +169,18 @@ class CollisionScene:
                 self.certificate_queries, self.certified)  # fmt: skip
 
     # -- filters -------------------------------------------------------------------------------
-    def sphere_gaps(self, poses: np.ndarray, ids: np.ndarray) -> np.ndarray:
-        """(N, P) distance between bounding spheres minus padding; > 0 means cannot collide."""
-        b = self._bounds
+    def link_centers(self, poses: np.ndarray) -> np.ndarray:
+        """(N, L, 3) world centres of the links' bounding spheres (for `sphere_gaps`)."""
         rot, trans = poses[..., :3, :3], poses[..., :3, 3]
-        centers = np.einsum("nlij,lj->nli", rot, b.center) + trans
+        return np.einsum("nlij,lj->nli", rot, self._bounds.center) + trans
+
+    def sphere_gaps(
+        self, poses: np.ndarray, ids: np.ndarray, centers: np.ndarray | None = None
+    ) -> np.ndarray:
+        """(N, P) distance between bounding spheres minus padding; > 0 means cannot collide.
+        `centers`: `link_centers(poses)`, when the caller has them (it filters in batches)."""
+        b = self._bounds
+        centers = self.link_centers(poses) if centers is None else centers
         a_rows, b_rows = self._pair_a[ids], self._pair_b[ids]
         dist = np.linalg.norm(centers[:, a_rows] - centers[:, b_rows], axis=-1)
         return dist - b.sphere_radius[a_rows] - b.sphere_radius[b_rows] - self.padding

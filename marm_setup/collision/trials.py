@@ -58,12 +58,16 @@ def trial_samples(robot: RobotModel, seed: int, trials: int) -> np.ndarray:
 class PairShard:
     """One process's share of the Never phase: a fixed set of pairs, checked over every trial
     chunk in order. A pair leaves at its first collision; with `shortcuts` a PairProver's
-    certificates build up over all the chunks; each unseen pair keeps its CLOSEST states."""
+    certificates build up over all the chunks; with `closest` each unseen pair keeps its
+    CLOSEST states (for `distances`: a Python step per pair and chunk, skipped when unwanted)."""
 
-    def __init__(self, scene, seed: int, trials: int, shortcuts: bool, pairs: tuple[Pair, ...]) -> None:
+    def __init__(
+        self, scene, seed: int, trials: int, shortcuts: bool, pairs: tuple[Pair, ...], closest: bool = True
+    ) -> None:
         self.scene, self.seed, self.trials, self.shortcuts = scene, seed, trials, shortcuts
         self.unseen = pairs
-        self.closest: dict[Pair, list[tuple[float, int]]] = {p: [] for p in pairs}
+        self.keep_closest = closest
+        self.closest: dict[Pair, list[tuple[float, int]]] = {p: [] for p in pairs} if closest else {}
         self.prover = None
         if shortcuts:
             from marm_setup.collision.prover import PairProver
@@ -77,7 +81,8 @@ class PairShard:
     def check(self, index: int) -> set[Pair]:
         """Check chunk `index` (chunks go in order); the pairs first seen colliding in it."""
         q = trial_chunk(self.scene.robot, self.seed, index, self.trials)
-        seen, closest = check_chunk(self.scene, q, self.unseen, self.prover, self.chunks - index)
+        horizon = self.chunks - index
+        seen, closest = check_chunk(self.scene, q, self.unseen, self.prover, horizon, self.keep_closest)
         self.unseen = tuple(p for p in self.unseen if p not in seen)
         start = index * CHUNK
         for pair, items in closest.items():
@@ -87,7 +92,7 @@ class PairShard:
 
     def distances(self) -> dict[Pair, float]:
         """Smallest exact distance [m] of each never-seen pair over its closest trial states."""
-        items = [(p, [i for _, i in self.closest[p]]) for p in self.unseen if self.closest[p]]
+        items = [(p, [i for _, i in self.closest[p]]) for p in self.unseen if self.closest.get(p)]
         rows = sorted({i for _, pair_rows in items for i in pair_rows})
         if not rows:
             return {}
@@ -120,8 +125,11 @@ def _smallest_distance(scene, poses: list[np.ndarray], pair_id: int) -> float:
     return best
 
 
-def check_chunk(scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None, horizon: float = 1.0):
-    """Pairs of `pairs` seen colliding in states `q`, and each pair's CLOSEST smallest-gap states.
+def check_chunk(
+    scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None, horizon: float = 1.0, closest: bool = True
+):
+    """Pairs of `pairs` seen colliding in states `q`, and (when `closest`) each unseen pair's
+    CLOSEST smallest-gap states.
 
     A pair stops being checked at its first collision; its candidate states are tried in order of
     deepest bounding-sphere overlap, so sometimes-colliding pairs are found in a few calls.
@@ -132,19 +140,25 @@ def check_chunk(scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None, hori
         return set(), {}
     ids = scene.pair_ids(pairs)
     poses = scene.link_poses(q)
-    gaps = scene.sphere_gaps(poses, ids)
-    maybe = scene.maybe_colliding(poses, ids, gaps)
-    seen = set()
-    for k, pair in enumerate(pairs):
-        candidates = np.flatnonzero(maybe[:, k])
-        rows = candidates[np.argsort(gaps[candidates, k], kind="stable")]
-        if prover is not None:
-            hit = prover.any_collision(q, poses, int(ids[k]), rows, horizon)
-        else:
-            hit = any(scene.collide(poses[n], ids[k]) for n in rows)
-        if hit:
-            seen.add(pair)
-    return seen, _closest(gaps, pairs, seen)
+    centers = scene.link_centers(poses)
+    seen: set[Pair] = set()
+    nearest: dict[Pair, list[tuple[float, int]]] = {}
+    for part in scene.pair_batches(len(q), len(pairs)):  # bounded memory for any number of pairs
+        gaps = scene.sphere_gaps(poses, ids[part], centers)
+        maybe = scene.maybe_colliding(poses, ids[part], gaps)
+        for k in np.flatnonzero(maybe.any(axis=0)):  # a pair no state may touch is not seen
+            candidates = np.flatnonzero(maybe[:, k])
+            rows = candidates[np.argsort(gaps[candidates, k], kind="stable")]
+            pair_id = int(ids[part][k])
+            if prover is not None:
+                hit = prover.any_collision(q, poses, pair_id, rows, horizon)
+            else:
+                hit = any(scene.collide(poses[n], pair_id) for n in rows)
+            if hit:
+                seen.add(pairs[part][k])
+        if closest:
+            nearest.update(_closest(gaps, pairs[part], seen))
+    return seen, nearest
 
 
 def _closest(gaps: np.ndarray, pairs, seen) -> dict[Pair, list[tuple[float, int]]]:

@@ -40,7 +40,7 @@ class Workers:
         distances: bool = True,
     ):
         self.distances_wanted = distances  # each shard's Never distances, after its chunks
-        self.shards = [PairShard(scene, seed, trials, shortcuts, pairs) for pairs in shards]
+        self.shards = [PairShard(scene, seed, trials, shortcuts, pairs, distances) for pairs in shards]
         self._procs: list[tuple[Any, Any]] = []  # (process, parent end of its pipe)
 
     @property
@@ -115,19 +115,22 @@ class Workers:
 class _ShardSpec:
     """What a spawned worker needs to build its shard again (the scene is not picklable)."""
 
-    def __init__(self, robot, padding: float, seed: int, trials: int, shortcuts: bool, pairs) -> None:
-        self.args = (robot, padding, seed, trials, shortcuts, pairs)
+    def __init__(
+        self, robot, padding: float, seed: int, trials: int, shortcuts: bool, pairs, closest
+    ) -> None:
+        self.args = (robot, padding, seed, trials, shortcuts, pairs, closest)
 
     @classmethod
     def of(cls, shard: PairShard) -> _ShardSpec:
         scene = shard.scene
-        return cls(scene.robot, scene.padding, shard.seed, shard.trials, shard.shortcuts, shard.unseen)
+        args = (shard.seed, shard.trials, shard.shortcuts, shard.unseen, shard.keep_closest)
+        return cls(scene.robot, scene.padding, *args)
 
     def build(self) -> PairShard:
         from marm_setup.collision.scene import CollisionScene
 
-        robot, padding, seed, trials, shortcuts, pairs = self.args
-        return PairShard(CollisionScene(robot, padding), seed, trials, shortcuts, pairs)
+        robot, padding, *rest = self.args
+        return PairShard(CollisionScene(robot, padding), *rest)
 
 
 def _work(spec: PairShard | _ShardSpec, conn, distances: bool) -> None:

@@ -293,3 +293,20 @@ def test_no_break_distance_gives_coals_default_verdicts(robot_path):
             expected = default.collision_counts(default.link_poses(q), ids, hulls)
             np.testing.assert_array_equal(ours.collision_counts(ours.link_poses(q), ids, hulls), expected)
         assert expected.sum() > 0
+
+
+@pytest.mark.parametrize("batch", [1, 7, 200 * 5])
+def test_filtering_in_pair_batches_gives_the_same_matrix(marm, monkeypatch, batch):
+    """The pairs are filtered in batches of at most PAIR_BATCH (state, pair) entries: any batch
+    size gives the same matrix, distances included, and the same first collisions."""
+    from marm_setup.collision import scene as scene_module
+
+    whole = compute_collision_matrix(marm, CollisionScene(marm), trials=2000)
+    q = sample_configurations(marm, np.random.default_rng(3), 50)
+    pairs = CollisionScene(marm).candidate_pairs
+    first = CollisionScene(marm).first_collisions(q, pairs)
+    monkeypatch.setattr(scene_module, "PAIR_BATCH", batch)
+    scene = CollisionScene(marm)
+    assert len(scene.pair_batches(200, len(pairs))) > 1
+    _same_bytes(whole, compute_collision_matrix(marm, scene, trials=2000))
+    assert scene.first_collisions(q, pairs) == first
