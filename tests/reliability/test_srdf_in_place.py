@@ -77,3 +77,19 @@ def test_a_new_output_file_gets_the_umask_mode(tmp_path):
     finally:
         os.umask(old)
     assert stat.S_IMODE(out.stat().st_mode) == 0o644
+
+
+def test_an_srdf_of_70000_entries(tmp_path):
+    """Line numbers were counted from the start of the file for every entry and the edits
+    spliced into the whole text one by one (quadratic: 50,000 entries took minutes), and past
+    line 65534 libxml2 reports some lines one too high (its 16-bit marker), which refused the
+    file as 'an unexpected form'. Now both are linear and big line numbers are matched."""
+    body = "".join(
+        f'  <disable_collisions link1="u{i}" link2="v{i}" reason="{"User" if i % 2 else "Never"}"/>\n'
+        for i in range(70_000)
+    )
+    srdf, result = _collide(tmp_path, f'<robot name="test_robot">\n{body}</robot>\n', "--force")
+    assert_clean_exit(result, codes=(0,))
+    pairs = _pairs(srdf)
+    assert len(pairs) == 35_001 and pairs[0] == ("a", "b", "Adjacent")  # where the first Never was
+    assert pairs[1] == ("u1", "v1", "User") and pairs[-1] == ("u69999", "v69999", "User")
