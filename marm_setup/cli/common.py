@@ -78,6 +78,14 @@ JobsOption = Annotated[
 ]
 
 
+YesOption = Annotated[
+    bool,
+    typer.Option(
+        "--yes", help="Run the sampling even when it is estimated to take over 30 minutes (said up front)."
+    ),
+]
+
+
 MAX_COUNT = 1e12  # trials: a trillion states would take days on any robot
 
 

@@ -1,4 +1,6 @@
-"""The sampling progress bar of `collisions` and `init`, and what a denser run would cost."""
+"""Progress on stderr: the sampling bar of `collisions` and `init` with the estimate of a long
+run (said up front, and past a bound run only with --yes) and what a denser run would cost,
+and the staged bar of validate's planning."""
 
 from __future__ import annotations
 
@@ -7,19 +9,37 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from marm_setup.cli.common import echo_err
+from marm_setup.errors import InputError
+
 if TYPE_CHECKING:
     from rich.progress import Progress, TaskID
+
+SAY_SECONDS = 60.0  # [s] a sampling estimate above this is said on stderr before the run goes on
+CONFIRM_SECONDS = 30 * 60.0  # [s] above this the run needs --yes
+MEASURE_SECONDS = 1.0  # [s] of sampling the estimate is made from (at least one chunk)
 
 
 class SamplingProgress:
     """A context manager: `callback(done, total)` for compute_collision_matrix, drawn as a rich
     bar on stderr when it is a TTY and `enabled` (not with --format json), and timed so
-    `denser_seconds` can extrapolate."""
+    `denser_seconds` can extrapolate.
 
-    def __init__(self, enabled: bool = True) -> None:
+    After MEASURE_SECONDS of sampling (or its first chunk, if that takes longer) the whole run
+    is estimated at the rate of the chunks after the first (which is slower: start-up, and the
+    sometimes-colliding pairs still being found): past SAY_SECONDS the estimate is one stderr
+    line, past CONFIRM_SECONDS the run stops there (an InputError naming `--trials`) unless
+    `confirmed` (--yes)."""
+
+    def __init__(
+        self, enabled: bool = True, *, confirmed: bool = False, say: Callable[[str], None] = echo_err
+    ) -> None:
         self.enabled = enabled
         self.started = time.perf_counter()
         self.marks: list[tuple[float, int]] = []  # (time, trials done) at each progress call
+        self.confirmed = confirmed
+        self._estimated = False
+        self._say = say
         self._bar: Progress | None = None
         self._task: TaskID | None = None
 
@@ -34,10 +54,35 @@ class SamplingProgress:
 
     def __call__(self, done: int, total: int) -> None:
         self.marks.append((time.perf_counter(), done))
+        if done and not self._estimated and self.marks[-1][0] - self.marks[0][0] >= MEASURE_SECONDS:
+            self._estimated = True
+            self._estimate(done, total)
         if self._bar is None and self.enabled and sys.stderr.isatty():
             self._start_bar()
         if self._bar is not None and self._task is not None:
             self._bar.update(self._task, completed=done, total=total)
+
+    def _estimate(self, done: int, total: int) -> None:
+        """Say how long the whole sampling will take, and stop a run past CONFIRM_SECONDS
+        without --yes; `done` trials are checked, the first progress mark is the start."""
+        if done >= total:
+            return
+        start, now = self.marks[0][0], self.marks[-1][0]
+        took = now - start
+        first_time, first_done = next((t, d) for t, d in self.marks if d)
+        if done > first_done:  # the steady rate, after the first chunk
+            seconds = took + (now - first_time) / (done - first_done) * (total - done)
+        else:
+            seconds = took * total / done
+        if seconds <= SAY_SECONDS:
+            return
+        if seconds > CONFIRM_SECONDS and not self.confirmed:
+            raise InputError(
+                f"{total:,} trials would take about {duration(seconds)} here (the first {done:,} took "
+                f"{duration(took)}): pass --yes to run them, or fewer --trials",
+                element="--trials",
+            )
+        self._say(f"sampling {total:,} trials: about {duration(seconds)} here (from the first {done:,})")
 
     def _start_bar(self) -> None:
         """The bar appears with the first sampling step (init does other work before)."""
@@ -97,3 +142,13 @@ def _bar() -> Progress:
     bar = Progress(*columns, console=Console(stderr=True), transient=True)
     bar.start()
     return bar
+
+
+def duration(seconds: float) -> str:
+    """`0.04 s`, `45 s`, `12 min`, `3.5 h`, `4 days`: a rough length of time for a person."""
+    if seconds < 1:
+        return f"{seconds:.2g} s"
+    for unit, size, limit in (("s", 1, 120), ("min", 60, 120 * 60), ("h", 3600, 72 * 3600)):
+        if seconds < limit:
+            return f"{seconds / size:.2g} {unit}" if seconds / size < 10 else f"{seconds / size:.0f} {unit}"
+    return f"{seconds / 86400:.0f} days"

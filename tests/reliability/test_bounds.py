@@ -239,3 +239,51 @@ def test_memory_of_a_chain_does_not_grow_with_states_times_pairs(tmp_path):
     finally:
         tracemalloc.stop()
     assert peak < 128 * 2**20
+
+
+def test_a_billion_trials_are_refused_up_front(tmp_path):
+    """`--trials 1000000000` ran silently for hours: after a second of sampling the estimate is
+    said, and past 30 minutes the run needs --yes."""
+    result = run("collisions", MARM_URDF, "--trials", "1000000000")
+    assert_one_line_error(result, "error: --trials: 1,000,000,000 trials would take about", "pass --yes")
+    result = run("init", MARM_URDF, "--out", tmp_path / "pkg", "--trials", "1e9")
+    assert_one_line_error(result, "error: --trials: 1,000,000,000 trials would take about")
+    assert not (tmp_path / "pkg").exists()
+
+
+@pytest.fixture
+def instant_estimates(monkeypatch):
+    """Estimate after the first chunk, say every estimate, and ask --yes for any run."""
+    from marm_setup.cli import progress
+
+    monkeypatch.setattr(progress, "MEASURE_SECONDS", 0.0)
+    monkeypatch.setattr(progress, "SAY_SECONDS", 0.0)
+    monkeypatch.setattr(progress, "CONFIRM_SECONDS", 0.0)
+
+
+@pytest.mark.parametrize("command", ["collisions", "init", "package"])
+def test_yes_runs_a_long_sampling_and_says_its_estimate(tmp_path, instant_estimates, command, pkg):
+    args = {
+        "collisions": ("collisions", MARM_URDF),
+        "init": ("init", MARM_URDF, "--out", tmp_path / "new", "--setup", SPEC),
+        "package": ("collisions", pkg),  # a generated package: marm_setup.yaml and SRDF together
+    }[command]
+    assert_one_line_error(run(*args, "--trials", "3000"), "error: --trials: 3,000 trials would take about")
+    result = run(*args, "--trials", "3000", "--yes")
+    assert_clean_exit(result, codes=(0,))
+    assert "sampling 3,000 trials: about" in result.stderr
+
+
+def test_the_estimate_is_made_at_the_steady_rate(monkeypatch):
+    """The first chunk (start-up, pairs still being found) is left out of the rate."""
+    from marm_setup.cli import progress
+
+    said: list[str] = []
+    clock = iter([0.0, 0.0, 0.5, 0.7, 0.9, 1.1])  # created, started, then chunks of 1000 trials
+    monkeypatch.setattr(progress.time, "perf_counter", lambda: next(clock))
+    sampling = progress.SamplingProgress(confirmed=True, say=said.append)
+    sampling(0, 1_000_000)
+    for done in (1000, 2000, 3000, 4000):
+        sampling(done, 1_000_000)
+    # after 1.1 s, at 0.2 s per chunk after the first: 1.1 + 996 * 0.2 s (the first one's rate: 500 s)
+    assert said == ["sampling 1,000,000 trials: about 3.3 min here (from the first 4,000)"]

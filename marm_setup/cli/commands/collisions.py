@@ -16,6 +16,7 @@ from marm_setup.cli.common import (
     TrialsText,
     UrdfArg,
     XacroArgs,
+    YesOption,
     default_jobs,
     echo_err,
     load_robot_from_cli,
@@ -91,6 +92,7 @@ def collisions(
     verbose: Annotated[
         bool, typer.Option("--verbose", help="With --srdf: list the pairs added and removed.")
     ] = False,
+    yes: YesOption = False,
 ) -> None:
     """Compute which link pairs MoveIt need not check (Adjacent, Default, Always, Never).
 
@@ -101,7 +103,7 @@ def collisions(
     if urdf.is_dir():  # a package made by init: its marm_setup.yaml and SRDF, together
         _check_options(min_collision_fraction, seed, padding, None, False, None)
         _refuse_unused(xacro_arg=xacro_arg, package_path=package_path)
-        _update_package(urdf, count, seed, min_collision_fraction, jobs, force=force)
+        _update_package(urdf, count, seed, min_collision_fraction, jobs, force=force, yes=yes)
         return
     _check_options(min_collision_fraction, seed, padding, srdf, keep, report)
     if default_pose is not None and srdf is None:
@@ -122,7 +124,7 @@ def collisions(
     if default_pose is not None and srdf_text is not None:  # --default-pose needs --srdf (checked above)
         default_q = _pose_configuration(robot, srdf_text, default_pose, str(srdf))
     scene = CollisionScene(robot, padding)
-    with SamplingProgress(enabled=format is OutputFormat.text) as progress:
+    with SamplingProgress(enabled=format is OutputFormat.text, confirmed=yes) as progress:
         matrix = compute_collision_matrix(
             robot,
             scene,
@@ -219,7 +221,9 @@ def _refuse_unused(**given: object) -> None:
             )
 
 
-def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: int, *, force: bool) -> None:
+def _update_package(
+    pkg: Path, trials: int, seed: int, fraction: float, jobs: int, *, force: bool, yes: bool = False
+) -> None:
     """Recompute a generated package's matrix into its marm_setup.yaml and SRDF together (its
     User pairs kept), so the next `render` has nothing to disagree with; with `force` a
     hand-edited file is overwritten (kept as `.orig`, as render does)."""
@@ -234,7 +238,7 @@ def _update_package(pkg: Path, trials: int, seed: int, fraction: float, jobs: in
     from marm_setup.setup.model import CollisionSettings
 
     model, robot = load_package_setup(pkg)
-    with SamplingProgress() as progress:
+    with SamplingProgress(confirmed=yes) as progress:
         matrix = compute_collision_matrix(
             robot,
             trials=trials,

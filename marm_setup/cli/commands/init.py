@@ -14,6 +14,7 @@ from marm_setup.cli.common import (
     OutputFormat,
     PackagePaths,
     XacroArgs,
+    YesOption,
     default_jobs,
     load_robot_from_cli,
     parse_count,
@@ -106,6 +107,7 @@ def init(
     format: Annotated[
         OutputFormat, typer.Option("--format", help="With --from-package: the port report as text or json.")
     ] = OutputFormat.text,
+    yes: YesOption = False,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package;
     or, with --from-package, port an existing config package and report every setting.
@@ -137,6 +139,7 @@ def init(
             xacro_arg=xacro_arg,
             jobs=jobs,
             plan=not no_plan,
+            yes=yes,
         )
         return
     if urdf is None:
@@ -163,7 +166,7 @@ def init(
     )
     check_output_dir(out, force=force, shown=str(out))
     robot = load_robot_from_cli(urdf, xacro_arg, package_path, check_args=False)  # run_init checks them
-    with SamplingProgress() as progress:
+    with SamplingProgress(confirmed=yes) as progress:
         result = run_init(request, robot, progress)
     sources = ["inferred", *(f"{o} {p}" for o, p in (("SRDF", from_srdf), ("SPEC", setup)) if p)]
     typer.echo(
@@ -191,6 +194,7 @@ def _port(
     xacro_arg: list[str] | None,
     jobs: int | None,
     plan: bool,
+    yes: bool = False,
 ) -> None:
     """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
     from marm_setup.cli.port_report import format_port_json, format_port_text
@@ -212,7 +216,7 @@ def _port(
         plan=plan,
         jobs=default_jobs(jobs),
     )
-    with SamplingProgress(enabled=format is OutputFormat.text) as progress:
+    with SamplingProgress(enabled=format is OutputFormat.text, confirmed=yes) as progress:
         result = run_port(request, progress)
     validation = result.validation
     if format is OutputFormat.json:
