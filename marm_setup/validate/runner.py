@@ -178,6 +178,8 @@ def _validation(
     planned: list[PlannedPair] | None,
     launched_by: str,
 ) -> Validation:
+    from marm_setup.validate.runtime import unplanned_pairs
+
     return Validation(
         findings=tuple(sort_findings(findings)),
         package=pkg.name,
@@ -187,7 +189,7 @@ def _validation(
         urdf_origin=pkg.urdf_origin,
         robot=robot.name if robot is not None else None,
         planned_pairs=None if planned is None else len(planned),
-        skipped=skipped_families(pkg, robot),
+        skipped=(*skipped_families(pkg, robot), *unplanned_pairs(planned or ())),
         launched_by=launched_by,
     )
 

@@ -287,3 +287,20 @@ def test_the_estimate_is_made_at_the_steady_rate(monkeypatch):
         sampling(done, 1_000_000)
     # after 1.1 s, at 0.2 s per chunk after the first: 1.1 + 996 * 0.2 s (the first one's rate: 500 s)
     assert said == ["sampling 1,000,000 trials: about 3.3 min here (from the first 4,000)"]
+
+
+def test_validate_plans_a_ring_of_200_poses_not_all_pairs(pkg):
+    """200 named poses of one group were 39,800 plans (133 s, no output); past 10 poses each
+    pose is planned to and from its neighbours, and the summary says what was left out."""
+    srdf = pkg / "config" / "marm.srdf"
+    poses = "".join(
+        f'<group_state name="p{i:03d}" group="arm"><joint name="joint1" value="{-1 + i / 100:.2f}"/>'
+        '<joint name="joint2" value="0"/><joint name="joint3" value="0"/><joint name="joint4" value="0"/>'
+        '<joint name="joint5" value="0"/><joint name="joint6" value="0"/></group_state>\n'
+        for i in range(198)
+    )
+    srdf.write_text(srdf.read_text().replace("<end_effector", poses + "<end_effector", 1))
+    result = run("validate", pkg)
+    assert_clean_exit(result, codes=(0,))
+    assert "planned 400 pose pairs" in result.stdout
+    assert "skipped planning 39,400 of the 39,800 pose pairs of group arm (over 10 poses" in result.stdout
