@@ -96,9 +96,30 @@ def _subfolders(folder: Path) -> list[Path]:
         return []
 
 
-def _packages_below(root: Path, depth: int = SEARCH_DEPTH) -> dict[str, Path]:
-    """Packages at or below `root` (as ROS_PACKAGE_PATH is searched; a package is not entered)."""
+def _first_visit(folder: Path, depth: int, visited: dict[tuple[int, int], int]) -> bool:
+    """Whether `folder` is new to this search, or now to be searched deeper than before: a
+    folder reached again through a symlink (`ln -s . loop`) is searched once, so 150 links to
+    `.` cost 150 look-ups, not 150**3."""
+    try:
+        info = folder.stat()
+    except OSError:
+        return False
+    key = (info.st_dev, info.st_ino)
+    if visited.get(key, -1) >= depth:
+        return False
+    visited[key] = depth
+    return True
+
+
+def _packages_below(
+    root: Path, depth: int = SEARCH_DEPTH, visited: dict[tuple[int, int], int] | None = None
+) -> dict[str, Path]:
+    """Packages at or below `root` (as ROS_PACKAGE_PATH is searched; a package is not entered;
+    each folder once, however many symlinks lead to it)."""
+    visited = {} if visited is None else visited
     try:  # a folder we may not read holds no package we can use: skip it, as rospack does
+        if not _first_visit(root, depth, visited):
+            return {}
         name = package_name(root)
         if name:
             return {name: root}
@@ -109,19 +130,21 @@ def _packages_below(root: Path, depth: int = SEARCH_DEPTH) -> dict[str, Path]:
         return {}
     found: dict[str, Path] = {}
     for child in children:
-        for pkg, path in _packages_below(child, depth - 1).items():
+        for pkg, path in _packages_below(child, depth - 1, visited).items():
             found.setdefault(pkg, path)
     return found
 
 
 def _folder_below(root: Path, name: str, depth: int) -> Path | None:
-    """`root` if it is named `name`, else the first folder named `name` below it (breadth first)."""
-    level = [root]
-    for _ in range(depth + 1):
+    """`root` if it is named `name`, else the first folder named `name` below it (breadth first;
+    each folder once, however many symlinks lead to it)."""
+    level: list[Path] = [root]
+    visited: dict[tuple[int, int], int] = {}
+    for remaining in range(depth, -1, -1):
         for folder in level:
             if folder.name == name and folder.is_dir():
                 return folder
-        level = [c for folder in level for c in _subfolders(folder)]
+        level = [c for f in level if _first_visit(f, remaining, visited) for c in _subfolders(f)]
     return None
 
 

@@ -304,3 +304,32 @@ def test_validate_plans_a_ring_of_200_poses_not_all_pairs(pkg):
     assert_clean_exit(result, codes=(0,))
     assert "planned 400 pose pairs" in result.stdout
     assert "skipped planning 39,400 of the 39,800 pose pairs of group arm (over 10 poses" in result.stdout
+
+
+def _looping_workspace(tmp_path, links: int = 150):
+    """A folder holding `links` symlinks to itself (and a real package below a symlink)."""
+    ws = tmp_path / "ws"
+    (tmp_path / "elsewhere" / "mesh_pkg").mkdir(parents=True)
+    (tmp_path / "elsewhere" / "mesh_pkg" / "package.xml").write_text(
+        "<package><name>mesh_pkg</name></package>"
+    )
+    (tmp_path / "elsewhere" / "mesh_pkg" / "m.obj").write_text(
+        "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 2 3\nf 1 2 4\n"
+    )
+    ws.mkdir()
+    for i in range(links):
+        (ws / f"loop{i:03d}").symlink_to(".")
+    (ws / "zz_link").symlink_to(tmp_path / "elsewhere")
+    return ws
+
+
+@pytest.mark.parametrize("uri", ["package://mesh_pkg/m.obj", "package://missing_pkg/m.obj"])
+def test_package_search_through_symlinks_to_itself(tmp_path, uri):
+    """150 symlinks to `.` made the search visit 150**3 folders (111 s); each folder is now
+    searched once, and a package behind a symlink is still found."""
+    ws = _looping_workspace(tmp_path)
+    result = run("collisions", mesh_robot(tmp_path, uri), "--package-path", ws, *TRIALS)
+    if "missing" in uri:
+        assert_one_line_error(result, "unknown package 'missing_pkg'")
+    else:
+        assert_clean_exit(result, codes=(0,))
