@@ -37,6 +37,7 @@ from marm_setup.validate.rules.name_rules import check_controller_names, check_s
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.pose_rules import check_initial_positions
 from marm_setup.validate.rules.srdf_rules import check_srdf
+from marm_setup.validate.rules.write_state_rules import check_pending_write
 from marm_setup.validate.sources import skipped_groups
 
 if TYPE_CHECKING:
@@ -151,6 +152,7 @@ def validate_package(
     pkg = discover_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
     findings = list(pkg.problems)
     findings += guarded("package", check_package_xml, pkg.root, pkg.package_xml)
+    findings += guarded("package", check_pending_write, pkg.root)
     findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch_files, pkg.target)
     robot, problems = load_package_robot(pkg)
     findings += problems

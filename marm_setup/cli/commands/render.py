@@ -44,10 +44,13 @@ def render(
     rendered = [f for f in render_package(model, robot) if f.path != SETUP_FILE]
     changes = plan_writes(rendered, dir)
     clashing = conflicts(changes)
-    for change in changes:
-        typer.echo(format_change(change, forced=force and not dry_run))
-    for path in stale_files(changes, dir, keep=[SETUP_FILE]):
-        typer.echo(f"{'stale':<10}{path} (no longer generated; left in place)")
+    stale = [
+        f"{'stale':<10}{path} (no longer generated; left in place)"
+        for path in stale_files(changes, dir, keep=[SETUP_FILE])
+    ]
+    if dry_run or (clashing and not force):  # the plan: nothing is written
+        for line in [*(format_change(c) for c in changes), *stale]:
+            typer.echo(line)
     if dry_run:
         typer.echo(f"dry run: nothing written ({_summary(changes)})")
         return
@@ -57,6 +60,8 @@ def render(
             path=str(dir),
         )
     apply_writes(changes, dir, force=force)
+    for line in [*(format_change(c, forced=force) for c in changes), *stale]:  # what was written
+        typer.echo(line)
     typer.echo(_summary(changes))
 
 
