@@ -7,6 +7,7 @@ trimesh, scipy) inside its body, so `marm-setup --help` stays fast.
 from __future__ import annotations
 
 import functools
+import os
 import sys
 from collections.abc import Callable
 from typing import Annotated, ParamSpec, TypeVar
@@ -119,6 +120,14 @@ def main() -> None:
     """The console script. A usage error (an unknown option, a bad choice, a missing argument)
     is one `error: ... (see '... --help')` line with exit 2, like every other bad input, instead
     of click's usage block."""
+    try:
+        os.getcwd()
+    except FileNotFoundError:  # every relative path would fail: say why, once
+        echo_err(
+            "error: the current folder no longer exists (deleted or replaced, e.g. by a write of the "
+            "package it was); cd into it again"
+        )
+        sys.exit(2)
     try:
         code = app(prog_name="marm-setup", standalone_mode=False)
     except typer.TyperException as exc:  # the errors of the click typer bundles: usage errors

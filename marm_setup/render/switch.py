@@ -33,6 +33,7 @@ from marm_setup.render.commit_record import (
     read_commit,
     refuse_linked_state,
 )
+from marm_setup.render.file_owners import copy_folder_owners, regular_file_info, same_owner_and_mode
 from marm_setup.render.safe_fs import mount_points_below, remove_tree, unsafe_path
 
 EXECUTABLE_SUFFIXES = (".py", ".sh")
@@ -74,7 +75,7 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
         reason = unsafe_path(real, rel, mounts)
         if reason:
             raise InputError(reason, path=shown, element=rel)
-    if mounts:  # the old tree could not be dropped without reaching into them
+    if mounts or holds_a_working_folder(real):  # the old tree must stay: a mount, a shell in it
         _switch_in_place(real, files, keep, shown)
         return
     try:
@@ -84,7 +85,7 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
         return
     try:
         _copy_tree(real, stage)
-        _write_all(stage, files, keep, shown)
+        _write_all(stage, files, keep, shown, real)
         _exchange(stage, real)
     except BaseException as exc:
         remove_tree(stage)
@@ -93,6 +94,19 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
             return
         raise
     remove_tree(stage)  # the old package now
+
+
+def holds_a_working_folder(real: Path) -> bool:
+    """Whether `real` is or holds the current folder of this process or of the one that ran it
+    (the shell of `render .`): swapping a new folder in would leave that one in a deleted folder."""
+    for link in ("/proc/self/cwd", f"/proc/{os.getppid()}/cwd"):
+        try:
+            folder = Path(os.readlink(link))
+        except OSError:
+            continue
+        if folder == real or real in folder.parents:
+            return True
+    return False
 
 
 def _copy_tree(real: Path, stage: Path) -> None:
@@ -110,9 +124,13 @@ def _copy_tree(real: Path, stage: Path) -> None:
         return {n for n in names if n.startswith((STAGE_PREFIX, "commit.json"))}
 
     shutil.copytree(real, stage, symlinks=True, copy_function=link_or_copy, dirs_exist_ok=True, ignore=ignore)
+    copy_folder_owners(real, stage)
 
 
-def _write_all(root: Path, files: dict[str, str | None], keep: dict[str, str], shown: str) -> None:
+def _write_all(
+    root: Path, files: dict[str, str | None], keep: dict[str, str], shown: str, package: Path
+) -> None:
+    """Write `files` below `root`; a file `package` has already keeps its owner, group and mode."""
     delay = float(os.environ.get("MARM_SETUP_WRITE_DELAY", "0") or 0)  # a slow disk, for the kill tests
     for rel, text in sorted(files.items()):
         target = root / rel
@@ -120,20 +138,23 @@ def _write_all(root: Path, files: dict[str, str | None], keep: dict[str, str], s
             target.parent.mkdir(parents=True, exist_ok=True)
             if rel in keep and target.exists():
                 os.link(target, root / keep[rel], follow_symlinks=False)  # EEXIST: never over a file
-            write_new_file(target, text or "")
+            write_new_file(target, text or "", like=regular_file_info(package / rel))
         except OSError as exc:
             raise InputError(f"cannot write: {exc.strerror or exc}", path=shown, element=rel) from None
         if delay:
             time.sleep(delay)
 
 
-def write_new_file(path: Path, text: str) -> None:
+def write_new_file(path: Path, text: str, like: os.stat_result | None = None) -> None:
     """A new inode at `path` (a hard link to the old package is never written into), with the
-    mode a plain open() gives: 0666, or 0777 for scripts, less the umask."""
+    owner, group and mode of the file it replaces (`like`), else the mode a plain open() gives:
+    0666, or 0777 for scripts, less the umask."""
     with contextlib.suppress(FileNotFoundError):
         path.unlink()
     mode = 0o777 if path.suffix in EXECUTABLE_SUFFIXES else 0o666
     fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, mode)
+    if like is not None:
+        same_owner_and_mode(like, fd)
     with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
         handle.write(text)
 
@@ -156,7 +177,7 @@ def _switch_in_place(real: Path, files: dict[str, str | None], keep: dict[str, s
     refuse_linked_state(real, shown)
     stage = Path(tempfile.mkdtemp(prefix=STAGE_PREFIX, dir=real / STATE_DIR))
     try:
-        _write_all(stage, files, {}, shown)
+        _write_all(stage, files, {}, shown, real)
         for rel, kept in keep.items():
             if (real / rel).exists():
                 os.link(real / rel, stage / kept, follow_symlinks=False)

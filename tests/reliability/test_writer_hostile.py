@@ -7,7 +7,6 @@ validate says when a package is half-written."""
 from __future__ import annotations
 
 import os
-import shutil
 import stat
 import subprocess
 import sys
@@ -17,7 +16,6 @@ import pytest
 from marm_setup.render import commit_record
 from tests.conftest import FIXTURES, MARM_URDF
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
-from tests.reliability.snapshots import snapshot
 
 SPEC = FIXTURES / "marm" / "marm_setup.yaml"
 TRIALS = ("--trials", "20")
@@ -84,3 +82,74 @@ def test_validate_says_a_package_is_half_written(pkg):
     assert "the next write (marm-setup render) completes it" in result.stdout
     assert_clean_exit(run("render", pkg), codes=(0,))
     assert "package.half-written" not in run("validate", pkg, "--no-plan").stdout
+
+
+def _cli(*args, cwd):
+    return subprocess.run(
+        [sys.executable, "-m", "marm_setup", *map(str, args)], cwd=cwd, capture_output=True, text=True
+    )
+
+
+def test_render_from_inside_the_package_keeps_its_folder(pkg):
+    """`render .` swapped a new folder in and deleted the old one: the shell stood in a deleted
+    folder and its next `validate .` was an internal error. A package holding the current
+    folder is written in place."""
+    before = os.stat(pkg).st_ino
+    _edit_setup(pkg)
+    result = _cli("render", ".", cwd=pkg)
+    assert result.returncode == 0, result.stderr
+    assert os.stat(pkg).st_ino == before
+    assert "default_velocity_scaling_factor: 0.3" in (pkg / "config" / "joint_limits.yaml").read_text()
+    assert sorted(os.listdir(pkg / ".marm_setup")) == ["manifest.json"]
+    assert _cli("validate", ".", "--no-plan", cwd=pkg).returncode == 0
+    _edit_setup(pkg, "0.4")  # from a folder inside it, too
+    assert _cli("render", "..", cwd=pkg / "config").returncode == 0
+    assert os.stat(pkg).st_ino == before
+
+
+def test_a_command_run_in_a_deleted_folder_is_one_line(tmp_path):
+    gone = tmp_path / "gone"
+    gone.mkdir()
+    script = f"cd {gone} && rmdir {gone} && exec {sys.executable} -m marm_setup validate ."
+    result = subprocess.run(["sh", "-c", script], capture_output=True, text=True)
+    assert result.returncode == 2
+    assert result.stderr.strip().splitlines() == [
+        "error: the current folder no longer exists (deleted or replaced, e.g. by a write of the "
+        "package it was); cd into it again"
+    ]
+
+
+def _owners(root):
+    """{relative path: (uid, gid, mode bits)} of every folder and file below `root`, itself too."""
+    paths = [root, *sorted(root.rglob("*"))]
+    return {p.relative_to(root).as_posix(): _owner(p) for p in paths if not p.is_symlink()}
+
+
+def _owner(path):
+    info = os.lstat(path)
+    return info.st_uid, info.st_gid, stat.S_IMODE(info.st_mode)
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="giving files to another user needs root")
+@pytest.mark.parametrize("how", ["swapped", "in place"])
+def test_root_keeps_the_owners_groups_and_modes_of_someone_elses_package(pkg, monkeypatch, how):
+    """Run as root (sudo) on a package owned by someone else: every folder became root:root and a
+    setgid folder lost its group."""
+    user, team, other = 4321, 4322, 4323
+    for path in [pkg, *pkg.rglob("*")]:
+        os.lchown(path, user, team)
+    os.chown(pkg / "config", user, other)
+    os.chmod(pkg / "config", 0o2775)  # setgid: new files belong to the folder's group
+    os.chmod(pkg, 0o750)
+    os.chmod(pkg / "config" / "joint_limits.yaml", 0o640)
+    before = _owners(pkg)
+    _edit_setup(pkg)
+    if how == "in place":
+        monkeypatch.chdir(pkg)  # a package holding the current folder is written in place
+    result = run("render", pkg)
+    assert_clean_exit(result, codes=(0,))
+    assert "update    config/joint_limits.yaml" in result.stdout
+    after = _owners(pkg)
+    assert {k: v for k, v in after.items() if k in before} == before
+    assert after["config/joint_limits.yaml"] == (user, team, 0o640)  # the new version, as the old
+    assert os.stat(pkg / "config").st_mode & stat.S_ISGID
