@@ -35,6 +35,7 @@ from marm_setup.render.commit_record import (
 )
 from marm_setup.render.file_owners import copy_folder_owners, regular_file_info, same_owner_and_mode
 from marm_setup.render.safe_fs import mount_points_below, remove_tree, unsafe_path
+from marm_setup.render.stage_folders import drop_recorded_stages, drop_stage, new_stage
 
 EXECUTABLE_SUFFIXES = (".py", ".sh")
 _NO_EXCHANGE = {errno.EBUSY, errno.EXDEV, errno.EINVAL, errno.ENOSYS, errno.EPERM, errno.EACCES, errno.EROFS}
@@ -79,7 +80,7 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
         _switch_in_place(real, files, keep, shown)
         return
     try:
-        stage = Path(tempfile.mkdtemp(prefix=f".{real.name}.marm-setup-", dir=real.parent))
+        stage = new_stage(real)
     except OSError:
         _switch_in_place(real, files, keep, shown)
         return
@@ -88,12 +89,12 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
         _write_all(stage, files, keep, shown, real)
         _exchange(stage, real)
     except BaseException as exc:
-        remove_tree(stage)
+        drop_stage(stage)
         if isinstance(exc, OSError) and exc.errno in _NO_EXCHANGE:
             _switch_in_place(real, files, keep, shown)
             return
         raise
-    remove_tree(stage)  # the old package now
+    drop_stage(stage)  # the old package now
 
 
 def holds_a_working_folder(real: Path) -> bool:
@@ -193,9 +194,10 @@ def _switch_in_place(real: Path, files: dict[str, str | None], keep: dict[str, s
 
 
 def finish_interrupted(real: Path, shown: str | None = None) -> None:
-    """Complete an in-place switch a killed run left (its commit record exists), else drop
-    stages and sibling builds it left unfinished. A record this writer did not write (its stage
-    not our staging folder, a file outside the package) is refused, and nothing touched."""
+    """Complete an in-place switch a killed run left (its commit record exists), else drop the
+    stages it left unfinished in the package's own state folder and the recorded builds beside
+    it (render.stage_folders). A record this writer did not write (its stage not our staging
+    folder, a file outside the package) is refused, and nothing touched."""
     shown = shown or str(real)
     record = read_commit(real, shown)
     if record is not None:
@@ -208,7 +210,7 @@ def finish_interrupted(real: Path, shown: str | None = None) -> None:
         (real / COMMIT).unlink()
         remove_tree(stage)
     _drop_leftovers(real / STATE_DIR, STAGE_PREFIX + TEMP_NAME)
-    _drop_leftovers(real.parent, re.escape(f".{real.name}.marm-setup-") + TEMP_NAME)
+    drop_recorded_stages(real)
 
 
 def _drop_leftovers(folder: Path, pattern: str) -> None:

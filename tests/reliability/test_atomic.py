@@ -382,6 +382,8 @@ def test_cleaning_leftovers_stops_at_a_mount_point(pkg, tmp_path, where):
     )
     (leftover / "m").mkdir(parents=True)
     (leftover / "old.txt").write_text("old\n")
+    if where == "sibling build":  # the record a killed run leaves with it (render.stage_folders)
+        (tmp_path / ".pkg.marm-setup-abcd1234.record").touch()
     _edit_setup(pkg)
     script = f"""mount -t tmpfs tmpfs {leftover}/m
 echo precious > {leftover}/m/f
@@ -400,6 +402,7 @@ def test_leftover_names_that_are_symlinks_are_not_followed(pkg, tmp_path):
     outside.mkdir()
     (outside / "keep.txt").write_text("mine\n")
     (tmp_path / ".pkg.marm-setup-abcd1234").symlink_to(outside)
+    (tmp_path / ".pkg.marm-setup-abcd1234.record").touch()
     (pkg / ".marm_setup" / "stage-abcd1234").symlink_to(outside)
     (pkg / ".marm_setup" / "stage-efgh5678" / "sub").mkdir(parents=True)
     (pkg / ".marm_setup" / "stage-efgh5678" / "sub" / "out").symlink_to(outside)

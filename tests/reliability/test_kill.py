@@ -28,8 +28,11 @@ def _restore(pkg, files: dict[str, bytes]) -> None:
         path = pkg / rel
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_bytes(data)
-    for leftover in pkg.parent.glob(".pkg.marm-setup-*"):
-        shutil.rmtree(leftover)
+    for leftover in pkg.parent.glob(".pkg.marm-setup-*"):  # a killed run's build folder and its record
+        if leftover.is_dir():
+            shutil.rmtree(leftover)
+        else:
+            leftover.unlink()
 
 
 def _spec_b(tmp_path):

@@ -153,3 +153,30 @@ def test_root_keeps_the_owners_groups_and_modes_of_someone_elses_package(pkg, mo
     assert {k: v for k, v in after.items() if k in before} == before
     assert after["config/joint_limits.yaml"] == (user, team, 0o640)  # the new version, as the old
     assert os.stat(pkg / "config").st_mode & stat.S_ISGID
+
+
+@pytest.mark.parametrize(
+    "name", [".pkg.marm-setup-abcd1234", ".pkg.marm-setup-backup", ".pkg.marm-setup-x.record"]
+)
+def test_a_users_folder_named_like_a_build_folder_is_kept(pkg, name):
+    """Every write deleted any sibling named like a build folder (`.<pkg>.marm-setup-*`)."""
+    mine = pkg.parent / name
+    mine.mkdir()
+    (mine / "keep.txt").write_text("mine\n")
+    _edit_setup(pkg)
+    assert_clean_exit(run("render", pkg), codes=(0,))
+    assert (mine / "keep.txt").read_text() == "mine\n"
+    assert sorted(p.name for p in pkg.parent.iterdir()) == sorted([name, "pkg"])
+
+
+def test_a_killed_runs_recorded_build_folder_is_removed(pkg):
+    """A build folder with its record (a run killed before it removed them): the next write
+    removes both; the record alone (killed before the folder was made) goes too."""
+    build = pkg.parent / ".pkg.marm-setup-0123abcd"
+    (build / "config").mkdir(parents=True)
+    (build / "config" / "old.yaml").write_text("old\n")
+    (pkg.parent / ".pkg.marm-setup-0123abcd.record").touch()
+    (pkg.parent / ".pkg.marm-setup-4567cdef.record").touch()
+    _edit_setup(pkg)
+    assert_clean_exit(run("render", pkg), codes=(0,))
+    assert [p.name for p in pkg.parent.iterdir()] == ["pkg"]
