@@ -4,9 +4,11 @@ way, the mount points below a folder, and a tree removal that stays on its own f
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import os
 import re
 import stat
+import struct
 from pathlib import Path, PurePosixPath
 
 _DIR_FLAGS = os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW
@@ -115,3 +117,49 @@ def _empty_folder(fd: int, path: Path, dev: int, mounts: set[Path]) -> None:
             finally:
                 os.close(child)
             os.rmdir(name, dir_fd=fd)
+
+
+_FS_IOC_GETFLAGS = 0x80086601  # linux/fs.h _IOR('f', 1, long)
+_PINNED_FLAGS = 0x10 | 0x20  # FS_IMMUTABLE_FL, FS_APPEND_FL (chattr +i, +a)
+
+
+def pinned_paths(root: Path) -> set[str]:
+    """Relative paths ('.' for `root`) of the folders and files below `root` (on its file system,
+    not through symlinks) that are immutable or append-only: nobody, root included, may replace,
+    rename or delete them, nor add to or remove from such a folder."""
+    found = set()
+    dev = os.lstat(root).st_dev
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = [d for d in dirs if os.lstat(Path(folder) / d).st_dev == dev]
+        for path in (Path(folder), *(Path(folder) / f for f in files)):
+            if _pinned(path):
+                found.add(path.relative_to(root).as_posix())
+    return found
+
+
+def _pinned(path: Path) -> bool:
+    """Whether the folder or regular file `path` has the immutable or append-only flag (False
+    where the file system has no such flags, or for anything else)."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError:
+        return False
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode) and not stat.S_ISDIR(os.fstat(fd).st_mode):
+            return False
+        flags = struct.unpack("l", fcntl.ioctl(fd, _FS_IOC_GETFLAGS, bytes(8)))[0]
+    except OSError:
+        return False
+    finally:
+        os.close(fd)
+    return bool(flags & _PINNED_FLAGS)
+
+
+def pinned_on_the_way(rel: str, pinned: set[str]) -> str | None:
+    """The pinned path (see `pinned_paths`) that writing `rel` would have to change: the file
+    itself or a folder holding it; None when there is none."""
+    path = PurePosixPath(rel)
+    for candidate in (path, *path.parents):
+        if candidate.as_posix() in pinned:
+            return candidate.as_posix()
+    return None

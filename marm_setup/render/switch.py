@@ -34,7 +34,13 @@ from marm_setup.render.commit_record import (
     refuse_linked_state,
 )
 from marm_setup.render.file_owners import copy_folder_owners, regular_file_info, same_owner_and_mode
-from marm_setup.render.safe_fs import mount_points_below, remove_tree, unsafe_path
+from marm_setup.render.safe_fs import (
+    mount_points_below,
+    pinned_on_the_way,
+    pinned_paths,
+    remove_tree,
+    unsafe_path,
+)
 from marm_setup.render.stage_folders import drop_recorded_stages, drop_stage, new_stage
 
 EXECUTABLE_SUFFIXES = (".py", ".sh")
@@ -71,12 +77,12 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
 
     `keep` maps a hand-edited path (--force) to the free name its current content is kept as.
     """
-    mounts = mount_points_below(real)
+    mounts, pinned = mount_points_below(real), pinned_paths(real)
     for rel in [*files, *keep.values()]:
-        reason = unsafe_path(real, rel, mounts)
+        reason = unsafe_path(real, rel, mounts) or _pinned_reason(rel, pinned)
         if reason:
             raise InputError(reason, path=shown, element=rel)
-    if mounts or holds_a_working_folder(real):  # the old tree must stay: a mount, a shell in it
+    if mounts or pinned or holds_a_working_folder(real):  # the old tree stays: a mount, a flag, a shell
         _switch_in_place(real, files, keep, shown)
         return
     try:
@@ -95,6 +101,15 @@ def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str
             return
         raise
     drop_stage(stage)  # the old package now
+
+
+def _pinned_reason(rel: str, pinned: set[str]) -> str | None:
+    """Why `rel` cannot be written: an immutable or append-only file or folder on the way."""
+    found = pinned_on_the_way(rel, pinned)
+    if found is None:
+        return None
+    what = "the package folder" if found == "." else f"'{found}'"
+    return f"{what} is immutable or append-only (chattr +i, +a): nothing written; clear the flag to write it"
 
 
 def holds_a_working_folder(real: Path) -> bool:

@@ -7,6 +7,7 @@ validate says when a package is half-written."""
 from __future__ import annotations
 
 import os
+import shutil
 import stat
 import subprocess
 import sys
@@ -16,6 +17,7 @@ import pytest
 from marm_setup.render import commit_record
 from tests.conftest import FIXTURES, MARM_URDF
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
+from tests.reliability.snapshots import snapshot
 
 SPEC = FIXTURES / "marm" / "marm_setup.yaml"
 TRIALS = ("--trials", "20")
@@ -179,4 +181,51 @@ def test_a_killed_runs_recorded_build_folder_is_removed(pkg):
     (pkg.parent / ".pkg.marm-setup-4567cdef.record").touch()
     _edit_setup(pkg)
     assert_clean_exit(run("render", pkg), codes=(0,))
+    assert [p.name for p in pkg.parent.iterdir()] == ["pkg"]
+
+
+def _chattr(flag: str, *paths) -> None:
+    if shutil.which("chattr") is None:
+        pytest.skip("needs chattr")
+    result = subprocess.run(["chattr", flag, *map(str, paths)], capture_output=True, text=True)
+    if result.returncode != 0:
+        pytest.skip(f"chattr {flag} not possible here: {result.stderr.strip()}")
+
+
+@pytest.fixture
+def unpin():
+    pinned: list = []
+    yield pinned
+    for path in pinned:
+        subprocess.run(["chattr", "-i", "-a", str(path)], capture_output=True)
+
+
+@pytest.mark.parametrize("flag", ["+i", "+a"])
+def test_an_immutable_file_is_left_as_it_is(pkg, unpin, flag):
+    """An unchanged immutable file was copied into the new package (its flag lost) and left in an
+    undeletable build folder beside it. Now the package is written in place around it."""
+    kinematics = pkg / "config" / "kinematics.yaml"
+    unpin.append(kinematics)
+    _chattr(flag, kinematics)
+    before = os.stat(kinematics).st_ino
+    _edit_setup(pkg)
+    assert_clean_exit(run("render", pkg), codes=(0,))
+    assert os.stat(kinematics).st_ino == before  # the same file, flag and all
+    assert "default_velocity_scaling_factor: 0.3" in (pkg / "config" / "joint_limits.yaml").read_text()
+    assert [p.name for p in pkg.parent.iterdir()] == ["pkg"]
+    assert sorted(os.listdir(pkg / ".marm_setup")) == ["manifest.json"]
+
+
+@pytest.mark.parametrize("what", ["file", "folder"])
+def test_an_immutable_file_to_be_written_is_one_line_and_nothing_changes(pkg, unpin, what):
+    limits = pkg / "config" / "joint_limits.yaml"
+    pinned = limits if what == "file" else limits.parent
+    unpin.append(pinned)
+    _edit_setup(pkg)
+    before = snapshot(pkg)
+    _chattr("+i", pinned)
+    relative = "config/joint_limits.yaml" if what == "file" else "config"
+    result = run("render", pkg)
+    assert_one_line_error(result, f"'{relative}' is immutable or append-only (chattr +i, +a)")
+    assert snapshot(pkg) == before
     assert [p.name for p in pkg.parent.iterdir()] == ["pkg"]
