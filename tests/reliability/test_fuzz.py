@@ -1,5 +1,7 @@
 """A fuzzer over URDF, setup file and SRDF: every run exits 0, 1 or 2 without a traceback, and
 every package written with exit 0 parses (XML, YAML, Python) and passes our own `validate`.
+Also file sizes at and around each kind's bound (sparse, up to 6 GiB) and binary STLs whose
+triangle count agrees with their size or not: refused in one line, never read whole.
 
 `make test` runs a few examples per input kind; `make fuzz` runs FUZZ_EXAMPLES of each with a
 random seed and prints the counts."""
@@ -210,5 +212,120 @@ def test_fuzz_srdf(group, pose, joint, value, vj_type, target):
             target,
         ]
         _check_run(args, work / "pkg")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+# -- size bounds ---------------------------------------------------------------------------------
+# Files at, just under and just over the bound of their kind (bounded_read), sparse up to 6 GiB,
+# and binary STLs whose triangle count agrees with their size or not: every run is a clean exit,
+# and a file over its bound is a 'too large' refusal (a line, or a finding in validate).
+
+GiB = 1 << 30
+
+
+def _bound(kind: str) -> int:
+    from marm_setup import bounded_read
+
+    return {
+        "mesh": bounded_read.MESH_BYTES,
+        "setup": bounded_read.YAML_BYTES,
+        "package yaml": bounded_read.YAML_BYTES,
+    }.get(kind, bounded_read.XML_BYTES)
+
+
+def _sized(path: Path, size: int, head: bytes) -> Path:
+    with open(path, "wb") as out:
+        out.write(head[:size])
+        out.truncate(size)
+    return path
+
+
+_HEADS = {
+    "urdf": b'<robot name="r"><link name="a"/></robot>',
+    "xacro": b'<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r"><link name="a"/></robot>',
+    "setup": b"groups: []\n",
+    "srdf": b'<robot name="fuzzbot"></robot>',
+    "package yaml": b"{}\n",
+}
+_PACKAGE: dict[str, Path] = {}
+
+
+def _package(work: Path) -> Path:
+    """One generated package per session, copied for each example."""
+    if "pkg" not in _PACKAGE:
+        base = Path(tempfile.mkdtemp(prefix="marm-fuzz-pkg-"))
+        (base / "r.urdf").write_bytes(SAFE_ROBOT)
+        assert_clean_exit(run("init", base / "r.urdf", "--out", base / "pkg", "--trials", "10"), codes=(0,))
+        _PACKAGE["pkg"] = base / "pkg"
+    shutil.copytree(_PACKAGE["pkg"], work / "pkg")
+    (work / "r.urdf").write_bytes(SAFE_ROBOT)
+    return work / "pkg"
+
+
+def _size_args(kind: str, work: Path, file: Path) -> list:
+    (work / "r.urdf").write_bytes(SAFE_ROBOT)
+    return {
+        "urdf": ["inspect", file],
+        "xacro": ["inspect", file],
+        "setup": ["init", work / "r.urdf", "--out", work / "out", "--trials", "10", "--setup", file],
+        "srdf": ["init", work / "r.urdf", "--out", work / "out", "--trials", "10", "--from-srdf", file],
+    }[kind]
+
+
+@FUZZ
+@given(
+    kind=st.sampled_from(["urdf", "xacro", "setup", "srdf", "package yaml"]),
+    offset=st.sampled_from([-1, 0, 1]),
+    huge=st.booleans(),
+    keep_head=st.booleans(),
+)
+def test_fuzz_file_sizes(kind, offset, huge, keep_head):
+    work = _workdir()
+    try:
+        size = 6 * GiB if huge else _bound(kind) + offset
+        name = {"xacro": "r2.urdf.xacro", "setup": "s.yaml", "srdf": "r.srdf", "urdf": "r2.urdf"}.get(
+            kind, "k.yaml"
+        )
+        head = _HEADS[kind] if keep_head else b""
+        if kind == "package yaml":
+            pkg = _package(work)
+            _sized(pkg / "config" / "kinematics.yaml", size, head)
+            result = run("validate", pkg, "--no-plan")
+        else:
+            result = run(*_size_args(kind, work, _sized(work / name, size, head)))
+        assert_clean_exit(result)
+        STATS[f"size {kind}: exit {result.exit_code}"] += 1
+        if size > _bound(kind):
+            assert "too large" in result.stdout + result.stderr
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+@FUZZ
+@given(
+    count=st.sampled_from([0, 1, 12, 999_999, 1_000_000, 1_000_001, 5_000_000]),
+    delta=st.sampled_from([0, 0, -1, 1, 7, 4096]),
+    solid=st.booleans(),
+)
+def test_fuzz_binary_stl_counts(count, delta, solid):
+    """A binary STL whose header's triangle count agrees with its size (or is off by `delta`):
+    read, refused for its triangles, or refused as neither binary nor ASCII; never decoded whole."""
+    from marm_setup.robot.meshes import MAX_TRIANGLES
+
+    work = _workdir()
+    try:
+        size = max(84 + 50 * count + delta, 0)
+        header = (b"solid fuzz" if solid else b"").ljust(80, b"\0") + count.to_bytes(4, "little")
+        _sized(work / "m.stl", size, header)
+        body = SAFE_ROBOT.replace(b'<box size="0.05 0.05 0.05"/>', b'<mesh filename="m.stl"/>', 1)
+        (work / "r.urdf").write_bytes(body)
+        result = run("collisions", work / "r.urdf", "--trials", "10")
+        assert_clean_exit(result)
+        STATS[f"stl: exit {result.exit_code}"] += 1
+        if delta == 0 and count > MAX_TRIANGLES:
+            assert f"{count:,} triangles, more than" in result.stderr
+        elif delta:
+            assert result.exit_code == 2
     finally:
         shutil.rmtree(work, ignore_errors=True)
