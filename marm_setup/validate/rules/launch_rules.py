@@ -201,10 +201,13 @@ def check_package_xml(root: Path, rel: str | None) -> list[Finding]:
     """package.xml exists and parses with catkin_pkg (the strict ROS parser)."""
     if rel is None:
         return [error("package.missing", "package.xml", "", "no package.xml", "every ROS package needs one")]
-    from catkin_pkg.package import InvalidPackage, parse_package
+    from catkin_pkg.package import InvalidPackage, parse_package_string
 
-    try:
-        parse_package(str(root / rel), warnings=[])
+    try:  # parse_package would read the file whole, however large
+        text = bounded_read.read_text(root / rel, bounded_read.XML_BYTES, shown=rel)
+        parse_package_string(text, filename=str(root / rel), warnings=[])
+    except FileTooLarge as exc:
+        return [error("package.invalid", rel, "", f"cannot read: {exc.message}")]
     except InvalidPackage as exc:
         text = " ".join(str(exc).split()).replace(str(root) + "/", "")
         return [error("package.invalid", rel, "", f"catkin_pkg rejects it: {text}")]
