@@ -16,19 +16,12 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from tests.reliability.inputs import chain_urdf, many_poses  # noqa: E402
+
 MARM = ROOT / "fixtures" / "marm" / "urdf" / "marm.urdf.xacro"
 SPEC = ROOT / "fixtures" / "marm" / "marm_setup.yaml"
-BOX = '<collision><geometry><box size="0.01 0.01 0.01"/></geometry></collision>'
-
-
-def chain(n: int, geometry_every: int) -> str:
-    links = [f'<link name="l{i}">{BOX if i % geometry_every == 0 else ""}</link>' for i in range(n + 1)]
-    joints = [
-        f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
-        '<origin xyz="0 0 0.02"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>'
-        for i in range(n)
-    ]
-    return f'<robot name="chain">{"".join(links + joints)}</robot>'
 
 
 def measure(name: str, *args: object) -> None:
@@ -62,9 +55,9 @@ def main() -> None:
         "</geometry></collision></link></robot>"
     )
     measure("collisions: a 5M-triangle STL (250 MB)", "collisions", mesh_robot, "--trials", "10")
-    (work / "chain20k.urdf").write_text(chain(20_000, 100_000))
+    (work / "chain20k.urdf").write_text(chain_urdf(20_000, geometry_every=100_000))
     measure("inspect: a 20,000-link chain", "inspect", work / "chain20k.urdf")
-    (work / "chain1000.urdf").write_text(chain(1000, 1))
+    (work / "chain1000.urdf").write_text(chain_urdf(1000))
     measure(
         "collisions: 1000 links with geometry, 10 trials",
         "collisions",
@@ -75,7 +68,7 @@ def main() -> None:
     measure("collisions: --trials 1000000000 (refused)", "collisions", MARM, "--trials", "1000000000")
     srdf = work / "r.srdf"
     two = work / "two.urdf"
-    two.write_text(chain(1, 1).replace('name="chain"', 'name="test_robot"'))
+    two.write_text(chain_urdf(1).replace('name="chain"', 'name="test_robot"'))
     srdf.write_text(
         '<robot name="test_robot">\n'
         + "".join(
@@ -99,13 +92,7 @@ def main() -> None:
         capture_output=True,
     )
     srdf = pkg / "config" / "marm.srdf"
-    poses = "".join(
-        f'<group_state name="p{i:03d}" group="arm"><joint name="joint1" value="{-1 + i / 100:.2f}"/>'
-        '<joint name="joint2" value="0"/><joint name="joint3" value="0"/><joint name="joint4" value="0"/>'
-        '<joint name="joint5" value="0"/><joint name="joint6" value="0"/></group_state>\n'
-        for i in range(198)
-    )
-    srdf.write_text(srdf.read_text().replace("<end_effector", poses + "<end_effector", 1))
+    srdf.write_text(srdf.read_text().replace("<end_effector", many_poses(198) + "<end_effector", 1))
     measure("validate: 200 named poses of one group", "validate", pkg)
 
 

@@ -45,3 +45,13 @@ def subgroup_diamonds(n: int) -> dict:
             {"name": f"b{i}", "subgroups": [nxt]},
         ]
     return {"groups": groups}
+
+
+def many_poses(n: int) -> str:
+    """`n` SRDF group_states p000, p001, ... of the marm's arm, joint1 from -1 in steps of 0.01."""
+    zeros = "".join(f'<joint name="joint{j}" value="0"/>' for j in range(2, 7))
+    return "".join(
+        f'<group_state name="p{i:03d}" group="arm"><joint name="joint1" value="{-1 + i / 100:.2f}"/>'
+        f"{zeros}</group_state>\n"
+        for i in range(n)
+    )

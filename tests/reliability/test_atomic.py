@@ -15,28 +15,15 @@ import pytest
 from marm_setup.render import commit_record, switch, writer
 from tests.conftest import FIXTURES, MARM_URDF
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
+from tests.reliability.packages import edit_setup
 from tests.reliability.snapshots import snapshot
 
 SPEC = FIXTURES / "marm" / "marm_setup.yaml"
 TRIALS = ("--trials", "20")
 
 
-@pytest.fixture
-def pkg(tmp_path):
-    out = tmp_path / "pkg"
-    assert_clean_exit(run("init", MARM_URDF, "--out", out, "--setup", SPEC, *TRIALS), codes=(0,))
-    return out
-
-
-def _edit_setup(pkg):
-    setup = pkg / "marm_setup.yaml"
-    setup.write_text(
-        setup.read_text().replace("default_velocity_scaling: 0.1", "default_velocity_scaling: 0.3")
-    )
-
-
 def test_one_unwritable_file_leaves_the_whole_package_as_it_was(pkg):
-    _edit_setup(pkg)
+    edit_setup(pkg)
     (pkg / "config" / "joint_limits.yaml").unlink()
     (pkg / "config" / "joint_limits.yaml").mkdir()  # a folder where a generated file goes
     before = snapshot(pkg)
@@ -62,7 +49,7 @@ def test_force_keeps_a_hand_edit_as_orig(pkg):
     srdf = pkg / "config" / "marm.srdf"
     srdf.write_text(srdf.read_text() + "<!-- mine -->\n")
     edited = srdf.read_text()
-    _edit_setup(pkg)
+    edit_setup(pkg)
     assert_one_line_error(run("render", pkg), "hand-edited")
     result = run("render", pkg, "--force")
     assert_clean_exit(result, codes=(0,))
@@ -89,7 +76,7 @@ def test_a_symlinked_out_stays_a_symlink(tmp_path):
     link.symlink_to(real)
     assert_clean_exit(run("init", MARM_URDF, "--out", link, "--setup", SPEC, *TRIALS, "--force"), codes=(0,))
     assert link.is_symlink() and (real / "package.xml").is_file()
-    _edit_setup(link)
+    edit_setup(link)
     assert_clean_exit(run("render", link), codes=(0,))
     assert link.is_symlink() and "0.3" in (real / "config" / "joint_limits.yaml").read_text()
 
@@ -249,7 +236,7 @@ FORGED = [
 def test_a_forged_commit_record_is_refused_and_nothing_touched(pkg, tmp_path, case):
     victim = _victim(tmp_path)
     (pkg / commit_record.COMMIT).write_text(_forge(pkg, victim, case))
-    _edit_setup(pkg)
+    edit_setup(pkg)
     before, around = snapshot(pkg), snapshot(tmp_path)
     links = sorted(p for p in pkg.rglob("*") if p.is_symlink())
     assert_one_line_error(run("render", pkg), f"{pkg}/.marm_setup/commit.json: ")
@@ -266,7 +253,7 @@ def test_a_symlinked_state_folder_is_not_cleaned_through(pkg, tmp_path):
     (pkg / ".marm_setup" / "manifest.json").rename(outside / "manifest.json")
     (pkg / ".marm_setup").rmdir()
     (pkg / ".marm_setup").symlink_to(outside)
-    _edit_setup(pkg)
+    edit_setup(pkg)
     assert_one_line_error(run("render", pkg), "'.marm_setup' is a symlink")
     assert sorted(p.name for p in outside.iterdir()) == ["manifest.json", "stage-abc"]
     assert (outside / "stage-abc" / "keep.txt").read_text() == "mine\n"
@@ -313,7 +300,7 @@ def test_force_twice_keeps_both_hand_edits(pkg, command):
 def test_force_says_which_file_keeps_the_hand_edit(pkg, command):
     (pkg / "config" / "marm.srdf.orig").write_text("an earlier edit\n")
     _edit_srdf(pkg, "mine")
-    _edit_setup(pkg)
+    edit_setup(pkg)
     args = (
         ("init", MARM_URDF, "--out", pkg, "--setup", SPEC, *TRIALS) if command == "init" else ("render", pkg)
     )
@@ -355,7 +342,7 @@ def test_a_file_system_mounted_inside_the_package_is_left_alone(pkg, tmp_path, m
     source.mkdir()
     (pkg / "data").mkdir()
     how = f"mount -t tmpfs tmpfs {pkg}/data" if mount == "tmpfs" else f"mount --bind {source} {pkg}/data"
-    _edit_setup(pkg)
+    edit_setup(pkg)
     script = f"""{how}
 echo precious > {pkg}/data/f
 {sys.executable} -m marm_setup render {pkg} > /dev/null
@@ -384,7 +371,7 @@ def test_cleaning_leftovers_stops_at_a_mount_point(pkg, tmp_path, where):
     (leftover / "old.txt").write_text("old\n")
     if where == "sibling build":  # the record a killed run leaves with it (render.stage_folders)
         (tmp_path / ".pkg.marm-setup-abcd1234.record").touch()
-    _edit_setup(pkg)
+    edit_setup(pkg)
     script = f"""mount -t tmpfs tmpfs {leftover}/m
 echo precious > {leftover}/m/f
 {sys.executable} -m marm_setup render {pkg} > /dev/null
@@ -422,7 +409,7 @@ def test_a_killed_in_place_switch_is_completed_by_the_next_render(pkg, tmp_path,
     from marm_setup.cli.commands.render import load_package_setup
     from marm_setup.render.package import SETUP_FILE, render_package
 
-    _edit_setup(pkg)
+    edit_setup(pkg)
     reference = tmp_path / "reference"
     shutil.copytree(pkg, reference)
     assert_clean_exit(run("render", reference), codes=(0,))

@@ -14,7 +14,7 @@ from marm_setup.robot import xacro_expand
 from tests.conftest import FIXTURES, MARM_URDF
 from tests.helpers import TWO_BOXES, urdf
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
-from tests.reliability.inputs import chain_urdf
+from tests.reliability.inputs import chain_urdf, many_poses
 
 SPEC = FIXTURES / "marm" / "marm_setup.yaml"
 TRIALS = ("--trials", "10")
@@ -40,13 +40,6 @@ def mesh_robot(tmp_path, mesh: str):
         f'<link name="a"><collision><geometry><mesh filename="{mesh}"/></geometry></collision></link>'
     )
     return _write(tmp_path / "r.urdf", body)
-
-
-@pytest.fixture
-def pkg(tmp_path):
-    out = tmp_path / "pkg"
-    assert_clean_exit(run("init", MARM_URDF, "--out", out, "--setup", SPEC, *TRIALS), codes=(0,))
-    return out
 
 
 def test_a_sparse_urdf(tmp_path):
@@ -292,13 +285,7 @@ def test_validate_plans_a_ring_of_200_poses_not_all_pairs(pkg):
     """200 named poses of one group were 39,800 plans (133 s, no output); past 10 poses each
     pose is planned to and from its neighbours, and the summary says what was left out."""
     srdf = pkg / "config" / "marm.srdf"
-    poses = "".join(
-        f'<group_state name="p{i:03d}" group="arm"><joint name="joint1" value="{-1 + i / 100:.2f}"/>'
-        '<joint name="joint2" value="0"/><joint name="joint3" value="0"/><joint name="joint4" value="0"/>'
-        '<joint name="joint5" value="0"/><joint name="joint6" value="0"/></group_state>\n'
-        for i in range(198)
-    )
-    srdf.write_text(srdf.read_text().replace("<end_effector", poses + "<end_effector", 1))
+    srdf.write_text(srdf.read_text().replace("<end_effector", many_poses(198) + "<end_effector", 1))
     result = run("validate", pkg)
     assert_clean_exit(result, codes=(0,))
     assert "planned 400 pose pairs" in result.stdout

@@ -15,26 +15,13 @@ import sys
 import pytest
 
 from marm_setup.render import commit_record
-from tests.conftest import FIXTURES, MARM_URDF
+from tests.conftest import FIXTURES
 from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
+from tests.reliability.packages import edit_setup
 from tests.reliability.snapshots import snapshot
 
 SPEC = FIXTURES / "marm" / "marm_setup.yaml"
 TRIALS = ("--trials", "20")
-
-
-@pytest.fixture
-def pkg(tmp_path):
-    out = tmp_path / "pkg"
-    assert_clean_exit(run("init", MARM_URDF, "--out", out, "--setup", SPEC, *TRIALS), codes=(0,))
-    return out
-
-
-def _edit_setup(pkg, value="0.3"):
-    setup = pkg / "marm_setup.yaml"
-    text = setup.read_text()
-    old = next(v for v in ("0.1", "0.3", "0.4") if f"default_velocity_scaling: {v}" in text)
-    setup.write_text(text.replace(f"default_velocity_scaling: {old}", f"default_velocity_scaling: {value}"))
 
 
 def _edit_srdf(pkg):
@@ -45,7 +32,7 @@ def _edit_srdf(pkg):
 def test_no_overwritten_claim_when_the_write_fails(pkg):
     """The status lines said '(overwritten: --force; ...)' and then the write failed."""
     _edit_srdf(pkg)
-    _edit_setup(pkg)
+    edit_setup(pkg)
     (pkg / "config" / "joint_limits.yaml").unlink()
     (pkg / "config" / "joint_limits.yaml").mkdir()  # a folder where a generated file goes
     result = run("render", pkg, "--force")
@@ -55,7 +42,7 @@ def test_no_overwritten_claim_when_the_write_fails(pkg):
 
 def test_the_overwritten_claim_follows_the_write(pkg):
     _edit_srdf(pkg)
-    _edit_setup(pkg)
+    edit_setup(pkg)
     result = run("render", pkg, "--force")
     assert_clean_exit(result, codes=(0,))
     assert (
@@ -97,14 +84,14 @@ def test_render_from_inside_the_package_keeps_its_folder(pkg):
     folder and its next `validate .` was an internal error. A package holding the current
     folder is written in place."""
     before = os.stat(pkg).st_ino
-    _edit_setup(pkg)
+    edit_setup(pkg)
     result = _cli("render", ".", cwd=pkg)
     assert result.returncode == 0, result.stderr
     assert os.stat(pkg).st_ino == before
     assert "default_velocity_scaling_factor: 0.3" in (pkg / "config" / "joint_limits.yaml").read_text()
     assert sorted(os.listdir(pkg / ".marm_setup")) == ["manifest.json"]
     assert _cli("validate", ".", "--no-plan", cwd=pkg).returncode == 0
-    _edit_setup(pkg, "0.4")  # from a folder inside it, too
+    edit_setup(pkg, "0.4")  # from a folder inside it, too
     assert _cli("render", "..", cwd=pkg / "config").returncode == 0
     assert os.stat(pkg).st_ino == before
 
@@ -145,7 +132,7 @@ def test_root_keeps_the_owners_groups_and_modes_of_someone_elses_package(pkg, mo
     os.chmod(pkg, 0o750)
     os.chmod(pkg / "config" / "joint_limits.yaml", 0o640)
     before = _owners(pkg)
-    _edit_setup(pkg)
+    edit_setup(pkg)
     if how == "in place":
         monkeypatch.chdir(pkg)  # a package holding the current folder is written in place
     result = run("render", pkg)
@@ -165,7 +152,7 @@ def test_a_users_folder_named_like_a_build_folder_is_kept(pkg, name):
     mine = pkg.parent / name
     mine.mkdir()
     (mine / "keep.txt").write_text("mine\n")
-    _edit_setup(pkg)
+    edit_setup(pkg)
     assert_clean_exit(run("render", pkg), codes=(0,))
     assert (mine / "keep.txt").read_text() == "mine\n"
     assert sorted(p.name for p in pkg.parent.iterdir()) == sorted([name, "pkg"])
@@ -179,7 +166,7 @@ def test_a_killed_runs_recorded_build_folder_is_removed(pkg):
     (build / "config" / "old.yaml").write_text("old\n")
     (pkg.parent / ".pkg.marm-setup-0123abcd.record").touch()
     (pkg.parent / ".pkg.marm-setup-4567cdef.record").touch()
-    _edit_setup(pkg)
+    edit_setup(pkg)
     assert_clean_exit(run("render", pkg), codes=(0,))
     assert [p.name for p in pkg.parent.iterdir()] == ["pkg"]
 
@@ -208,7 +195,7 @@ def test_an_immutable_file_is_left_as_it_is(pkg, unpin, flag):
     unpin.append(kinematics)
     _chattr(flag, kinematics)
     before = os.stat(kinematics).st_ino
-    _edit_setup(pkg)
+    edit_setup(pkg)
     assert_clean_exit(run("render", pkg), codes=(0,))
     assert os.stat(kinematics).st_ino == before  # the same file, flag and all
     assert "default_velocity_scaling_factor: 0.3" in (pkg / "config" / "joint_limits.yaml").read_text()
@@ -221,7 +208,7 @@ def test_an_immutable_file_to_be_written_is_one_line_and_nothing_changes(pkg, un
     limits = pkg / "config" / "joint_limits.yaml"
     pinned = limits if what == "file" else limits.parent
     unpin.append(pinned)
-    _edit_setup(pkg)
+    edit_setup(pkg)
     before = snapshot(pkg)
     _chattr("+i", pinned)
     relative = "config/joint_limits.yaml" if what == "file" else "config"
