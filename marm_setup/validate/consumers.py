@@ -216,9 +216,11 @@ def _needs_args(path: Path) -> bool:
     """The file declares an arg with neither default nor value: it is meant to be included."""
     from lxml import etree
 
+    from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
+
     try:
-        root = etree.parse(str(path)).getroot()
-    except (OSError, etree.XMLSyntaxError):
+        root = etree.fromstring(read_bytes(path, XML_BYTES), base_url=str(path))
+    except (OSError, etree.XMLSyntaxError, FileTooLarge):
         return False
     return any(a.get("default") is None and a.get("value") is None for a in root.findall("arg"))
 

@@ -15,6 +15,7 @@ import shlex
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
 from marm_setup.errors import InputError
 from marm_setup.robot.ros_packages import PackageMap
 
@@ -157,9 +158,11 @@ def run_static_command(command: str, packages: PackageMap, on_stderr: str = ON_S
         words = ["xacro", *words]
     if len(words) == 2 and words[0] == "cat":
         try:
-            return CommandRun(command, on_stderr, Path(words[1]).read_text(encoding="utf-8"))
+            return CommandRun(command, on_stderr, read_text(words[1], XML_BYTES))
         except OSError as exc:
             return CommandRun(command, on_stderr, problem=f"cat: {exc.strerror or exc}")
+        except FileTooLarge as exc:
+            return CommandRun(command, on_stderr, problem=f"cat: {exc.message}")
     if len(words) < 2 or words[0] != "xacro":
         return CommandRun(command, on_stderr, problem="not a command marm-setup can run without ROS")
     run = _xacro(words[1], _xacro_args(words[2:]), packages, command, on_stderr)

@@ -319,3 +319,13 @@ def test_package_search_through_symlinks_to_itself(tmp_path, uri):
         assert_one_line_error(result, "unknown package 'missing_pkg'")
     else:
         assert_clean_exit(result, codes=(0,))
+
+
+@pytest.mark.parametrize("rel", ["config/huge.yaml", "config/huge.urdf.xacro", "launch/huge.launch.xml"])
+def test_sparse_files_the_launch_and_parameter_rules_read(tmp_path, rel):
+    """validate's ROS 2 launch and parameter-file rules read every YAML, xacro and launch file of
+    the package whole to search it; now each read is bounded (a file over it is not searched)."""
+    pkg = tmp_path / "pkg"
+    assert_clean_exit(run("init", MARM_URDF, "--out", pkg, "--target", "ros2", *TRIALS), codes=(0,))
+    sparse(pkg / rel)
+    assert_clean_exit(run("validate", pkg, "--no-plan"), codes=(0, 1))

@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
+from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import find_packages
 from marm_setup.validate.launch_eval import ON_STDERR_DEFAULT, Call, LaunchEvaluator, parse_call
@@ -162,8 +163,8 @@ def check_install_paths(pkg: ConfigPackage) -> list[Finding]:
     out = []
     for rel in files:
         try:
-            text = pkg.path(rel).read_text(encoding="utf-8", errors="replace")
-        except OSError:
+            text = read_bytes(pkg.path(rel), XML_BYTES).decode("utf-8", errors="replace")
+        except (OSError, FileTooLarge):  # too large: not searched (its own rules say why)
             continue
         for m in SHARE_PATH.finditer(text):
             tail = m.group(3) if m.group(4) is None else m.group(4)

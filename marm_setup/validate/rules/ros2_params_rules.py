@@ -15,6 +15,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from marm_setup.bounded_read import YAML_BYTES, FileTooLarge, read_bytes
 from marm_setup.findings import Finding, error
 
 PARAMS_KEY = "ros__parameters"
@@ -28,9 +29,9 @@ def params_files(root: Path) -> list[Path]:
         if SKIPPED_DIRS & set(path.relative_to(root).parts) or not path.is_file():
             continue
         try:
-            if PARAMS_KEY in path.read_text(encoding="utf-8", errors="replace"):
+            if PARAMS_KEY in read_bytes(path, YAML_BYTES).decode("utf-8", errors="replace"):
                 out.append(path)
-        except OSError:
+        except (OSError, FileTooLarge):  # too large: yaml.parse says so where it is loaded
             continue
     return out
 
@@ -43,7 +44,7 @@ def check_params_files(root: Path) -> list[Finding]:
     for path in params_files(root):
         rel = path.relative_to(root).as_posix()
         try:
-            data = load_yaml(path.read_text(encoding="utf-8"))
+            data = load_yaml(read_bytes(path, YAML_BYTES).decode("utf-8"))
         except Exception:  # noqa: BLE001 - unreadable YAML has its own finding (yaml.parse)
             continue
         for element, kind in empty_values(data):
