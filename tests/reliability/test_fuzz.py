@@ -8,6 +8,7 @@ random seed and prints the counts."""
 
 from __future__ import annotations
 
+import atexit
 import math
 import os
 import shutil
@@ -255,6 +256,7 @@ def _package(work: Path) -> Path:
     """One generated package per session, copied for each example."""
     if "pkg" not in _PACKAGE:
         base = Path(tempfile.mkdtemp(prefix="marm-fuzz-pkg-"))
+        atexit.register(shutil.rmtree, base, True)
         (base / "r.urdf").write_bytes(SAFE_ROBOT)
         assert_clean_exit(run("init", base / "r.urdf", "--out", base / "pkg", "--trials", "10"), codes=(0,))
         _PACKAGE["pkg"] = base / "pkg"
