@@ -306,9 +306,11 @@ def _with_spec(
     """`model` with the SPEC's sections in place of its own, fitted to the robot; group settings
     filled when the groups are all the SPEC's, home poses when neither SPEC nor SRDF gives poses."""
     from marm_setup.setup.infer import fill_group_settings, fit_to_spec, home_poses
+    from marm_setup.setup.spec_overlay import spec_items, without_replaced
 
     model = _make_room_for_spec(model, spec)
-    model = fit_to_spec(_apply_spec(model, spec, request), robot, spec)
+    merged = without_replaced(model, _apply_spec(model, spec, request), robot, spec_items(spec))
+    model = fit_to_spec(merged, robot, spec)
     if not inferred_groups:
         model = fill_group_settings(model, robot)
     if "group_states" not in spec and request.from_srdf is None:

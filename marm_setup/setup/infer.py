@@ -11,7 +11,6 @@ a virtual joint that fits the base: none when the root is `world`, floating for 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
 
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
@@ -222,50 +221,11 @@ DERIVED_LISTS = ("controllers", "kinematics", "planners", "arbotix_joints")
 
 
 def fit_to_spec(model: SetupModel, robot: RobotModel, spec: dict) -> SetupModel:
-    """A merged setup made whole: inferred groups whose joints a SPEC group covers are dropped
-    (with composites of them, and their end effectors and poses), and the lists the SPEC does
-    not give (controllers, kinematics, ...) derived again for the final groups."""
-    given = {g.get("name") for g in spec.get("groups") or () if isinstance(g, dict)}
-    if given:
-        model = _drop_shadowed(model, robot, given)
+    """A merged setup made whole (`setup.spec_overlay.without_replaced` has taken out what the
+    SPEC replaced): the lists the SPEC does not give (controllers, kinematics, ...) derived
+    again for the final groups."""
     derived = derive_group_settings(model, robot)
     return dataclasses.replace(model, **{n: getattr(derived, n) for n in DERIVED_LISTS if n not in spec})
-
-
-def _drop_shadowed(model: SetupModel, robot: RobotModel, given: set) -> SetupModel:
-    """Without the inferred groups a SPEC group covers (unless a SPEC group names them)."""
-    by_name = groups_by_name(model.groups)
-    known = [g for g in model.groups if _resolvable(g, by_name, robot)]
-    covered = {j for g in known if g.name in given for j in active_group_joints(g, by_name, robot)}
-    used = {s for g in model.groups if g.name in given for s in g.subgroups}
-    dropped = {
-        g.name
-        for g in known
-        if g.name not in given | used
-        and not g.subgroups
-        and set(active_group_joints(g, by_name, robot)) & covered
-    }
-    while more := {
-        g.name for g in model.groups if g.name not in dropped | given and set(g.subgroups) & dropped
-    }:
-        dropped |= more
-    return dataclasses.replace(
-        model,
-        groups=tuple(g for g in model.groups if g.name not in dropped),
-        end_effectors=tuple(
-            e for e in model.end_effectors if e.group not in dropped and e.parent_group not in dropped
-        ),
-        group_states=tuple(s for s in model.group_states if s.group not in dropped),
-    )
-
-
-def _resolvable(group: Group, by_name: Mapping[str, Group], robot: RobotModel) -> bool:
-    """Names only what the robot and the setup have (a SPEC's typo is for the checks to report)."""
-    chain_ok = group.chain is None or {group.chain.base, group.chain.tip} <= set(robot.link_map)
-    names_ok = all(j in robot.joint_map for j in group.joints) and all(
-        x in robot.link_map for x in group.links
-    )
-    return chain_ok and names_ok and all(s in by_name for s in group.subgroups)
 
 
 def merge_spec(base: dict, spec: dict) -> dict:
