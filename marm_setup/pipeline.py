@@ -260,7 +260,7 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
 
 def _build(request: InitRequest, robot: RobotModel) -> _Built:
     from marm_setup.names import ros_package_name
-    from marm_setup.setup.checks import check_setup, package_name_problem
+    from marm_setup.setup.checks import check_setup, package_name_problem, setup_warnings
     from marm_setup.setup.infer import REFERENCE, infer
 
     if request.name and (problem := package_name_problem(request.name)):
@@ -297,7 +297,7 @@ def _build(request: InitRequest, robot: RobotModel) -> _Built:
     poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
     if not (request.name or spec.get("package_name")):
         notes = (*notes, *_taken_name_warnings(str(name), request))
-    return _Built(model, (*notes, *_empty_group_warnings(model)), poses_given)
+    return _Built(model, (*notes, *_empty_group_warnings(model), *setup_warnings(model)), poses_given)
 
 
 def _with_spec(

@@ -311,6 +311,16 @@ def hardware_context(model: SetupModel, robot: RobotModel, own_joints: list[Ros2
     }
 
 
+def pipeline_context(model: SetupModel) -> dict:
+    """ros2: every pipeline as moveit.yaml writes it, and Humble's top-level capabilities."""
+    if model.target != "ros2":
+        return {}
+    from marm_setup.render.pipelines import pipeline_infos, top_level_capabilities
+
+    infos = pipeline_infos(model)
+    return {"ros2_pipelines": infos, "capabilities": top_level_capabilities(infos)}
+
+
 def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str] | None = None) -> dict:
     """Everything the templates read, keyed by the names they use."""
     servos = plan_servos(model, robot)
@@ -336,6 +346,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "static_tfs": model.virtual_joints,
         "rviz": rviz_view(model, robot),
         "pipelines": [(name, PIPELINES[name]) for name in model.planning_pipelines],
+        **pipeline_context(model),
         "mock_hardware": MOCK_HARDWARE,
         "ompl_planners": OMPL_PLANNERS,
         "cartesian_limits": CARTESIAN_LIMITS,

@@ -114,7 +114,8 @@ def distro_problem(target: str, distro: str | None) -> str | None:
 
 
 def _check_pipelines(c: _Checker) -> None:
-    """Known pipelines, each once, shipped by the package's distro."""
+    """Known pipelines, each once, that the package's distro can run (STOMP on Humble built from
+    source: a warning, `setup_warnings`); their parameters (`_check_pipeline_parameters`)."""
     from marm_setup.setup.domain import PIPELINES
 
     names = c.model.planning_pipelines
@@ -125,9 +126,61 @@ def _check_pipelines(c: _Checker) -> None:
         c.name("planning pipeline", name, PIPELINES, where)
         if name in names[:i]:
             raise c.fail(f"'{name}' is listed twice", where)
-        if c.model.distro not in PIPELINES[name].distros:
-            shipped = ", ".join(PIPELINES[name].distros)
+        pipeline = PIPELINES[name]
+        if c.model.distro not in pipeline.distros + pipeline.from_source:
+            shipped = ", ".join(pipeline.distros + pipeline.from_source)
             raise c.fail(f"'{name}' is not in MoveIt's {c.model.distro} binaries (only {shipped})", where)
+    _check_pipeline_parameters(c)
+
+
+def _check_pipeline_parameters(c: _Checker) -> None:
+    """Each pipeline's parameters: one of the setup's pipelines, a name some ROS 2 distro's
+    MoveIt reads there (one only the other distro reads: a warning), a value of its type."""
+    from marm_setup.setup.pipeline_params import parameter_problem
+
+    model = c.model
+    if model.pipeline_parameters and model.target != "ros2":
+        raise c.fail(
+            "written for ROS 2 (humble, jazzy) only: noetic's pipeline launch files keep MoveIt's defaults",
+            "pipeline_parameters",
+        )
+    for pipeline, params in model.pipeline_parameters:
+        if pipeline not in model.planning_pipelines:
+            listed = ", ".join(model.planning_pipelines)
+            raise c.fail(
+                f"'{pipeline}' is not in planning_pipelines ({listed})", f"pipeline_parameters.{pipeline}"
+            )
+        for name, value in params:
+            problem = parameter_problem(pipeline, model.distro, name, value)
+            if problem:
+                raise c.fail(problem, f"pipeline_parameters.{pipeline}.{name}")
+
+
+def setup_warnings(model: SetupModel) -> tuple[str, ...]:
+    """`warning: ...` lines for what a setup asks that its distro's MoveIt binaries cannot do
+    alone (STOMP on Humble) or do not read (a parameter of the other distro: left out)."""
+    from marm_setup.setup.domain import PIPELINES
+    from marm_setup.setup.pipeline_params import other_distros_reading, parameter
+
+    distro, out = model.distro, []
+    for i, name in enumerate(model.planning_pipelines):
+        pipeline = PIPELINES.get(name)
+        if pipeline is not None and distro in pipeline.from_source:
+            out.append(
+                f"warning: planning_pipelines[{i}]: '{name}' is not in MoveIt's {distro} binaries (moveit2's "
+                f"{distro} branch has no moveit_planners/{name}): build {pipeline.package} from moveit2's "
+                f"source (Iron or later) into your workspace, else move_group cannot load {pipeline.plugin_ros2} "
+                "(moveit/moveit2#2550, #2742)"
+            )
+    for pipeline_name, params in model.pipeline_parameters:
+        for name, _ in params:
+            others = other_distros_reading(pipeline_name, distro, name)
+            if parameter(pipeline_name, distro, name) is None and others:
+                out.append(
+                    f"warning: pipeline_parameters.{pipeline_name}.{name}: {distro}'s MoveIt does not read it "
+                    f"({', '.join(others)}'s does): left out of config/moveit.yaml"
+                )
+    return tuple(out)
 
 
 def _check_ros2_control(c: _Checker) -> None:

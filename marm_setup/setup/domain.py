@@ -102,20 +102,24 @@ MOCK_HARDWARE = "mock_components/GenericSystem"
 class Pipeline:
     """A MoveIt planning pipeline: its parameter namespace (the name move_group's
     planning_pipelines lists), planner plugin per MoveIt generation, the package exporting it,
-    and the distros whose binaries ship it."""
+    the distros whose binaries ship it and those whose MoveIt runs it built from source."""
 
     namespace: str
     plugin_ros1: str
     plugin_ros2: str
     package: str
     distros: tuple[str, ...]
+    from_source: tuple[str, ...] = ()
 
     def plugin(self, target: str) -> str:
         return self.plugin_ros1 if target == "ros1" else self.plugin_ros2
 
 
-# The setup's `planning_pipelines` names. STOMP is not in Humble's binaries (moveit/moveit2#2550:
-# added in Iron) and not part of MoveIt 1 (a separate stomp_moveit package), so only Jazzy gets it.
+# The setup's `planning_pipelines` names. STOMP is not in Humble's binaries: moveit2's humble
+# branch has no moveit_planners/stomp (it is there from Iron on); Humble users build that package
+# (stomp_moveit, moveit_planners_stomp) from source, with Humble's pipeline format
+# (moveit/moveit2#2550, #2742; Kinovarobotics/ros2_kortex#153 took it out of their Humble
+# binaries' config for that reason). MoveIt 1's STOMP is a separate stomp_moveit package.
 # MoveIt 1's Pilz plugin class is `pilz_industrial_motion_planner::CommandPlanner` (what the Setup
 # Assistant writes), MoveIt 2's `pilz_industrial_motion_planner/CommandPlanner`.
 PIPELINES = {
@@ -140,7 +144,9 @@ PIPELINES = {
         "pilz_industrial_motion_planner",
         ("noetic", "humble", "jazzy"),
     ),
-    "stomp": Pipeline("stomp", "", "stomp_moveit/StompPlanner", "moveit_planners_stomp", ("jazzy",)),
+    "stomp": Pipeline(
+        "stomp", "", "stomp_moveit/StompPlanner", "moveit_planners_stomp", ("jazzy",), ("humble",)
+    ),
 }
 # OMPL for any query, Pilz for deterministic PTP/LIN/CIRC motions (needs only the cartesian
 # limits); CHOMP and STOMP optimise trajectories and want tuning per robot, so they are opt-in.

@@ -18,6 +18,8 @@ from marm_setup.setup.domain import (
 )
 
 TARGETS = ("ros2", "ros1")
+# a value of a planning pipeline parameter (setup.pipeline_params checks it against its type)
+PipelineParameterValue = float | int | bool | str | tuple[str, ...]
 # The ROS distros each target is written for, the target's default first. Humble and Jazzy differ
 # in MoveIt's planning pipeline parameters (DESIGN §4): Humble's PlanningPipeline reads one
 # `planning_plugin` string and `request_adapters` as one space-separated string
@@ -287,6 +289,9 @@ class SetupModel:
     planners: tuple[PlannerDefaults, ...] = ()
     # MoveIt planning pipelines (domain.PIPELINES), the first is move_group's default
     planning_pipelines: tuple[str, ...] = DEFAULT_PIPELINES
+    # per pipeline (a planning_pipelines name): parameters of its namespace over marm-setup's
+    # defaults (setup.pipeline_params: the names each distro's MoveIt reads)
+    pipeline_parameters: tuple[tuple[str, tuple[tuple[str, PipelineParameterValue], ...]], ...] = ()
     controllers: tuple[Controller, ...] = ()
     arbotix_joints: tuple[ArbotixJoint, ...] = ()
     ros2_control: Ros2ControlHardware | None = None  # None: mock hardware, position command

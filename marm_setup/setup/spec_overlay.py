@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+from typing import Any
 
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
@@ -51,7 +52,7 @@ def without_replaced(
     gone = shadowed_groups(merged, robot, given.get("groups", frozenset()))
     stale = gone | redefined_groups(inferred, merged, given.get("groups", frozenset()))
     model = dataclasses.replace(merged, groups=tuple(g for g in merged.groups if g.name not in gone))
-    changes = {}
+    changes: dict[str, Any] = {}
     for name, fields in GROUP_FIELDS.items():
         items = getattr(model, name)
         if items is None:

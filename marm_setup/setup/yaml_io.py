@@ -170,8 +170,10 @@ def _load_value(hint, data, ctx: _Ctx, where: str):
     if origin in (typing.Union, types.UnionType):
         if data is None and type(None) in args:
             return None
-        (inner,) = [a for a in args if a is not type(None)]
-        return _load_value(inner, data, ctx, where)
+        arms = [a for a in args if a is not type(None)]
+        return (
+            _load_value(arms[0], data, ctx, where) if len(arms) == 1 else _load_union(arms, data, ctx, where)
+        )
     if dataclasses.is_dataclass(hint):
         return _load_dataclass(hint, data, ctx, where)
     if isinstance(hint, type) and issubclass(hint, enum.Enum):
@@ -186,6 +188,8 @@ def _load_tuple(hint, data, ctx: _Ctx, where: str):
         if not isinstance(data, dict):
             raise ctx.fail(f"expected a mapping of names to values, got {_kind(data)}", where)
         key_hint, value_hint = _pair_hints(hint)
+        if _is_multi_union(value_hint):  # parameters: a nested mapping is dotted names
+            data = dict(_dotted(data))
         return tuple(
             (
                 _load_scalar(key_hint, k, ctx, _join(where, str(k))),
@@ -224,6 +228,22 @@ def _load_scalar(hint, data, ctx: _Ctx, where: str):
     raise ctx.fail(f"expected {names.get(hint, hint)}, got {_kind(data)}", where)
 
 
+def _load_union(arms: list, data, ctx: _Ctx, where: str):
+    """A value of one of several types (a pipeline parameter): the one its YAML type is; an
+    integer where only a number is taken becomes one."""
+    kind = type(data)
+    if kind in arms:
+        return _load_scalar(kind, data, ctx, where)
+    if kind is int and float in arms:
+        return _load_scalar(float, data, ctx, where)
+    lists = [a for a in arms if typing.get_origin(a) is tuple]
+    if isinstance(data, list) and lists:
+        return _load_tuple(lists[0], data, ctx, where)
+    names = {str: "a string", float: "a number", bool: "true or false"}
+    wanted = [names[a] for a in arms if a in names] + (["a list of strings"] if lists else [])
+    raise ctx.fail(f"expected {', '.join(wanted)}; got {_kind(data)}", where)
+
+
 def _load_enum(hint, data, ctx: _Ctx, where: str):
     valid = [m.value for m in hint]
     if data not in valid:
@@ -253,6 +273,19 @@ def _is_pairs(hint) -> bool:
         return False
     inner = typing.get_args(args[0])
     return len(inner) == 2 and inner[0] is str and inner[1] is not Ellipsis
+
+
+def _is_multi_union(hint) -> bool:
+    return typing.get_origin(hint) in (typing.Union, types.UnionType) and len(typing.get_args(hint)) > 2
+
+
+def _dotted(data: dict, prefix: str = ""):
+    """(dotted name, value) of every leaf of a nested mapping, as ROS 2 names parameters."""
+    for key, value in data.items():
+        if isinstance(value, dict) and value:
+            yield from _dotted(value, f"{prefix}{key}.")
+        else:
+            yield f"{prefix}{key}", value
 
 
 def _pair_hints(hint):

@@ -309,7 +309,7 @@ def test_ros2_numeric_params_are_floats():
 def test_ros2_moveit_yaml_structure():
     files = rendered("ros2")
     params = load_yaml(files, "config/moveit.yaml")["/**"]["ros__parameters"]
-    assert params["planning_pipelines"]["pipeline_names"] == ["ompl", "pilz_industrial_motion_planner"]
+    assert params["planning_pipelines"] == ["ompl", "pilz_industrial_motion_planner"]
     assert set(params["robot_description_kinematics"]) == {"arm"}
     planning = params["robot_description_planning"]
     assert set(planning["cartesian_limits"]) == {
@@ -437,7 +437,9 @@ def test_description_package_and_fallback(tmp_path):
         copy = files[target]["description/robot.urdf"]
         assert copy.rstrip("\n") == robot.urdf_xml.rstrip("\n")
         assert "install(DIRECTORY launch config description " in files[target]["CMakeLists.txt"]
-        assert not any("/.." in text for path, text in files[target].items() if path.startswith(("launch/", "config/")))
+        assert not any(
+            "/.." in text for path, text in files[target].items() if path.startswith(("launch/", "config/"))
+        )
     planning_context = files["ros1"]["launch/planning_context.launch"]
     assert 'textfile="$(find marm_moveit_config)/description/robot.urdf"' in planning_context
     wrapper = files["ros2"]["config/marm.urdf.xacro"]

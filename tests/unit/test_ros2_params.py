@@ -2,10 +2,11 @@
 checked on our rendered package for that distro (tests/goldens/ros2-<distro>).
 
 What each reads, from the sources (moveit/moveit2 humble and jazzy branches, ros-controls/ros2_control):
-- move_group: `planning_pipelines.pipeline_names` (MoveItCpp::PlanningPipelineOptions::load,
-  moveit_ros/planning/moveit_cpp/include/moveit/moveit_cpp/moveit_cpp.h) and
-  `default_planning_pipeline`, which must be one of them, else move_group warns and falls back
-  (moveit_ros/move_group/src/move_group.cpp, main).
+- move_group: the `planning_pipelines` list (moveit_ros/move_group/src/move_group.cpp, main;
+  what MoveItConfigsBuilder writes, moveit_configs_utils moveit_configs_builder.py l.464; MoveItCpp
+  also reads `planning_pipelines.pipeline_names`, moveit_cpp.h PlanningPipelineOptions::load, and
+  move_group appends one to the other: one form only) and `default_planning_pipeline`, which
+  must be one of them, else move_group warns and falls back (same file, main).
 - Humble PlanningPipeline: `<pipeline>.planning_plugin` (one string; empty -> the first declared
   plugin class, whichever that is) and `<pipeline>.request_adapters` read into ONE std::string and
   split at spaces (a YAML list there is a parameter type exception: move_group dies)
@@ -105,7 +106,7 @@ def jazzy_pipeline(entry: dict) -> tuple[list[str], list[str], list[str]]:
 @pytest.mark.parametrize("distro", ["humble", "jazzy"])
 def test_planning_pipelines_load_on_the_distro(distro):
     params = move_group_params(distro)
-    names = params["planning_pipelines"]["pipeline_names"]
+    names = params["planning_pipelines"]
     assert params["default_planning_pipeline"] in names
     read = humble_pipeline if distro == "humble" else jazzy_pipeline
     requests = HUMBLE_REQUEST_ADAPTERS if distro == "humble" else JAZZY_REQUEST_ADAPTERS
@@ -129,7 +130,7 @@ def loaded_capabilities(params: dict, distro: str) -> set[str]:
     """The extra capabilities move_group loads from these parameters on `distro`."""
     out = set(params.get("capabilities", "").split())
     if distro != "humble":
-        for name in params["planning_pipelines"]["pipeline_names"]:
+        for name in params["planning_pipelines"]:
             out |= set(params[name].get("capabilities", "").split())
     return out
 
@@ -137,7 +138,7 @@ def loaded_capabilities(params: dict, distro: str) -> set[str]:
 @pytest.mark.parametrize("distro", ["humble", "jazzy"])
 def test_pilz_sequence_capabilities_load_on_the_distro(distro):
     params = move_group_params(distro)
-    assert "pilz_industrial_motion_planner" in params["planning_pipelines"]["pipeline_names"]
+    assert "pilz_industrial_motion_planner" in params["planning_pipelines"]
     assert loaded_capabilities(params, distro) == PILZ_CAPABILITIES
 
 
@@ -172,14 +173,14 @@ def test_every_pipeline_loads_on_its_distro(distro):
     from marm_setup.render.package import render_package
     from tests.render_helpers import inferred_marm
 
-    names = ("ompl", "chomp", "pilz") + (("stomp",) if distro == "jazzy" else ())
+    names = ("ompl", "chomp", "pilz", "stomp")  # STOMP on Humble built from source
     model, robot = inferred_marm("ros2", __import__("pathlib").Path("pkg"), distro)
     files = {
         f.path: f.content for f in render_package(dataclasses.replace(model, planning_pipelines=names), robot)
     }
     params = yaml.safe_load(files["config/moveit.yaml"])["/**"]["ros__parameters"]
     read = humble_pipeline if distro == "humble" else jazzy_pipeline
-    namespaces = params["planning_pipelines"]["pipeline_names"]
+    namespaces = params["planning_pipelines"]
     assert len(namespaces) == len(names)
     for namespace in namespaces:
         planners, request, response = read(params[namespace])
@@ -191,8 +192,7 @@ def test_every_pipeline_loads_on_its_distro(distro):
 @pytest.mark.parametrize(
     ("target", "distro", "pipelines", "message"),
     [
-        ("ros2", "humble", ("ompl", "stomp"), "'stomp' is not in MoveIt's humble binaries (only jazzy)"),
-        ("ros1", "noetic", ("stomp",), "'stomp' is not in MoveIt's noetic binaries (only jazzy)"),
+        ("ros1", "noetic", ("stomp",), "'stomp' is not in MoveIt's noetic binaries (only jazzy, humble)"),
         ("ros2", "jazzy", ("ompl", "ompl"), "'ompl' is listed twice"),
         ("ros2", "jazzy", ("omp",), "unknown planning pipeline 'omp'"),
         ("ros2", "jazzy", (), "no planning pipeline"),
@@ -209,3 +209,25 @@ def test_pipelines_a_distro_cannot_load_are_input_errors(target, distro, pipelin
     model, robot = inferred_marm(target, Path("pkg"), distro)
     with pytest.raises(InputError, match=re.escape(message)):
         check_setup(dataclasses.replace(model, planning_pipelines=pipelines), robot, "marm_setup.yaml")
+
+
+def test_stomp_on_humble_is_one_warning_line_saying_what_to_build():
+    """moveit2's humble branch has no moveit_planners/stomp (Iron on): Humble users build it
+    from source (moveit/moveit2#2550, #2742), so a Humble package may name it, with a warning."""
+    import dataclasses
+    from pathlib import Path
+
+    from marm_setup.setup.checks import check_setup, setup_warnings
+    from tests.render_helpers import inferred_marm
+
+    for distro, warned in (("humble", True), ("jazzy", False)):
+        model, robot = inferred_marm("ros2", Path("pkg"), distro)
+        model = dataclasses.replace(model, planning_pipelines=("ompl", "stomp"))
+        check_setup(model, robot, "marm_setup.yaml")
+        lines = setup_warnings(model)
+        assert len(lines) == int(warned)
+    (line,) = setup_warnings(dataclasses.replace(model, ros_distro="humble"))
+    assert line.startswith("warning: planning_pipelines[1]: 'stomp' is not in MoveIt's humble binaries")
+    assert (
+        "build moveit_planners_stomp from moveit2's source" in line and "moveit/moveit2#2550, #2742" in line
+    )

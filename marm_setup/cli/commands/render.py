@@ -34,12 +34,15 @@ def render(
     from marm_setup.errors import ConflictError
     from marm_setup.render.package import SETUP_FILE, render_package
     from marm_setup.render.writer import apply_writes, conflicts, format_change, plan_writes, stale_files
+    from marm_setup.setup.checks import setup_warnings
 
     if urdf is not None and not urdf.is_file():
         from marm_setup.errors import InputError
 
         raise InputError("file not found", path=str(urdf), element="--urdf")
     model, robot = load_package_setup(dir, urdf)
+    for line in setup_warnings(model):
+        typer.echo(line)
     # marm_setup.yaml is the input here: render never rewrites it.
     rendered = [f for f in render_package(model, robot) if f.path != SETUP_FILE]
     changes = plan_writes(rendered, dir)

@@ -82,11 +82,31 @@ def _humble_format(name: str, data: dict, file: str, where: Callable[..., str]) 
             out.append(
                 error("distro.adapter", file, where("request_adapters"), msg, f"use {HUMBLE_ADAPTERS}...")
             )
+    out += _built_from_source(data.get("planning_plugin"), file, where)
     if data.get("capabilities"):
         msg = f"Humble's move_group never reads a pipeline's capabilities: {data['capabilities']} do not load"
         hint = "list them in the top-level capabilities string"
         out.append(warning("distro.pipeline-capabilities", file, where("capabilities"), msg, hint))
     return out
+
+
+def _built_from_source(plugin: object, file: str, where: Callable[..., str]) -> list[Finding]:
+    """A planner Humble's binaries lack (STOMP: moveit2's humble branch has no
+    moveit_planners/stomp; moveit/moveit2#2550, #2742): move_group loads it only where the user
+    built it from source."""
+    from marm_setup.setup.domain import PIPELINES
+
+    found = next(
+        (p for p in PIPELINES.values() if p.plugin_ros2 == plugin and "humble" in p.from_source), None
+    )
+    if found is None:
+        return []
+    msg = f"{plugin} is not in MoveIt's Humble binaries: move_group loads it only where {found.package} is built from moveit2's source"
+    return [
+        warning(
+            "distro.planner-from-source", file, where("planning_plugin"), msg, "moveit/moveit2#2550, #2742"
+        )
+    ]
 
 
 def _jazzy_format(name: str, data: dict, file: str, where: Callable[..., str]) -> list[Finding]:
@@ -192,8 +212,11 @@ def check_package_runtime(pkg: ConfigPackage, robot: RobotModel) -> list[Finding
     pipelines, params = _ros2_pipelines(pkg)
     distro = package_distro(pkg)
     if distro in ("humble", "jazzy"):
+        from marm_setup.validate.rules.pipeline_param_rules import check_pipeline_parameters
+
         for name, section in pipelines.items():
             out += check_pipeline_format(name, section, distro)
+            out += check_pipeline_parameters(section, distro)
     if params is not None:
         out += check_publish_flags(params, MOVEIT_YAML, "/**.ros__parameters")
     out += check_expanded_systems(robot)
