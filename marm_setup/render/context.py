@@ -291,21 +291,30 @@ def ros2_control_macro(robot_name: str) -> str:
     return f"{prefix}{robot_name}_ros2_control"
 
 
-def hardware_context(model: SetupModel, robot: RobotModel, own_joints: list[Ros2ControlJoint]) -> dict:
+def hardware_context(
+    model: SetupModel, robot: RobotModel, own_joints: list[Ros2ControlJoint], ref: DescriptionRef
+) -> dict:
     """The ros2_control hardware the templates switch with use_mock_hardware (render/hardware.py)."""
     from marm_setup.render.hardware import (
         command_comment,
         description_command,
         description_hardware,
+        description_launch_args,
         use_mock_hardware_help,
     )
 
     hw = description_hardware(robot, model.distro)
     own = model.ros2_control or Ros2ControlHardware()
+    args = (
+        description_launch_args(hw, ref.xacro_args, robot.hardware_args)
+        if ref.package and ref.is_xacro
+        else []
+    )
     return {
         "hardware": own,
         "description_hardware": hw,
-        "description_command": description_command(hw, model.package_name, model.robot_name),
+        "description_args": args,
+        "description_command": description_command(hw, model.package_name, model.robot_name, args),
         "description_command_comment": command_comment(hw),
         "use_mock_hardware_help": use_mock_hardware_help(hw, own, bool(own_joints)),
     }
@@ -325,15 +334,16 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
     """Everything the templates read, keyed by the names they use."""
     servos = plan_servos(model, robot)
     own_joints = ros2_control_joints(model, robot)
+    ref = description_ref(model, robot, package)
     return {
-        **hardware_context(model, robot, own_joints),
+        **hardware_context(model, robot, own_joints, ref),
         "model": model,
         "robot": robot,
         "pkg": model.package_name,
         "distro": model.distro,
         "robot_name": model.robot_name,
         "ros2_control_macro": ros2_control_macro(model.robot_name),
-        "description": description_ref(model, robot, package),
+        "description": ref,
         "groups": group_infos(model, robot),
         "joint_limits": joint_limits(model, robot),
         "controllers": controller_infos(model),

@@ -13,10 +13,11 @@ switches itself; the description's own `<ros2_control>` systems are handled in o
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from marm_setup.robot.model import RobotModel
-from marm_setup.robot.ros2_control import MOCK_PLUGIN, Ros2ControlSystem, described_systems
+from marm_setup.robot.ros2_control import MOCK_PLUGIN, HardwareArg, Ros2ControlSystem, described_systems
 from marm_setup.setup.model import Ros2ControlHardware
 
 MOCK_SCRIPT = "scripts/with_mock_hardware.py"
@@ -58,11 +59,56 @@ def description_hardware(robot: RobotModel, distro: str | None) -> DescriptionHa
     return DescriptionHardware("replace", systems, None, why)
 
 
-def description_command(hw: DescriptionHardware, pkg: str, robot_name: str) -> str:
+@dataclass(frozen=True, slots=True)
+class LaunchArg:
+    """A launch arg the launch files pass on to the description's xacro (`NAME:=$(var NAME)`)."""
+
+    name: str
+    default: str
+    description: str
+
+
+# the launch files' own args: a description arg of one of these names is not offered again
+OWN_LAUNCH_ARGS = frozenset({"use_mock_hardware", "use_sim_time", "use_rviz", "group"})
+
+
+def description_launch_args(
+    hw: DescriptionHardware, given: tuple[tuple[str, str], ...], hardware_args: tuple[HardwareArg, ...]
+) -> list[LaunchArg]:
+    """The description's args the launch files offer: the xacro args of the setup (init's
+    `--xacro-arg`), the description's own hardware switch (following use_mock_hardware) and the
+    args of its real hardware (robot/hardware_args.py), each with its default."""
+    out = [
+        LaunchArg(n, v, "xacro arg of the robot description (marm_setup.yaml robot.xacro_args)")
+        for n, v in given
+    ]
+    if hw.mode == "switch" and hw.switch is not None:
+        text = f"the description's own hardware switch: true mock hardware, false {hw.plugins}; as use_mock_hardware unless given"
+        out = [a for a in out if a.name != hw.switch] + [
+            LaunchArg(hw.switch, "$(var use_mock_hardware)", text)
+        ]
+    taken = {a.name for a in out}
+    out += [
+        LaunchArg(
+            a.name, a.default, f"{a.param} of the real hardware of {a.system} (use_mock_hardware:=false)"
+        )
+        for a in hardware_args
+        if a.name not in taken and launch_safe(a.default)
+    ]
+    return [a for a in out if a.name not in OWN_LAUNCH_ARGS]
+
+
+def launch_safe(value: str) -> bool:
+    """Text a `$(command '...')` can pass as one word (launch splits it like a shell, unquoted)."""
+    return value.isprintable() and not set(value) & set(" \t$'\"`\\")
+
+
+def description_command(
+    hw: DescriptionHardware, pkg: str, robot_name: str, args: Sequence[LaunchArg] = ()
+) -> str:
     """The command the launch files run for the robot description (inside `$(command '...')`)."""
-    wrapper = (
-        f"$(find-pkg-share {pkg})/config/{robot_name}.urdf.xacro use_mock_hardware:=$(var use_mock_hardware)"
-    )
+    passed = "".join(f" {a.name}:=$(var {a.name})" for a in args)
+    wrapper = f"$(find-pkg-share {pkg})/config/{robot_name}.urdf.xacro use_mock_hardware:=$(var use_mock_hardware){passed}"
     if hw.mode == "replace":
         return f"python3 $(find-pkg-share {pkg})/{MOCK_SCRIPT} {wrapper}"
     return f"xacro {wrapper}"

@@ -14,7 +14,7 @@ from lxml import etree
 from marm_setup import bounded_read
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
-from marm_setup.robot.ros2_control import systems_in_urdf
+from marm_setup.robot.ros2_control import HardwareArg, MockSwitch, systems_in_urdf
 from marm_setup.robot.ros_packages import find_packages
 from marm_setup.robot.urdf import parse_urdf
 from marm_setup.robot.xacro_expand import expand_xacro, run_xacro
@@ -53,16 +53,25 @@ def load_robot(
     declared = tuple(sorted(expanded.declared)) if expanded is not None else None
     root = parse_xml(xml, shown=shown)
     robot = parse_urdf(root, xml, file.parent, packages, shown=shown)
-    switch = None
-    if expanded is not None and systems_in_urdf(xml):
+    switch: MockSwitch | None = None
+    hardware_args: tuple[HardwareArg, ...] = ()
+    if expanded is not None and (systems := systems_in_urdf(xml)):
+        from marm_setup.robot.hardware_args import find_hardware_args
         from marm_setup.robot.mock_switch import find_mock_switch
 
         def expand(values: Mapping[str, str]) -> str:
             return run_xacro(file, values, packages, shown=shown).xml
 
-        switch = find_mock_switch(expand, args, dict(expanded.values))
+        known = dict(expanded.values)
+        switch = find_mock_switch(expand, args, known)
+        real = (switch.real, {**args, switch.arg: "false"}) if switch else (systems, args)
+        hardware_args = find_hardware_args(
+            expand, real[1], known, real[0], frozenset({switch.arg} if switch else ())
+        )
     used = tuple((u.name, u.path, u.found_by) for u in sorted(packages.used.values(), key=lambda u: u.name))
-    return dataclasses.replace(robot, packages=used, xacro_args=declared, mock_switch=switch)
+    return dataclasses.replace(
+        robot, packages=used, xacro_args=declared, mock_switch=switch, hardware_args=hardware_args
+    )
 
 
 def read_text(file: Path, *, shown: str) -> str:

@@ -8,7 +8,7 @@ from functools import cached_property
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from marm_setup.robot.ros2_control import MockSwitch
+    from marm_setup.robot.ros2_control import HardwareArg, MockSwitch
 
 Vec3 = tuple[float, float, float]
 
@@ -161,6 +161,9 @@ class RobotModel:
     # the xacro arg that provably puts the description's own <ros2_control> systems on mock
     # hardware (robot/mock_switch.py); None: none found, or no such systems
     mock_switch: MockSwitch | None = field(default=None, compare=False)
+    # the xacro args that configure its real ros2_control hardware, with their defaults
+    # (robot/hardware_args.py): the launch files offer them
+    hardware_args: tuple[HardwareArg, ...] = field(default=(), compare=False)
 
     # -- lookups -------------------------------------------------------------------------------
     @cached_property

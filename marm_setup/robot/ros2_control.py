@@ -26,12 +26,14 @@ ANY_MOCK = frozenset().union(*MOCK_PLUGINS.values())
 
 @dataclass(frozen=True, slots=True)
 class Ros2ControlSystem:
-    """One `<ros2_control>` element: its name, hardware plugin and joints (document order)."""
+    """One `<ros2_control>` element: its name, hardware plugin and joints (document order), and
+    the `<param>`s of its `<hardware>` (what the plugin is configured with: address, ports...)."""
 
     name: str
     plugin: str
     joints: tuple[str, ...]
     type: str = "system"
+    params: tuple[tuple[str, str], ...] = ()
 
     def is_mock(self, distro: str | None = None) -> bool:
         """Its plugin is mock hardware (of `distro`, or of any distro when None)."""
@@ -53,6 +55,18 @@ class MockSwitch:
         return all(s.is_mock(distro) for s in self.mock)
 
 
+@dataclass(frozen=True, slots=True)
+class HardwareArg:
+    """A xacro arg of the description that sets a `<param>` of a system's real hardware (and
+    nothing else of the URDF): its default, and the system and parameter it sets
+    (robot/hardware_args.py)."""
+
+    name: str
+    default: str
+    system: str
+    param: str
+
+
 def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
     """The `<ros2_control>` elements directly under a URDF's `<robot>` (empty for unparsable XML)."""
     if not xml:
@@ -68,7 +82,8 @@ def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
         plugin = element.findtext("hardware/plugin") or ""
         joints = tuple(j.get("name", "") for j in element.findall("joint"))
         kind = element.get("type", "system")
-        systems.append(Ros2ControlSystem(element.get("name", ""), plugin.strip(), joints, kind))
+        params = tuple((p.get("name", ""), (p.text or "").strip()) for p in element.findall("hardware/param"))
+        systems.append(Ros2ControlSystem(element.get("name", ""), plugin.strip(), joints, kind, params))
     return tuple(systems)
 
 

@@ -89,11 +89,15 @@ def outside_defect(ros2_packages):
 
 def real_hardware_defect(ros2_packages, style: str):
     """A vendor-style package with its mock handling taken out: the launch files run plain
-    xacro (replace mode), or the wrapper no longer sets the vendor's switch (switch mode)."""
+    xacro (replace mode), or neither the launch files (their switch arg, which follows
+    use_mock_hardware) nor the wrapper set the vendor's switch (switch mode)."""
     pkg = ros2_packages.copy(f"vendor:{style}", "humble", f"real_{style}")
     script = r"python3 \$\(find-pkg-share \w+\)/scripts/with_mock_hardware\.py "
     for launch in (pkg / "launch").glob("*.xml"):
-        launch.write_text(re.sub(script, "xacro ", launch.read_text()))
+        text = re.sub(script, "xacro ", launch.read_text())
+        for switch in re.findall(r'<arg name="(\w+)" default="\$\(var use_mock_hardware\)"', text):
+            text = text.replace(f" {switch}:=$(var {switch})", "")
+        launch.write_text(text)
     for wrapper in (pkg / "config").glob("*.urdf.xacro"):
         wrapper.write_text(
             re.sub(
