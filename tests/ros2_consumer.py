@@ -9,10 +9,12 @@ apart so it can move onto the shared fixture issue 21 adds for every generated R
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import os
 import shutil
 import subprocess
+import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -98,4 +100,10 @@ def node_values(process: dict, distro: str) -> dict[str, tuple[str, object]]:
 
 
 def _env() -> dict[str, str]:
-    return {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "OFF"}
+    """rcl's logs in a folder of this test session, not ~/.ros/log."""
+    return {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "OFF", "ROS_LOG_DIR": _log_dir()}
+
+
+@functools.lru_cache(maxsize=1)
+def _log_dir() -> str:
+    return tempfile.mkdtemp(prefix="ros2_consumer_logs_")
