@@ -148,3 +148,26 @@ def test_switching_target_without_the_drivers_action_ns_is_refused(tmp_path):
         "(set action_ns: gripper_cmd)"
     )
     assert snapshot(pkg) == before
+
+
+def test_render_of_an_edited_pipeline_setup_warns_and_rewrites_moveit_yaml(tmp_path):
+    """An edit adding STOMP and parameters to a Humble package: one warning line for STOMP (not in
+    Humble's binaries), the parameters in moveit.yaml; an unknown one is one error line."""
+    pkg = make_package(tmp_path, "ros2")
+    setup = pkg / "marm_setup.yaml"
+    text = setup.read_text().replace(
+        "- pilz\n", "- pilz\n- stomp\npipeline_parameters:\n  stomp: {num_timesteps: 50}\n", 1
+    )
+    setup.write_text(text)
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 0, result.output
+    (warning,) = [line for line in result.stdout.splitlines() if line.startswith("warning:")]
+    assert "'stomp' is not in MoveIt's humble binaries" in warning
+    assert "update    config/moveit.yaml" in result.stdout
+    assert "      num_timesteps: 50\n" in (pkg / "config" / "moveit.yaml").read_text()
+    setup.write_text(text.replace("num_timesteps: 50", "timesteps: 50"))
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 2
+    assert result.stderr.startswith(
+        f"error: {setup}: pipeline_parameters.stomp.timesteps: unknown parameter 'timesteps'"
+    )
