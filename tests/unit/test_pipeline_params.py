@@ -17,9 +17,8 @@ from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.setup.checks import check_setup, setup_warnings
 from marm_setup.setup.pipeline_params import effective_parameters, known_parameters
 from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
-from tests.conftest import FIXTURES
 from tests.render_helpers import assert_check_error, marm_with, rendered_files
-from tests.validate_helpers import validate_package
+from tests.unit.test_distro_rules import edit, rules
 
 SEED_LIKE = (
     ("ompl", (("jiggle_fraction", 0.05), ("start_state_max_bounds_error", 0.1))),
@@ -144,22 +143,9 @@ def write(tmp_path: Path, distro: str) -> Path:
     return out
 
 
-def findings(pkg: Path) -> dict[str, list]:
-    out: dict[str, list] = {}
-    for f in validate_package(pkg, package_paths=[FIXTURES / "marm"], plan=False, matrix_trials=100):
-        out.setdefault(f.rule, []).append(f)
-    return out
-
-
-def edit(path: Path, old: str, new: str) -> None:
-    text = path.read_text()
-    assert old in text, old
-    path.write_text(text.replace(old, new, 1))
-
-
 def test_validate_reads_the_parameters_as_the_distro_does(tmp_path):
     pkg = write(tmp_path, "humble")
-    found = findings(pkg)
+    found = rules(pkg)
     assert not [r for r in found if r.startswith("pipeline.")]
     (stomp,) = found["distro.planner-from-source"]  # STOMP on Humble: build it, a warning
     assert not stomp.is_error and stomp.element == "/**.ros__parameters.stomp.planning_plugin"
@@ -172,7 +158,7 @@ def test_validate_reads_the_parameters_as_the_distro_does(tmp_path):
         "      default_planner_config: PTP",
         "      default_planner_config: PTP\n      fix_start_state: true",
     )
-    found = findings(pkg)
+    found = rules(pkg)
     (typed,) = found["pipeline.parameter-type"][:1]
     assert typed.is_error and typed.element == "/**.ros__parameters.ompl.jiggle_fraction"
     assert [f.element.rsplit(".", 1)[-1] for f in found["pipeline.parameter-type"]] == [
