@@ -198,8 +198,18 @@ def _file_text(name: str) -> str:
         return ""
 
 
+def _is_out_of_memory(exc: BaseException | None) -> bool:
+    """MemoryError itself, or wrapped by xacro (`XacroException.exc`, xacro/__init__.py eval_text)."""
+    seen = 0
+    while exc is not None and seen < 10:
+        if isinstance(exc, MemoryError):
+            return True
+        exc, seen = getattr(exc, "exc", None) or exc.__cause__ or exc.__context__, seen + 1
+    return False
+
+
 def _xacro_error(exc: Exception, shown: str) -> InputError:
-    if isinstance(exc, MemoryError):
+    if _is_out_of_memory(exc):
         message = f"xacro needed more than {bounded_read.format_size(XACRO_MEMORY)} of memory"
         return InputError(message, path=shown, element="xacro")
     text = " ".join(str(exc).split())
