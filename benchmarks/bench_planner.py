@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from marm_setup.collision.scene import CollisionScene
+from marm_setup.package.read import read_package
 from marm_setup.plan.planner import (
     PlanFound,
     PlannerOptions,
@@ -44,7 +45,6 @@ from marm_setup.plan.planner import (
 )
 from marm_setup.plan.problem import planning_problem
 from marm_setup.robot.load import load_robot
-from marm_setup.validate.discovery import discover_package
 
 ROOT = Path(__file__).resolve().parent.parent
 PANDA = ROOT.parent / "shared" / "realworld" / "ros1" / "panda_moveit_config"
@@ -67,7 +67,7 @@ class Run:
 
 
 def load(package_dir: Path, group: str):
-    package = discover_package(package_dir)
+    package = read_package(package_dir)
     robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
     scene = CollisionScene(robot)
     return robot, planning_problem(package, robot, scene, group)

@@ -10,7 +10,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from marm_setup.validate.discovery import discover_package
+from marm_setup.package.read import read_package
 from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing
 from marm_setup.validate.runner import check_static, load_package_robot, run_runtime_checks, validate
 
@@ -28,7 +28,7 @@ def timed(fn):
 def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
     from marm_setup.collision.scene import CollisionScene
 
-    pkg, t_discover = timed(lambda: discover_package(path, package_paths=package_paths))
+    pkg, t_discover = timed(lambda: read_package(path, package_paths=package_paths))
     (robot, _), t_robot = timed(lambda: load_package_robot(pkg))
     _, t_static = timed(lambda: check_static(pkg, robot))
     scene, t_scene = timed(lambda: CollisionScene(robot))

@@ -18,11 +18,11 @@ if TYPE_CHECKING:
     from marm_setup.collision.matrix import Progress
     from marm_setup.collision.pairs import DisabledPair
     from marm_setup.collision.scene import CollisionScene
+    from marm_setup.package.model import MoveItPackage
     from marm_setup.port.importer import Ported
     from marm_setup.port.report import PortItem
     from marm_setup.render.writer import FileChange
     from marm_setup.templating import RenderedFile
-    from marm_setup.validate.discovery import ConfigPackage
     from marm_setup.validate.runner import Validation
 
 
@@ -200,29 +200,34 @@ def _with_validation_notes(ported, pkg, validation, package_paths):
     return dataclasses.replace(ported, items=(*ported.items, *items))
 
 
-def _discover_for_port(request: PortInitRequest) -> tuple[ConfigPackage, tuple[PortItem, ...]]:
+def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[PortItem, ...]]:
     """The package as validate reads it; a MoveIt 2 `config/<robot>.urdf.xacro` wrapper (the
     new package writes its own) gives way to the description `.setup_assistant` names."""
+    from marm_setup.package.description import setup_assistant_description
+    from marm_setup.package.read import read_package
     from marm_setup.port.report import PortItem
-    from marm_setup.validate.discovery import discover_package
-    from marm_setup.validate.sources import setup_assistant_urdf
 
     args = parse_xacro_args(list(request.xacro_args)) or None
-    pkg = discover_package(
+    pkg = read_package(
         request.package, urdf=request.urdf, package_paths=request.package_paths, xacro_args=args
     )
     if pkg.urdf_origin != "config/<robot>.urdf.xacro":
         return pkg, ()
-    found = setup_assistant_urdf(pkg.root, pkg.shown, pkg.package_paths)
+    sa = pkg.setup_assistant
+    found = (
+        setup_assistant_description(sa, pkg.package_paths, pkg.shown, ())
+        if sa is not None and sa.urdf_package and sa.urdf_path
+        else None
+    )
     if found is None:
         raise InputError(
             f"the robot description is the package's own wrapper {pkg.urdf.name} (the new package writes its "
             "own) and .setup_assistant names no other: give the robot's URDF (init URDF --from-package PKG)",
             path=pkg.user_path(pkg.urdf.relative_to(pkg.root).as_posix()),
         )
-    path, _, sa_args = found
+    path, sa_args = found.urdf, sa.urdf_xacro_args if sa is not None else ()
     wrapper = pkg.urdf.relative_to(pkg.root).as_posix()
-    pkg = discover_package(
+    pkg = read_package(
         request.package, urdf=path, package_paths=request.package_paths, xacro_args=args or dict(sa_args)
     )
     note = PortItem(
@@ -235,7 +240,7 @@ def _discover_for_port(request: PortInitRequest) -> tuple[ConfigPackage, tuple[P
     return pkg, (note,)
 
 
-def _package_robot(pkg: ConfigPackage, xacro_args: tuple[str, ...] = ()) -> RobotModel:
+def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> RobotModel:
     """The package's robot; its load failure is the one error line, and so is a `--xacro-arg`
     (`xacro_args`) that neither its description nor its SRDF xacro takes."""
     from marm_setup.validate.runner import check_given_xacro_args, load_package_robot

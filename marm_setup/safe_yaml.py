@@ -105,12 +105,47 @@ class UniqueKeyLoader(BoundedSafeLoader):
 def load_yaml(text: str, loader_class: type[BoundedSafeLoader] = BoundedSafeLoader) -> Any:
     """`yaml.safe_load(text)` within the bounds above; raises yaml.YAMLError (also for a value no
     Python number holds: an integer of more than 4300 digits)."""
+    return load_yaml_lines(text, loader_class)[0]
+
+
+# A value's key path in a document: mapping keys as written (str), sequence indexes (int).
+KeyPath = tuple[str | int, ...]
+
+
+def load_yaml_lines(
+    text: str, loader_class: type[BoundedSafeLoader] = BoundedSafeLoader
+) -> tuple[Any, dict[KeyPath, int]]:
+    """(`load_yaml(text)`, the 1-based line of every key and list item by its key path), within
+    the same bounds; a value an alias repeats has the line of its first occurrence only."""
     if len(text) > MAX_BYTES:
         raise YamlLimitError(f"larger than {MAX_BYTES // (1024 * 1024)} MiB")
     loader = loader_class(text)
     try:
-        return loader.get_single_data()
+        node = loader.get_single_node()
+        data = loader.construct_document(node) if node is not None else None
     except (ValueError, OverflowError) as exc:  # a constructor's int()/float() on an absurd scalar
         raise YamlLimitError(f"a value no number can hold ({' '.join(str(exc).split())[:80]})") from None
     finally:
         loader.dispose()
+    return data, _lines(node)
+
+
+def _lines(root: yaml.Node | None) -> dict[KeyPath, int]:
+    out: dict[KeyPath, int] = {}
+    seen: set[int] = set()
+    stack: list[tuple[yaml.Node, KeyPath]] = [(root, ())] if root is not None else []
+    while stack:
+        node, path = stack.pop()
+        if id(node) in seen:
+            continue
+        seen.add(id(node))
+        if isinstance(node, yaml.MappingNode):
+            for key, value in node.value:
+                if isinstance(key, yaml.ScalarNode) and key.tag != "tag:yaml.org,2002:merge":
+                    out.setdefault((*path, str(key.value)), key.start_mark.line + 1)
+                    stack.append((value, (*path, str(key.value))))
+        elif isinstance(node, yaml.SequenceNode):
+            for i, item in enumerate(node.value):
+                out.setdefault((*path, i), item.start_mark.line + 1)
+                stack.append((item, (*path, i)))
+    return out

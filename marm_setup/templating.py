@@ -16,6 +16,7 @@ import jinja2
 import yaml
 
 from marm_setup.errors import MarmError
+from marm_setup.safe_yaml import load_yaml
 
 
 @dataclass(frozen=True, slots=True)
@@ -69,7 +70,7 @@ def yaml_str(value: object) -> str:
     out = dumped.strip()[1:-1]
     if not out.isprintable() or (out == text and _YAML12_NOT_STRING.fullmatch(text)):
         out = _double_quoted(text)
-    if yaml.safe_load(f"[{out}]") != [text]:
+    if load_yaml(f"[{out}]") != [text]:
         raise ValueError(f"cannot write {text!r} as a YAML string")
     return out
 

@@ -21,7 +21,9 @@ HEADINGS = {
 
 
 def format_port_text(result: PortResult) -> str:
-    """The port report as text: a summary line, then the items under one heading per status."""
+    """The port report as text: a summary line; first what changes how the robot moves (what
+    was not carried as it was, one line each, and how many settings were), then the other
+    items under one heading per status."""
     from marm_setup.port.report import STATUSES, counts
 
     ported = result.ported
@@ -30,12 +32,29 @@ def format_port_text(result: PortResult) -> str:
         f"ported {ported.source} ({ported.source_target}, {ported.source_layout} layout) to "
         f"{result.model.target} ({result.model.distro}): " + ", ".join(f"{n[s]} {s}" for s in STATUSES)
     ]
+    motion = [i for i in ported.items if i.moves_robot]
+    moved = counts(tuple(motion))
+    lines.append(
+        "how the robot moves (limits, scaling, controllers, IK, planners): "
+        + ", ".join(f"{moved[s]} {s}" for s in STATUSES)
+    )
+    lines += [one_line(f"  {i.status} {_item(i)}") for i in motion if i.status != "carried"]
     for status in STATUSES:
-        items = [i for i in ported.items if i.status == status]
+        items = [
+            i for i in ported.items if i.status == status and not (i.moves_robot and status != "carried")
+        ]
         if items:
             lines.append(f"{HEADINGS[status]}:")
             lines += [one_line(f"  {_item(i)}") for i in items]
     return "\n".join(lines) + "\n"
+
+
+def closing_line(result: PortResult) -> str:
+    """The last line: the new package's validation summary and what was not carried."""
+    from marm_setup.findings import summary as validation_summary
+    from marm_setup.port.report import summary
+
+    return f"{validation_summary(result.validation.findings)}; {summary(result.ported.items)}"
 
 
 def _item(item: PortItem) -> str:
@@ -48,7 +67,7 @@ def format_port_json(result: PortResult) -> str:
     """One JSON document: the port (source, target, counts, items), the files written and the
     new package's validation (its summary and findings)."""
     from marm_setup.findings import format_json
-    from marm_setup.port.report import counts
+    from marm_setup.port.report import counts, summary
 
     ported, validation = result.ported, result.validation
     doc = {
@@ -59,6 +78,8 @@ def format_port_json(result: PortResult) -> str:
             "target": result.model.target,
             "ros_distro": result.model.distro,
             "counts": counts(ported.items),
+            "motion_counts": counts(ported.items, motion_only=True),
+            "summary": summary(ported.items),
             "items": [i.as_dict() for i in ported.items],
         },
         "files": list(result.status_lines),

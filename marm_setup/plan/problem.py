@@ -1,8 +1,8 @@
 """What a planning query needs from a config package: a group's joints, named poses, limits, checker.
 
-Read from a `ConfigPackage` (ours or the Setup Assistant's): the SRDF gives groups, named poses,
-passive joints and the disabled pairs; `joint_limits.yaml` (ros1) or `robot_description_planning`
-(ros2) the limits and default scaling factors. Joints outside the group sit at the robot's
+Read from a `MoveItPackage` (ours or the Setup Assistant's): the SRDF gives groups, named poses,
+passive joints and the disabled pairs; the joint limits file (`robot_description_planning`), as
+MoveIt reads it (`package.limits`), the limits and default scaling factors. Joints outside the group sit at the robot's
 default state (0, or mid-range), as MoveIt's default start state does. Continuous joints are
 wrapped into [-pi, pi), as MoveIt's enforceBounds does (a pose may say 4.0 rad).
 """
@@ -10,12 +10,16 @@ wrapped into [-pi, pi), as MoveIt's enforceBounds does (a pose may say 4.0 rad).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
+from marm_setup.package.limits import LoadedLimit, effective_limits
+from marm_setup.package.model import MoveItPackage
+from marm_setup.package.start import package_start_values
+from marm_setup.package.where import Param
 from marm_setup.plan.execution import ExecutionOptions, ExecutionReport, fake_execute
 from marm_setup.plan.planner import (
     PlanFailed,
@@ -31,41 +35,10 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.limits import timing_problem
 from marm_setup.setup.srdf import allowed_pairs
-from marm_setup.setup.start_state import (
-    StartSources,
-    package_start_values,
-    pose_configuration,
-    start_configuration,
-)
+from marm_setup.setup.start_state import pose_configuration, start_configuration
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
-
-
-class ConfigFile(Protocol):
-    """A parsed YAML file of the package: its path in the package and its data."""
-
-    @property
-    def file(self) -> str: ...
-
-    @property
-    def data(self) -> Any: ...
-
-
-class PackageConfig(StartSources, Protocol):
-    """What planning reads from a config package (validate's `ConfigPackage` is one): the start
-    state's sources, and these."""
-
-    @property
-    def shown(self) -> str: ...
-
-    @property
-    def srdf_path(self) -> str | None: ...
-
-    @property
-    def joint_limits(self) -> ConfigFile | None: ...
-
-    def user_path(self, rel: str | None) -> str: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,30 +63,27 @@ class Executed:
     execution: ExecutionReport
 
 
-def initial_configuration(package: PackageConfig, robot: RobotModel) -> np.ndarray:
+def initial_configuration(package: MoveItPackage, robot: RobotModel) -> np.ndarray:
     """The active configuration the package's demo starts in (`setup.start_state`)."""
     return start_configuration(robot, package_start_values(package, robot))
 
 
-def _limits_section(package: PackageConfig) -> tuple[dict, float, float]:
-    data = package.joint_limits.data if package.joint_limits is not None else None
-    data = data if isinstance(data, dict) else {}
-    entries = data.get("joint_limits")
-    entries = entries if isinstance(entries, dict) else {}
-    scale_v, scale_a = (
-        _scaling(data.get(f"default_{kind}_scaling_factor")) for kind in ("velocity", "acceleration")
-    )
-    return entries, scale_v, scale_a
+def _limits_section(package: MoveItPackage) -> tuple[dict[str, LoadedLimit], float, float]:
+    """The joints' limits as MoveIt reads the file, and the default scaling factors."""
+    limits = package.joint_limits
+    entries = effective_limits(limits, package.target == "ros2")
+    if limits is None:
+        return entries, 1.0, 1.0
+    return entries, _scaling(limits.velocity_scaling), _scaling(limits.acceleration_scaling)
 
 
-def _scaling(value: object) -> float:
+def _scaling(param: Param | None) -> float:
     """A default scaling factor in (0, 1]; 1 (MoveIt's default) when absent or unusable."""
-    if isinstance(value, int | float) and not isinstance(value, bool) and 0 < value <= 1:
-        return float(value)
-    return 1.0
+    value = param.number if param is not None else None
+    return value if value is not None and 0 < value <= 1 else 1.0
 
 
-def group_names_with_poses(package: PackageConfig) -> tuple[str, ...]:
+def group_names_with_poses(package: MoveItPackage) -> tuple[str, ...]:
     """Groups of the package's SRDF that have at least two named poses, sorted."""
     srdf = package.srdf
     if srdf is None:
@@ -125,7 +95,7 @@ def group_names_with_poses(package: PackageConfig) -> tuple[str, ...]:
 
 
 def planning_problem(
-    package: PackageConfig, robot: RobotModel, scene: CollisionScene, group: str
+    package: MoveItPackage, robot: RobotModel, scene: CollisionScene, group: str
 ) -> PlanningProblem:
     """The problem for `group`; InputError (naming the SRDF) for an unknown group or missing limits."""
     srdf = package.srdf
@@ -175,8 +145,8 @@ def _check_timeable(limits: JointLimits, scale_v: float, scale_a: float, file: s
                 raise InputError(problem, path=file, element=f"default_{kind}_scaling_factor")
 
 
-def _limits_file(package: PackageConfig) -> str:
-    return package.user_path(package.joint_limits.file if package.joint_limits is not None else None)
+def _limits_file(package: MoveItPackage) -> str:
+    return package.user_path(package.joint_limits.where.file if package.joint_limits is not None else None)
 
 
 def pose(problem: PlanningProblem, name: str, srdf_path: str | None) -> np.ndarray:

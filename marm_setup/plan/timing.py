@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from marm_setup.errors import InputError
+from marm_setup.package.limits import LoadedLimit
 from marm_setup.plan.rrt import merge_collinear
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.limits import timing_problem
@@ -89,40 +90,32 @@ class TimedTrajectory:
 def limits_from_config(
     robot: RobotModel,
     joint_names: Sequence[str],
-    joint_limits: Mapping[str, Mapping],
+    joint_limits: Mapping[str, LoadedLimit],
     default_acceleration: float = 1.0,
 ) -> JointLimits:
-    """Limits as MoveIt reads them: `joint_limits.yaml` entries over the URDF's velocity.
+    """Limits as MoveIt reads them: the joint_limits file's values (`package.limits`, as MoveIt
+    reads them) over the URDF's velocity.
 
     Acceleration falls back to `default_acceleration` where none is given (as MoveIt does);
     a joint with no positive velocity limit anywhere gets MoveIt's DEFAULT_VELOCITY.
     """
     v_max, a_max, unbounded = [], [], []
     for name in joint_names:
-        entry = joint_limits.get(name)
-        entry = entry if isinstance(entry, Mapping) else {}
-        v = _number(entry, "max_velocity", name) if entry.get("has_velocity_limits", True) else None
+        given = joint_limits.get(name)
+        for key, value in given.unreadable if given is not None else ():
+            raise ValueError(f"{key} of joint {name} must be a number, got {value!r}")
+        v = given.max_velocity if given is not None else None
         v = v if v is not None else robot.joint(name).velocity
         if v is None or v <= 0:
             v = DEFAULT_VELOCITY
             unbounded.append(name)
-        a = _number(entry, "max_acceleration", name) if entry.get("has_acceleration_limits", False) else None
+        a = given.max_acceleration if given is not None else None
         for key, rate in (("max_velocity", v), ("max_acceleration", a)):
             if problem := timing_problem(name, key, rate):
                 raise ValueError(problem)
         a_max.append(a if a is not None and a > 0 else default_acceleration)
         v_max.append(float(v))
     return JointLimits(tuple(joint_names), np.array(v_max), np.array(a_max), tuple(unbounded))
-
-
-def _number(entry: Mapping, key: str, joint: str) -> float | None:
-    """`entry[key]` as a float (None when absent); ValueError for anything but a finite number."""
-    value = entry.get(key)
-    if value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
-        raise ValueError(f"{key} of joint {joint} must be a number, got {value!r}")
-    return float(value)
 
 
 def _segment_knots(d: np.ndarray, limits: JointLimits) -> list[tuple[float, float, float, float]]:

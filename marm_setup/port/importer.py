@@ -1,31 +1,35 @@
-"""port_package: a MoveIt config package (any layout, as validate's discovery reads it) and its
+"""port_package: a MoveIt config package (any layout, as the package model reads it) and its
 robot -> a SetupModel for the target, plus the port report of every setting."""
 
 from __future__ import annotations
 
 import dataclasses
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from marm_setup.errors import InputError
+from marm_setup.package.model import MoveItPackage
 from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver, report_shared_joints
+from marm_setup.port.kinematics import port_kinematics
+from marm_setup.port.limits import port_joint_limits
 from marm_setup.port.package import (
     port_author,
     read_files,
     report_leftovers,
     report_marm_setup,
     report_metadata,
+    report_perception,
     report_pipelines,
     robot_source,
 )
+from marm_setup.port.planners import port_planners
 from marm_setup.port.report import PortItem, PortLog, where
-from marm_setup.port.settings import port_joint_limits, port_kinematics, port_planners
 from marm_setup.robot.model import RobotModel
-from marm_setup.setup.groups import planning_joints
+from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
 from marm_setup.setup.model import EndEffector, GroupState, Kinematics, SetupModel, VirtualJoint
-from marm_setup.validate.discovery import ConfigPackage
 
 DROPPABLE = re.compile(r"(virtual_joints|end_effectors|group_states)\[(.+?)\]")
 
@@ -51,7 +55,7 @@ class Ported:
     source_layout: str  # moveit1 | moveit2 | marm_ros2
 
 
-def port_package(pkg: ConfigPackage, robot: RobotModel, request: PortRequest) -> Ported:
+def port_package(pkg: MoveItPackage, robot: RobotModel, request: PortRequest) -> Ported:
     """The setup the package holds, fitted to `request.target`; every setting reported."""
     if pkg.srdf is None:
         raise InputError("no readable SRDF: nothing to port", path=pkg.user_path(pkg.srdf_path or "config"))
@@ -63,22 +67,35 @@ def port_package(pkg: ConfigPackage, robot: RobotModel, request: PortRequest) ->
     model = _with_settings(pkg, model, robot, log)
     model = _with_controllers(pkg, model, robot, log)
     report_pipelines(pkg, request.target, log)
+    report_perception(pkg, log)
     _report_runtime_files(pkg, log)
     report_leftovers(pkg, read_files(pkg), log)
-    return Ported(model, tuple(log.items), pkg.shown, pkg.target, pkg.layout)
+    return Ported(model, _motion_first(log.items), pkg.shown, pkg.target, pkg.layout)
 
 
-def _base(pkg: ConfigPackage, robot: RobotModel, request: PortRequest, log: PortLog) -> SetupModel:
-    from marm_setup.setup.yaml_io import setup_from_dict
+def _motion_first(items: list[PortItem]) -> tuple[PortItem, ...]:
+    """The report opens with what changes how the robot moves (in the order met), then the rest."""
+    return (*(i for i in items if i.moves_robot), *(i for i in items if not i.moves_robot))
 
+
+def _base(pkg: MoveItPackage, robot: RobotModel, request: PortRequest, log: PortLog) -> SetupModel:
     name = request.name or pkg.name
     report_metadata(pkg, name, request.target, log)
     source = robot_source(pkg, request.out, request.package_paths, log)
-    kept = report_marm_setup(pkg, log)
-    given = setup_from_dict(
-        {"package_name": name, "robot_name": robot.name, "robot": {"urdf": "-"}, **kept},
-        pkg.user_path("marm_setup.yaml"),
+    report_marm_setup(pkg, log)
+    marm = pkg.marm_setup
+    if marm is not None and marm.kept_error is not None:
+        raise marm.kept_error
+    kept = marm.kept if marm is not None and marm.kept is not None else None
+    base = SetupModel(package_name=name, robot_name=robot.name, robot=source)
+    given = (
+        dataclasses.replace(
+            base, collision=kept.collision, default_acceleration=kept.default_acceleration, driver=kept.driver
+        )
+        if kept is not None
+        else base
     )
+    assert pkg.srdf is not None
     return dataclasses.replace(
         given,
         robot_name=pkg.srdf.robot_name or robot.name,
@@ -90,20 +107,18 @@ def _base(pkg: ConfigPackage, robot: RobotModel, request: PortRequest, log: Port
     )
 
 
-def _with_srdf(pkg: ConfigPackage, model: SetupModel, log: PortLog) -> SetupModel:
+def _with_srdf(pkg: MoveItPackage, model: SetupModel, log: PortLog) -> SetupModel:
     from marm_setup.setup.srdf import srdf_to_setup
 
     srdf, file = pkg.srdf, pkg.srdf_path or ""
+    assert srdf is not None  # port_package refuses a package without one
     if srdf.robot_name and srdf.robot_name != model.robot_name:
         log.changed("robot_name", file, f"{srdf.robot_name}")
-    for kind, items in (
-        ("groups", srdf.groups),
-        ("group_states", srdf.group_states),
-        ("end_effectors", srdf.end_effectors),
-        ("virtual_joints", srdf.virtual_joints),
-    ):
-        for item in items:
-            log.carried(f"{kind}[{item.name}]", where(file, kind), _srdf_detail(item))
+    for group in srdf.groups:
+        log.carried(f"groups[{group.name}]", where(file, "groups"), "", "srdf")
+    for problem in pkg.problems:  # elements srdfdom skips, as the model's SRDF reader did
+        if problem.file == file and problem.rule in ("srdf.parse", "srdf.unsupported"):
+            log.dropped(problem.element or "srdf", where(file, problem.element), problem.message, "srdf")
     if srdf.passive_joints:
         log.carried("passive_joints", file, ", ".join(srdf.passive_joints))
     log.carried(
@@ -134,21 +149,27 @@ def _without_srdf_errors(model: SetupModel, robot: RobotModel, file: str, log: P
         m = DROPPABLE.match(f.element)
         if f.is_error and m:
             drop.setdefault((m[1], m[2]), f.message)
-    if not drop:
-        return model
     for (kind, name), message in drop.items():
-        log.dropped(f"{kind}[{name}]", where(file, kind), f"{message} (left out of the new package)")
+        log.dropped(f"{kind}[{name}]", where(file, kind), f"{message} (left out of the new package)", "srdf")
 
     def kept(items: tuple) -> tuple:
         return tuple(i for i in items if (kind_of[type(i)], i.name) not in drop)
 
     kind_of = {VirtualJoint: "virtual_joints", EndEffector: "end_effectors", GroupState: "group_states"}
-    return dataclasses.replace(
+    model = dataclasses.replace(
         model,
         virtual_joints=kept(model.virtual_joints),
         end_effectors=kept(model.end_effectors),
         group_states=kept(model.group_states),
     )
+    for kind, items in (
+        ("group_states", model.group_states),
+        ("end_effectors", model.end_effectors),
+        ("virtual_joints", model.virtual_joints),
+    ):
+        for item in items:  # only what the new package holds is carried
+            log.carried(f"{kind}[{item.name}]", where(file, kind), _srdf_detail(item), "srdf")
+    return model
 
 
 def _srdf_detail(item: Any) -> str:
@@ -161,12 +182,15 @@ def _srdf_detail(item: Any) -> str:
     return ""
 
 
-def _with_settings(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
+def _with_settings(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
     names = [g.name for g in model.groups]
     kinematics = _without_unsolvable(port_kinematics(pkg.kinematics, names, log), pkg, robot, log)
     planning = planning_joints(model.groups, robot, model.passive_joints)
-    overrides, scaling = port_joint_limits(pkg.joint_limits, robot, planning, model.default_acceleration, log)
-    planners = port_planners(pkg.ompl, names, log)
+    ros2 = pkg.target == "ros2"
+    overrides, scaling = port_joint_limits(
+        pkg.joint_limits, robot, planning, model.default_acceleration, ros2, log
+    )
+    planners = port_planners(pkg.ompl, names, _projections(model, robot), log)
     return dataclasses.replace(
         model,
         kinematics=kinematics,
@@ -180,41 +204,56 @@ def _with_settings(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, log
 
 
 def _without_unsolvable(
-    kinematics: tuple[Kinematics, ...], pkg: ConfigPackage, robot: RobotModel, log: PortLog
+    kinematics: tuple[Kinematics, ...], pkg: MoveItPackage, robot: RobotModel, log: PortLog
 ) -> tuple[Kinematics, ...]:
     """Drop chain-only solvers (KDL, LMA, cached KDL) on groups that are no chain: MoveIt cannot
     initialise them there, so the group had no IK solver (validate's kinematics rule)."""
     from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS
-    from marm_setup.setup.groups import groups_by_name, is_chain
+    from marm_setup.setup.groups import is_chain
 
-    section = pkg.kinematics
+    assert pkg.srdf is not None
     by_name = groups_by_name(pkg.srdf.groups)
     kept = []
     for k in kinematics:
         if k.solver in CHAIN_ONLY_PLUGINS and not is_chain(
             by_name[k.group], by_name, robot, tuple(pkg.srdf.passive_joints)
         ):
-            log.changed(
-                f"kinematics[{k.group}].kinematics_solver",
-                where(section.file, section.element(k.group)) if section is not None else "",
+            entry = pkg.kinematics.group(k.group) if pkg.kinematics is not None else None
+            detail = (
                 f"{k.solver} is not written: it needs a serial chain and '{k.group}' is none, so MoveIt "
-                "could not load it (the group had no IK); pick a general solver (pick_ik, bio_ik, TRAC-IK) by hand",
+                "could not load it (the group had no IK); pick a general solver (pick_ik, bio_ik, TRAC-IK) by hand"
+            )
+            log.changed(
+                f"kinematics[{k.group}].kinematics_solver", entry.where if entry else "", detail, "kinematics"
             )
         else:
             kept.append(k)
     return tuple(kept)
 
 
-def _with_controllers(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
+def _projections(model: SetupModel, robot: RobotModel) -> Callable[[str], str | None]:
+    """The projection_evaluator the new package writes for a group: `joints(<first two active
+    joints>)` (render.context GroupInfo.projection_joints), None for a group of fewer."""
+    by_name = groups_by_name(model.groups)
+
+    def projection(group: str) -> str | None:
+        if group not in by_name:
+            return None
+        joints = active_group_joints(by_name[group], by_name, robot, model.passive_joints)
+        return f"joints({joints[0]},{joints[1]})" if len(joints) >= 2 else None
+
+    return projection
+
+
+def _with_controllers(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
     from marm_setup.setup.infer import derive_group_settings
 
     derived = derive_group_settings(model, robot)
     controllers = port_controllers(pkg, model, robot, log) or derived.controllers
     if not pkg.moveit_controllers:
         for c in controllers:
-            log.changed(
-                f"controllers[{c.name}]", "", f"written for group {c.group} ({c.type}), as init infers it"
-            )
+            detail = f"written for group {c.group} ({c.type}), as init infers it"
+            log.changed(f"controllers[{c.name}]", "", detail, "controllers")
     report_driver(pkg, controllers, model.driver_key, log)
     report_shared_joints(controllers, model.target, log)
     arbotix = port_arbotix(pkg, robot, model.target, log)
@@ -244,11 +283,11 @@ def _with_controllers(pkg: ConfigPackage, model: SetupModel, robot: RobotModel, 
     return dataclasses.replace(model, controllers=controllers, arbotix_joints=arbotix)
 
 
-def _report_runtime_files(pkg: ConfigPackage, log: PortLog) -> None:
+def _report_runtime_files(pkg: MoveItPackage, log: PortLog) -> None:
     """Fake controllers and initial positions: the new package writes its own from the setup."""
-    for section, what in (
+    for found, what in (
         (pkg.fake_controllers, "fake controllers (one per group) and their initial poses"),
         (pkg.initial_positions, "initial positions (each group's 'home' pose, else its first)"),
     ):
-        if section is not None:
-            log.changed(section.file, section.file, f"the new package writes its own {what}")
+        if found is not None:
+            log.changed(found.where.file, found.where.file, f"the new package writes its own {what}")

@@ -1,258 +1,223 @@
 """Porting what surrounds the settings: package metadata (package.xml, `.setup_assistant`), the
-robot description's location, the planning pipelines in use, and every file of the source
-package the port does not read (each reported, so nothing goes silently)."""
+robot description's location, the planning pipelines in use, perception and servo settings, and
+every file of the source package the port does not read (each reported, so nothing goes
+silently)."""
 
 from __future__ import annotations
 
 import os
 import re
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
-from marm_setup.bounded_read import XML_BYTES, YAML_BYTES, FileTooLarge, read_bytes, read_text
+from marm_setup.package.model import MoveItPackage
 from marm_setup.port.report import PortLog, where
-from marm_setup.safe_yaml import load_yaml
 from marm_setup.setup.model import Author, RobotSource
-from marm_setup.validate.discovery import ConfigPackage
 
 # Pipelines each target's templates write (templates/<target>/config and launch).
 TARGET_PIPELINES = {"ros1": ("ompl",), "ros2": ("ompl", "pilz_industrial_motion_planner")}
 PIPELINE_FILE = re.compile(r"^(?:config|launch)/([a-z0-9_]+?)_planning(?:_pipeline\.launch\.xml|\.yaml)$")
 KNOWN_PIPELINES = ("ompl", "chomp", "stomp", "lerp", "trajopt", "pilz_industrial_motion_planner", "pilz")
 LICENSE = "BSD-3-Clause"  # templates/<target>/package.xml.j2
-MARM_KEYS = ("collision", "default_acceleration", "author")
+METADATA_TAGS = ("version", "description", "url", "author")
 
 
-def robot_source(pkg: ConfigPackage, out: Path, user_paths: tuple[Path, ...], log: PortLog) -> RobotSource:
+def robot_source(pkg: MoveItPackage, out: Path, user_paths: tuple[Path, ...], log: PortLog) -> RobotSource:
     """The URDF relative to the new package, the package's xacro args and the folders holding the
     description's packages (the user's --package-path, then marm_setup.yaml's)."""
+    from marm_setup.package.description import marm_package_paths
     from marm_setup.render.package import robot_reference
-    from marm_setup.validate.sources import marm_package_paths
 
-    marm = pkg.marm_setup.data if pkg.marm_setup is not None else None
-    paths = [*user_paths, *marm_package_paths(pkg.root, marm)]
+    paths = [*user_paths, *marm_package_paths(pkg.root, pkg.marm_setup)]
     urdf, rel_list = robot_reference(
         Path(pkg.urdf), out, list(dict.fromkeys(_relative(p, out) for p in paths))
     )
-    rel_paths = tuple(rel_list)
-    log.carried("robot.urdf", pkg.urdf_origin, f"{urdf} (relative to the new package)")
+    log.carried("robot.urdf", pkg.urdf_origin, f"{urdf} (relative to the new package)", "robot")
     for name, value in pkg.xacro_args:
-        log.carried(f"robot.xacro_args.{name}", pkg.urdf_origin, value)
-    return RobotSource(urdf=urdf, xacro_args=tuple(pkg.xacro_args), package_paths=rel_paths)
+        log.carried(f"robot.xacro_args.{name}", pkg.urdf_origin, value, "robot")
+    return RobotSource(urdf=urdf, xacro_args=tuple(pkg.xacro_args), package_paths=tuple(rel_list))
 
 
 def _relative(path: Path, base: Path) -> str:
     return Path(os.path.relpath(Path(path).resolve(), base.resolve())).as_posix()
 
 
-def port_author(pkg: ConfigPackage, log: PortLog) -> Author:
-    """`.setup_assistant` CONFIG author, else package.xml's first maintainer, else marm_setup.yaml's."""
-    sa = _setup_assistant_config(pkg)
-    name, email = sa.get("author_name"), sa.get("author_email")
-    if name and email:
-        log.carried("author", ".setup_assistant: CONFIG", f"{name} <{email}>")
-        return Author(str(name), str(email))
-    people = _package_people(pkg)
+def port_author(pkg: MoveItPackage, log: PortLog) -> Author:
+    """`.setup_assistant`'s author (`CONFIG`, or MoveIt 2's `package_settings`), else package.xml's
+    first maintainer, else marm_setup.yaml's."""
+    sa = pkg.setup_assistant
+    if sa is not None and sa.author_name and sa.author_email:
+        log.carried("author", f".setup_assistant: {sa.author_key}", f"{sa.author_name} <{sa.author_email}>")
+        return Author(sa.author_name, sa.author_email)
+    people = pkg.package_xml.maintainers if pkg.package_xml is not None else ()
     if people:
         (name, email), *rest = people
         log.carried("author", "package.xml: maintainer", f"{name} <{email}>")
         for n, e in rest:
             log.dropped("author", "package.xml: maintainer", f"{n} <{e}>: marm_setup.yaml holds one author")
         return Author(name, email)
-    marm = pkg.marm_setup.data if pkg.marm_setup is not None else {}
-    author = marm.get("author") if isinstance(marm, dict) else None
-    if isinstance(author, dict) and author.get("name") and author.get("email"):
-        return Author(str(author["name"]), str(author["email"]))
+    if pkg.marm_setup is not None and pkg.marm_setup.author is not None:
+        return Author(*pkg.marm_setup.author)
     log.changed("author", "package.xml", "no maintainer found: the default author is written")
     return Author()
 
 
-def _setup_assistant_config(pkg: ConfigPackage) -> dict:
-    import yaml
-
-    file = pkg.root / ".setup_assistant"
-    try:
-        data = load_yaml(read_text(file, YAML_BYTES)) if file.is_file() else None
-    except (OSError, UnicodeDecodeError, yaml.YAMLError, FileTooLarge):
-        return {}
-    config = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
-    entry = config.get("CONFIG", config.get("config")) if isinstance(config, dict) else None
-    return entry if isinstance(entry, dict) else {}
-
-
-def _package_xml(pkg: ConfigPackage) -> Any:
-    from lxml import etree
-
-    if pkg.package_xml is None:
-        return None
-    try:
-        return etree.fromstring(read_bytes(pkg.path(pkg.package_xml), XML_BYTES))
-    except (OSError, etree.XMLSyntaxError, FileTooLarge):
-        return None
-
-
-def _package_people(pkg: ConfigPackage) -> list[tuple[str, str]]:
-    root = _package_xml(pkg)
-    if root is None:
-        return []
-    return [
-        ((e.text or "").strip(), e.get("email", "").strip())
-        for e in root.iterchildren("maintainer")
-        if (e.text or "").strip() and e.get("email")
-    ]
-
-
-def report_metadata(pkg: ConfigPackage, name: str, target: str, log: PortLog) -> None:
+def report_metadata(pkg: MoveItPackage, name: str, target: str, log: PortLog) -> None:
     """Package name, licence, version, description, urls and dependencies."""
-    src = pkg.package_xml or "package.xml"
+    xml = pkg.package_xml
+    src = xml.file if xml is not None else "package.xml"
     if name == pkg.name:
         log.carried("package_name", src, name)
     else:
         log.changed("package_name", src, f"{pkg.name} -> {name} (--name)")
-    root = _package_xml(pkg)
-    if root is None:
+    if xml is None or not xml.parsed:
         return
-    licenses = [(e.text or "").strip() for e in root.iterchildren("license")]
-    for text in licenses:
+    for text in xml.licenses:
         if text == LICENSE:
             log.carried("license", src, text)
         else:
             log.changed(
                 "license", src, f"{text} -> {LICENSE}: marm_setup.yaml has no licence key; edit package.xml"
             )
-    for tag in ("version", "description", "url", "author"):
-        for e in root.iterchildren(tag):
-            log.dropped(
-                f"package.xml {tag}", src, f"{_text(e)!r}: the new package.xml is generated; copy it by hand"
-            )
-    deps = sorted({(e.text or "").strip() for e in root if str(e.tag).endswith("depend")})
-    if deps:
-        log.changed(
-            "package.xml dependencies",
-            src,
-            f"{len(deps)} dependencies replaced by the {target} package's own list",
-        )
+    for tag in METADATA_TAGS:
+        for found, text in xml.metadata:
+            if found == tag:
+                log.dropped(
+                    f"package.xml {tag}",
+                    src,
+                    f"{_short(text)!r}: the new package.xml is generated; copy it by hand",
+                )
+    if xml.dependencies:
+        detail = f"{len(xml.dependencies)} dependencies replaced by the {target} package's own list"
+        log.changed("package.xml dependencies", src, detail)
 
 
-def _text(elem: Any) -> str:
-    text = " ".join("".join(elem.itertext()).split())
+def _short(text: str) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def report_pipelines(pkg: ConfigPackage, target: str, log: PortLog) -> None:
+def report_pipelines(pkg: MoveItPackage, target: str, log: PortLog) -> None:
     """The planning pipelines the source package configures, and whether the new one has them."""
     found: dict[str, list[str]] = {}
-    for rel in _files(pkg.root):
+    for rel in pkg.files:
         m = PIPELINE_FILE.match(rel)
         if m and m.group(1) in KNOWN_PIPELINES + ("ompl-chomp",):
             found.setdefault(m.group(1), []).append(rel)
-    if pkg.ompl is not None:
-        found.setdefault("ompl", []).append(pkg.ompl.file)
+    for pipeline in pkg.pipelines:
+        found.setdefault(pipeline.name, []).append(pipeline.where.file)
     ours = TARGET_PIPELINES[target]
     for name, files in sorted(found.items()):
         src = ", ".join(sorted(set(files)))
         if name in ours or (name == "pilz" and "pilz_industrial_motion_planner" in ours):
-            log.carried(f"planning_pipelines.{name}", src, "the new package configures it")
+            log.carried(f"planning_pipelines.{name}", src, "the new package configures it", "planners")
         else:
-            log.dropped(
-                f"planning_pipelines.{name}",
-                src,
-                f"marm-setup writes the {', '.join(ours)} pipeline{'s' if len(ours) > 1 else ''} for {target}; "
-                f"configure {name} by hand",
-            )
+            plural = "s" if len(ours) > 1 else ""
+            detail = f"marm-setup writes the {', '.join(ours)} pipeline{plural} for {target}; configure {name} by hand"
+            log.dropped(f"planning_pipelines.{name}", src, detail, "planners")
 
 
-def report_leftovers(pkg: ConfigPackage, read: set[str], log: PortLog) -> None:
+def report_perception(pkg: MoveItPackage, log: PortLog) -> None:
+    """3D sensors and MoveIt Servo: each setting, exactly; the setup has no place for them yet."""
+    if pkg.sensors is not None:
+        for sensor in pkg.sensors.sensors:
+            params = ", ".join(f"{p.key}: {p.value}" for p in sensor.params)
+            detail = f"{sensor.plugin} ({params}): marm_setup.yaml has no sensors yet; copy it by hand"
+            log.dropped(f"sensors[{sensor.name}]", sensor.where, detail, "perception")
+        if not pkg.sensors.sensors:
+            log.carried("sensors", pkg.sensors.where, "none configured (an empty list)", "perception")
+    for servo in pkg.servo:
+        detail = f"{len(servo.params)} moveit_servo parameters: marm_setup.yaml has no servo yet; copy the file by hand"
+        log.dropped(f"servo[{servo.group or '?'}]", servo.where, detail, "perception")
+
+
+def report_leftovers(pkg: MoveItPackage, read: set[str], log: PortLog) -> None:
     """Every file of the source package the port did not read, with what to do about it."""
-    for rel in _files(pkg.root):
+    for rel in pkg.files:
         if rel in read or PIPELINE_FILE.match(rel):
             continue
         log.add(*_leftover(rel))
 
 
-def _leftover(rel: str) -> tuple[str, str, str, str]:
-    name = Path(rel).name
-    if rel.startswith("launch/"):
-        return (
+# (what a file is, by its path) -> (status, setting, detail, area) of its report line; the first
+# that matches, else `file` dropped.
+LEFTOVERS: tuple[tuple[Callable[[str, str], bool], tuple[str, str, str, str]], ...] = (
+    (
+        lambda rel, name: rel.startswith("launch/"),
+        (
             "todo",
             "launch",
-            rel,
             "launch files are written anew for the target; port custom nodes and args by hand",
-        )
-    if name.startswith("sensors") or "sensor" in name:
-        return (
+            "files",
+        ),
+    ),
+    (
+        lambda rel, name: name.startswith("sensors") or "sensor" in name,
+        (
             "dropped",
             "sensors",
-            rel,
             "3D perception settings: marm-setup writes none; copy them by hand",
-        )
-    if rel == "CMakeLists.txt" or rel.startswith(".marm_setup/"):
-        return ("changed", rel, rel, "written anew for the target")
-    if name.endswith((".rviz", ".rviz2")):
-        return ("changed", "rviz", rel, "the new package has its own RViz configuration")
-    if name.endswith(".ros2_control.xacro"):
-        return (
+            "perception",
+        ),
+    ),
+    (
+        lambda rel, name: rel == "CMakeLists.txt" or rel.startswith(".marm_setup/"),
+        ("changed", "", "written anew for the target", "files"),
+    ),
+    (
+        lambda rel, name: name.endswith((".rviz", ".rviz2")),
+        ("changed", "rviz", "the new package has its own RViz configuration", "files"),
+    ),
+    (
+        lambda rel, name: name.endswith(".ros2_control.xacro"),
+        (
             "todo",
             "ros2_control",
-            rel,
             "the new package writes mock hardware: port this hardware description by hand",
-        )
-    if rel.startswith("config/") and name.endswith(".urdf.xacro"):
-        return (
+            "driver",
+        ),
+    ),
+    (
+        lambda rel, name: rel.startswith("config/") and name.endswith(".urdf.xacro"),
+        (
             "changed",
             "robot description wrapper",
-            rel,
             "the new package wraps the robot description in its own",
-        )
-    if "cartesian_limits" in name:
-        return (
+            "robot",
+        ),
+    ),
+    (
+        lambda rel, name: "cartesian_limits" in name,
+        (
             "changed",
             "cartesian_limits",
-            rel,
             "the target's Pilz cartesian limits are written with MoveIt's defaults",
-        )
-    return ("dropped", "file", rel, "not read by the port: copy or port it by hand if it matters")
+            "limits",
+        ),
+    ),
+)
 
 
-def _files(root: Path) -> list[str]:
-    out = []
-    for p in sorted(root.rglob("*")):
-        rel = p.relative_to(root).as_posix()
-        if p.is_file() and not rel.startswith(".git/") and "__pycache__" not in rel:
-            out.append(rel)
-    return out
+def _leftover(rel: str) -> tuple[str, str, str, str, str]:
+    """(status, setting, source, detail, area) of a file the port did not read."""
+    name = Path(rel).name
+    for matches, (status, setting, detail, area) in LEFTOVERS:
+        if matches(rel, name):
+            return status, setting or rel, rel, detail, area
+    return "dropped", "file", rel, "not read by the port: copy or port it by hand if it matters", "files"
 
 
-def read_files(pkg: ConfigPackage) -> set[str]:
-    """The package files the port reads (its sections, SRDF, package.xml, .setup_assistant)."""
-    names = {"package.xml", ".setup_assistant", "marm_setup.yaml"}
-    if pkg.srdf_path:
-        names.add(pkg.srdf_path)
-    for field in (
-        "kinematics",
-        "joint_limits",
-        "ompl",
-        "moveit_controllers",
-        "fake_controllers",
-        "ros2_controllers",
-        "ros_controllers",
-        "arbotix",
-        "initial_positions",
-    ):
-        section = getattr(pkg, field)
-        if section is not None:
-            names.add(section.file)
-    names.update(s.file for s in pkg.alt_moveit_controllers)
+def read_files(pkg: MoveItPackage) -> set[str]:
+    """The package files the port reads: every file the model read a kind from, the SRDF,
+    package.xml, `.setup_assistant` and marm_setup.yaml."""
+    names = {"package.xml", ".setup_assistant", "marm_setup.yaml", *(s.file for s in pkg.sources)}
+    names.update(c.where.file for c in pkg.alt_moveit_controllers)
+    names.update(s.where.file for s in pkg.servo)
     return names
 
 
-def report_marm_setup(pkg: ConfigPackage, log: PortLog) -> dict:
+def report_marm_setup(pkg: MoveItPackage, log: PortLog) -> None:
     """marm_setup.yaml keys no rendered file holds (the collision sampling, default_acceleration,
     the ros1 driver)."""
-    data = pkg.marm_setup.data if pkg.marm_setup is not None else None
-    if not isinstance(data, dict):
-        return {}
-    out = {k: data[k] for k in ("collision", "default_acceleration", "driver") if k in data}
-    for key in out:
+    marm = pkg.marm_setup
+    for key in marm.kept_keys if marm is not None else ():
         log.carried(key, where("marm_setup.yaml", key), "kept from the source's marm_setup.yaml")
-    return out

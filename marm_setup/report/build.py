@@ -104,9 +104,9 @@ def _drawing(
 ) -> Drawing:
     """What the 3D view draws for a package whose robot and SRDF loaded."""
     from marm_setup.collision.scene import CollisionScene
+    from marm_setup.package.start import package_start_values
     from marm_setup.report.motions import motions
     from marm_setup.report.states import robot_states
-    from marm_setup.setup.start_state import package_start_values
 
     scene = CollisionScene(robot)
     start = package_start_values(validated.package, robot)

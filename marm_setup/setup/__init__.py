@@ -14,7 +14,7 @@ __all__, __getattr__, __dir__ = lazy_api(
         "infer": "infer Inference",
         "checks": "check_setup",
         "rules": "check_semantics",
-        "start_state": "package_start_values",
+        "start_state": "demo_start_values model_start_values",
         "domain": "VIRTUAL_JOINT_TYPES MOVEIT_CONTROLLER_TYPES DRIVER_ACTION_NS KINEMATICS_PLUGINS OMPL_PLANNER_NAMES",
         "srdf": "read_srdf parse_srdf_string srdf_to_setup",
         "groups": "group_joints active_group_joints planning_joints",

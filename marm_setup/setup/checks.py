@@ -17,6 +17,7 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
 from marm_setup.robot.model import MIN_RATE, RobotModel
+from marm_setup.setup.domain import KINEMATICS_KEYS
 from marm_setup.setup.limits import joint_limits, timing_problem
 from marm_setup.setup.model import ROS_DISTROS, Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
@@ -241,6 +242,10 @@ def _check_joint_lists(c: _Checker) -> None:
             c.group(ctl.group, f"controllers[{ctl.name}].group")
     for k in m.kinematics:
         c.group(k.group, f"kinematics[{k.group}].group")
+        for key, _ in k.options:
+            if not key or key in KINEMATICS_KEYS:
+                what = "an empty key" if not key else f"'{key}' has a field of its own in kinematics"
+                raise c.fail(f"{what}: not a solver option", f"kinematics[{k.group}].options.{key}")
     for p in m.planners:
         c.group(p.group, f"planners[{p.group}].group")
     servo_ids: dict[int, str] = {}
@@ -253,6 +258,13 @@ def _check_joint_lists(c: _Checker) -> None:
         servo_ids[a.id] = a.joint
     for lim in m.joint_limits:
         c.joint(lim.joint, f"joint_limits[{lim.joint}].joint")
+        if (
+            lim.min_position is not None
+            and lim.max_position is not None
+            and lim.min_position > lim.max_position
+        ):
+            message = f"min_position {lim.min_position:g} is above max_position {lim.max_position:g}"
+            raise c.fail(message, f"joint_limits[{lim.joint}].min_position")
     for start in m.start_poses or ():
         c.group(start.group, f"start_poses[{start.group}].group")
         poses = [s.name for s in m.group_states if s.group == start.group]

@@ -82,6 +82,23 @@ KINEMATICS_PLUGINS = (
     "cached_ik_kinematics_plugin/CachedTRACKinematicsPlugin",
     "srv_kinematics_plugin/SrvKinematicsPlugin",
 )
+# The solvers moveit_kinematics itself ships (moveit/moveit2 moveit_kinematics: kdl, lma,
+# cached_ik, srv): a package depending on it needs no other for them.
+MOVEIT_KINEMATICS_PLUGINS = (
+    KDL_PLUGIN,
+    "lma_kinematics_plugin/LMAKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedKDLKinematicsPlugin",
+    "cached_ik_kinematics_plugin/CachedSrvKinematicsPlugin",
+    "srv_kinematics_plugin/SrvKinematicsPlugin",
+)
+# kinematics.yaml's keys for a group's solver, search resolution [rad], timeout [s] and attempts;
+# every other key of a group's entry is an option of its solver plugin.
+KINEMATICS_KEYS = (
+    "kinematics_solver",
+    "kinematics_solver_search_resolution",
+    "kinematics_solver_timeout",
+    "kinematics_solver_attempts",
+)
 IKFAST_PLUGIN_SUFFIX = "/IKFastKinematicsPlugin"  # generated per robot: `<robot>_<group>_ikfast_plugin/...`
 # Solvers that need the group to be a chain.
 CHAIN_ONLY_PLUGINS = (

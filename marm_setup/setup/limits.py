@@ -24,6 +24,8 @@ class JointLimit:
     max_velocity: float | None
     max_acceleration: float | None
     max_jerk: float | None = None
+    min_position: float | None = None
+    max_position: float | None = None
 
 
 def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
@@ -36,7 +38,8 @@ def joint_limits(model: SetupModel, robot: RobotModel) -> list[JointLimit]:
         velocity = o.max_velocity if o and o.max_velocity is not None else joint.velocity
         accel = o.max_acceleration if o and o.max_acceleration is not None else model.default_acceleration
         jerk = o.max_jerk if o else None
-        out.append(JointLimit(name, velocity if velocity else None, accel, jerk))
+        positions = (o.min_position, o.max_position) if o else (None, None)
+        out.append(JointLimit(name, velocity if velocity else None, accel, jerk, *positions))
     return out
 
 

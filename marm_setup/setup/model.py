@@ -109,15 +109,22 @@ class CollisionSettings:
     disabled: tuple[DisabledPair, ...] = ()
 
 
+# A solver option's value: MoveIt hands each to the plugin as the typed parameter it is.
+OptionValue = str | int | float | bool
+
+
 @dataclass(frozen=True, slots=True)
 class Kinematics:
-    """Per-group IK solver settings (`kinematics.yaml`); resolution in [rad], timeout in [s]."""
+    """Per-group IK solver settings (`kinematics.yaml`); resolution in [rad], timeout in [s];
+    `options` the solver plugin's own keys, written as given (KDL's `position_only_ik`,
+    TRAC-IK's `solve_type`, bio_ik's `mode`, ...)."""
 
     group: str
     solver: str = KDL_PLUGIN
     search_resolution: float = 0.005
     timeout: float = 0.05
     attempts: int = 3  # kept for old files; MoveIt >= 1.0 reads no attempts, so none is rendered
+    options: tuple[tuple[str, OptionValue], ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -164,12 +171,15 @@ class Ros2ControlHardware:
 
 @dataclass(frozen=True, slots=True)
 class JointLimitOverride:
-    """Overrides for `joint_limits.yaml`; None keeps the URDF value (or no limit)."""
+    """Overrides for `joint_limits.yaml`; None keeps the URDF value (or no limit). Positions in
+    [rad] or [m] (MoveIt reads them whenever given), rates per [s], [s^2], [s^3]."""
 
     joint: str
     max_velocity: float | None = None
     max_acceleration: float | None = None
     max_jerk: float | None = None
+    min_position: float | None = None
+    max_position: float | None = None
 
 
 @dataclass(frozen=True, slots=True)

@@ -18,6 +18,10 @@ from marm_setup import bounded_read
 from marm_setup.collision.pairs import DisabledPair, DisabledReason, link_pair
 from marm_setup.errors import InputError
 from marm_setup.robot.urdf import strict_float
+
+if TYPE_CHECKING:
+    from lxml import etree
+
 from marm_setup.setup.model import (
     Chain,
     CollisionPair,
@@ -92,17 +96,13 @@ class _Reader:
 def read_srdf(path: str | PathLike, skipped: list[InputError] | None = None) -> Srdf:
     """Parse an SRDF file (path as the user typed it, for messages); with `skipped`, elements
     that cannot be read are left out and their errors recorded there (as srdfdom does)."""
-    from lxml import etree
 
     shown = str(path)
     try:
         data = bounded_read.read_bytes(path, bounded_read.XML_BYTES, shown=shown)
-        root = etree.fromstring(data, etree.XMLParser(remove_comments=True), base_url=str(path))
     except OSError as exc:
         raise InputError(f"cannot read: {exc}", path=shown) from None
-    except etree.XMLSyntaxError as exc:
-        raise _syntax_error(exc, shown) from None
-    return parse_srdf_root(root, shown, skipped)
+    return parse_srdf_document(data, shown, skipped)[0]
 
 
 def expand_srdf_xacro(
@@ -140,16 +140,25 @@ def load_srdf(
 
 
 def parse_srdf_string(text: str, path: str = "<srdf>", skipped: list[InputError] | None = None) -> Srdf:
+    return parse_srdf_document(text, path, skipped)[0]
+
+
+def parse_srdf_document(
+    text: str | bytes, path: str = "<srdf>", skipped: list[InputError] | None = None
+) -> tuple[Srdf, etree._Element]:
+    """(the SRDF, its XML root): the one place SRDF text is parsed (read_srdf reads a file into
+    it); the root is for what only the XML shows (pairs written twice, misplaced elements)."""
     from lxml import etree
 
     try:
-        root = etree.fromstring(text.encode(), etree.XMLParser(remove_comments=True))
+        data = text.encode() if isinstance(text, str) else text
+        root = etree.fromstring(data, etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError as exc:
-        raise _syntax_error(exc, path) from None
-    return parse_srdf_root(root, path, skipped)
+        raise srdf_syntax_error(exc, path) from None
+    return parse_srdf_root(root, path, skipped), root
 
 
-def _syntax_error(exc, shown: str) -> InputError:
+def srdf_syntax_error(exc, shown: str) -> InputError:
     """libxml2's complaint on one line, the element naming its line (as for a URDF)."""
     from marm_setup.robot.load import xml_syntax_message
 

@@ -15,7 +15,6 @@ Joints neither sets stay at MoveIt's default (0, or mid-range where 0 is outside
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from typing import Any, Protocol
 
 import numpy as np
 
@@ -68,49 +67,19 @@ def start_configuration(robot: RobotModel, values: Mapping[str, float] | None = 
     return pose_configuration(GroupState("start", "", ()), robot, values)
 
 
-class _Parsed(Protocol):
-    @property
-    def data(self) -> Any: ...
-
-
-class StartSources(Protocol):
-    """What the start state is read from: a config package (validate's ConfigPackage is one)."""
-
-    @property
-    def target(self) -> str: ...
-
-    @property
-    def srdf(self) -> Srdf | None: ...
-
-    @property
-    def fake_controllers(self) -> _Parsed | None: ...
-
-    @property
-    def initial_positions(self) -> _Parsed | None: ...
-
-
-def package_start_values(package: StartSources, robot: RobotModel) -> dict[str, float]:
-    """`demo_start_values` of a config package (anything with `target`, `srdf` and the
-    `fake_controllers` / `initial_positions` sections, each with `.data`, or None)."""
-    fake, positions = package.fake_controllers, package.initial_positions
-    return demo_start_values(
-        package.target,
-        package.srdf,
-        robot,
-        fake.data if fake is not None else None,
-        positions.data if positions is not None else None,
-    )
-
-
 def demo_start_values(
-    target: str, srdf: Srdf | None, robot: RobotModel, fake_controllers: object, initial_positions: object
+    target: str,
+    srdf: Srdf | None,
+    robot: RobotModel,
+    initial: Iterable[tuple[str, str]],
+    positions: Mapping[str, object],
 ) -> dict[str, float]:
     """Joint values a package's demo sets at start (others stay at their defaults): for ros1
-    the `initial` poses of fake_controllers.yaml, for ros2 initial_positions.yaml. The two files
-    are given as parsed YAML (anything, or None when absent)."""
+    the `initial` (group, pose) entries of fake_controllers.yaml, for ros2 the values of
+    initial_positions.yaml (`positions`, joint -> value as written)."""
     if target == "ros1":
-        return initial_pose_values(srdf, robot, _initial_entries(fake_controllers))
-    return initial_position_values(initial_positions, robot)
+        return initial_pose_values(srdf, robot, initial)
+    return initial_position_values(positions, robot)
 
 
 def initial_pose_values(
@@ -130,24 +99,13 @@ def initial_pose_values(
     return out
 
 
-def initial_position_values(data: object, robot: RobotModel) -> dict[str, float]:
-    """The numbers initial_positions.yaml gives active joints of the robot (`initial_positions:`
-    mapping, or the mapping itself)."""
-    values = data.get("initial_positions", data) if isinstance(data, dict) else None
-    if not isinstance(values, dict):
-        return {}
+def initial_position_values(positions: Mapping[str, object], robot: RobotModel) -> dict[str, float]:
+    """The numbers `positions` gives active joints of the robot."""
     return {
         str(joint): float(value)
-        for joint, value in values.items()
+        for joint, value in positions.items()
         if joint in robot.joint_map
         and robot.joint(joint).is_active
         and isinstance(value, int | float)
         and not isinstance(value, bool)
     }
-
-
-def _initial_entries(data: object) -> list[tuple[str, str]]:
-    entries = data.get("initial") if isinstance(data, dict) else None
-    if not isinstance(entries, list):
-        return []
-    return [(str(e.get("group")), str(e.get("pose"))) for e in entries if isinstance(e, dict)]

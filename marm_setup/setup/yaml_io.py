@@ -239,7 +239,7 @@ def _load_union(arms: list, data, ctx: _Ctx, where: str):
     lists = [a for a in arms if typing.get_origin(a) is tuple]
     if isinstance(data, list) and lists:
         return _load_tuple(lists[0], data, ctx, where)
-    names = {str: "a string", float: "a number", bool: "true or false"}
+    names = {str: "a string", int: "an integer", float: "a number", bool: "true or false"}
     wanted = [names[a] for a in arms if a in names] + (["a list of strings"] if lists else [])
     raise ctx.fail(f"expected {', '.join(wanted)}; got {_kind(data)}", where)
 

@@ -1,5 +1,5 @@
-"""Validating a config package: discovery of its files, the rule families (`rules/`), the runner
-and the runtime (planning) checks.
+"""Validating a config package (read once by `marm_setup.package`): the rule families
+(`rules/`), the runner and the runtime (planning) checks.
 
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
@@ -9,7 +9,6 @@ from marm_setup.exports import lazy_api
 __all__, __getattr__, __dir__ = lazy_api(
     __name__,
     {
-        "discovery": "discover_package",
         "runner": "validate validate_package matrix_settings Validation ValidatedPackage",
         "runtime": "check_runtime PlannedPair",
     },

@@ -27,8 +27,10 @@ from typing import TYPE_CHECKING
 from marm_setup.findings import Finding, error, warning
 
 if TYPE_CHECKING:
+    from lxml import etree
+
+    from marm_setup.package.model import MoveItPackage
     from marm_setup.robot.model import RobotModel
-    from marm_setup.validate.discovery import ConfigPackage
 
 ROS2_PYTHON_ENV = "MARM_SETUP_ROS2_PYTHON"
 ROSLAUNCH_ENV = "MARM_SETUP_ROSLAUNCH"
@@ -92,7 +94,7 @@ def ros2_python() -> tuple[str, str] | None:
     return (python, probe.stdout.strip()) if probe.returncode == 0 else None
 
 
-def run_consumer(pkg: ConfigPackage, robot: RobotModel | None, distro: str | None) -> ConsumerRun:
+def run_consumer(pkg: MoveItPackage, robot: RobotModel | None, distro: str | None) -> ConsumerRun:
     """The real consumer for the package's target, when the user has it."""
     seconds = float(os.environ.get(TIMEOUT_ENV, TIMEOUT))
     if pkg.target == "ros2":
@@ -106,7 +108,7 @@ def run_consumer(pkg: ConfigPackage, robot: RobotModel | None, distro: str | Non
     return run_ros1(pkg, roslaunch, seconds)
 
 
-def _packages(pkg: ConfigPackage, robot: RobotModel | None) -> dict[str, str]:
+def _packages(pkg: MoveItPackage, robot: RobotModel | None) -> dict[str, str]:
     """Packages the launch files may name: every package.xml package on the package paths and
     every package the robot description used."""
     from marm_setup.robot.ros_packages import find_packages
@@ -120,7 +122,7 @@ def _packages(pkg: ConfigPackage, robot: RobotModel | None) -> dict[str, str]:
 
 
 def run_ros2(
-    pkg: ConfigPackage, robot: RobotModel | None, distro: str | None, found: tuple[str, str], seconds: float
+    pkg: MoveItPackage, robot: RobotModel | None, distro: str | None, found: tuple[str, str], seconds: float
 ) -> ConsumerRun:
     python, version = found
     launch_files = ros2_launch_files(pkg)
@@ -143,14 +145,14 @@ def run_ros2(
     return ConsumerRun(tuple(ros2_findings(report, distro)), ran)
 
 
-def ros2_launch_files(pkg: ConfigPackage) -> list[str]:
-    """The package's ROS 2 launch files: XML (as discovery lists them), Python and YAML."""
+def ros2_launch_files(pkg: MoveItPackage) -> list[str]:
+    """The package's ROS 2 launch files: XML (as the package model lists them), Python and YAML."""
     xml = [rel for rel in pkg.launch_files if rel.endswith(".launch.xml")]
     others = [p.relative_to(pkg.root).as_posix() for p in sorted((pkg.root / "launch").glob("*.launch.*"))]
     return sorted({*xml, *(rel for rel in others if rel.endswith((".launch.py", ".launch.yaml")))})
 
 
-def _stopped(pkg: ConfigPackage, seconds: float) -> Finding:
+def _stopped(pkg: MoveItPackage, seconds: float) -> Finding:
     msg = f"the launch files did not finish within {seconds:g} s in the real launcher (set {TIMEOUT_ENV})"
     return error("consumer.timeout", "launch", "", msg)
 
@@ -192,15 +194,16 @@ def ros2_findings(report: dict, distro: str | None) -> list[Finding]:
     return out
 
 
-def run_ros1(pkg: ConfigPackage, roslaunch: str, seconds: float) -> ConsumerRun:
+def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
     """`roslaunch --dump-params` on each top-level launch file that needs no arg."""
     ran = f"roslaunch --dump-params ({roslaunch}), and the static rules"
     out = []
     with tempfile.TemporaryDirectory(prefix="marm_ros1_") as home:
         roots = [str(pkg.root), *(str(p) for p in pkg.package_paths), os.environ.get("ROS_PACKAGE_PATH", "")]
         env = {**_environment(home), "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r)}
-        for rel in pkg.launch_files:
-            if not rel.endswith(".launch") or _needs_args(pkg.path(rel)):
+        for launch in pkg.launch:
+            rel = launch.file
+            if not rel.endswith(".launch") or launch.root is None or _needs_args(launch.root):
                 continue
             done = _run([roslaunch, "--dump-params", str(pkg.path(rel))], env, seconds)
             if done is None:
@@ -212,16 +215,8 @@ def run_ros1(pkg: ConfigPackage, roslaunch: str, seconds: float) -> ConsumerRun:
     return ConsumerRun(tuple(out), ran)
 
 
-def _needs_args(path: Path) -> bool:
+def _needs_args(root: etree._Element) -> bool:
     """The file declares an arg with neither default nor value: it is meant to be included."""
-    from lxml import etree
-
-    from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
-
-    try:
-        root = etree.fromstring(read_bytes(path, XML_BYTES), base_url=str(path))
-    except (OSError, etree.XMLSyntaxError, FileTooLarge):
-        return False
     return any(a.get("default") is None and a.get("value") is None for a in root.findall("arg"))
 
 

@@ -1,7 +1,7 @@
 """validate: every static check of a MoveIt config package, plus the runtime seam.
 
 Rule families live in `validate/rules/`; this module reads the package (via
-`validate.discovery`), loads the robot and the collision scene once, and runs them all. The
+`package.read_package`), loads the robot and the collision scene once, and runs them all. The
 runtime checks (plan between named poses, execute as a fake controller) come from
 `marm_setup.validate.runtime.check_runtime(package, robot, scene)` when `plan` is true.
 """
@@ -16,29 +16,27 @@ from typing import TYPE_CHECKING, Any
 
 from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound, remedy
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
-from marm_setup.setup.start_state import package_start_values
-from marm_setup.validate.discovery import ConfigPackage, discover_package
+from marm_setup.package.launch_ros1 import launch_nodes
+from marm_setup.package.model import MoveItPackage
+from marm_setup.package.read import read_package
+from marm_setup.package.start import package_start_values
 from marm_setup.validate.rules.controller_rules import (
-    check_arbotix,
     check_coverage,
-    check_driver_controllers,
     check_fake_controllers,
+    check_listed,
     check_moveit_controllers,
     check_ros2_namespace,
-    moveit_controllers,
-    ros1_driver_controllers,
-    ros2_driver_controllers,
 )
 from marm_setup.validate.rules.distro_rules import check_package_runtime
+from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
 from marm_setup.validate.rules.kinematics_rules import check_kinematics
-from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml, parse_launch
+from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml
 from marm_setup.validate.rules.limits_rules import check_joint_limits
 from marm_setup.validate.rules.name_rules import check_controller_names, check_srdf_names
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.pose_rules import check_initial_positions
 from marm_setup.validate.rules.srdf_rules import check_srdf
 from marm_setup.validate.rules.write_state_rules import check_pending_write
-from marm_setup.validate.sources import skipped_groups
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -101,7 +99,7 @@ class ValidatedPackage:
     planned, with its trajectory."""
 
     validation: Validation
-    package: ConfigPackage
+    package: MoveItPackage
     robot: RobotModel | None
     plans: tuple[PlannedPair, ...] = ()
 
@@ -149,11 +147,12 @@ def validate_package(
 
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
-    pkg = discover_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
+    pkg = read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
     findings = list(pkg.problems)
-    findings += guarded("package", check_package_xml, pkg.root, pkg.package_xml)
+    xml = pkg.package_xml.file if pkg.package_xml is not None else None
+    findings += guarded("package", check_package_xml, pkg.root, xml)
     findings += guarded("package", check_pending_write, pkg.root)
-    findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch_files, pkg.target)
+    findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch, pkg.target)
     robot, problems = load_package_robot(pkg)
     findings += problems
     if robot is not None and xacro_args:
@@ -174,7 +173,7 @@ def validate_package(
 
 
 def _validation(
-    pkg: ConfigPackage,
+    pkg: MoveItPackage,
     robot: RobotModel | None,
     findings: list[Finding],
     planned: list[PlannedPair] | None,
@@ -196,37 +195,30 @@ def _validation(
     )
 
 
-def check_given_xacro_args(pkg: ConfigPackage, robot: RobotModel, given: Mapping[str, str]) -> None:
+def check_given_xacro_args(pkg: MoveItPackage, robot: RobotModel, given: Mapping[str, str]) -> None:
     """The `--xacro-arg`s the user gave for a package must each be an argument of its robot
-    description's xacro or of its SRDF xacro (expanded again only when the description's
-    arguments do not cover them); else an InputError (robot/xacro_expand.check_xacro_args)."""
+    description's xacro or of its SRDF xacro (the arguments the package model's SRDF reader saw
+    it take); else an InputError (robot/xacro_expand.check_xacro_args)."""
     from marm_setup.robot.xacro_expand import check_xacro_args
 
     left = set(given) - set(robot.xacro_args or ())
-    srdf = pkg.path(pkg.srdf_path) if pkg.srdf_path and pkg.srdf_path.endswith(".xacro") else None
-    if not left or srdf is None:
+    srdf = pkg.srdf_file
+    if not left or srdf is None or srdf.xacro_declared is None:
         check_xacro_args(given, robot.xacro_args, path=user_urdf(pkg))
         return
-    from marm_setup.setup.srdf import expand_srdf_xacro
-
-    try:
-        srdf_args = expand_srdf_xacro(srdf, dict(given), pkg.package_paths).declared
-    except InputError:
-        srdf_args = frozenset()  # validate reports the SRDF's own failure
-    declared = {*(robot.xacro_args or ()), *srdf_args}
+    declared = {*(robot.xacro_args or ()), *srdf.xacro_declared}
     check_xacro_args(given, declared, path=user_urdf(pkg), others=(pkg.user_path(pkg.srdf_path),))
 
 
-def check_as_launched(pkg: ConfigPackage, robot: RobotModel | None) -> tuple[list[Finding], str]:
+def check_as_launched(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[list[Finding], str]:
     """The launch files and parameter files as ROS runs them: the static rules (validate/rules/
     ros2_launch_rules.py, ros2_params_rules.py), then the user's own ROS when it is there
     (validate/consumers.py); with the summary's words for what ran."""
     from marm_setup.validate.consumers import run_consumer
-    from marm_setup.validate.rules.distro_rules import package_distro
     from marm_setup.validate.rules.ros2_launch_rules import check_install_paths, check_ros2_launch
     from marm_setup.validate.rules.ros2_params_rules import check_params_files
 
-    distro = package_distro(pkg)
+    distro = pkg.ros_distro
     out = guarded("launch", check_install_paths, pkg)
     if pkg.target == "ros2":
         out += guarded("launch", check_ros2_launch, pkg, distro)
@@ -235,15 +227,15 @@ def check_as_launched(pkg: ConfigPackage, robot: RobotModel | None) -> tuple[lis
     return out + list(run.findings), run.ran
 
 
-def without_skipped_group_cascade(findings: list[Finding], pkg: ConfigPackage) -> list[Finding]:
+def without_skipped_group_cascade(findings: list[Finding], pkg: MoveItPackage) -> list[Finding]:
     """Drop 'unknown group' findings about a group the SRDF has but that could not be read (its
     own finding says why): subgroups, kinematics, OMPL and controllers name it rightly."""
-    gone = skipped_groups([f for f in pkg.problems if f.rule in ("srdf.parse", "srdf.unsupported")])
+    gone = pkg.srdf_file.skipped_groups if pkg.srdf_file is not None else frozenset()
     marks = tuple(f"{kind} '{g}'" for g in gone for kind in ("unknown group", "unknown subgroup"))
     return [f for f in findings if not any(mark in f.message for mark in marks)]
 
 
-def skipped_families(pkg: ConfigPackage, robot: RobotModel | None) -> tuple[str, ...]:
+def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str, ...]:
     """What did not run or ran on less than the whole file, each with why (for the summary)."""
     out = [f"the rules on {f.file} ({f.message})" for f in pkg.problems if f.rule == "yaml.parse"]
     out += [
@@ -259,19 +251,19 @@ def skipped_families(pkg: ConfigPackage, robot: RobotModel | None) -> tuple[str,
     return tuple(out)
 
 
-def shown_path(pkg: ConfigPackage, file: Path) -> str:
+def shown_path(pkg: MoveItPackage, file: Path) -> str:
     """A file's path for findings: relative to the package (`../x` outside it), never absolute."""
     return Path(os.path.relpath(Path(file).resolve(), pkg.root)).as_posix()
 
 
-def user_urdf(pkg: ConfigPackage) -> str:
+def user_urdf(pkg: MoveItPackage) -> str:
     """The robot description as the user would type it: as given to --urdf, else `DIR/...`."""
     if pkg.urdf_origin == "--urdf":
         return str(pkg.urdf)
     return os.path.normpath(pkg.user_path(shown_path(pkg, pkg.urdf)))
 
 
-def load_package_robot(pkg: ConfigPackage) -> tuple[RobotModel | None, list[Finding]]:
+def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Finding]]:
     """(RobotModel or None, findings): the URDF loads and its meshes resolve."""
     from marm_setup.robot.load import load_robot
 
@@ -299,11 +291,12 @@ def _package_hint(exc: InputError) -> str:
     return remedy(exc.needs)
 
 
-def check_static(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
+def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking), each
     family on its own: one that fails leaves the others running."""
-    srdf, file = pkg.srdf, pkg.srdf_path
-    out = guarded("srdf", check_srdf, srdf, robot, file, pkg.srdf_text)
+    assert pkg.srdf_file is not None and pkg.srdf is not None
+    srdf, file = pkg.srdf, pkg.srdf_file.path
+    out = guarded("srdf", check_srdf, pkg.srdf_file, robot)
     out += guarded("names", check_srdf_names, srdf, file)
     if pkg.initial_positions is not None:
         out += guarded("pose", check_initial_positions, pkg.initial_positions, robot)
@@ -318,50 +311,45 @@ def check_static(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
     return out
 
 
-def check_controllers(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
+def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     """MoveIt's controllers vs robot and groups, then vs every driver file the package has."""
+    assert pkg.srdf is not None
     out: list[Finding] = []
     if pkg.fake_controllers is not None:
         out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
-    section = pkg.moveit_controllers
-    if section is None:
+    moveit = pkg.moveit_controllers
+    if moveit is None:
         if pkg.fake_controllers is None:
             msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out
-    ctrls, problems = moveit_controllers(section)
-    out += problems + check_controller_names(ctrls, section.file)
+    out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
     if pkg.target == "ros2" and pkg.layout == "moveit2":
-        out += check_ros2_namespace(section)
-    out += check_moveit_controllers(section, ctrls, robot)
-    out += check_coverage(section, ctrls, pkg.srdf, robot, pkg.alt_moveit_controllers)
+        out += check_ros2_namespace(moveit)
+    out += check_moveit_controllers(moveit, robot)
+    out += check_coverage(moveit, pkg.srdf, robot, pkg.alt_moveit_controllers)
     if pkg.ros2_controllers is not None:
-        driver = ros2_driver_controllers(pkg.ros2_controllers)
-        out += check_driver_controllers(section, pkg.ros2_controllers, driver, ctrls, robot)
-    if pkg.ros_controllers is not None and pkg.ros_controllers.file != section.file:
-        driver = ros1_driver_controllers(pkg.ros_controllers)
-        out += check_driver_controllers(section, pkg.ros_controllers, driver, ctrls, robot)
+        out += check_driver_controllers(moveit, pkg.ros2_controllers, robot)
+    if pkg.ros_controllers is not None and pkg.ros_controllers.where.file != moveit.where.file:
+        out += check_driver_controllers(moveit, pkg.ros_controllers, robot)
     if pkg.arbotix is not None:
-        out += check_arbotix(pkg.arbotix, ctrls, robot, gripper_nodes(pkg))
+        out += check_arbotix(pkg.arbotix, moveit, robot, gripper_nodes(pkg))
     return out
 
 
-def gripper_nodes(pkg: ConfigPackage) -> dict[str, tuple[str, str]]:
+def gripper_nodes(pkg: MoveItPackage) -> dict[str, tuple[str, str]]:
     """ArbotiX `gripper_controller` nodes in the launch files: name -> (file, `joint` param)."""
     out: dict[str, tuple[str, str]] = {}
-    for rel in pkg.launch_files:
-        tree, _ = parse_launch(pkg.path(rel), rel)
-        if tree is None:
-            continue
-        for node in tree.iter("node"):
-            if (node.get("type") or "").startswith("gripper_controller") and node.get("name"):
-                joint = next((p.get("value", "") for p in node.iter("param") if p.get("name") == "joint"), "")
-                out.setdefault(node.get("name"), (rel, joint))
+    for rel, node in launch_nodes({t.file: t for t in pkg.launch}):
+        if (node.get("type") or "").startswith("gripper_controller") and node.get("name"):  # type: ignore[attr-defined]
+            params = node.iter("param")  # type: ignore[attr-defined]
+            joint = next((p.get("value", "") for p in params if p.get("name") == "joint"), "")
+            out.setdefault(node.get("name"), (rel, joint))  # type: ignore[attr-defined]
     return out
 
 
 def check_with_scene(
-    pkg: ConfigPackage, robot: RobotModel, *, plan: bool, matrix_trials: int, progress: Progress | None = None
+    pkg: MoveItPackage, robot: RobotModel, *, plan: bool, matrix_trials: int, progress: Progress | None = None
 ) -> tuple[list[Finding], list[PlannedPair] | None]:
     """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
     with the pose pairs the runtime checks planned (None when they did not run)."""
@@ -378,7 +366,8 @@ def check_with_scene(
     if (
         pkg.target == "ros2" and pkg.initial_positions is not None
     ):  # ros1 starts at named poses, checked above
-        out += guarded("pose", check_start_state, pkg.srdf, robot, scene, pkg.initial_positions.file, start)
+        file = pkg.initial_positions.where.file
+        out += guarded("pose", check_start_state, pkg.srdf, robot, scene, file, start)
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
     for check in (check_matrix_missing, check_matrix_fresh):
@@ -390,22 +379,17 @@ def check_with_scene(
     return out, planned
 
 
-def matrix_settings(pkg: ConfigPackage) -> tuple[int, int | None]:
+def matrix_settings(pkg: MoveItPackage) -> tuple[int, int | None]:
     """(seed, trials) the package's matrix was computed with (marm_setup.yaml `collision`), else
     (0, None). Resampling no more than those trials keeps an unchanged URDF's matrix fresh."""
-    data = pkg.marm_setup.data if pkg.marm_setup is not None else None
-    collision = data.get("collision") if isinstance(data, dict) else None
-    collision = collision if isinstance(collision, dict) else {}
-
-    def integer(key):
-        value = collision.get(key)
-        return value if isinstance(value, int) and not isinstance(value, bool) else None
-
-    return integer("seed") or 0, integer("trials")
+    marm = pkg.marm_setup
+    if marm is None:
+        return 0, None
+    return marm.collision_seed or 0, marm.collision_trials
 
 
 def run_runtime_checks(
-    pkg: ConfigPackage,
+    pkg: MoveItPackage,
     robot: RobotModel,
     scene: CollisionScene,
     planned: list[PlannedPair],

@@ -35,7 +35,8 @@ from marm_setup.robot.model import RobotModel
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
-    from marm_setup.plan.problem import Executed, PackageConfig
+    from marm_setup.package.model import MoveItPackage
+    from marm_setup.plan.problem import Executed
 
 RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
 Progress = Callable[[int, int], None]  # (pose pairs done, pose pairs in all)
@@ -56,7 +57,7 @@ class PlannedPair:
 
 
 def check_runtime(
-    package: PackageConfig,
+    package: MoveItPackage,
     robot: RobotModel,
     scene: CollisionScene,
     *,
@@ -90,7 +91,7 @@ def check_runtime(
 
 
 def _ticker(
-    package: PackageConfig, groups: tuple[str, ...], progress: Progress | None
+    package: MoveItPackage, groups: tuple[str, ...], progress: Progress | None
 ) -> Callable[[str, int | None], None]:
     """`tick(group, pairs)`: `pairs` more pose pairs of `group` are done (None: all of them)."""
     states = package.srdf.group_states if package.srdf is not None else ()

@@ -47,12 +47,12 @@ def _held_state(model, package, robot):
     package's initial state (e.g. the panda's open fingers), mimic joints following."""
     import pinocchio as pin
 
+    from marm_setup.package.read import read_package
     from marm_setup.plan.problem import initial_configuration
-    from marm_setup.validate.discovery import discover_package
 
     q = pin.neutral(model)
     values = dict(
-        zip(robot.active_joint_names, initial_configuration(discover_package(package), robot), strict=True)
+        zip(robot.active_joint_names, initial_configuration(read_package(package), robot), strict=True)
     )
     for joint in robot.joints:
         if joint.is_actuated and joint.mimic is not None:
@@ -157,9 +157,9 @@ def test_panda_ready_to_extended_rechecked_by_pinocchio(target, tmp_path):
         package, "--group", "panda_arm", "--from", "ready", "--to", "extended", "--output", str(traj)
     )
     assert result.exit_code == 0, result.output
-    from marm_setup.validate.discovery import discover_package
+    from marm_setup.package.read import read_package
 
-    pkg = discover_package(package)
+    pkg = read_package(package)
     robot = load_robot(pkg.urdf, dict(pkg.xacro_args), list(pkg.package_paths))
     srdf = tmp_path / "panda.srdf"
     srdf.write_text(pkg.srdf_text, encoding="utf-8")  # ros2 ships a .srdf.xacro: use the expanded text
@@ -207,9 +207,9 @@ def test_pose_in_collision_is_exit_1_naming_the_pair(tmp_path):
 def test_the_recheck_itself_catches_a_colliding_trajectory(tmp_path):
     """Guard against a re-check that passes anything: a straight line into panda's `transport`."""
     package = realworld("ros1", "panda_moveit_config")
-    from marm_setup.validate.discovery import discover_package
+    from marm_setup.package.read import read_package
 
-    pkg = discover_package(package)
+    pkg = read_package(package)
     robot = load_robot(pkg.urdf, dict(pkg.xacro_args), list(pkg.package_paths))
     model, geom = pinocchio_models(robot.urdf_xml, _meshes(robot), package / pkg.srdf_path, tmp_path)
     import pinocchio as pin

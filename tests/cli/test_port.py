@@ -79,8 +79,28 @@ def test_every_source_file_is_accounted_for(tmp_path):
     sources = " ".join(i["source"] for i in doc["port"]["items"])
     files = [p.relative_to(tmp_path / "a").as_posix() for p in (tmp_path / "a").rglob("*") if p.is_file()]
     assert [f for f in files if f not in sources] == []
-    sensors = [i for i in doc["port"]["items"] if i["source"] == "config/sensors_3d.yaml"]
-    assert sensors[0]["status"] == "dropped"
+    sensors = [i for i in doc["port"]["items"] if i["source"].startswith("config/sensors_3d.yaml")]
+    assert sensors[0]["status"] == "carried" and "none configured" in sensors[0]["detail"]
+
+
+def test_sensors_and_servo_settings_are_each_reported_exactly(tmp_path):
+    """A 3D sensor and a MoveIt Servo file: the setup has no place for them yet, so each is a
+    dropped line naming its plugin and parameters (never a silent leftover)."""
+    _generate(tmp_path / "a", "ros1", "noetic")
+    (tmp_path / "a" / "config" / "sensors_3d.yaml").write_text(
+        "sensors:\n  - sensor_plugin: occupancy_map_monitor/PointCloudOctomapUpdater\n"
+        "    point_cloud_topic: /camera/points\n    max_range: 5.0\n"
+    )
+    (tmp_path / "a" / "config" / "arm_servo.yaml").write_text(
+        "move_group_name: arm\ncommand_in_type: unitless\npublish_period: 0.034\nplanning_frame: base_link\n"
+    )
+    result = _port(tmp_path / "a", tmp_path / "b", "--format", "json")
+    items = _items(result)
+    sensor = items["sensors[0]"][0]
+    assert sensor["status"] == "dropped" and sensor["area"] == "perception"
+    assert "PointCloudOctomapUpdater (point_cloud_topic: /camera/points, max_range: 5.0)" in sensor["detail"]
+    servo = items["servo[arm]"][0]
+    assert servo["status"] == "dropped" and servo["source"] == "config/arm_servo.yaml"
 
 
 def test_from_package_with_a_spec_is_one_error_line(tmp_path):
@@ -146,7 +166,7 @@ def test_what_moveit_cannot_use_is_dropped_with_a_line(tmp_path):
     result = _port(tmp_path / "a", tmp_path / "b", "--target", "ros2", "--format", "json")
     assert result.exit_code == 0, result.output
     items = _items(result)
-    vj = items["virtual_joints[virtual_joint]"][-1]
+    (vj,) = items["virtual_joints[virtual_joint]"]  # dropped, and never also "carried"
     assert vj["status"] == "dropped" and "is not the URDF's root link 'base_link'" in vj["detail"]
     kdl = items["kinematics[gripper].kinematics_solver"][-1]
     assert kdl["status"] == "changed" and "needs a serial chain" in kdl["detail"]
@@ -175,3 +195,27 @@ def test_a_gripper_command_of_several_joints_becomes_a_trajectory_controller_on_
     assert shared["status"] == "todo" and shared["detail"].startswith(
         "share joint6: ros2_control activates one"
     )
+
+
+def test_report_lines_say_what_the_new_package_holds(tmp_path):
+    """The projection the new package writes identically is carried; LMA ships with
+    moveit_kinematics (no todo); a virtual joint srdfdom skips (no name) has its own line."""
+    _generate(tmp_path / "a", "ros1", "noetic")
+    srdf = tmp_path / "a" / "config" / "marm.srdf"
+    srdf.write_text(srdf.read_text().replace('name="virtual_joint" ', ""))
+    kin = tmp_path / "a" / "config" / "kinematics.yaml"
+    kin.write_text(
+        kin.read_text().replace(
+            "kdl_kinematics_plugin/KDLKinematicsPlugin", "lma_kinematics_plugin/LMAKinematicsPlugin"
+        )
+    )
+    result = _port(tmp_path / "a", tmp_path / "b", "--target", "ros2", "--format", "json")
+    assert result.exit_code == 0, result.output
+    items = _items(result)
+    (projection,) = items["planners[arm].projection_evaluator"]
+    assert (projection["status"], projection["detail"]) == ("carried", "joints(joint1,joint2)")
+    assert [i["status"] for i in items["kinematics[arm].kinematics_solver"]] == ["carried"]
+    (skipped,) = [
+        i for i in json.loads(result.stdout)["port"]["items"] if i["setting"].startswith("virtual_joint")
+    ]
+    assert skipped["status"] == "dropped" and "missing attribute 'name'" in skipped["detail"]

@@ -220,7 +220,7 @@ def test_json_survives_a_crash_outside_the_rules(tmp_path, monkeypatch):
     def crash(*_args, **_kwargs):
         raise RuntimeError("boom")
 
-    monkeypatch.setattr(validate_runner, "discover_package", crash)
+    monkeypatch.setattr(validate_runner, "read_package", crash)
     result = runner.invoke(app, ["validate", str(tmp_path), "--format", "json"])
     assert result.exit_code == 2
     (finding,) = json.loads(result.stdout)["findings"]

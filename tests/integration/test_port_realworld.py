@@ -9,9 +9,9 @@ import pytest
 from typer.testing import CliRunner
 
 from marm_setup.cli.app import app
+from marm_setup.package.read import read_package
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.groups import group_joints, groups_by_name
-from marm_setup.validate.discovery import discover_package
 from tests.conftest import realworld
 from tests.generated_packages import PORTS, shared_path
 
@@ -42,13 +42,14 @@ def _settings(pkg) -> dict[str, object]:
         out[f"ee:{e.name}"] = (e.group, e.parent_link, e.parent_group)
     for p in srdf.disabled:
         out[f"disabled:{p.link1}|{p.link2}"] = True
-    for group, entry in pkg.kinematics.data.items():
+    for entry in pkg.kinematics.groups:
         keys = ("kinematics_solver", "kinematics_solver_search_resolution", "kinematics_solver_timeout")
-        out[f"kinematics:{group}"] = tuple(entry.get(k) for k in keys)
-    for joint, entry in pkg.joint_limits.data["joint_limits"].items():
+        out[f"kinematics:{entry.group}"] = tuple(p.value if (p := entry.param(k)) else None for k in keys)
+    for entry in pkg.joint_limits.joints:
         for kind in ("velocity", "acceleration", "jerk"):
-            if entry.get(f"has_{kind}_limits"):
-                out[f"limit:{joint}.{kind}"] = round(float(entry[f"max_{kind}"]), 6)
+            flag = entry.param(f"has_{kind}_limits")
+            if flag is not None and flag.value:
+                out[f"limit:{entry.joint}.{kind}"] = round(float(entry.param(f"max_{kind}").value), 6)
     return out
 
 
@@ -73,9 +74,9 @@ def test_panda_ros1_to_ros2_matches_the_maintainers_port(tmp_path, distro):
     inherited = [i for i in items if i["setting"] == "validate pose.collision"]
     assert inherited and "the source package has the same error" in inherited[0]["detail"]
 
-    ours = _settings(discover_package(out))
-    src = _settings(discover_package(source, package_paths=[source.parent]))
-    ref = _settings(discover_package(theirs, package_paths=[theirs.parent]))
+    ours = _settings(read_package(out))
+    src = _settings(read_package(source, package_paths=[source.parent]))
+    ref = _settings(read_package(theirs, package_paths=[theirs.parent]))
     differences = _diff(ours, ref)
     reported = {i["setting"] for i in items if i["status"] in ("changed", "dropped")}
     explained = {k for k in differences if f"joint_limits[{k[6:].split('.')[0]}]" in reported}
@@ -98,14 +99,14 @@ def test_vendor_packages_port_with_no_validation_errors(tmp_path, ros2_packages,
     """Each vendor package ports to both targets and the new package validates (static rules)
     without errors, or each error has a port report line saying why. (The ros2 port is the
     session's, tests/generated_packages.py, which the ROS 2 consumer tests run too.)"""
+    rel, paths = PORTS[name]
+    source = shared_path(rel)
     if target == "ros2":
         port = ros2_packages.get(f"port:{name}", "humble")
         out, stdout, code = port.out, port.output, port.exit_code
     else:
-        rel, paths = PORTS[name]
         args = [arg for p in paths for arg in ("--package-path", str(shared_path(p)))]
         out = tmp_path / name
-        source = shared_path(rel)
         cmd = ["init", "--from-package", str(source), "--out", str(out), "--target", target, "--no-plan"]
         result = runner.invoke(app, [*cmd, *args, "--format", "json"])
         assert result.exit_code in (0, 1), result.output
@@ -117,6 +118,28 @@ def test_vendor_packages_port_with_no_validation_errors(tmp_path, ros2_packages,
     assert all("the source package has the same error" in i["detail"] for i in explained), explained
     assert code == (1 if errors else 0)
     assert (out / "marm_setup.yaml").is_file()
+    _assert_moves_the_same(source, [shared_path(p) for p in paths], out, doc)
+
+
+def _assert_moves_the_same(source, paths, out, doc) -> None:
+    """The package model of the source and of the port hold the same joint limits, scaling
+    factors, controller names and IK options, or the port report names each difference."""
+    from tests.package_diff import motion_settings, unexplained
+
+    src = read_package(source, package_paths=paths)
+    robot = load_robot(src.urdf, dict(src.xacro_args), src.package_paths)
+    before = motion_settings(src, robot)
+    assert unexplained(before, motion_settings(read_package(out), robot), doc["port"]["items"]) == {}
+    assert any(k.startswith("controller:") for k in before) and any(k.startswith("limit:") for k in before)
+
+
+@pytest.mark.parametrize(("source_target", "target"), [("ros1", "ros2"), ("ros2", "ros1")])
+def test_panda_ports_keep_what_moves_the_robot(tmp_path, source_target, target):
+    source = realworld(source_target, "panda_moveit_config")
+    out = tmp_path / "panda"
+    cmd = ["init", "--from-package", str(source), "--out", str(out), "--target", target, "--no-plan"]
+    result = runner.invoke(app, [*cmd, "--package-path", str(source.parent), "--format", "json"])
+    _assert_moves_the_same(source, [source.parent], out, json.loads(result.stdout))
 
 
 @pytest.mark.parametrize("target", ["ros1", "ros2"])

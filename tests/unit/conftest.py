@@ -23,12 +23,12 @@ def marm_scene(marm):
 @pytest.fixture(scope="session")
 def panda1():
     """(SRDF, robot) of the real MoveIt 1 panda package in ../shared/realworld (skipped if absent)."""
-    from marm_setup.validate.discovery import discover_package
+    from marm_setup.package.read import read_package
     from marm_setup.validate.runner import load_package_robot
     from tests.validate_helpers import panda
 
     good = panda("ros1")
-    pkg = discover_package(good.path, package_paths=good.package_paths)
+    pkg = read_package(good.path, package_paths=good.package_paths)
     robot, problems = load_package_robot(pkg)
     assert not problems
     return pkg.srdf, robot

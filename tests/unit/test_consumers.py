@@ -10,6 +10,7 @@ import time
 
 import pytest
 
+from marm_setup.package.launch_xml import parse_launch
 from marm_setup.validate.consumers import _dump_problem, _needs_args, _run, ros2_findings, ros2_python
 from tests.helpers import build_file_tree
 
@@ -99,7 +100,8 @@ def test_a_launch_file_with_an_arg_without_value_is_an_include(tmp_path):
             "b.launch": '<launch><arg name="x" default="1"/></launch>',
         },
     )
-    assert _needs_args(root / "a.launch") and not _needs_args(root / "b.launch")
+    a, b = (parse_launch(root / rel, rel).root for rel in ("a.launch", "b.launch"))
+    assert _needs_args(a) and not _needs_args(b)
 
 
 @pytest.mark.parametrize(

@@ -129,7 +129,8 @@ def test_climbing_out_of_the_share_folder(tail, depth, out):
 
 @pytest.mark.parametrize("target", ["ros2", "ros1"])
 def test_a_path_out_of_the_package_is_an_error_on_ros2_a_warning_on_ros1(tmp_path, target):
-    from marm_setup.validate.discovery import ConfigPackage
+    from marm_setup.package.launch_xml import parse_launch
+    from marm_setup.package.model import MoveItPackage
     from marm_setup.validate.rules.ros2_launch_rules import check_install_paths
 
     root = build_file_tree(
@@ -139,7 +140,7 @@ def test_a_path_out_of_the_package_is_an_error_on_ros2_a_warning_on_ros1(tmp_pat
             "config/r.urdf.xacro": '<robot><xacro:include filename="$(find p)/../../robot.urdf"/></robot>',
         },
     )
-    pkg = ConfigPackage(
+    pkg = MoveItPackage(
         root,
         str(root),
         "p",
@@ -147,7 +148,7 @@ def test_a_path_out_of_the_package_is_an_error_on_ros2_a_warning_on_ros1(tmp_pat
         "marm_ros2",
         root / "r.urdf",
         "--urdf",
-        launch_files=("launch/demo.launch.xml",),
+        launch=(parse_launch(root / "launch/demo.launch.xml", "launch/demo.launch.xml"),),
     )
     (finding,) = check_install_paths(pkg)
     assert (finding.file, finding.element, finding.severity) == (

@@ -12,10 +12,10 @@ from typer.testing import CliRunner
 
 from marm_setup.cli.app import app
 from marm_setup.collision.scene import CollisionScene
+from marm_setup.package.read import read_package
 from marm_setup.plan.planner import PlannerOptions
 from marm_setup.plan.problem import group_names_with_poses, initial_configuration, planning_problem
 from marm_setup.robot.load import load_robot
-from marm_setup.validate.discovery import discover_package
 from marm_setup.validate.runtime import _check_group, check_runtime
 from tests.conftest import FIXTURES, MARM_URDF, realworld
 
@@ -28,7 +28,7 @@ def marm(tmp_path_factory):
         app, ["init", str(MARM_URDF), "--out", str(out), "--setup", str(spec), "--trials", "2000"]
     )
     assert result.exit_code == 0, result.output
-    package = discover_package(out)
+    package = read_package(out)
     robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
     return package, robot, CollisionScene(robot)
 
@@ -41,7 +41,7 @@ def test_marm_is_clean(marm):
 
 @pytest.mark.parametrize("target", ["ros1", "ros2"])
 def test_panda_skips_the_pose_in_collision(target):
-    package = discover_package(realworld(target, "panda_moveit_config"))
+    package = read_package(realworld(target, "panda_moveit_config"))
     robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
     findings = check_runtime(package, robot, CollisionScene(robot))
     assert [(f.rule, f.severity, f.element) for f in findings] == [
@@ -53,7 +53,7 @@ def test_panda_skips_the_pose_in_collision(target):
 
 
 def test_initial_state_comes_from_the_package():
-    package = discover_package(realworld("ros1", "panda_moveit_config"))
+    package = read_package(realworld("ros1", "panda_moveit_config"))
     robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
     q = initial_configuration(package, robot)
     names = robot.active_joint_names
@@ -135,7 +135,10 @@ def test_a_continuous_joint_pose_beyond_pi_is_the_same_angle_wrapped(marm):
         else s
         for s in package.srdf.group_states
     )
-    turned = dataclasses.replace(package, srdf=dataclasses.replace(package.srdf, group_states=states))
+    srdf_file = dataclasses.replace(
+        package.srdf_file, srdf=dataclasses.replace(package.srdf, group_states=states)
+    )
+    turned = dataclasses.replace(package, srdf_file=srdf_file)
     problem = planning_problem(turned, spun, CollisionScene(spun), "arm")
     assert -math.pi <= problem.poses["forward"][spun.active_joint_names.index("joint1")] < math.pi
     assert _check_group(problem, spun, "config/marm.srdf", 0, PlannerOptions()) == []
@@ -143,7 +146,11 @@ def test_a_continuous_joint_pose_beyond_pi_is_the_same_angle_wrapped(marm):
 
 def test_one_unusable_scaling_factor_does_not_reset_the_other(marm):
     package, robot, scene = marm
-    data = {**package.joint_limits.data, "default_velocity_scaling_factor": 1.5}
-    edited = dataclasses.replace(package, joint_limits=dataclasses.replace(package.joint_limits, data=data))
+    limits = package.joint_limits
+    settings = tuple(
+        dataclasses.replace(p, value=1.5) if p.key == "default_velocity_scaling_factor" else p
+        for p in limits.settings
+    )
+    edited = dataclasses.replace(package, joint_limits=dataclasses.replace(limits, settings=settings))
     problem = planning_problem(edited, robot, scene, "arm")
     assert (problem.velocity_scaling, problem.acceleration_scaling) == (1.0, 0.1)

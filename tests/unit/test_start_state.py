@@ -6,15 +6,14 @@ from __future__ import annotations
 import dataclasses
 
 import pytest
-import yaml
 
+from marm_setup.package.read import read_package
 from marm_setup.plan.problem import initial_configuration
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.setup.model import Group, GroupState
 from marm_setup.setup.srdf import Srdf
 from marm_setup.setup.start_state import demo_start_values, initial_pose_values, model_start_values
-from marm_setup.validate.discovery import discover_package
 from tests.render_helpers import inferred_marm
 
 ARM = Group("arm", joints=("joint1", "joint2", "joint3"))
@@ -44,15 +43,15 @@ def test_generated_packages_start_where_render_says(tmp_path, target):
     apply_writes(plan_writes(render_package(model, robot), out), out)
     expected = model_start_values(model, robot)
     assert expected["joint2"] == 0.3
-    q = initial_configuration(discover_package(out), robot)
+    q = initial_configuration(read_package(out), robot)
     assert dict(zip(robot.active_joint_names, q.tolist(), strict=True)) == pytest.approx(
         {name: expected[name] for name in robot.active_joint_names}
     )
 
 
 def test_ros1_applies_initial_poses_in_order_and_ignores_initial_positions(marm):
-    fake = {"initial": [{"group": "arm", "pose": "up"}, {"group": "one", "pose": "left"}, {"group": "x"}]}
-    positions = {"initial_positions": {"joint1": 1.0, "joint4": 1.0}}
+    fake = [("arm", "up"), ("one", "left"), ("x", "None")]
+    positions = {"joint1": 1.0, "joint4": 1.0}
     assert demo_start_values("ros1", SRDF, marm, fake, positions) == {
         "joint1": -0.5,
         "joint2": 0.2,
@@ -61,10 +60,10 @@ def test_ros1_applies_initial_poses_in_order_and_ignores_initial_positions(marm)
 
 
 def test_ros2_takes_initial_positions_and_ignores_fake_initial(marm):
-    fake = {"initial": [{"group": "arm", "pose": "up"}]}
-    positions = {"initial_positions": {"joint1": 1.0, "joint9": 2.0, "joint4": "x", "finger_joint2": 0.01}}
+    fake = [("arm", "up")]
+    positions = {"joint1": 1.0, "joint9": 2.0, "joint4": "x", "finger_joint2": 0.01}
     assert demo_start_values("ros2", SRDF, marm, fake, positions) == {"joint1": 1.0}  # mimic, unknown out
-    assert demo_start_values("ros2", SRDF, marm, fake, yaml.safe_load("[1, 2]")) == {}
+    assert demo_start_values("ros2", SRDF, marm, fake, {}) == {}
 
 
 def test_a_pose_sets_only_its_group_active_joints(marm):

@@ -75,28 +75,34 @@ def test_limits_hold_everywhere_and_points_are_consistent(path, v, a):
     assert np.all(q >= path.min(axis=0) - 1e-9) and np.all(q <= path.max(axis=0) + 1e-9)
 
 
-def test_limits_from_config_prefers_the_yaml_and_falls_back_like_moveit():
+LIMITS_YAML = """
+joint_limits:
+  joint1: {has_velocity_limits: true, max_velocity: 0.5, has_acceleration_limits: true, max_acceleration: 0.2}
+  joint2: {has_velocity_limits: false, max_velocity: 9.0, has_acceleration_limits: false, max_acceleration: 9.0}
+  joint3: {max_velocity: 0.25, max_acceleration: 0.4}
+"""
+
+
+def _limits(text: str, ros2: bool):
+    from marm_setup.package.files import located_text
+    from marm_setup.package.joint_limits_file import read_joint_limits
+    from marm_setup.package.limits import effective_limits
+
+    return effective_limits(read_joint_limits(located_text(text, "config/joint_limits.yaml")), ros2)
+
+
+@pytest.mark.parametrize("ros2", [False, True])
+def test_limits_from_config_prefers_the_yaml_and_falls_back_like_moveit(ros2):
+    """MoveIt 1 takes a max_velocity without its flag, MoveIt 2 reads one only with
+    `has_velocity_limits: true` (robot_model_loader.cpp of each)."""
     robot = load_robot(MARM_URDF, {}, [])
-    entries = {
-        "joint1": {
-            "has_velocity_limits": True,
-            "max_velocity": 0.5,
-            "has_acceleration_limits": True,
-            "max_acceleration": 0.2,
-        },
-        "joint2": {
-            "has_velocity_limits": False,
-            "max_velocity": 9.0,
-            "has_acceleration_limits": False,
-            "max_acceleration": 9.0,
-        },
-    }
-    limits = limits_from_config(robot, ("joint1", "joint2", "joint3"), entries, default_acceleration=1.5)
-    np.testing.assert_array_equal(limits.max_velocity, [0.5, 1.0, 1.0])  # URDF velocity 1.0
-    np.testing.assert_array_equal(limits.max_acceleration, [0.2, 1.5, 1.5])
+    limits = limits_from_config(robot, ("joint1", "joint2", "joint3"), _limits(LIMITS_YAML, ros2), 1.5)
+    v3, a3 = (1.0, 1.5) if ros2 else (0.25, 0.4)  # URDF velocity 1.0
+    np.testing.assert_array_equal(limits.max_velocity, [0.5, 1.0, v3])
+    np.testing.assert_array_equal(limits.max_acceleration, [0.2, 1.5, a3])
     scaled = limits.scaled(0.1, 0.5)
-    np.testing.assert_allclose(scaled.max_velocity, [0.05, 0.1, 0.1])
-    np.testing.assert_allclose(scaled.max_acceleration, [0.1, 0.75, 0.75])
+    np.testing.assert_allclose(scaled.max_velocity, [0.05, 0.1, v3 / 10])
+    np.testing.assert_allclose(scaled.max_acceleration, [0.1, 0.75, a3 / 2])
 
 
 def test_a_path_that_does_not_move_is_one_point_at_rest():
@@ -115,10 +121,13 @@ def test_ends_exactly_at_the_goal_after_a_waypoint_within_tolerance_of_it():
 
 
 @pytest.mark.parametrize(
-    ("key", "value"), [("max_velocity", "fast"), ("max_velocity", True), ("max_acceleration", [2])]
+    ("key", "value"), [("max_velocity", '"fast"'), ("max_velocity", "true"), ("max_acceleration", "[2]")]
 )
 def test_limits_that_are_not_numbers_are_a_value_error_naming_the_joint(key, value):
+    """MoveIt cannot read them (MoveIt 1's getParam fails, MoveIt 2's typed parameter throws):
+    the planner says so instead of planning with something else."""
     robot = load_robot(MARM_URDF, {}, [])
-    entry = {"has_velocity_limits": True, "has_acceleration_limits": True, key: value}
-    with pytest.raises(ValueError, match=f"^{key} of joint joint1 must be a number, got "):
-        limits_from_config(robot, ("joint1",), {"joint1": entry})
+    text = f"joint_limits:\n  joint1: {{has_velocity_limits: true, has_acceleration_limits: true, {key}: {value}}}\n"
+    for ros2 in (False, True):
+        with pytest.raises(ValueError, match=f"^{key} of joint joint1 must be a number, got "):
+            limits_from_config(robot, ("joint1",), _limits(text, ros2))

@@ -9,33 +9,32 @@ from __future__ import annotations
 
 import yaml
 
-from marm_setup.validate.discovery import ConfigSection
+from marm_setup.package.controllers_file import ControllersFile, read_controllers
+from marm_setup.package.driver_file import read_ros2_controllers
+from marm_setup.package.files import located_text
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
-    check_driver_controllers,
+    check_listed,
     check_moveit_controllers,
     check_ros2_namespace,
-    moveit_controllers,
-    ros2_driver_controllers,
 )
+from marm_setup.validate.rules.driver_rules import check_driver_controllers
 
 ARM = [f"panda_joint{i}" for i in range(1, 8)]
 
 
-def section(text: str, prefix: str = "") -> ConfigSection:
-    data = yaml.safe_load(text)
-    if prefix:
-        data = data[prefix]
-    return ConfigSection("config/controllers.yaml", data, prefix)
+def section(text: str, prefix: str = "") -> ControllersFile:
+    """The controllers file as the package model reads it (`prefix`: the list's namespace,
+    which the reader finds by itself)."""
+    return read_controllers(located_text(text, "config/controllers.yaml"))
 
 
 def findings(text: str, panda1, prefix: str = ""):
     srdf, robot = panda1
     sec = section(text, prefix)
-    ctrls, out = moveit_controllers(sec)
-    out += check_moveit_controllers(sec, ctrls, robot)
-    out += check_coverage(sec, ctrls, srdf, robot)
-    return ctrls, out
+    out = check_listed(sec) + check_moveit_controllers(sec, robot)
+    out += check_coverage(sec, srdf, robot)
+    return list(sec.controllers), out
 
 
 def entry(name, joints, default=None, action_ns="follow_joint_trajectory"):
@@ -147,14 +146,11 @@ twist_controller:
 def test_a_driver_controller_of_unknown_type_names_no_urdf_joints(panda1):
     """ros2_kortex: the twist controller's `joint: tcp` is a Cartesian frame."""
     _, robot = panda1
-    driver_section = ConfigSection("config/ros2_controllers.yaml", yaml.safe_load(KORTEX_R2C))
-    driver = ros2_driver_controllers(driver_section)
+    driver = read_ros2_controllers(located_text(KORTEX_R2C, "config/ros2_controllers.yaml"))
     moveit = section(dump(entry("joint_trajectory_controller", ARM, True)))
-    ctrls, _ = moveit_controllers(moveit)
-    assert check_driver_controllers(moveit, driver_section, driver, ctrls, robot) == []
+    assert check_driver_controllers(moveit, driver, robot) == []
     broken = KORTEX_R2C.replace("joints: [panda_joint1,", "joints: [tcp,")
-    driver_section = ConfigSection("config/ros2_controllers.yaml", yaml.safe_load(broken))
     found = check_driver_controllers(
-        moveit, driver_section, ros2_driver_controllers(driver_section), ctrls, robot
+        moveit, read_ros2_controllers(located_text(broken, "config/ros2_controllers.yaml")), robot
     )
     assert "controller.unknown-joint" in {f.rule for f in found}

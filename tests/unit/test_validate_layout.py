@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from marm_setup.errors import InputError
-from marm_setup.validate.discovery import discover_package
+from marm_setup.package.read import read_package
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="2"><name>{name}</name><version>0.1.0</version><description>x</description>
@@ -60,7 +60,7 @@ def ros1(tmp_path, files) -> Path:
 
 def test_srdf_in_an_srdf_folder(tmp_path, urdf):
     pkg = ros1(tmp_path, {"srdf/bot.srdf": SRDF.format(robot="bot", group="arm")})
-    found = discover_package(pkg, urdf=urdf)
+    found = read_package(pkg, urdf=urdf)
     assert found.srdf_path == "srdf/bot.srdf"
     assert [g.name for g in found.srdf.groups] == ["arm"]
 
@@ -74,13 +74,13 @@ def test_srdf_xacro_expanded_with_the_args_the_launch_file_passes(tmp_path, urdf
             "config/7dof/joint_limits.yaml": "joint_limits: {}\n",
         },
     )
-    found = discover_package(pkg, urdf=urdf)
+    found = read_package(pkg, urdf=urdf)
     assert (found.srdf_path, [g.name for g in found.srdf.groups]) == ("config/bot.srdf.xacro", ["left_arm"])
     # --xacro-arg overrides what discovery found
-    found = discover_package(pkg, urdf=urdf, xacro_args={"arm": "right"})
+    found = read_package(pkg, urdf=urdf, xacro_args={"arm": "right"})
     assert [g.name for g in found.srdf.groups] == ["right_arm"]
     # config sub-folders: the limits file the launch file loads
-    assert found.joint_limits.file == "config/7dof/joint_limits.yaml"
+    assert found.joint_limits.where.file == "config/7dof/joint_limits.yaml"
 
 
 def test_the_urdf_is_paired_by_the_srdf_robot_name(tmp_path):
@@ -94,22 +94,22 @@ def test_the_urdf_is_paired_by_the_srdf_robot_name(tmp_path):
             "config/bot.urdf.xacro": URDF.format(robot="bot"),
         },
     )
-    assert discover_package(pkg).urdf.name == "bot.urdf.xacro"
+    assert read_package(pkg).urdf.name == "bot.urdf.xacro"
 
 
 def test_explicit_srdf(tmp_path, urdf):
     pkg = ros1(tmp_path, {"config/bot.srdf": SRDF.format(robot="bot", group="arm")})
     other = write(tmp_path, {"elsewhere/other.srdf": SRDF.format(robot="bot", group="other")})
-    found = discover_package(pkg, urdf=urdf, srdf=other / "elsewhere/other.srdf")
+    found = read_package(pkg, urdf=urdf, srdf=other / "elsewhere/other.srdf")
     assert (found.srdf_path, [g.name for g in found.srdf.groups]) == ("../elsewhere/other.srdf", ["other"])
     with pytest.raises(InputError, match="file not found"):
-        discover_package(pkg, urdf=urdf, srdf=tmp_path / "nope.srdf")
+        read_package(pkg, urdf=urdf, srdf=tmp_path / "nope.srdf")
 
 
 def test_setup_assistant_naming_a_missing_srdf_is_an_error(tmp_path, urdf):
     sa = "moveit_setup_assistant_config:\n  SRDF:\n    relative_path: config/gone.srdf\n"
     pkg = ros1(tmp_path, {".setup_assistant": sa, "config/bot.srdf": SRDF.format(robot="bot", group="arm")})
-    found = discover_package(pkg, urdf=urdf)
+    found = read_package(pkg, urdf=urdf)
     assert found.srdf_path == "config/bot.srdf"  # the other rules still run on the one that exists
     assert [(f.rule, f.severity, f.file, f.element) for f in found.problems] == [
         ("srdf.missing", "error", ".setup_assistant", "SRDF.relative_path")

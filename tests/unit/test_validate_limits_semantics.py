@@ -3,9 +3,8 @@ copy of the real panda joint_limits.yaml, for the real panda robot)."""
 
 from __future__ import annotations
 
-import yaml
-
-from marm_setup.validate.discovery import ConfigSection
+from marm_setup.package.files import located_text
+from marm_setup.package.joint_limits_file import read_joint_limits
 from marm_setup.validate.rules.limits_rules import check_joint_limits
 
 # config/joint_limits.yaml of the shared MoveIt 1 panda package (two joints of it)
@@ -28,10 +27,10 @@ joint_limits:
 
 def found(text: str, panda1, target: str = "ros1"):
     srdf, robot = panda1
-    section = ConfigSection("config/joint_limits.yaml", yaml.safe_load(text))
+    limits = read_joint_limits(located_text(text, "config/joint_limits.yaml"))
     return [
         (f.rule, f.severity, f.element)
-        for f in check_joint_limits(section, srdf, robot, target)
+        for f in check_joint_limits(limits, srdf, robot, target)
         if f.rule != "limits.missing-joint"  # the copy holds two joints only
     ]
 

@@ -60,11 +60,11 @@ def test_validate_is_deterministic():
 def test_panda_transport_collision_is_confirmed_by_pinocchio():
     """The one panda error is real: pinocchio (own URDF parser, mesh loader and FK) agrees."""
     pin = pytest.importorskip("pinocchio")
-    from marm_setup.validate.discovery import discover_package
+    from marm_setup.package.read import read_package
     from marm_setup.validate.runner import load_package_robot
 
     good = panda("ros1")
-    pkg = discover_package(good.path, package_paths=good.package_paths)
+    pkg = read_package(good.path, package_paths=good.package_paths)
     robot, _ = load_package_robot(pkg)
     xml = robot.urdf_xml.replace(
         "package://moveit_resources_panda_description/", f"{good.package_paths[0]}/panda_description/"

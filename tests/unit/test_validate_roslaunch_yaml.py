@@ -12,7 +12,8 @@ import subprocess
 
 import pytest
 
-from marm_setup.validate.roslaunch_yaml import SubstitutionError, load_ros_yaml, substitute
+from marm_setup.package.files import located_text
+from marm_setup.package.substitution import Scope, SubstitutionError, substitute
 from tests.validate_helpers import copy_package, panda, replace_text, run
 
 TAGGED = """joint_limits:
@@ -26,6 +27,10 @@ TAGGED = """joint_limits:
 """
 
 
+def load_ros_yaml(text: str):
+    return located_text(text, "config/x.yaml").data
+
+
 def test_angle_tags_and_scalars_become_radians():
     data = load_ros_yaml(TAGGED)["joint_limits"]["j1"]
     assert data["max_velocity"] == pytest.approx(math.pi)
@@ -36,12 +41,12 @@ def test_angle_tags_and_scalars_become_radians():
 
 
 def test_substitutions_use_the_launch_args():
-    text = substitute(TAGGED, {"scale": "3"}, lambda name: "/p/pkg_a" if name == "pkg_a" else None)
+    text = substitute(TAGGED, Scope({"scale": "3"}, lambda name: "/p/pkg_a" if name == "pkg_a" else None))
     data = load_ros_yaml(text)["joint_limits"]["j1"]
     assert (data["scale"], data["path"]) == (3, "/p/pkg_a/x")
-    assert substitute("v: $(eval 2 * arg('scale'))", {"scale": "3"}, lambda _: None) == "v: 6"
+    assert substitute("v: $(eval 2 * arg('scale'))", Scope({"scale": "3"})) == "v: 6"
     with pytest.raises(SubstitutionError, match="nope"):
-        substitute("v: $(arg nope)", {}, lambda _: None)
+        substitute("v: $(arg nope)", Scope())
 
 
 def test_the_same_values_as_the_real_roslaunch(tmp_path):
@@ -67,7 +72,7 @@ def test_the_same_values_as_the_real_roslaunch(tmp_path):
         check=True,
     ).stdout
     theirs = dict(line.split(": ", 1) for line in dump.splitlines() if line.startswith("/p/"))
-    ours = load_ros_yaml(substitute(TAGGED, {"scale": "3"}, lambda _: str(pkg)))["joint_limits"]["j1"]
+    ours = load_ros_yaml(substitute(TAGGED, Scope({"scale": "3"}, lambda _: str(pkg))))["joint_limits"]["j1"]
     for key, value in ours.items():
         assert str(value) == theirs[f"/p/joint_limits/j1/{key}"], key
 

@@ -197,7 +197,7 @@ def _port(
     yes: bool = False,
 ) -> None:
     """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
-    from marm_setup.cli.port_report import format_port_json, format_port_text
+    from marm_setup.cli.port_report import closing_line, format_port_json, format_port_text
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.findings import count, format_text
     from marm_setup.pipeline import PortInitRequest, run_port
@@ -226,5 +226,6 @@ def _port(
         for line in result.status_lines:
             typer.echo(line)
         typer.echo(format_text(validation.findings, color=False, checked=validation.describe()), nl=False)
+        typer.echo(closing_line(result))
     if count(validation.findings)[0]:
         raise typer.Exit(1)

@@ -37,15 +37,15 @@ def plan(
     """Plan a collision-free, time-parameterised joint trajectory between named poses."""
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.errors import InputError, PlanningFailed
+    from marm_setup.package import read_package
     from marm_setup.plan.planner import PlanFailed
     from marm_setup.plan.problem import plan_between, planning_problem, pose
     from marm_setup.plan.trajectory_io import write_trajectory
     from marm_setup.robot.load import load_robot
-    from marm_setup.validate.discovery import discover_package
 
     if seed < 0:
         raise InputError(f"must be >= 0, got {seed}", element="--seed")
-    package = discover_package(package_dir, urdf=urdf, package_paths=package_path or ())
+    package = read_package(package_dir, urdf=urdf, package_paths=package_path or ())
     robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
     problem = planning_problem(package, robot, CollisionScene(robot), group)
     srdf_shown = package.user_path(package.srdf_path)

@@ -16,10 +16,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from itertools import combinations
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from marm_setup.validate.rules.controller_rules import MoveItController
+from marm_setup.package.controllers_file import MoveItController
 
 
 @dataclass(frozen=True, slots=True)
@@ -30,7 +28,7 @@ class Selection:
     tied: tuple[tuple[str, ...], ...] = ()
 
 
-def select_controllers(joints: Iterable[str], ctrls: Sequence) -> Selection | None:
+def select_controllers(joints: Iterable[str], ctrls: Sequence[MoveItController]) -> Selection | None:
     """The controllers MoveIt would use for a motion of `joints`; None when no option exists.
 
     `ctrls` have `name`, `joints` and `default` (MoveIt keys them by name: the last one wins).

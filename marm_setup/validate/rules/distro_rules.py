@@ -26,21 +26,18 @@ Sources (moveit/moveit2 humble and jazzy branches, ros-controls/ros2_control):
 from __future__ import annotations
 
 from collections.abc import Callable
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from lxml import etree
-
-from marm_setup import bounded_read
-from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
-from marm_setup.safe_yaml import load_yaml
+from marm_setup.package.driver_file import Ros2ControlFile
+from marm_setup.package.model import MoveItPackage
+from marm_setup.package.planning_file import PlanningPipeline
+from marm_setup.package.where import Param
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 
 if TYPE_CHECKING:
     from marm_setup.robot.model import RobotModel
     from marm_setup.setup.srdf import Srdf
-    from marm_setup.validate.discovery import ConfigPackage, ConfigSection
 
 PUBLISH_FLAGS = (
     "publish_planning_scene",
@@ -54,15 +51,18 @@ HUMBLE_ADAPTERS = "default_planner_request_adapters/"
 JAZZY_ADAPTERS = ("default_planning_request_adapters/", "default_planning_response_adapters/")
 
 
-def check_pipeline_format(name: str, section: ConfigSection, distro: str) -> list[Finding]:
+def check_pipeline_format(pipeline: PlanningPipeline, distro: str) -> list[Finding]:
     """One pipeline's planner and adapter parameters as `distro` (humble | jazzy) reads them."""
-    data = section.data
-    if not isinstance(data, dict):
+    if not pipeline.is_mapping:
         return []
-    where = section.element
+    data = pipeline.data
+
+    def where(*keys: object) -> str:
+        return pipeline.where.child(*keys).element
+
     if distro == "humble":
-        return _humble_format(name, data, section.file, where)
-    return _jazzy_format(name, data, section.file, where)
+        return _humble_format(pipeline.name, data, pipeline.where.file, where)
+    return _jazzy_format(pipeline.name, data, pipeline.where.file, where)
 
 
 def _humble_format(name: str, data: dict, file: str, where: Callable[..., str]) -> list[Finding]:
@@ -130,9 +130,10 @@ def _jazzy_format(name: str, data: dict, file: str, where: Callable[..., str]) -
     return out
 
 
-def check_publish_flags(params: dict, file: str, prefix: str) -> list[Finding]:
+def check_publish_flags(params: tuple[Param, ...], file: str, prefix: str) -> list[Finding]:
     """move_group's four planning scene publishing flags (declared false by MoveIt)."""
-    off = [flag for flag in PUBLISH_FLAGS if params.get(flag) is not True]
+    given = {p.key: p.value for p in params}
+    off = [flag for flag in PUBLISH_FLAGS if given.get(flag) is not True]
     if not off:
         return []
     msg = f"{', '.join(off)} not true: RViz does not see the robot move or the world change"
@@ -143,62 +144,47 @@ def check_publish_flags(params: dict, file: str, prefix: str) -> list[Finding]:
     ]
 
 
-def check_projection_evaluators(section: ConfigSection, srdf: Srdf, robot: RobotModel) -> list[Finding]:
+def check_projection_evaluators(ompl: PlanningPipeline, srdf: Srdf, robot: RobotModel) -> list[Finding]:
     """A group of two or more joints whose default OMPL planner needs a projection has one."""
-    data = section.data if isinstance(section.data, dict) else {}
-    found = data.get("planner_configs")
-    configs: dict = found if isinstance(found, dict) else {}
     by_name = groups_by_name(srdf.groups)
     out = []
-    for group_name, entry in sorted(data.items()):
-        if group_name not in by_name or not isinstance(entry, dict) or "projection_evaluator" in entry:
+    for entry in sorted(ompl.groups, key=lambda g: g.group):
+        if entry.group not in by_name or entry.param("projection_evaluator") is not None:
             continue
-        config = configs.get(str(entry.get("default_planner_config")))
-        kind = str(config.get("type", "")).rsplit("::", 1)[-1] if isinstance(config, dict) else ""
-        joints = active_group_joints(by_name[group_name], by_name, robot, tuple(srdf.passive_joints))
+        default = entry.param("default_planner_config")
+        config = ompl.config(str(default.value if default is not None else None))
+        kind = (
+            str(config.type or "").rsplit("::", 1)[-1]
+            if config is not None and config.params is not None
+            else ""
+        )
+        joints = active_group_joints(by_name[entry.group], by_name, robot, tuple(srdf.passive_joints))
         if kind in PROJECTION_PLANNERS and len(joints) >= 2:
             msg = f"default planner {kind} needs a projection_evaluator: every plan of this group fails"
             hint = f"projection_evaluator: joints({joints[0]},{joints[1]})"
-            out.append(error("ompl.projection-missing", section.file, section.element(group_name), msg, hint))
+            out.append(error("ompl.projection-missing", ompl.where.file, entry.where.element, msg, hint))
     return out
 
 
-def check_ros2_control_systems(files: dict[str, str], described: frozenset[str]) -> list[Finding]:
+def check_ros2_control_systems(
+    files: tuple[Ros2ControlFile, ...], described: frozenset[str]
+) -> list[Finding]:
     """Each joint in one ros2_control system: the package's `*.ros2_control.xacro` files against
     each other and against the systems the robot description already declares."""
     seen: dict[str, str] = {j: "the robot description" for j in described}
     out = []
-    for rel, text in sorted(files.items()):
-        for joint in _literal_joints(text):
+    for found in sorted(files, key=lambda f: f.file):
+        for joint in found.joints:
             if joint in seen:
                 msg = f"joint '{joint}' is already in a ros2_control system of {seen[joint]}"
                 hint = "the controller manager refuses a second interface of the same joint"
-                out.append(error("ros2_control.duplicate-joint", rel, f"joint[{joint}]", msg, hint))
+                out.append(error("ros2_control.duplicate-joint", found.file, f"joint[{joint}]", msg, hint))
             else:
-                seen[joint] = rel
+                seen[joint] = found.file
     return out
 
 
-def _literal_joints(text: str) -> list[str]:
-    try:
-        root = etree.fromstring(text.encode(), parser=etree.XMLParser(remove_comments=True))
-    except etree.XMLSyntaxError:
-        return []
-    names = [j.get("name", "") for system in root.iter("ros2_control") for j in system.findall("joint")]
-    return [n for n in names if n and "${" not in n]
-
-
-def move_group_params(raw: Any) -> dict | None:
-    """The ros__parameters of our single-file `config/moveit.yaml`, or None."""
-    if isinstance(raw, dict) and len(raw) == 1:
-        (node,) = raw
-        body = raw[node]
-        if isinstance(body, dict) and isinstance(body.get("ros__parameters"), dict):
-            return body["ros__parameters"]
-    return None
-
-
-def check_package_runtime(pkg: ConfigPackage, robot: RobotModel) -> list[Finding]:
+def check_package_runtime(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     """The rules above on a config package: projection evaluators (both targets), then for ROS 2
     the distro's pipeline format (the distro marm_setup.yaml names), publishing flags and
     ros2_control systems."""
@@ -209,32 +195,19 @@ def check_package_runtime(pkg: ConfigPackage, robot: RobotModel) -> list[Finding
         out += check_projection_evaluators(pkg.ompl, pkg.srdf, robot)
     if pkg.target != "ros2":
         return out
-    pipelines, params = _ros2_pipelines(pkg)
-    distro = package_distro(pkg)
+    distro = pkg.ros_distro
     if distro in ("humble", "jazzy"):
         from marm_setup.validate.rules.pipeline_param_rules import check_pipeline_parameters
 
-        for name, section in pipelines.items():
-            out += check_pipeline_format(name, section, distro)
-            out += check_pipeline_parameters(section, distro)
-    if params is not None:
-        out += check_publish_flags(params, MOVEIT_YAML, "/**.ros__parameters")
+        for pipeline in _ros2_pipelines(pkg):
+            out += check_pipeline_format(pipeline, distro)
+            out += check_pipeline_parameters(pipeline, distro)
+    if pkg.move_group is not None:
+        out += check_publish_flags(pkg.move_group, MOVEIT_YAML, "/**.ros__parameters")
     out += check_expanded_systems(robot)
     if not pkg.urdf.resolve().is_relative_to(pkg.root.resolve()):  # our layout: the user's description
-        files = {
-            p.relative_to(pkg.root).as_posix(): _text_or_empty(p)
-            for p in sorted((pkg.root / "config").glob("*.ros2_control.xacro"))
-        }
-        out += check_ros2_control_systems(files, described_joints(robot))
+        out += check_ros2_control_systems(pkg.ros2_control_files, described_joints(robot))
     return out
-
-
-def _text_or_empty(path: Path) -> str:
-    """A package file's text for a textual check ('' when it cannot be read or is too large)."""
-    try:
-        return bounded_read.read_bytes(path, bounded_read.XML_BYTES).decode("utf-8", errors="replace")
-    except (OSError, FileTooLarge):
-        return ""
 
 
 def check_expanded_systems(robot: RobotModel) -> list[Finding]:
@@ -256,34 +229,8 @@ def check_expanded_systems(robot: RobotModel) -> list[Finding]:
 MOVEIT_YAML = "config/moveit.yaml"
 
 
-def package_distro(pkg: ConfigPackage) -> str | None:
-    """The distro marm_setup.yaml names (`ros_distro`), else None (no format rule then)."""
-    data = pkg.marm_setup.data if pkg.marm_setup is not None else None
-    value = data.get("ros_distro") if isinstance(data, dict) else None
-    return value if isinstance(value, str) else None
-
-
-def _ros2_pipelines(pkg: ConfigPackage) -> tuple[dict, dict | None]:
-    """({pipeline: ConfigSection}, move_group params) from our config/moveit.yaml, else the
-    OMPL section discovery found."""
-    import yaml
-
-    from marm_setup.validate.discovery import ConfigSection
-
-    file = pkg.root / MOVEIT_YAML
-    try:
-        text = bounded_read.read_text(file, bounded_read.YAML_BYTES) if file.is_file() else None
-        params = move_group_params(load_yaml(text)) if text is not None else None
-    except (OSError, ValueError, yaml.YAMLError, FileTooLarge):
-        params = None
-    if params is None:
-        return ({"ompl": pkg.ompl} if pkg.ompl is not None else {}), None
-    names: Any = params.get("planning_pipelines", {})
-    names = names.get("pipeline_names", []) if isinstance(names, dict) else names
-    prefix = "/**.ros__parameters"
-    sections = {
-        str(n): ConfigSection(MOVEIT_YAML, params[n], f"{prefix}.{n}")
-        for n in (names if isinstance(names, list) else [])
-        if isinstance(params.get(n), dict)
-    }
-    return sections, params
+def _ros2_pipelines(pkg: MoveItPackage) -> tuple[PlanningPipeline, ...]:
+    """Our config/moveit.yaml's pipelines, else the OMPL pipeline discovery found."""
+    if pkg.move_group is not None:
+        return tuple(p for p in pkg.pipelines if p.where.file == MOVEIT_YAML)
+    return (pkg.ompl,) if pkg.ompl is not None else ()

@@ -11,6 +11,7 @@ from pathlib import Path
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
+from marm_setup.package.launch_xml import LaunchXml
 
 FIND = re.compile(r"\$\((find|find-pkg-share)\s+([^\s)]+)\)|\$\((dirname)\)")
 ARG_USE = re.compile(r"\$\((arg|var)\s+([^\s)]+)\)|\barg\(\s*['\"]([^'\"]+)['\"]\s*\)")
@@ -18,35 +19,10 @@ PATH_TAIL = re.compile(r"[^\s'\"]*")
 FILE_ATTRS = ("file", "textfile", "command")
 
 
-def parse_launch(path: Path, rel: str):
-    """(lxml root or None, findings) for one launch file."""
-    from lxml import etree
-
-    try:
-        data = bounded_read.read_bytes(path, bounded_read.XML_BYTES, shown=rel)
-        return etree.fromstring(data, etree.XMLParser(remove_comments=True), base_url=str(path)), []
-    except etree.XMLSyntaxError as exc:
-        line = exc.lineno or 0
-        from marm_setup.robot.load import xml_syntax_message
-
-        return None, [
-            error("launch.malformed", rel, f"line {line}", f"not well-formed XML: {xml_syntax_message(exc)}")
-        ]
-    except OSError as exc:
-        return None, [error("launch.malformed", rel, "", f"cannot read: {exc}")]
-    except FileTooLarge as exc:
-        return None, [error("launch.malformed", rel, "", f"cannot read: {exc.message}")]
-
-
-def check_launch_files(root: Path, package: str, files: tuple[str, ...], target: str) -> list[Finding]:
-    """Every launch rule over the package's launch files."""
-    parsed = {}
-    out: list[Finding] = []
-    for rel in files:
-        tree, problems = parse_launch(root / rel, rel)
-        out += problems
-        if tree is not None:
-            parsed[rel] = tree
+def check_launch_files(root: Path, package: str, launch: tuple[LaunchXml, ...], target: str) -> list[Finding]:
+    """Every launch rule over the package's (parsed) launch files."""
+    out: list[Finding] = [t.problem for t in launch if t.problem is not None]
+    parsed = {t.file: t.root for t in launch if t.root is not None}
     shared_args = set().union(*(_defined_args(t) for t in parsed.values())) if target == "ros2" else set()
     passed = passed_args(parsed, root, package)
     for rel, tree in parsed.items():

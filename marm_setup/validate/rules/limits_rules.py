@@ -14,15 +14,16 @@ from __future__ import annotations
 
 import math
 from numbers import Real
-from typing import TYPE_CHECKING, Any, TypeGuard
+from typing import TYPE_CHECKING, TypeGuard
 
 from marm_setup.findings import Finding, error, warning
+from marm_setup.package.joint_limits_file import JointLimitEntry, JointLimitsFile
+from marm_setup.package.where import Param
 from marm_setup.robot.model import Joint, RobotModel, limit_slack
 from marm_setup.setup.groups import planning_joints
 
 if TYPE_CHECKING:
     from marm_setup.setup.srdf import Srdf
-    from marm_setup.validate.discovery import ConfigSection
 
 FLAGS = {
     "max_velocity": "has_velocity_limits",
@@ -42,101 +43,92 @@ def _below(value: float, limit: float) -> bool:
     return value < limit - limit_slack(limit)
 
 
-def check_joint_limits(section: ConfigSection, srdf: Srdf, robot: RobotModel, target: str) -> list[Finding]:
-    """Every rule on a `robot_description_planning`-style section (`{joint_limits: {...}}`)."""
-    data = section.data
-    limits = data.get("joint_limits") if isinstance(data, dict) else None
-    if not isinstance(limits, dict):
+def check_joint_limits(limits: JointLimitsFile, srdf: Srdf, robot: RobotModel, target: str) -> list[Finding]:
+    """Every rule on a `robot_description_planning`-style file (`{joint_limits: {...}}`)."""
+    file = limits.where.file
+    if limits.joints is None:
         return [
             error(
-                "limits.malformed", section.file, section.element("joint_limits"), "no joint_limits mapping"
+                "limits.malformed",
+                file,
+                limits.where.child("joint_limits").element,
+                "no joint_limits mapping",
             )
         ]
-    out = _check_coverage(section, limits, srdf, robot)
-    for joint in sorted(limits, key=str):
-        entry = limits[joint]
-        where = section.element("joint_limits", joint)
-        if joint not in robot.joint_map:
-            out.append(
-                warning(
-                    "limits.unknown-joint",
-                    section.file,
-                    where,
-                    f"unknown joint '{joint}' (MoveIt ignores it)",
-                )
-            )
-            continue
-        if not isinstance(entry, dict):
-            out.append(error("limits.malformed", section.file, where, "expected a mapping"))
-            continue
-        out += _check_entry(section, where, entry, robot.joint(joint), target)
+    out = _check_coverage(limits, srdf, robot)
+    for entry in sorted(limits.joints, key=lambda e: e.joint):
+        where = entry.where.element
+        if entry.joint not in robot.joint_map:
+            msg = f"unknown joint '{entry.joint}' (MoveIt ignores it)"
+            out.append(warning("limits.unknown-joint", file, where, msg))
+        elif entry.params is None:
+            out.append(error("limits.malformed", file, where, "expected a mapping"))
+        else:
+            out += _check_entry(file, entry, robot.joint(entry.joint))
     if target == "ros2":
-        out += _check_floats(section, data)
+        out += _check_floats(limits)
     return out
 
 
-def _check_coverage(section: ConfigSection, limits: dict, srdf: Srdf, robot: RobotModel) -> list[Finding]:
+def _check_coverage(limits: JointLimitsFile, srdf: Srdf, robot: RobotModel) -> list[Finding]:
     wanted = planning_joints(tuple(srdf.groups), robot, tuple(srdf.passive_joints))
+    given = {e.joint for e in limits.joints or ()}
     return [
         warning(
             "limits.missing-joint",
-            section.file,
-            section.element("joint_limits", joint),
+            limits.where.file,
+            limits.where.child("joint_limits", joint).element,
             f"no limits for active group joint '{joint}' (MoveIt falls back to the URDF, no acceleration limit)",
             hint="add an entry with has_velocity_limits/max_velocity and has_acceleration_limits/max_acceleration",
         )
-        for joint in sorted(set(wanted) - set(limits))
+        for joint in sorted(set(wanted) - given)
     ]
 
 
-def _check_entry(section: ConfigSection, where: str, entry: dict, joint: Joint, target: str) -> list[Finding]:
+def _truthy(param: Param | None) -> bool:
+    """The flag as the rules always read it (`entry.get(flag, False)` truthiness)."""
+    return param is not None and bool(param.value)
+
+
+def _check_entry(file: str, entry: JointLimitEntry, joint: Joint) -> list[Finding]:
     out: list[Finding] = []
+    where = entry.where.element
     for key, flag in FLAGS.items():
-        if not entry.get(flag, False):
+        if not _truthy(entry.param(flag)):
             continue
-        value = entry.get(key)
+        value = entry.param(key)
         if value is None:
-            out.append(
-                error(
-                    "limits.missing-value",
-                    section.file,
-                    f"{where}.{key}",
-                    f"{flag} is true but {key} is missing",
-                )
-            )
-        elif not _number(value) or not 0 < value < math.inf:  # also nan and .inf
-            out.append(
-                error(
-                    "limits.non-positive",
-                    section.file,
-                    f"{where}.{key}",
-                    f"{key} must be positive, got {value!r}",
-                )
-            )
-    velocity = entry.get("max_velocity")
+            msg = f"{flag} is true but {key} is missing"
+            out.append(error("limits.missing-value", file, f"{where}.{key}", msg))
+        elif not _number(value.value) or not 0 < value.value < math.inf:  # also nan and .inf
+            msg = f"{key} must be positive, got {value.value!r}"
+            out.append(error("limits.non-positive", file, f"{where}.{key}", msg))
+    velocity = entry.param("max_velocity")
     if (
-        entry.get("has_velocity_limits")
-        and _number(velocity)
+        _truthy(entry.param("has_velocity_limits"))
+        and velocity is not None
+        and _number(velocity.value)
         and joint.velocity
-        and _above(velocity, joint.velocity)
+        and _above(velocity.value, joint.velocity)
     ):
-        msg = f"max_velocity {velocity:g} is above the URDF's {joint.velocity:g}"
-        out.append(warning("limits.above-urdf", section.file, f"{where}.max_velocity", msg))
-    out += _check_positions(section, where, entry, joint)
+        msg = f"max_velocity {velocity.value:g} is above the URDF's {joint.velocity:g}"
+        out.append(warning("limits.above-urdf", file, f"{where}.max_velocity", msg))
+    out += _check_positions(file, entry, joint)
     return out
 
 
-def _check_positions(section: ConfigSection, where: str, entry: dict, joint: Joint) -> list[Finding]:
-    if not entry.get("has_position_limits", False) or joint.lower is None or joint.upper is None:
+def _check_positions(file: str, entry: JointLimitEntry, joint: Joint) -> list[Finding]:
+    if not _truthy(entry.param("has_position_limits")) or joint.lower is None or joint.upper is None:
         return []
     out = []
-    lo, hi = entry.get("min_position"), entry.get("max_position")
-    if _number(lo) and _below(lo, joint.lower):
-        msg = f"min_position {lo:g} is below the URDF's {joint.lower:g}"
-        out.append(warning("limits.above-urdf", section.file, f"{where}.min_position", msg))
-    if _number(hi) and _above(hi, joint.upper):
-        msg = f"max_position {hi:g} is above the URDF's {joint.upper:g}"
-        out.append(warning("limits.above-urdf", section.file, f"{where}.max_position", msg))
+    where = entry.where.element
+    lo, hi = entry.param("min_position"), entry.param("max_position")
+    if lo is not None and _number(lo.value) and _below(lo.value, joint.lower):
+        msg = f"min_position {lo.value:g} is below the URDF's {joint.lower:g}"
+        out.append(warning("limits.above-urdf", file, f"{where}.min_position", msg))
+    if hi is not None and _number(hi.value) and _above(hi.value, joint.upper):
+        msg = f"max_position {hi.value:g} is above the URDF's {joint.upper:g}"
+        out.append(warning("limits.above-urdf", file, f"{where}.max_position", msg))
     return out
 
 
@@ -144,30 +136,32 @@ def _number(value: object) -> TypeGuard[float]:
     return isinstance(value, Real) and not isinstance(value, bool)
 
 
-def _check_floats(section: ConfigSection, data: dict) -> list[Finding]:
+def _check_floats(limits: JointLimitsFile) -> list[Finding]:
     """ROS 2 parameters are typed: an integer where MoveIt reads a double is an error it logs,
     losing the joint's later keys; only a warning when the value's has_* flag is false (nothing
     after max_acceleration is lost then but that false flag, which is the URDF's default)."""
     out = []
-    for path, value in _walk(data):
-        if isinstance(value, int) and not isinstance(value, bool) and path[-1] in (*NUMERIC_KEYS, *_SCALARS):
-            msg = f"{path[-1]} is the integer {value}; ROS 2 needs a double here"
-            unused = _flag_off(data, path)
+    values = [(None, p) for p in limits.settings] + [
+        (e, p) for e in limits.joints or () for p in e.params or ()
+    ]
+    for entry, param in values:
+        key = param.key.rsplit(".", 1)[-1]
+        if (
+            isinstance(param.value, int)
+            and not isinstance(param.value, bool)
+            and key in (*NUMERIC_KEYS, *_SCALARS)
+        ):
+            msg = f"{key} is the integer {param.value}; ROS 2 needs a double here"
+            flag = entry.param(FLAGS[key]) if entry is not None and key in FLAGS else None
+            unused = flag is not None and flag.value is False
             make = warning if unused else error
-            msg += f" (MoveIt 2 logs an error; harmless while {FLAGS[path[-1]]} is false)" if unused else ""
+            msg += f" (MoveIt 2 logs an error; harmless while {FLAGS[key]} is false)" if unused else ""
             out.append(
-                make("limits.not-float", section.file, section.element(*path), msg, f"write {value}.0")
+                make(
+                    "limits.not-float", limits.where.file, param.where.element, msg, f"write {param.value}.0"
+                )
             )
     return out
-
-
-def _flag_off(data: dict, path: tuple) -> bool:
-    """The value at `path` is a limit whose has_* flag in the same entry is explicitly false."""
-    flag = FLAGS.get(path[-1])
-    entry: Any = data
-    for key in path[:-1]:
-        entry = entry.get(key) if isinstance(entry, dict) else None
-    return flag is not None and isinstance(entry, dict) and entry.get(flag) is False
 
 
 _SCALARS = (
@@ -178,11 +172,3 @@ _SCALARS = (
     "max_trans_dec",
     "max_rot_vel",
 )
-
-
-def _walk(data, path=()):
-    if isinstance(data, dict):
-        for key, value in data.items():
-            yield from _walk(value, (*path, key))
-    else:
-        yield path, data

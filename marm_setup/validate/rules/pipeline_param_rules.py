@@ -33,54 +33,55 @@ from marm_setup.setup.pipeline_params import (
 )
 
 if TYPE_CHECKING:
-    from marm_setup.validate.discovery import ConfigSection
+    from marm_setup.package.planning_file import PlanningPipeline
 
 # checked by distro_rules' format rules
 FORMAT_KEYS = frozenset({"request_adapters", "response_adapters", "capabilities"})
 
 
-def check_pipeline_parameters(section: ConfigSection, distro: str) -> list[Finding]:
+def check_pipeline_parameters(pipeline: PlanningPipeline, distro: str) -> list[Finding]:
     """The parameters of one pipeline (a known planner's) of a package for `distro`."""
-    data = section.data
-    key = planner_key(data) if isinstance(data, dict) else None
-    if key is None:
+    data = pipeline.data if pipeline.is_mapping else None
+    key = planner_key(data) if data is not None else None
+    if data is None or key is None:
         return []
+    file = pipeline.where.file
     out: list[Finding] = []
     for name, value in _parameters(data, key):
-        where = section.element(*name.split("."))
+        where = pipeline.where.child(*name.split(".")).element
         if name.startswith("stomp_moveit."):
             msg = f"STOMP never reads {name}: it declares {name.split('.', 1)[1]} in the pipeline's namespace"
             out.append(
-                warning("pipeline.stomp-namespace", section.file, where, msg, f"move it up one level ({key})")
+                warning("pipeline.stomp-namespace", file, where, msg, f"move it up one level ({key})")
             )
             continue
-        out += _check_one(section, key, distro, name, value, where, own_adapters_only(data))
+        out += _check_one(file, key, distro, name, value, where, own_adapters_only(data))
     return out
 
 
 def _check_one(
-    section: ConfigSection, key: str, distro: str, name: str, value: object, where: str, all_moveit: bool
+    file: str, key: str, distro: str, name: str, value: object, where: str, all_moveit: bool
 ) -> list[Finding]:
     known = parameter(key, distro, name)
     if known is None:
         others = other_distros_reading(key, distro, name)
         if others:
             msg = f"{distro}'s MoveIt does not read {name} ({', '.join(others)}'s does)"
-            return [warning("pipeline.other-distro-parameter", section.file, where, msg)]
+            return [warning("pipeline.other-distro-parameter", file, where, msg)]
         if not all_moveit:
             return []
         msg = f"MoveIt reads no {name} in a {key} pipeline's namespace on {distro}"
         return [
             warning(
-                "pipeline.unknown-parameter", section.file, where, msg, unknown_name_hint(key, distro, name)
+                "pipeline.unknown-parameter", file, where, msg, unknown_name_hint(key, distro, name)
             )
         ]
     problem = value_problem(known, value, int_as_double=False)
     if problem is None:
         return []
     if known.choices and isinstance(value, str):  # MoveIt takes its default instead
-        return [warning("pipeline.parameter-value", section.file, where, problem)]
-    return [error("pipeline.parameter-type", section.file, where, f"{problem}: the pipeline fails to load")]
+        return [warning("pipeline.parameter-value", file, where, problem)]
+    return [error("pipeline.parameter-type", file, where, f"{problem}: the pipeline fails to load")]
 
 
 def _parameters(data: dict, key: str) -> Iterator[tuple[str, object]]:

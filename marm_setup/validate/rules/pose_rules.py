@@ -9,6 +9,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Evidence, Finding, error
+from marm_setup.package.driver_file import InitialPositions
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.srdf import allowed_pairs
@@ -17,7 +18,6 @@ from marm_setup.setup.start_state import pose_configuration, start_configuration
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.setup.srdf import Srdf
-    from marm_setup.validate.discovery import ConfigSection
 
 
 def check_pose_collisions(
@@ -67,30 +67,22 @@ def _context(base: Mapping[str, float] | None) -> str:
     return " (other joints at the initial state)" if base else " (other joints at their default values)"
 
 
-def check_initial_positions(section: ConfigSection, robot: RobotModel) -> list[Finding]:
+def check_initial_positions(positions: InitialPositions, robot: RobotModel) -> list[Finding]:
     """ros2_control's `initial_positions.yaml`: known joints, numbers, inside the limits."""
-    data = section.data if isinstance(section.data, dict) else {}
-    values = data.get("initial_positions", data)
-    if not isinstance(values, dict):
-        return [
-            error(
-                "pose.initial-malformed",
-                section.file,
-                section.element("initial_positions"),
-                "expected a mapping",
-            )
-        ]
+    file = positions.where.file
+    if positions.values is None:
+        return [error("pose.initial-malformed", file, positions.where.element, "expected a mapping")]
     out = []
-    for joint, value in sorted(values.items(), key=lambda kv: str(kv[0])):
-        where = section.element("initial_positions", joint)
+    for param in sorted(positions.values, key=lambda p: p.key):
+        joint, value, where = param.key, param.value, param.where.element
         if joint not in robot.joint_map:
-            out.append(error("pose.initial-unknown-joint", section.file, where, f"unknown joint '{joint}'"))
+            out.append(error("pose.initial-unknown-joint", file, where, f"unknown joint '{joint}'"))
         elif isinstance(value, bool) or not isinstance(value, (int, float)):
-            out.append(error("pose.initial-malformed", section.file, where, f"not a number: {value!r}"))
+            out.append(error("pose.initial-malformed", file, where, f"not a number: {value!r}"))
         elif not robot.joint(joint).within_limits(value):
             lo, hi = robot.joint(joint).bounds
             msg = f"initial position {value:g} is outside the limits [{lo:g}, {hi:g}]"
-            out.append(error("pose.initial-out-of-limits", section.file, where, msg))
+            out.append(error("pose.initial-out-of-limits", file, where, msg))
     return out
 
 

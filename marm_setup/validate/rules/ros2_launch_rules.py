@@ -34,7 +34,7 @@ from marm_setup.robot.ros_packages import find_packages
 from marm_setup.validate.launch_eval import ON_STDERR_DEFAULT, Call, LaunchEvaluator, parse_call
 
 if TYPE_CHECKING:
-    from marm_setup.validate.discovery import ConfigPackage
+    from marm_setup.package.model import MoveItPackage
 
 DESCRIPTION_NODES = ("robot_state_publisher", "ros2_control_node")
 SHARE_PATH = re.compile(
@@ -42,14 +42,12 @@ SHARE_PATH = re.compile(
 )
 
 
-def check_ros2_launch(pkg: ConfigPackage, distro: str | None) -> list[Finding]:
+def check_ros2_launch(pkg: MoveItPackage, distro: str | None) -> list[Finding]:
     """The command and demo-hardware rules over a ROS 2 package's XML launch files."""
-    from marm_setup.validate.rules.launch_rules import parse_launch
-
     out: list[Finding] = []
     packages = find_packages(pkg.package_paths)
-    for rel in pkg.launch_files:
-        tree, _ = parse_launch(pkg.path(rel), rel)  # a malformed file has its finding already
+    for launch in pkg.launch:
+        rel, tree = launch.file, launch.root  # a malformed file has its finding already
         if tree is None or tree.tag != "launch":
             continue
         ev = LaunchEvaluator(pkg.path(rel).parent, packages, launch_scope(tree))
@@ -155,7 +153,7 @@ def _disabled(elem: etree._Element, ev: LaunchEvaluator) -> bool:
     return False
 
 
-def check_install_paths(pkg: ConfigPackage) -> list[Finding]:
+def check_install_paths(pkg: MoveItPackage) -> list[Finding]:
     """Launch and xacro files of the package that reach out of a package's share folder."""
     files = sorted(
         {*pkg.launch_files, *(p.relative_to(pkg.root).as_posix() for p in pkg.root.rglob("*.xacro"))}
@@ -186,7 +184,7 @@ def _climbs_out(tail: str, depth: int) -> bool:
     return False
 
 
-def _leaves_package(pkg: ConfigPackage, rel: str, text: str, m: re.Match) -> Finding:
+def _leaves_package(pkg: MoveItPackage, rel: str, text: str, m: re.Match) -> Finding:
     line = text.count("\n", 0, m.start()) + 1
     msg = f"'{m.group(0)}' climbs out of the package's share folder: once installed nothing is there"
     hint = "install the file into the package (or use a file of a ROS package by its name)"

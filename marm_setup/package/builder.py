@@ -1,0 +1,113 @@
+"""What MoveIt 2's MoveItConfigsBuilder loads for a package, from the calls its Python launch
+files make (`launch_python`) and its own defaults.
+
+moveit/moveit2 `moveit_configs_utils/moveit_configs_utils/moveit_configs_builder.py` (the same
+on humble and jazzy): the robot name is the first constructor argument and the package
+`package_name` or `<robot_name>_moveit_config`; the URDF is `config/<robot_name>.urdf.xacro` when
+it exists, else the one `.setup_assistant` names, with `mappings` (else `.setup_assistant`'s
+xacro_args); the SRDF `.setup_assistant`'s, else `config/<robot_name>.srdf`; kinematics
+`config/kinematics.yaml`, joint limits `config/joint_limits.yaml`, sensors
+`config/sensors_3d.yaml`, Pilz `config/pilz_cartesian_limits.yaml` (`to_moveit_configs`, each
+method's `file_path` default). `trajectory_execution` without a file takes the only
+`config/*_controllers.yaml`, else `moveit_controllers.yaml`, `moveit2_controllers.yaml`,
+`<robot_name>_controllers.yaml` in that order (and raises when none of those exists);
+`planning_pipelines` without `pipelines` loads every `config/*_planning.yaml` plus MoveIt's own
+defaults (ompl, chomp, pilz_industrial_motion_planner; stomp on jazzy).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from marm_setup.package.launch_python import BuilderCall
+from marm_setup.package.launch_xml import package_relative
+
+CONTROLLERS_FILE = re.compile(r"^(.*)_controllers\.yaml$")
+PLANNING_FILE = re.compile(r"^(.*)_planning\.yaml$")
+DEFAULT_FILES = {
+    "robot_description_kinematics": "config/kinematics.yaml",
+    "joint_limits": "config/joint_limits.yaml",
+    "sensors_3d": "config/sensors_3d.yaml",
+    "pilz_cartesian_limits": "config/pilz_cartesian_limits.yaml",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Chosen:
+    """A file the builder loads (relative to the package) and why it is that one."""
+
+    file: str
+    how: str
+
+
+@dataclass(frozen=True)
+class BuilderFiles:
+    robot_name: str
+    calls: tuple[BuilderCall, ...]  # this package's builder calls (launch files sorted)
+
+    def explicit(self, method: str) -> Chosen | None:
+        """The file the first launch file naming one passes to `method`, if any."""
+        for call in self.calls:
+            path = call.file(method)
+            if path is not None:
+                return Chosen(path, f"MoveItConfigsBuilder.{method}(file_path) in {call.launch}")
+        return None
+
+    def mappings(self, method: str) -> tuple[tuple[str, str], ...] | None:
+        return next((m for c in self.calls if (m := c.mapping(method)) is not None), None)
+
+    @property
+    def pipelines(self) -> tuple[str, ...] | None:
+        return next((c.pipelines for c in self.calls if c.pipelines is not None), None)
+
+
+def builder_files(calls: tuple[BuilderCall, ...], package: str) -> BuilderFiles:
+    """The calls that build this package's config (its own name, or the default package name of
+    their robot name), and the robot name they use."""
+    mine = tuple(
+        c
+        for c in calls
+        if (c.package_name or (f"{c.robot_name}_moveit_config" if c.robot_name else None)) in (package, None)
+    )
+    robot = next((c.robot_name for c in mine if c.robot_name), None)
+    default = package[: -len("_moveit_config")] if package.endswith("_moveit_config") else package
+    return BuilderFiles(robot or default, mine)
+
+
+def chosen_file(builder: BuilderFiles, method: str, root: Path) -> Chosen | None:
+    """The file `method` loads: the launch file's `file_path`, else the builder's default."""
+    found = builder.explicit(method)
+    if found is not None:
+        rel = package_relative(found.file, root)
+        return Chosen(rel, found.how) if rel is not None else None
+    default = DEFAULT_FILES.get(method)
+    return Chosen(default, f"MoveItConfigsBuilder's default for {method}") if default else None
+
+
+def controllers_file(builder: BuilderFiles, root: Path) -> Chosen | None:
+    """trajectory_execution's file: explicit, else the builder's guess among `*_controllers.yaml`."""
+    found = chosen_file(builder, "trajectory_execution", root)
+    if found is not None:
+        return found
+    config = root / "config"
+    names = sorted(
+        m.group(1) for p in config.glob("*_controllers.yaml") if (m := CONTROLLERS_FILE.match(p.name))
+    )
+    how = "MoveItConfigsBuilder.trajectory_execution's choice among config/*_controllers.yaml"
+    if len(names) == 1:
+        return Chosen(f"config/{names[0]}_controllers.yaml", how)
+    for name in ("moveit", "moveit2", builder.robot_name):
+        if name in names:
+            return Chosen(f"config/{name}_controllers.yaml", how)
+    return None
+
+
+def planning_pipelines(builder: BuilderFiles, root: Path) -> tuple[str, ...]:
+    """The pipelines the builder loads whose file is in the package (`config/<name>_planning.yaml`)."""
+    named = builder.pipelines
+    found = sorted(
+        m.group(1) for p in (root / "config").glob("*_planning.yaml") if (m := PLANNING_FILE.match(p.name))
+    )
+    return tuple(n for n in (named if named is not None else found) if n in found)

@@ -1,0 +1,167 @@
+"""Where a config package's robot description and SRDF are, and which ROS it targets.
+
+URDF: `--urdf`, else `marm_setup.yaml`'s, else the file MoveItConfigsBuilder loads (a launch
+file's `.robot_description(file_path)`, else `config/<robot>.urdf.xacro`, paired by the builder's
+or the SRDF's robot name), else `.setup_assistant`'s. SRDF: `--srdf`, `marm_setup.yaml`'s, the
+builder's `.robot_description_semantic(file_path)`, the one a launch file sets as `*_semantic`
+(with the xacro args it passes: what move_group loads), `.setup_assistant`'s,
+`config/<robot>.srdf` of the builder, then the first of `config/*.srdf`, `srdf/*.srdf` and their
+`.srdf.xacro` forms.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from marm_setup.errors import InputError
+from marm_setup.findings import Finding, error
+from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssistantFile
+
+SRDF_GLOBS = ("config/*.srdf", "srdf/*.srdf", "config/*.srdf.xacro", "srdf/*.srdf.xacro")
+MARM_MOVEIT_YAML = "config/moveit.yaml"
+
+
+@dataclass(frozen=True, slots=True)
+class Description:
+    """The robot description: its file, where that choice came from, its xacro args."""
+
+    urdf: Path
+    origin: str
+    xacro_args: tuple[tuple[str, str], ...]
+
+
+def detect_target(root: Path, package_xml: PackageXml | None, marm: MarmSetupFile | None) -> str:
+    """ros2 for ament packages, ros1 for catkin; falls back on marm_setup.yaml and file names."""
+    build = package_xml.build_type if package_xml is not None else None
+    if build is not None:
+        return "ros2" if build == "ament" else "ros1"
+    if marm is not None and marm.target is not None:
+        return marm.target
+    ros2_files = ("config/moveit_controllers.yaml", "config/ros2_controllers.yaml", MARM_MOVEIT_YAML)
+    return "ros2" if any((root / f).is_file() for f in ros2_files) else "ros1"
+
+
+SrdfChoice = tuple[str, tuple[tuple[str, str], ...]]  # (relative path, xacro args)
+
+
+def choose_srdf(
+    root: Path,
+    marm: MarmSetupFile | None,
+    sa: SetupAssistantFile | None,
+    named: tuple[SrdfChoice | None, SrdfChoice | None, str | None],
+    problems: list[Finding],
+) -> tuple[str | None, tuple[tuple[str, str], ...]]:
+    """(relative SRDF path or None, its xacro args) in the order of the module docstring;
+    `named` is (the builder's explicit file, the launch files' `*_semantic` file, the builder's
+    default). A `.setup_assistant` naming a missing SRDF is an error in `problems`: the Setup
+    Assistant cannot load the package."""
+    builder_file, launch_file, builder_default = named
+    candidates: list[SrdfChoice] = []
+    if marm is not None and marm.robot_name:
+        candidates.append((f"config/{marm.robot_name}.srdf", ()))
+    if builder_file is not None:
+        candidates.append(builder_file)
+    if launch_file is not None:
+        candidates.append(launch_file)
+    if sa is not None and sa.srdf_path is not None:
+        if (root / sa.srdf_path).is_file():
+            candidates.append((sa.srdf_path, ()))
+        else:
+            problems.append(_missing_sa_srdf(sa))
+    if builder_default is not None:
+        candidates.append((builder_default, ()))
+    for pattern in SRDF_GLOBS:
+        candidates += [(p.relative_to(root).as_posix(), ()) for p in sorted(root.glob(pattern))]
+    return next(((c, a) for c, a in candidates if (root / c).is_file()), (None, ()))
+
+
+def _missing_sa_srdf(sa: SetupAssistantFile) -> Finding:
+    msg = (
+        f"names the SRDF '{sa.srdf_path}', which does not exist: the Setup Assistant cannot load this package"
+    )
+    return error("srdf.missing", ".setup_assistant", f"{sa.srdf_key}.relative_path", msg, "fix the path")
+
+
+def find_description(
+    root: Path,
+    shown: str,
+    name: str,
+    given: tuple[Path | None, tuple[tuple[str, str], ...]],
+    marm: MarmSetupFile | None,
+    sa: SetupAssistantFile | None,
+    paths: tuple[Path, ...],
+    robot_names: tuple[str | None, ...],
+    builder: tuple[str | None, tuple[tuple[str, str], ...] | None, str],
+) -> Description:
+    """The robot description (see the module docstring); InputError when there is none.
+    `given` is (--urdf, --xacro-arg pairs); `builder` the builder's (explicit file, mappings,
+    where it was named)."""
+    urdf, args = given
+    if urdf is not None:
+        if not Path(urdf).is_file():
+            raise InputError("file not found", path=str(urdf), element="--urdf")
+        return Description(Path(urdf), "--urdf", args)
+    if marm is not None and marm.urdf is not None:
+        return _marm_description(root, marm, paths, args)
+    explicit, mappings, how = builder
+    if explicit is not None and (root / explicit).is_file():
+        return Description(root / explicit, how, args or mappings or ())
+    xacros = sorted((root / "config").glob("*.urdf.xacro"))
+    named = [c for c in xacros for name in robot_names if name and c.name == f"{name}.urdf.xacro"]
+    if named or (len(xacros) == 1 and not any(robot_names)):
+        return Description((named or xacros)[0], "config/<robot>.urdf.xacro", args or mappings or ())
+    if sa is not None and sa.urdf_package and sa.urdf_path:
+        return setup_assistant_description(sa, paths, shown, args or mappings or sa.urdf_xacro_args)
+    raise InputError(
+        f"cannot find the robot description of package '{name}' ({_why_no_urdf(root, marm, sa)})",
+        path=shown,
+        element="robot description",
+        needs="--urdf",
+    )
+
+
+def _marm_description(
+    root: Path, marm: MarmSetupFile, paths: tuple[Path, ...], args: tuple[tuple[str, str], ...]
+) -> Description:
+    from marm_setup.robot.ros_packages import description_file
+
+    assert marm.urdf is not None
+    try:
+        file = description_file(marm.urdf, root, (*paths, *marm_package_paths(root, marm)))
+    except InputError:  # a package:// the package cannot find: reported as the missing URDF
+        file = root / marm.urdf
+    return Description(file, "marm_setup.yaml", args or marm.xacro_args)
+
+
+def setup_assistant_description(
+    sa: SetupAssistantFile, paths: tuple[Path, ...], shown: str, args: tuple[tuple[str, str], ...]
+) -> Description:
+    """The description `.setup_assistant` names (its URDF package and relative_path);
+    InputError when the package is not found."""
+    from marm_setup.robot.ros_packages import find_package, find_packages
+
+    where = str(Path(shown) / ".setup_assistant")
+    pkg_dir = find_package(str(sa.urdf_package), find_packages(paths), path=where, element="URDF.package")
+    return Description(pkg_dir / str(sa.urdf_path), ".setup_assistant", args)
+
+
+def _why_no_urdf(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> str:
+    """Why none of the robot description sources gave a URDF, naming the files that exist."""
+    for rel, read in (("marm_setup.yaml", marm), (".setup_assistant", sa)):
+        if (root / rel).is_file() and (read is None or not read.readable):
+            return f"{rel} is not readable YAML"
+    if (root / ".setup_assistant").is_file():
+        return ".setup_assistant gives no URDF package and relative_path"
+    if (root / "marm_setup.yaml").is_file():
+        return "marm_setup.yaml gives no robot.urdf"
+    return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro"
+
+
+def marm_package_paths(root: Path, marm: MarmSetupFile | None) -> tuple[Path, ...]:
+    """`robot.package_paths` of marm_setup.yaml (relative to the package) that exist: a package
+    copied into a workspace finds its description next to it instead."""
+    if marm is None:
+        return ()
+    found = ((root / p).resolve() for p in marm.package_paths)
+    return tuple(p for p in found if p.is_dir())

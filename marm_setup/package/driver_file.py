@@ -1,0 +1,178 @@
+"""The driver side of the controller wiring: ros2_control's `ros2_controllers.yaml` (the
+controller_manager's parameter file), ROS 1 ros_control's `ros_controllers.yaml`, the ArbotiX
+driver's `arbotix.yaml` and ros2_control's `initial_positions.yaml`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from marm_setup.package.where import Located, Param, Where, freeze
+
+OWN_KEYS = ("type", "joints", "joint")
+
+
+@dataclass(frozen=True, slots=True)
+class DriverController:
+    """A controller the driver runs: its plugin type, its joints (None when it names none) and
+    the names of its other parameters (gains, tolerances, ...)."""
+
+    name: str
+    type: str
+    joints: tuple[str, ...] | None
+    where: Where
+    parameters: tuple[str, ...] = ()
+
+    @property
+    def element(self) -> str:
+        return self.where.element
+
+
+@dataclass(frozen=True, slots=True)
+class DriverFile:
+    where: Where
+    controllers: tuple[DriverController, ...]
+
+    def controller(self, name: str) -> DriverController | None:
+        return next((c for c in self.controllers if c.name == name), None)
+
+
+def read_ros2_controllers(doc: Located) -> DriverFile:
+    """`controller_manager.ros__parameters.<name>.type`, each controller's own parameters under
+    `<name>.ros__parameters` (ros2_control controller_manager)."""
+    manager = doc.get("controller_manager").get("ros__parameters")
+    out = []
+    for name, entry in manager.items():
+        if entry.is_mapping and "type" in entry.data:
+            params = doc.get(name).get("ros__parameters")
+            out.append(
+                DriverController(name, str(entry.data["type"]), _joints(params), entry.where, _others(params))
+            )
+    return DriverFile(doc.where, tuple(out))
+
+
+def read_ros_controllers(doc: Located) -> DriverFile:
+    """ros_control: one top-level entry with a `type` per controller."""
+    out = [
+        DriverController(name, str(entry.data["type"]), _joints(entry), entry.where, _others(entry))
+        for name, entry in doc.items()
+        if entry.is_mapping and "type" in entry.data
+    ]
+    return DriverFile(doc.where, tuple(out))
+
+
+def _joints(params: Located) -> tuple[str, ...] | None:
+    data = params.data if isinstance(params.data, dict) else {}
+    if isinstance(data.get("joints"), list):
+        return tuple(str(j) for j in data["joints"])
+    if data.get("joint"):
+        return (str(data["joint"]),)
+    return None
+
+
+def _others(params: Located) -> tuple[str, ...]:
+    data = params.data if isinstance(params.data, dict) else {}
+    return tuple(sorted(str(k) for k in data if k not in OWN_KEYS))
+
+
+# -- ArbotiX -------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class ArbotixServo:
+    """An `arbotix.yaml` joint: servo id, max_speed [deg/s], and its other keys."""
+
+    joint: str
+    where: Where
+    params: tuple[Param, ...]
+
+    def param(self, key: str) -> Param | None:
+        return next((p for p in self.params if p.key == key), None)
+
+
+@dataclass(frozen=True, slots=True)
+class ArbotixController:
+    """An `arbotix.yaml` controller: its action_name and joints (as written)."""
+
+    name: str
+    where: Where
+    action_name: Param | None
+    joints: Param | None
+
+
+@dataclass(frozen=True, slots=True)
+class ArbotixFile:
+    where: Where
+    servos: tuple[ArbotixServo, ...]
+    controllers: tuple[ArbotixController, ...]
+    settings: tuple[Param, ...]  # every other top-level key (port, baud, rate, ...)
+
+    def controller(self, name: str) -> ArbotixController | None:
+        return next((c for c in self.controllers if c.name == name), None)
+
+
+def read_arbotix(doc: Located) -> ArbotixFile:
+    joints = doc.get("joints")
+    servos = tuple(
+        ArbotixServo(name, entry.where, entry.params() if entry.is_mapping else ())
+        for name, entry in joints.items()
+    )
+    controllers = tuple(
+        ArbotixController(name, entry.where, entry.param("action_name"), entry.param("joints"))
+        for name, entry in doc.get("controllers").items()
+        if entry.is_mapping
+    )
+    settings = tuple(
+        Param(key, freeze(value.data), value.where)
+        for key, value in doc.items()
+        if key not in ("joints", "controllers")
+    )
+    return ArbotixFile(doc.where, servos, controllers, settings)
+
+
+# -- initial positions (ros2_control's mock hardware start) ----------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class InitialPositions:
+    """`initial_positions: {joint: value}` (or the mapping itself); `values` None when it is no
+    mapping. `where` names the `initial_positions` key, as findings do."""
+
+    where: Where
+    values: tuple[Param, ...] | None
+
+
+def read_initial_positions(doc: Located) -> InitialPositions:
+    named = Where(doc.where.file, (*doc.where.keys, "initial_positions"))
+    if not doc.is_mapping:
+        return InitialPositions(named, ())
+    inner = doc.get("initial_positions") if "initial_positions" in doc.data else doc
+    if not inner.is_mapping:
+        return InitialPositions(named, None)
+    values = tuple(
+        Param(key, freeze(value.data), named.child(key, line=value.where.line))
+        for key, value in inner.items()
+    )
+    return InitialPositions(named, values)
+
+
+# -- ros2_control hardware descriptions (`config/*.ros2_control.xacro`) ------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class Ros2ControlFile:
+    """A package's ros2_control xacro: the joints its `<ros2_control>` systems name literally
+    (a `${...}` name is only known once xacro runs)."""
+
+    file: str
+    joints: tuple[str, ...]
+
+
+def read_ros2_control(file: str, text: str) -> Ros2ControlFile:
+    from lxml import etree
+
+    try:
+        root = etree.fromstring(text.encode(), parser=etree.XMLParser(remove_comments=True))
+    except etree.XMLSyntaxError:
+        return Ros2ControlFile(file, ())
+    names = [j.get("name", "") for system in root.iter("ros2_control") for j in system.findall("joint")]
+    return Ros2ControlFile(file, tuple(n for n in names if n and "${" not in n))

@@ -1,0 +1,182 @@
+"""What ROS 2 XML launch files load (launch_xml / launch_ros), evaluated without running them.
+
+Every XML launch file is an entry point, walked in document order with its `<arg default>` /
+`<let value>` values; `<include file>` passes its `<arg name value>` children. Recorded: each
+parameter file a `<node>` loads with `<param from="...">` (launch_ros `Node`'s parameter
+files), and the SRDF a `robot_description_semantic` param reads (`$(command 'cat FILE')` or
+`'xacro FILE a:=b'`). `if` / `unless` branches the defaults do not take are marked conditional.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.package.launch_ros1 import SemanticLoad, YamlLoad
+from marm_setup.package.launch_xml import LaunchXml, package_relative
+from marm_setup.package.substitution import Scope, SubstitutionError, substitute, truth
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+MAX_DEPTH = 20
+COMMAND = re.compile(r"\$\(command\s+(['\"])(.*?)\1\s*\)")
+
+
+@dataclass(frozen=True)
+class Ros2XmlLaunch:
+    loads: tuple[YamlLoad, ...] = ()
+    semantic: SemanticLoad | None = None
+
+
+@dataclass(frozen=True)
+class _Context:
+    file: str
+    scope: Scope
+    node: str = ""
+    conditional: bool = False
+    depth: int = 0
+
+
+@dataclass
+class _Walk:
+    """The files and what one entry point's walk collects."""
+
+    root: Path
+    trees: Mapping[str, LaunchXml]
+    loads: list[YamlLoad] = field(default_factory=list)
+    semantic: list[tuple[SemanticLoad, bool]] = field(default_factory=list)
+
+
+def evaluate_ros2_xml(
+    root: Path, trees: Mapping[str, LaunchXml], find: Callable[[str], str | None]
+) -> Ros2XmlLaunch:
+    loads: dict[tuple[str, str], YamlLoad] = {}
+    semantic: list[tuple[SemanticLoad, bool]] = []
+    for rel in sorted(trees):
+        walk = _Walk(root, trees)
+        _walk_file(walk, find, rel, {}, False, 0)
+        for load in walk.loads:
+            known = loads.get((load.file, load.ns))
+            if known is None or (known.conditional and not load.conditional):
+                loads[load.file, load.ns] = load
+        semantic += walk.semantic
+    chosen = next((s for s, conditional in semantic if not conditional), None)
+    return Ros2XmlLaunch(tuple(loads.values()), chosen or next((s for s, _ in semantic), None))
+
+
+def _walk_file(
+    walk: _Walk,
+    find: Callable[[str], str | None],
+    rel: str,
+    passed: Mapping[str, str],
+    conditional: bool,
+    depth: int,
+) -> None:
+    tree = walk.trees.get(rel)
+    if tree is None or tree.root is None or depth > MAX_DEPTH:
+        return
+    scope = Scope(dict(passed), find, str((walk.root / rel).parent), ros2=True)
+    _walk_children(walk, tree.root, _Context(rel, scope, "", conditional, depth), passed)
+
+
+def _walk_children(walk: _Walk, elem: etree._Element, ctx: _Context, passed: Mapping[str, str]) -> _Context:
+    for child in elem:
+        if not isinstance(child.tag, str):
+            continue
+        taken = _condition(child, ctx)
+        if taken is not True and child.tag in ("arg", "let"):
+            continue
+        inner = ctx if taken else replace(ctx, conditional=True)
+        if child.tag in ("arg", "let"):
+            ctx = _arg(child, ctx, passed)
+        elif child.tag == "include":
+            _include(walk, child, inner)
+        elif child.tag in ("group", "node"):
+            node = (child.get("name") or child.get("exec") or "") if child.tag == "node" else inner.node
+            after = _walk_children(walk, child, replace(inner, node=node), passed)
+            if taken and child.tag == "group":
+                ctx = replace(ctx, scope=after.scope)
+        elif child.tag == "param":
+            _param(walk, child, inner)
+    return ctx
+
+
+def _condition(elem: etree._Element, ctx: _Context) -> bool | None:
+    for attr, wanted in (("if", True), ("unless", False)):
+        text = elem.get(attr)
+        if text is None:
+            continue
+        value = truth(_text(text, ctx) or "")
+        if value is None:
+            return None
+        if value is not wanted:
+            return False
+    return True
+
+
+def _arg(elem: etree._Element, ctx: _Context, passed: Mapping[str, str]) -> _Context:
+    name = elem.get("name")
+    if not name:
+        return ctx
+    value = elem.get("value") if elem.tag == "let" else passed.get(name, elem.get("default"))
+    resolved = _text(value, ctx) if value is not None else None
+    if resolved is None:
+        return ctx
+    return replace(ctx, scope=ctx.scope.with_args({**ctx.scope.args, name: resolved}))
+
+
+def _include(walk: _Walk, elem: etree._Element, ctx: _Context) -> None:
+    target = _file(elem.get("file"), ctx, walk.root)
+    if target is None or target not in walk.trees:
+        return
+    given: dict[str, str] = {}
+    for arg in elem.iterchildren("arg"):
+        name, value = arg.get("name"), _text(arg.get("value"), ctx)
+        if name and value is not None:
+            given[name] = value
+    _walk_file(walk, ctx.scope.find, target, given, ctx.conditional, ctx.depth + 1)
+
+
+def _param(walk: _Walk, elem: etree._Element, ctx: _Context) -> None:
+    if elem.get("from"):
+        target = _file(elem.get("from"), ctx, walk.root)
+        if target is not None:
+            walk.loads.append(YamlLoad(target, ctx.node, ctx.file, None, "", ctx.conditional))
+        return
+    value = elem.get("value")
+    if (elem.get("name") or "").endswith("_semantic") and value:
+        found = _semantic(value, ctx, walk.root)
+        if found is not None:
+            walk.semantic.append((found, ctx.conditional))
+
+
+def _semantic(value: str, ctx: _Context, root: Path) -> SemanticLoad | None:
+    match = COMMAND.search(value)
+    text = _text(match.group(2) if match else value, ctx)
+    if text is None:
+        return None
+    words = text.replace("'", " ").replace('"', " ").split()
+    files = [w for w in words if w.endswith((".xacro", ".srdf"))]
+    target = package_relative(files[-1], root) if files else None
+    if target is None:
+        return None
+    mappings = tuple(sorted((a, b) for a, _, b in (w.partition(":=") for w in words if ":=" in w)))
+    return SemanticLoad(target, mappings, ctx.file)
+
+
+def _text(text: str | None, ctx: _Context) -> str | None:
+    if text is None:
+        return None
+    try:
+        return substitute(text, ctx.scope)
+    except SubstitutionError:
+        return None
+
+
+def _file(attr: str | None, ctx: _Context, root: Path) -> str | None:
+    text = _text(attr, ctx) if attr else None
+    return package_relative(text, root) if text else None

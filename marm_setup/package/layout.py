@@ -1,0 +1,363 @@
+"""Which file of a package feeds each MoveIt file kind, and reading them.
+
+ROS 1: the files the launch files load (`launch_ros1`), by the namespace they land in
+(`<robot_description>_kinematics`, `<robot_description>_planning`), the controller manager
+loaded beside them, and their file name; where no launch file loads a kind, the Setup
+Assistant's file name (`config/kinematics.yaml`, ...). ROS 2: the parameter files XML launch
+files hand to a node (`<param from>`, by the parameters they hold), else what
+MoveItConfigsBuilder loads (`builder`), else the Setup Assistant's file names.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from marm_setup.package.builder import BuilderFiles, Chosen, chosen_file, controllers_file, planning_pipelines
+from marm_setup.package.controllers_file import FAKE_KEYS, SIMPLE_MANAGER, ControllersFile, read_controllers
+from marm_setup.package.driver_file import (
+    read_arbotix,
+    read_initial_positions,
+    read_ros2_controllers,
+    read_ros_controllers,
+)
+from marm_setup.package.files import PackageFiles
+from marm_setup.package.joint_limits_file import read_joint_limits
+from marm_setup.package.kinematics_file import read_kinematics
+from marm_setup.package.launch_ros1 import YamlLoad
+from marm_setup.package.model import Source
+from marm_setup.package.perception_files import ServoConfig, read_sensors, read_servo
+from marm_setup.package.planning_file import PlanningPipeline, read_pipeline
+from marm_setup.package.where import Located, Param, Where
+
+DRIVER_FILES = {
+    "ros2_controllers": "config/ros2_controllers.yaml",
+    "ros_controllers": "config/ros_controllers.yaml",
+    "arbotix": "config/arbotix.yaml",
+    "initial_positions": "config/initial_positions.yaml",
+}
+DEFAULT_FILES = {
+    "kinematics": "config/kinematics.yaml",
+    "joint_limits": "config/joint_limits.yaml",
+    "fake_controllers": "config/fake_controllers.yaml",
+    "sensors": "config/sensors_3d.yaml",
+}
+ROS1_MOVEIT_CONTROLLERS = (
+    "config/controllers.yaml",
+    "config/simple_moveit_controllers.yaml",
+    "config/ros_controllers.yaml",  # old Setup Assistant (controller_list inside)
+)
+SA_NAME = "the Setup Assistant's file name"
+MARM_MOVEIT_YAML = "config/moveit.yaml"
+
+
+@dataclass
+class Kinds:
+    """The typed files of a package, and where each came from (built by `read_kinds`)."""
+
+    values: dict[str, object] = field(default_factory=dict)
+    sources: list[Source] = field(default_factory=list)
+
+    def put(self, kind: str, value: object, doc: Located | None, how: str) -> None:
+        if value is None or doc is None:
+            return
+        self.values[kind] = value
+        self.sources = [s for s in self.sources if s.kind != kind] + [Source(kind, doc.where.file, how)]
+
+
+def _named(files: PackageFiles, rel: str) -> Located | None:
+    return files.yaml(rel) if files.is_file(rel) else None
+
+
+def _loaded_by(load: YamlLoad) -> str:
+    into = f" into {load.ns}" if load.ns else ""
+    return f"loaded by {load.launch}{into}" + (
+        " (on a branch the launch args' defaults do not take)" if load.conditional else ""
+    )
+
+
+def _by_preference(loads: list[YamlLoad]) -> list[YamlLoad]:
+    return sorted(loads, key=lambda load: load.conditional)
+
+
+# -- ROS 1 ------------------------------------------------------------------------------------
+
+
+def read_ros1_kinds(files: PackageFiles, loads: tuple[YamlLoad, ...]) -> Kinds:
+    kinds = Kinds()
+    for kind, ns_suffix, base, reader in (
+        ("kinematics", "_kinematics", "kinematics.yaml", read_kinematics),
+        ("joint_limits", "_planning", "joint_limits.yaml", read_joint_limits),
+    ):
+        doc, how = _ros1_file(
+            files, loads, ns_suffix, base, "joint_limits" if kind == "joint_limits" else None
+        )
+        kinds.put(kind, reader(doc) if doc is not None else None, doc, how)
+    _ros1_pipelines(files, loads, kinds)
+    _ros1_controllers(files, loads, kinds)
+    _drivers(files, kinds, loads)
+    doc, how = _ros1_sensors(files, loads)
+    kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, how)
+    kinds.values["servo"] = _servo(files, [load.file for load in loads])
+    return kinds
+
+
+Loads = tuple[YamlLoad, ...]
+
+
+def _ros1_file(
+    files: PackageFiles, loads: Loads, ns_suffix: str, base: str, key: str | None
+) -> tuple[Located | None, str]:
+    """The file loaded into `*<ns_suffix>` (holding `key`, when given), else `config/<base>`,
+    else a file of that name some launch file loads (e.g. `config/7dof/joint_limits.yaml`)."""
+    for load in _by_preference([lo for lo in loads if lo.ns.rsplit("/", 1)[-1].endswith(ns_suffix)]):
+        doc = files.yaml(load.file)
+        if doc is not None and (key is None or (doc.is_mapping and key in doc.data)):
+            return doc, _loaded_by(load)
+    doc = _named(files, f"config/{base}")
+    if doc is not None:
+        return doc, SA_NAME
+    for load in _by_preference([lo for lo in loads if Path(lo.file).name == base]):
+        doc = files.yaml(load.file)
+        if doc is not None:
+            return doc, _loaded_by(load)
+    return None, ""
+
+
+def _ros1_pipelines(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
+    """OMPL (and every other `<pipeline>_planning.yaml` launch files load or config/ holds)."""
+    found: dict[str, tuple[Located, str]] = {}
+    for load in _by_preference([lo for lo in loads if lo.file.endswith("_planning.yaml")]):
+        name = Path(load.file).name[: -len("_planning.yaml")]
+        doc = files.yaml(load.file) if name not in found else None
+        if doc is not None:
+            found[name] = (doc, _loaded_by(load))
+    for rel in files.glob("config/*_planning.yaml"):
+        name = Path(rel).name[: -len("_planning.yaml")]
+        if name not in found and (doc := files.yaml(rel)) is not None:
+            found[name] = (doc, SA_NAME)
+    pipelines = []
+    for name in sorted(found, key=lambda n: (n != "ompl", n)):
+        doc, how = found[name]
+        pipelines.append(read_pipeline(name, doc))
+        kinds.sources.append(Source(f"pipeline:{name}", doc.where.file, how))
+    kinds.values["pipelines"] = tuple(pipelines)
+
+
+def _controller_loads(files: PackageFiles, loads: Loads, fake: bool) -> list[tuple[YamlLoad, Located]]:
+    """Loads of a `controller_list` file by the simple (or, `fake`, the fake) controller manager."""
+    out = []
+    for load in _by_preference(list(loads)):
+        doc = files.yaml(load.file)
+        if doc is None or not doc.is_mapping or "controller_list" not in doc.data:
+            continue
+        is_fake = "fake" in load.manager.lower() or (not load.manager and "fake" in Path(load.file).name)
+        if is_fake == fake:
+            out.append((load, doc))
+    return out
+
+
+def _ros1_controllers(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
+    """The simple manager's list the launch files load (else the Setup Assistant's file names;
+    others they load are alternatives), and the fake manager's."""
+    real = _controller_loads(files, loads, fake=False)
+    if real:
+        (first, doc), others = real[0], {lo.file: d for lo, d in real[1:] if lo.file != real[0][0].file}
+        kinds.put("moveit_controllers", read_controllers(doc), doc, _loaded_by(first))
+        kinds.values["alt_moveit_controllers"] = tuple(read_controllers(d) for d in others.values())
+    else:
+        named = [d for rel in ROS1_MOVEIT_CONTROLLERS if (d := _named(files, rel)) is not None]
+        listed = [d for d in named if d.is_mapping and "controller_list" in d.data]
+        fallback = [d for d in named if d.where.file in ROS1_MOVEIT_CONTROLLERS[:2]]
+        found = (listed or fallback)[0] if listed or fallback else None
+        kinds.put(
+            "moveit_controllers", read_controllers(found) if found is not None else None, found, SA_NAME
+        )
+    fake = _controller_loads(files, loads, fake=True)
+    fake_doc, how = (
+        (fake[0][1], _loaded_by(fake[0][0]))
+        if fake
+        else (_named(files, DEFAULT_FILES["fake_controllers"]), SA_NAME)
+    )
+    kinds.put(
+        "fake_controllers",
+        read_controllers(fake_doc, FAKE_KEYS) if fake_doc is not None else None,
+        fake_doc,
+        how,
+    )
+
+
+def _ros1_sensors(files: PackageFiles, loads: Loads) -> tuple[Located | None, str]:
+    for load in _by_preference(list(loads)):
+        doc = files.yaml(load.file)
+        if doc is not None and doc.is_mapping and isinstance(doc.data.get("sensors"), list):
+            return doc, _loaded_by(load)
+    return _named(files, DEFAULT_FILES["sensors"]), SA_NAME
+
+
+def _drivers(files: PackageFiles, kinds: Kinds, loads: Loads = ()) -> None:
+    readers: dict[str, Callable[[Located], object]] = {
+        "ros2_controllers": read_ros2_controllers,
+        "ros_controllers": read_ros_controllers,
+        "arbotix": read_arbotix,
+        "initial_positions": read_initial_positions,
+    }
+    for kind, rel in DRIVER_FILES.items():
+        if kind in kinds.values:
+            continue
+        doc, how = _named(files, rel), SA_NAME
+        base = Path(rel).name
+        loaded = next((lo for lo in _by_preference(list(loads)) if Path(lo.file).name == base), None)
+        if doc is None and loaded is not None:
+            doc, how = files.yaml(loaded.file), _loaded_by(loaded)
+        kinds.put(kind, readers[kind](doc) if doc is not None else None, doc, how)
+
+
+def _servo(files: PackageFiles, loaded: list[str]) -> tuple[ServoConfig, ...]:
+    """Servo configurations: files named `*servo*` in config/ and any loaded file holding one."""
+    names = dict.fromkeys([*(f for f in files.glob("config/**/*.yaml") if "servo" in Path(f).name), *loaded])
+    out = []
+    for rel in names:
+        doc = files.yaml(rel) if rel in loaded or files.is_file(rel) else None
+        found = read_servo(doc) if doc is not None else None
+        if found is not None:
+            out.append(found)
+    return tuple(out)
+
+
+# -- ROS 2 ------------------------------------------------------------------------------------
+
+
+def read_ros2_kinds(
+    files: PackageFiles, loads: tuple[YamlLoad, ...], builder: BuilderFiles, control_files: tuple[str, ...]
+) -> Kinds:
+    """What the builder loads, then the files XML launch files hand to nodes over it."""
+    kinds = Kinds()
+    root = files.root
+    for kind, method, reader in (
+        ("kinematics", "robot_description_kinematics", read_kinematics),
+        ("joint_limits", "joint_limits", read_joint_limits),
+    ):
+        chosen = chosen_file(builder, method, root)
+        doc = _named(files, chosen.file) if chosen is not None else None
+        kinds.put(kind, reader(doc) if doc is not None else None, doc, chosen.how if chosen else SA_NAME)
+    _ros2_controllers(files, builder, kinds)
+    _ros2_pipelines(files, builder, kinds)
+    chosen = chosen_file(builder, "sensors_3d", root)
+    doc = _named(files, chosen.file) if chosen is not None else None
+    kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, chosen.how if chosen else "")
+    for rel in control_files:
+        doc = _named(files, rel)
+        if doc is not None and "ros2_controllers" not in kinds.values:
+            kinds.put(
+                "ros2_controllers",
+                read_ros2_controllers(doc),
+                doc,
+                "handed to ros2_control_node by a launch file",
+            )
+    _drivers(files, kinds)
+    doc = _named(files, DEFAULT_FILES["fake_controllers"])
+    kinds.put("fake_controllers", read_controllers(doc, FAKE_KEYS) if doc is not None else None, doc, SA_NAME)
+    kinds.values["servo"] = _servo(files, [load.file for load in loads])
+    return kinds
+
+
+def _ros2_controllers(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) -> None:
+    chosen = controllers_file(builder, files.root)
+    doc = _named(files, chosen.file) if chosen is not None else None
+    if doc is not None and chosen is not None:
+        kinds.put("moveit_controllers", read_controllers(unwrap_parameters(doc)), doc, chosen.how)
+    alternatives = []
+    for rel in files.glob("config/*_controllers.yaml"):
+        other = _named(files, rel) if chosen is None or rel != chosen.file else None
+        if other is not None and _is_moveit_controllers(unwrap_parameters(other)):
+            alternatives.append(read_controllers(unwrap_parameters(other)))
+    kinds.values["alt_moveit_controllers"] = tuple(alternatives)
+
+
+def _is_moveit_controllers(doc: Located) -> bool:
+    data = doc.data if isinstance(doc.data, dict) else {}
+    return isinstance(data.get(SIMPLE_MANAGER), dict) or isinstance(data.get("controller_names"), list)
+
+
+def _ros2_pipelines(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) -> None:
+    pipelines: list[PlanningPipeline] = []
+    for name in planning_pipelines(builder, files.root):
+        doc = _named(files, f"config/{name}_planning.yaml")
+        if doc is not None:
+            pipelines.append(read_pipeline(name, unwrap_parameters(doc)))
+            how = "MoveItConfigsBuilder.planning_pipelines" + (
+                " (the pipelines a launch file names)"
+                if builder.pipelines is not None
+                else " (every config/*_planning.yaml)"
+            )
+            kinds.sources.append(Source(f"pipeline:{name}", doc.where.file, how))
+    kinds.values["pipelines"] = tuple(sorted(pipelines, key=lambda p: (p.name != "ompl", p.name)))
+
+
+def unwrap_parameters(doc: Located) -> Located:
+    """`{node: {ros__parameters: X}}` (or `/**`) -> X, keeping its key path; else `doc`."""
+    if doc.is_mapping and len(doc.data) == 1:
+        ((node, body),) = doc.items()
+        if body.is_mapping and body.get("ros__parameters").is_mapping:
+            return body.get("ros__parameters")
+    return doc
+
+
+def read_move_group_file(files: PackageFiles, kinds: Kinds, rel: str, how: str) -> tuple[Param, ...] | None:
+    """The sections of a move_group parameter file (our `config/moveit.yaml`), over the kinds
+    found so far: each section it holds replaces the file-based one. Returns move_group's own
+    top-level parameters, or None when the file is not one node's `ros__parameters`."""
+    raw = files.yaml(rel)
+    if raw is None:
+        return None
+    params = unwrap_parameters(raw)
+    if params is raw or not params.is_mapping:
+        return None
+    for kind, key, reader in (
+        ("kinematics", "robot_description_kinematics", read_kinematics),
+        ("joint_limits", "robot_description_planning", read_joint_limits),
+        ("moveit_controllers", SIMPLE_MANAGER, _read_manager),
+    ):
+        section = params.get(key)
+        if section.data is not None:
+            kinds.put(kind, reader(section), section, how)
+    _move_group_pipelines(params, kinds, how)
+    sensors = read_sensors(params)
+    kinds.put("sensors", sensors, params if sensors is not None else None, how)
+    return tuple(p for p in params.params() if "." not in p.key)
+
+
+def _read_manager(section: Located) -> ControllersFile:
+    return read_controllers(
+        Located(
+            Where(section.where.file, section.where.keys[:-1]),
+            {SIMPLE_MANAGER: section.data},
+            section.lines,
+            section.raw[:-1],
+        )
+    )
+
+
+def _move_group_pipelines(params: Located, kinds: Kinds, how: str) -> None:
+    names = params.get("planning_pipelines").data
+    names = names.get("pipeline_names", []) if isinstance(names, dict) else names
+    listed = [str(n) for n in names] if isinstance(names, list) else []
+    if "ompl" not in listed and params.get("ompl").data is not None:
+        listed.insert(0, "ompl")
+    pipelines = [read_pipeline(n, params.get(n)) for n in listed if params.get(n).is_mapping]
+    if pipelines:
+        kinds.values["pipelines"] = tuple(sorted(pipelines, key=lambda p: (p.name != "ompl", p.name)))
+        kinds.sources = [s for s in kinds.sources if not s.kind.startswith("pipeline:")]
+        kinds.sources += [Source(f"pipeline:{p.name}", p.where.file, how) for p in pipelines]
+
+
+__all__ = [
+    "Chosen",
+    "Kinds",
+    "read_move_group_file",
+    "read_ros1_kinds",
+    "read_ros2_kinds",
+    "unwrap_parameters",
+]

@@ -1,0 +1,109 @@
+"""MoveItPackage: one MoveIt config package, read once (`package.read.read_package`).
+
+Each MoveIt file kind is a typed value (`kinematics_file`, `joint_limits_file`,
+`planning_file`, `controllers_file`, `driver_file`, `srdf_file`, `setup_files`,
+`perception_files`) whose values keep their file and key path; `sources` says which file each
+kind was read from and why (which launch file loads it, or which convention). validate's rules,
+the port and the planner read only this.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.findings import Finding
+from marm_setup.package.controllers_file import ControllersFile
+from marm_setup.package.driver_file import ArbotixFile, DriverFile, InitialPositions, Ros2ControlFile
+from marm_setup.package.joint_limits_file import JointLimitsFile
+from marm_setup.package.kinematics_file import KinematicsFile
+from marm_setup.package.launch_xml import LaunchXml
+from marm_setup.package.perception_files import SensorsFile, ServoConfig
+from marm_setup.package.planning_file import PlanningPipeline
+from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssistantFile
+from marm_setup.package.srdf_file import SrdfFile
+from marm_setup.package.where import Param
+
+if TYPE_CHECKING:
+    from marm_setup.setup.srdf import Srdf
+
+
+@dataclass(frozen=True, slots=True)
+class Source:
+    """Which file a kind was read from (relative to the package), and why that one."""
+
+    kind: str  # kinematics, joint_limits, pipeline:ompl, moveit_controllers, ...
+    file: str
+    how: str
+
+
+@dataclass(frozen=True)
+class MoveItPackage:
+    root: Path  # absolute
+    shown: str  # the folder as the user typed it
+    name: str  # package.xml <name>, or the folder name
+    target: str  # ros1 (catkin, MoveIt 1) | ros2 (ament, MoveIt 2)
+    layout: str  # moveit1 | moveit2 | marm_ros2 (our single config/moveit.yaml)
+    urdf: Path  # the robot description (discovery fails, InputError, when there is none)
+    urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro, ...
+    xacro_args: tuple[tuple[str, str], ...] = ()
+    package_paths: tuple[Path, ...] = ()  # for $(find): this package first, then the user's, ...
+    package_xml: PackageXml | None = None
+    setup_assistant: SetupAssistantFile | None = None
+    marm_setup: MarmSetupFile | None = None
+    srdf_file: SrdfFile | None = None
+    kinematics: KinematicsFile | None = None
+    joint_limits: JointLimitsFile | None = None
+    pipelines: tuple[PlanningPipeline, ...] = ()
+    moveit_controllers: ControllersFile | None = None
+    alt_moveit_controllers: tuple[ControllersFile, ...] = ()  # files a launch may load instead
+    fake_controllers: ControllersFile | None = None
+    ros2_controllers: DriverFile | None = None
+    ros_controllers: DriverFile | None = None
+    arbotix: ArbotixFile | None = None
+    initial_positions: InitialPositions | None = None
+    move_group: tuple[Param, ...] | None = None  # move_group's own parameters (our moveit.yaml)
+    sensors: SensorsFile | None = None
+    servo: tuple[ServoConfig, ...] = ()
+    launch: tuple[LaunchXml, ...] = ()  # the XML launch files, parsed
+    python_launch_files: tuple[str, ...] = ()
+    ros2_control_files: tuple[Ros2ControlFile, ...] = ()  # config/*.ros2_control.xacro
+    files: tuple[str, ...] = ()  # every file of the package
+    sources: tuple[Source, ...] = ()
+    problems: tuple[Finding, ...] = field(default=())
+
+    @property
+    def srdf(self) -> Srdf | None:
+        return self.srdf_file.srdf if self.srdf_file is not None else None
+
+    @property
+    def srdf_path(self) -> str | None:
+        return self.srdf_file.path if self.srdf_file is not None else None
+
+    @property
+    def srdf_text(self) -> str | None:
+        return self.srdf_file.text if self.srdf_file is not None else None
+
+    @property
+    def ompl(self) -> PlanningPipeline | None:
+        return next((p for p in self.pipelines if p.name == "ompl"), None)
+
+    @property
+    def launch_files(self) -> tuple[str, ...]:
+        return tuple(t.file for t in self.launch)
+
+    @property
+    def ros_distro(self) -> str | None:
+        """The distro marm_setup.yaml names (`ros_distro`), else None."""
+        return self.marm_setup.ros_distro if self.marm_setup is not None else None
+
+    def source(self, kind: str) -> Source | None:
+        return next((s for s in self.sources if s.kind == kind), None)
+
+    def path(self, rel: str) -> Path:
+        return self.root / rel
+
+    def user_path(self, rel: str | None) -> str:
+        """A package file as the user would type it (`DIR/rel`), for error messages."""
+        return str(Path(self.shown) / rel) if rel else self.shown

@@ -1,0 +1,315 @@
+"""read_package: a config package folder (ours, the Setup Assistant's, a vendor's) -> a
+`MoveItPackage`, built once: its files found by following its launch files, each parsed once.
+
+Reading never judges: files that cannot be read are findings in `problems`; only a folder that
+is not a config package at all (or has no robot description) raises InputError (exit 2).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from marm_setup.bounded_read import XML_BYTES
+from marm_setup.errors import InputError
+from marm_setup.findings import Finding, error
+from marm_setup.package.builder import BuilderFiles, builder_files, chosen_file
+from marm_setup.package.description import (
+    MARM_MOVEIT_YAML,
+    Description,
+    choose_srdf,
+    detect_target,
+    find_description,
+    marm_package_paths,
+)
+from marm_setup.package.driver_file import Ros2ControlFile, read_ros2_control
+from marm_setup.package.files import FileProblem, PackageFiles
+from marm_setup.package.launch_python import read_python_launch
+from marm_setup.package.launch_ros1 import Ros1Launch, SemanticLoad, YamlLoad, evaluate_ros1
+from marm_setup.package.launch_ros2 import evaluate_ros2_xml
+from marm_setup.package.launch_xml import LaunchXml, launch_file_names, parse_launch, python_launch_names
+from marm_setup.package.layout import Kinds, read_move_group_file, read_ros1_kinds, read_ros2_kinds
+from marm_setup.package.model import MoveItPackage, Source
+from marm_setup.package.setup_files import (
+    MarmSetupFile,
+    PackageXml,
+    SetupAssistantFile,
+    read_marm_setup,
+    read_package_xml,
+    read_setup_assistant,
+)
+from marm_setup.package.srdf_file import SrdfFile, read_srdf_file, srdf_robot_name
+
+
+@dataclass(frozen=True)
+class _Launched:
+    """What the launch files load."""
+
+    loads: tuple[YamlLoad, ...] = ()
+    semantic: SemanticLoad | None = None
+    builder: BuilderFiles | None = None
+    control_files: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class _Setup:
+    """What says where the robot is and which ROS the package targets."""
+
+    marm: MarmSetupFile | None
+    sa: SetupAssistantFile | None
+    package_xml: PackageXml | None
+    paths: tuple[Path, ...]  # for $(find): this package, the user's, marm_setup.yaml's, its folder
+    target: str
+    name: str
+
+
+def read_package(
+    path: str | Path,
+    *,
+    urdf: str | Path | None = None,
+    srdf: str | Path | None = None,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Iterable[str | Path] = (),
+) -> MoveItPackage:
+    """Read the config package at `path`; InputError when it is not one."""
+    shown, root = str(path), Path(path).resolve()
+    if not root.is_dir():
+        raise InputError("not a folder", path=shown)
+    problems: list[Finding] = []
+    files = PackageFiles(root, problems)
+    found = _setup(files, shown, package_paths)
+    trees = {rel: parse_launch(root / rel, rel) for rel in launch_file_names(root)}
+    launched = _launched(files, trees, found.paths, found.target, found.name)
+    srdf_rel, srdf_args = _srdf_choice(root, srdf, found.marm, found.sa, launched, problems)
+    if found.package_xml is None and srdf_rel is None:
+        raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
+    description = _description(root, shown, urdf, xacro_args, found, srdf_rel, launched)
+    kinds = _kinds(files, found.target, launched, problems)
+    srdf_file = _srdf(root, srdf_rel, srdf_args, xacro_args, found.paths, problems)
+    return MoveItPackage(
+        root=root,
+        shown=shown,
+        name=found.name,
+        target=found.target,
+        layout=kinds.values.pop("layout", "moveit2" if found.target == "ros2" else "moveit1"),  # type: ignore[arg-type]
+        urdf=description.urdf,
+        urdf_origin=description.origin,
+        xacro_args=description.xacro_args,
+        package_paths=found.paths,
+        package_xml=found.package_xml,
+        setup_assistant=found.sa,
+        marm_setup=found.marm,
+        srdf_file=srdf_file,
+        launch=tuple(trees.values()),
+        python_launch_files=python_launch_names(root),
+        ros2_control_files=_ros2_control_files(files) if found.target == "ros2" else (),
+        files=files.listing(),
+        sources=(*kinds.sources, *_srdf_source(srdf_file, launched)),
+        problems=tuple(problems),
+        **kinds.values,  # type: ignore[arg-type]
+    )
+
+
+def _setup(files: PackageFiles, shown: str, package_paths: Iterable[str | Path]) -> _Setup:
+    root = files.root
+    marm = None
+    if files.is_file("marm_setup.yaml"):
+        marm = read_marm_setup(files.yaml("marm_setup.yaml"), str(Path(shown) / "marm_setup.yaml"))
+    sa = read_setup_assistant(files.yaml(".setup_assistant")) if files.is_file(".setup_assistant") else None
+    pkg_xml = _package_xml(files)
+    paths = (root, *(Path(p).resolve() for p in package_paths), *marm_package_paths(root, marm), root.parent)
+    return _Setup(marm, sa, pkg_xml, paths, detect_target(root, pkg_xml, marm), _name(root))
+
+
+def _name(root: Path) -> str:
+    from marm_setup.robot.ros_packages import package_name
+
+    return package_name(root) or root.name
+
+
+def _package_xml(files: PackageFiles) -> PackageXml | None:
+    try:
+        text = files.text("package.xml", XML_BYTES)
+    except FileProblem:
+        text = ""
+    return read_package_xml("package.xml", text) if text is not None else None
+
+
+def _finder(paths: tuple[Path, ...]) -> Callable[[str], str | None]:
+    from marm_setup.robot.ros_packages import PackageIndex, find_packages
+
+    try:
+        packages = find_packages(paths)
+    except InputError:
+        packages = PackageIndex()
+    return lambda name: str(packages[name]) if name in packages else None
+
+
+def _launched(
+    files: PackageFiles, trees: Mapping[str, LaunchXml], paths: tuple[Path, ...], target: str, name: str
+) -> _Launched:
+    """What the launch files load; subst_value files get their launch args before any is read."""
+    find = _finder(paths)
+    if target == "ros1":
+        ros1: Ros1Launch = evaluate_ros1(files.root, trees, find)
+        for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
+            if load.scope is not None:
+                files.scopes.setdefault(load.file, load.scope)
+        return _Launched(ros1.loads, ros1.semantic)
+    xml = evaluate_ros2_xml(files.root, trees, find)
+    python = read_python_launch(files.root, python_launch_names(files.root), find)
+    builder = builder_files(python.builders, name)
+    control = tuple(
+        rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
+    )
+    return _Launched(xml.loads, xml.semantic, builder, control)
+
+
+def _relative(path: str, root: Path) -> str | None:
+    from marm_setup.package.launch_xml import package_relative
+
+    return package_relative(path, root)
+
+
+def _srdf_choice(
+    root: Path,
+    given: str | Path | None,
+    marm: MarmSetupFile | None,
+    sa: SetupAssistantFile | None,
+    launched: _Launched,
+    problems: list[Finding],
+) -> tuple[str | None, tuple[tuple[str, str], ...]]:
+    """(relative SRDF path or None, its xacro args): `--srdf` when given, else `choose_srdf`."""
+    if given is not None:
+        if not Path(given).is_file():
+            raise InputError("file not found", path=str(given), element="--srdf")
+        return Path(os.path.relpath(Path(given).resolve(), root)).as_posix(), ()
+    builder = launched.builder
+    explicit = (
+        chosen_file(builder, "robot_description_semantic", root)
+        if builder and builder.explicit("robot_description_semantic")
+        else None
+    )
+    named = (
+        (explicit.file, builder.mappings("robot_description_semantic") or ())
+        if explicit and builder
+        else None
+    )
+    semantic = (launched.semantic.file, launched.semantic.xacro_args) if launched.semantic else None
+    default = f"config/{builder.robot_name}.srdf" if builder is not None else None
+    return choose_srdf(root, marm, sa, (named, semantic, default), problems)
+
+
+def _description(
+    root: Path,
+    shown: str,
+    urdf: str | Path | None,
+    xacro_args: Mapping[str, str] | None,
+    found: _Setup,
+    srdf_rel: str | None,
+    launched: _Launched,
+) -> Description:
+    builder = launched.builder
+    explicit = builder.explicit("robot_description") if builder is not None else None
+    rel = _relative(explicit.file, root) if explicit is not None else None
+    mappings = builder.mappings("robot_description") if builder is not None else None
+    how = explicit.how if explicit is not None else ""
+    robots = (builder.robot_name if builder and builder.calls else None, srdf_robot_name(root, srdf_rel))
+    given = (Path(urdf) if urdf is not None else None, tuple(sorted((xacro_args or {}).items())))
+    builder_source = (rel, mappings, how)
+    return find_description(
+        root, shown, found.name, given, found.marm, found.sa, found.paths, robots, builder_source
+    )
+
+
+def _kinds(files: PackageFiles, target: str, launched: _Launched, problems: list[Finding]) -> Kinds:
+    if target == "ros1":
+        return read_ros1_kinds(files, launched.loads)
+    assert launched.builder is not None
+    kinds = read_ros2_kinds(files, launched.loads, launched.builder, launched.control_files)
+    done = set()
+    for load in sorted(launched.loads, key=lambda lo: lo.conditional):
+        if load.file not in done and _holds_moveit_params(files, load.file):
+            done.add(load.file)
+            read_move_group_file(files, kinds, load.file, f"handed to {load.ns or 'a node'} by {load.launch}")
+    if files.is_file(MARM_MOVEIT_YAML) and files.yaml(MARM_MOVEIT_YAML) is not None:
+        raw = files.yaml(MARM_MOVEIT_YAML)
+        problems.extend(ros2_parameter_file_problems(raw.data if raw else None, MARM_MOVEIT_YAML))
+        kinds.values["move_group"] = read_move_group_file(
+            files, kinds, MARM_MOVEIT_YAML, "move_group's parameter file"
+        )
+        kinds.values["layout"] = "marm_ros2"
+    return kinds
+
+
+MOVE_GROUP_KEYS = (
+    "robot_description_kinematics",
+    "robot_description_planning",
+    "moveit_simple_controller_manager",
+    "planning_pipelines",
+)
+
+
+def _holds_moveit_params(files: PackageFiles, rel: str) -> bool:
+    from marm_setup.package.layout import unwrap_parameters
+
+    doc = files.yaml(rel)
+    params = unwrap_parameters(doc) if doc is not None else None
+    return params is not None and params.is_mapping and any(k in params.data for k in MOVE_GROUP_KEYS)
+
+
+def ros2_parameter_file_problems(raw: Any, file: str) -> list[Finding]:
+    """A ROS 2 parameter file maps node names (or `/**`), optionally under a namespace, to
+    `{ros__parameters: {...}}` (ros2/rcl rcl_yaml_param_parser/README.md); rcl rejects anything
+    else and the node does not start."""
+    if not isinstance(raw, dict) or not raw:
+        return [error("yaml.ros2-params", file, "", "expected a mapping of node names to ros__parameters")]
+    return [
+        error("yaml.ros2-params", file, str(node), "expected {ros__parameters: {...}} under a node name")
+        for node, value in raw.items()
+        if not (
+            _node_params(value)
+            or (isinstance(value, dict) and value and all(map(_node_params, value.values())))
+        )
+    ]
+
+
+def _node_params(value: Any) -> bool:
+    return isinstance(value, dict) and isinstance(value.get("ros__parameters"), dict)
+
+
+def _srdf(
+    root: Path,
+    rel: str | None,
+    args: tuple[tuple[str, str], ...],
+    user_args: Mapping[str, str] | None,
+    paths: tuple[Path, ...],
+    problems: list[Finding],
+) -> SrdfFile | None:
+    if rel is None:
+        return None
+    return read_srdf_file(root, rel, paths, problems, {**dict(args), **dict(user_args or {})})
+
+
+def _srdf_source(srdf: SrdfFile | None, launched: _Launched) -> tuple[Source, ...]:
+    if srdf is None:
+        return ()
+    how = (
+        f"set as the semantic description by {launched.semantic.launch}"
+        if launched.semantic and launched.semantic.file == srdf.path
+        else "chosen by its name"
+    )
+    return (Source("srdf", srdf.path, how),)
+
+
+def _ros2_control_files(files: PackageFiles) -> tuple[Ros2ControlFile, ...]:
+    out = []
+    for rel in files.glob("config/*.ros2_control.xacro"):
+        try:
+            out.append(read_ros2_control(rel, files.text(rel, XML_BYTES) or ""))
+        except FileProblem:
+            continue
+    return tuple(out)

@@ -1,0 +1,188 @@
+"""The files that say where a package's robot is and who made it: the Setup Assistant's
+`.setup_assistant`, marm-setup's `marm_setup.yaml` (read leniently here: validate reads broken
+ones too; `setup.yaml_io` is the strict reader render uses) and `package.xml`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from marm_setup.errors import InputError
+from marm_setup.package.where import Located
+
+if TYPE_CHECKING:
+    from marm_setup.setup.model import SetupModel
+
+# marm_setup.yaml keys no rendered file holds: a port keeps them from the source's file.
+KEPT_KEYS = ("collision", "default_acceleration", "driver")
+
+
+def _mapping(value: Any) -> dict:
+    return value if isinstance(value, dict) else {}
+
+
+@dataclass(frozen=True, slots=True)
+class SetupAssistantFile:
+    """`.setup_assistant` (MoveIt 1 `URDF` / `SRDF` / `CONFIG`, MoveIt 2 lower-case keys and
+    `package_settings`); `readable` false when it is not a YAML mapping."""
+
+    readable: bool
+    urdf_package: str | None = None
+    urdf_path: str | None = None
+    urdf_xacro_args: tuple[tuple[str, str], ...] = ()
+    srdf_path: str | None = None
+    srdf_key: str = "SRDF"  # as written (SRDF or srdf), for findings
+    author_name: str | None = None
+    author_email: str | None = None
+    author_key: str = ""  # CONFIG, config or package_settings
+
+
+def read_setup_assistant(doc: Located | None) -> SetupAssistantFile:
+    config = _mapping(_mapping(doc.data if doc is not None else None).get("moveit_setup_assistant_config"))
+    if doc is None or not config:
+        return SetupAssistantFile(doc is not None and isinstance(doc.data, dict))
+    urdf = _mapping(config.get("URDF", config.get("urdf")))
+    srdf = _mapping(config.get("SRDF", config.get("srdf")))
+    author_key = next(
+        (k for k in ("CONFIG", "config", "package_settings") if isinstance(config.get(k), dict)), ""
+    )
+    author = _mapping(config.get(author_key))
+    args = str(urdf.get("xacro_args") or "").split()
+    return SetupAssistantFile(
+        True,
+        _text(urdf.get("package")),
+        _text(urdf.get("relative_path")),
+        xacro_pairs(args),
+        _text(srdf.get("relative_path")) if isinstance(srdf.get("relative_path"), str) else None,
+        "SRDF" if "SRDF" in config else "srdf",
+        _text(author.get("author_name")),
+        _text(author.get("author_email")),
+        author_key,
+    )
+
+
+def _text(value: Any) -> str | None:
+    return str(value) if value not in (None, "") else None
+
+
+def xacro_pairs(value: Any) -> tuple[tuple[str, str], ...]:
+    """xacro args given as a mapping, a list of `NAME:=VALUE` or a list of pairs (sorted)."""
+    if isinstance(value, dict):
+        return tuple(sorted((str(k), str(v)) for k, v in value.items()))
+    out = []
+    for item in value or ():
+        if isinstance(item, str) and ":=" in item:
+            name, _, val = item.partition(":=")
+            out.append((name, val))
+        elif isinstance(item, list | tuple) and len(item) == 2:
+            out.append((str(item[0]), str(item[1])))
+    return tuple(sorted(out))
+
+
+@dataclass(frozen=True, slots=True)
+class MarmSetupFile:
+    """What discovery needs of a `marm_setup.yaml`, read leniently (a broken key reads as
+    absent); `readable` false when it is not a YAML mapping."""
+
+    readable: bool
+    robot_name: str | None = None
+    target: str | None = None
+    ros_distro: str | None = None
+    urdf: str | None = None
+    xacro_args: tuple[tuple[str, str], ...] = ()
+    package_paths: tuple[str, ...] = ()
+    collision_seed: int | None = None
+    collision_trials: int | None = None
+    author: tuple[str, str] | None = None
+    kept_keys: tuple[str, ...] = ()  # which of KEPT_KEYS the file has
+    kept: SetupModel | None = None  # those keys, read strictly (setup.yaml_io)
+    kept_error: InputError | None = None  # why they could not be read
+
+
+def read_marm_setup(doc: Located | None, shown: str = "marm_setup.yaml") -> MarmSetupFile:
+    data = doc.data if doc is not None else None
+    if not isinstance(data, dict):
+        return MarmSetupFile(False)
+    robot = _mapping(data.get("robot"))
+    collision = _mapping(data.get("collision"))
+    paths = robot.get("package_paths")
+    author = _mapping(data.get("author"))
+    kept_keys = tuple(k for k in KEPT_KEYS if k in data)
+    kept, kept_error = _kept(data, kept_keys, shown)
+    return MarmSetupFile(
+        True,
+        _text(data.get("robot_name")) if data.get("robot_name") else None,
+        data.get("target") if data.get("target") in ("ros1", "ros2") else None,
+        data.get("ros_distro") if isinstance(data.get("ros_distro"), str) else None,
+        robot.get("urdf") if isinstance(robot.get("urdf"), str) else None,
+        xacro_pairs(robot.get("xacro_args")),
+        tuple(p for p in paths if isinstance(p, str)) if isinstance(paths, list) else (),
+        _integer(collision.get("seed")),
+        _integer(collision.get("trials")),
+        (str(author["name"]), str(author["email"])) if author.get("name") and author.get("email") else None,
+        kept_keys,
+        kept,
+        kept_error,
+    )
+
+
+def _kept(data: dict, keys: tuple[str, ...], shown: str) -> tuple[SetupModel | None, InputError | None]:
+    from marm_setup.setup.yaml_io import setup_from_dict
+
+    try:
+        given = {"package_name": "-", "robot_name": "-", "robot": {"urdf": "-"}, **{k: data[k] for k in keys}}
+        return setup_from_dict(given, shown), None
+    except InputError as exc:
+        return None, exc
+
+
+def _integer(value: Any) -> int | None:
+    return value if isinstance(value, int) and not isinstance(value, bool) else None
+
+
+@dataclass(frozen=True, slots=True)
+class PackageXml:
+    """package.xml as the port and discovery read it (catkin_pkg validates it in validate)."""
+
+    file: str
+    text: str
+    parsed: bool = False  # false when the XML does not parse
+    name: str | None = None
+    maintainers: tuple[tuple[str, str], ...] = ()
+    licenses: tuple[str, ...] = ()
+    metadata: tuple[tuple[str, str], ...] = ()  # (tag, text) of version, description, url, author
+    dependencies: tuple[str, ...] = ()
+
+    @property
+    def build_type(self) -> str | None:
+        """ament (ROS 2) or catkin (ROS 1), from the text as discovery always read it."""
+        if "ament_cmake" in self.text or "ament_python" in self.text:
+            return "ament"
+        return "catkin" if "catkin" in self.text else None
+
+
+def read_package_xml(file: str, text: str) -> PackageXml:
+    from lxml import etree
+
+    try:
+        root = etree.fromstring(text.encode("utf-8"))
+    except (etree.XMLSyntaxError, ValueError):
+        return PackageXml(file, text)
+    people = tuple(
+        ((e.text or "").strip(), e.get("email", "").strip())
+        for e in root.iterchildren("maintainer")
+        if (e.text or "").strip() and e.get("email")
+    )
+    name = root.findtext("name")
+    metadata = tuple(
+        (e.tag, _element_text(e))
+        for e in root.iterchildren()
+        if e.tag in ("version", "description", "url", "author")
+    )
+    deps = tuple(sorted({(e.text or "").strip() for e in root if str(e.tag).endswith("depend")}))
+    licenses = tuple((e.text or "").strip() for e in root.iterchildren("license"))
+    return PackageXml(file, text, True, name.strip() if name else None, people, licenses, metadata, deps)
+
+
+def _element_text(elem: Any) -> str:
+    return " ".join("".join(elem.itertext()).split())

@@ -1,0 +1,142 @@
+"""Controllers, the driver's side: MoveIt's controllers against ROS 2 `ros2_controllers.yaml`
+(controller_manager), ROS 1 ros_control `ros_controllers.yaml`, and ArbotiX `arbotix.yaml` plus
+the `gripper_controller` nodes of the launch files."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from marm_setup.findings import Finding, error
+from marm_setup.package.controllers_file import ControllersFile, MoveItController
+from marm_setup.package.driver_file import ArbotixFile, DriverController, DriverFile
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.domain import (
+    DRIVER_CONTROLLERS,
+    FOLLOW_JOINT_TRAJECTORY,
+    FOLLOW_JOINT_TRAJECTORY_NS,
+    GRIPPER_COMMAND,
+    JOINT_DRIVER_CONTROLLERS,
+    MOVEIT_CONTROLLER_TYPES,
+)
+
+
+def check_driver_controllers(moveit: ControllersFile, driver: DriverFile, robot: RobotModel) -> list[Finding]:
+    """MoveIt's controllers exist in the driver file with a matching type, joints and action."""
+    file = driver.where.file
+    if not driver.controllers:
+        return [error("controller.driver-malformed", file, "", "no controllers (entries with a type) found")]
+    out: list[Finding] = []
+    for d in sorted(driver.controllers, key=lambda d: d.name):
+        if d.type.rsplit("/", 1)[-1] not in JOINT_DRIVER_CONTROLLERS:
+            continue  # e.g. a twist controller's `joint` names a Cartesian frame, not a URDF joint
+        for joint in d.joints or ():
+            if joint not in robot.joint_map:
+                out.append(error("controller.unknown-joint", file, d.element, f"unknown joint '{joint}'"))
+    for c in moveit.controllers:
+        out += _check_against_driver(moveit, driver, c)
+    return out
+
+
+def _check_against_driver(moveit: ControllersFile, driver: DriverFile, c: MoveItController) -> list[Finding]:
+    file = driver.where.file
+    d: DriverController | None = driver.controller(c.name)
+    if d is None:
+        known = ", ".join(sorted(x.name for x in driver.controllers)) or "none"
+        msg = f"controller '{c.name}' is not in {file} (has: {known})"
+        return [error("controller.driver-missing", moveit.where.file, c.element, msg)]
+    suffix = d.type.rsplit("/", 1)[-1]
+    if suffix not in DRIVER_CONTROLLERS:
+        return []  # a driver type we do not know: no claim either way
+    expected_type, served_ns = DRIVER_CONTROLLERS[suffix]
+    out = []
+    if c.type in MOVEIT_CONTROLLER_TYPES and c.type != expected_type:
+        msg = f"MoveIt expects a {c.type} action but '{c.name}' is a {d.type}"
+        out.append(error("controller.driver-type", file, d.element, msg))
+    elif c.action != f"{c.name}/{served_ns}":
+        msg = f"{d.type} serves '{c.name}/{served_ns}', MoveIt connects to '{c.action}'"
+        out.append(error("controller.driver-action", file, d.element, msg, f"set action_ns: {served_ns}"))
+    if d.joints is None:
+        msg = f"'{c.name}' names no joints ({d.type} needs them; MoveIt's has {list(c.joints)})"
+        out.append(error("controller.driver-joints", file, d.element, msg))
+    elif set(d.joints) != set(c.joints):
+        msg = f"joints {list(d.joints)} differ from MoveIt's {list(c.joints)} for '{c.name}'"
+        out.append(error("controller.driver-joints", file, d.element, msg))
+    return out
+
+
+# -- ArbotiX ---------------------------------------------------------------------------------------
+
+
+def check_arbotix(
+    arbotix: ArbotixFile,
+    moveit: ControllersFile,
+    robot: RobotModel,
+    gripper_nodes: Mapping[str, tuple[str, str]],
+) -> list[Finding]:
+    """arbotix.yaml joints exist; FollowJointTrajectory controllers match `controllers` by
+    name, action_name and joints; GripperCommand controllers match a gripper_controller node
+    (`gripper_nodes`: node name -> (launch file, its `joint` param))."""
+    file = arbotix.where.file
+    out: list[Finding] = []
+    for servo in sorted(arbotix.servos, key=lambda s: s.joint):
+        if servo.joint not in robot.joint_map:
+            out.append(
+                error(
+                    "controller.unknown-joint",
+                    file,
+                    f"joints.{servo.joint}",
+                    f"unknown joint '{servo.joint}'",
+                )
+            )
+    for c in moveit.controllers:
+        if c.type == GRIPPER_COMMAND:
+            out += _check_gripper_node(file, c, gripper_nodes)
+        elif c.type == FOLLOW_JOINT_TRAJECTORY:
+            out += _check_arbotix_follow(arbotix, c)
+    return out
+
+
+def _check_arbotix_follow(arbotix: ArbotixFile, c: MoveItController) -> list[Finding]:
+    file = arbotix.where.file
+    entry = arbotix.controller(c.name)
+    where = f"controllers.{c.name}"
+    if entry is None:
+        known = ", ".join(sorted(x.name for x in arbotix.controllers)) or "none"
+        return [
+            error(
+                "controller.driver-missing",
+                file,
+                "controllers",
+                f"no ArbotiX controller '{c.name}' (has: {known})",
+            )
+        ]
+    out = []
+    action = entry.action_name.value if entry.action_name is not None else FOLLOW_JOINT_TRAJECTORY_NS
+    if action != c.action:
+        msg = f"action_name '{action}' differs from MoveIt's '{c.action}'"
+        out.append(
+            error(
+                "controller.driver-action", file, f"{where}.action_name", msg, f"set action_name: {c.action}"
+            )
+        )
+    joints = entry.joints.value if entry.joints is not None else None
+    if isinstance(joints, tuple) and set(map(str, joints)) != set(c.joints):
+        msg = f"joints {list(joints)} differ from MoveIt's {list(c.joints)}"
+        out.append(error("controller.driver-joints", file, f"{where}.joints", msg))
+    return out
+
+
+def _check_gripper_node(
+    file: str, c: MoveItController, nodes: Mapping[str, tuple[str, str]]
+) -> list[Finding]:
+    if c.name not in nodes:
+        known = ", ".join(sorted(nodes)) or "none"
+        msg = f"no gripper_controller node named '{c.name}' in the launch files (found: {known})"
+        return [error("controller.driver-missing", file, "controllers", msg)]
+    launch, joint = nodes[c.name]
+    if joint and joint not in c.joints:
+        msg = (
+            f"gripper_controller '{c.name}' drives joint '{joint}', MoveIt's controller has {list(c.joints)}"
+        )
+        return [error("controller.gripper-joint", launch, f"node[{c.name}]", msg)]
+    return []

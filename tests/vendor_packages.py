@@ -1,0 +1,287 @@
+"""Small vendor-style MoveIt config packages written into a test's tmp_path (synthetic, in the
+layouts published vendor packages use, none of them copied):
+
+- `arg_selected`: MoveIt 1; the launch files pick the SRDF, joint limits and controllers with
+  an arg (`config/$(arg dof)dof/default_joint_limits.yaml`, `config/$(arg dof)dof/controllers.yaml`),
+  default scaling factors 1.0 and vendor controller names; a 6- and a 7-DOF variant.
+- `python_launch`: MoveIt 2; a Python launch builds the config with MoveItConfigsBuilder
+  (`.robot_description(mappings=...)`, `.joint_limits(file_path=...)`,
+  `.planning_pipelines(pipelines=[...])`), MoveIt's controllers in `<robot>_controllers.yaml`
+  next to `ros2_controllers.yaml`, TRAC-IK with its `solve_type`.
+- `position_only`: MoveIt 1; a 4-DOF arm that can only reach positions (`position_only_ik: True`).
+
+Each returns (package folder, package paths to pass).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from tests.helpers import build_file_tree
+from tests.synthetic_robots import _robot, arm
+
+CATKIN = """<?xml version="1.0"?>
+<package format="2"><name>{name}</name><version>1.2.3</version><description>{name}</description>
+<maintainer email="dev@vendor.example">Vendor Dev</maintainer><license>BSD</license>
+<buildtool_depend>catkin</buildtool_depend></package>
+"""
+AMENT = """<?xml version="1.0"?>
+<package format="3"><name>{name}</name><version>2.0.0</version><description>{name}</description>
+<maintainer email="dev@vendor.example">Vendor Dev</maintainer><license>BSD-3-Clause</license>
+<buildtool_depend>ament_cmake</buildtool_depend><export><build_type>ament_cmake</build_type></export></package>
+"""
+
+
+def _joints(n: int) -> list[str]:
+    return [f"joint_{i}" for i in range(1, n + 1)]
+
+
+def _arm_urdf(name: str, dof: int, gripper: bool) -> str:
+    parts = [
+        '<link name="base_link"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>'
+    ]
+    parts += arm(_joints(dof), "", "base_link", "0 0 0.06", "gripper_" if gripper else None)
+    return _robot(name, parts)
+
+
+def _srdf(robot: str, dof: int, gripper: bool) -> str:
+    joints = "".join(f'<joint name="{j}"/>' for j in _joints(dof))
+    hand = '<group name="gripper"><joint name="gripper_finger_left_joint"/></group>' if gripper else ""
+    zero = "".join(f'<joint name="{j}" value="0"/>' for j in _joints(dof))
+    bent = "".join(
+        f'<joint name="{j}" value="{0.3 if i % 2 else -0.2}"/>' for i, j in enumerate(_joints(dof))
+    )
+    return (
+        f'<?xml version="1.0"?>\n<robot name="{robot}">\n  <group name="arm">{joints}</group>\n  {hand}\n'
+        f'  <group_state name="home" group="arm">{zero}</group_state>\n'
+        f'  <group_state name="bent" group="arm">{bent}</group_state>\n'
+        '  <virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base_link"/>\n'
+        "</robot>\n"
+    )
+
+
+def _limits(dof: int, velocity: float, acceleration: float, scaling: float) -> str:
+    rows = "".join(
+        f"  {j}:\n    has_velocity_limits: true\n    max_velocity: {velocity}\n"
+        f"    has_acceleration_limits: true\n    max_acceleration: {acceleration}\n"
+        for j in _joints(dof)
+    )
+    return (
+        f"default_velocity_scaling_factor: {scaling}\ndefault_acceleration_scaling_factor: {scaling}\n"
+        f"joint_limits:\n{rows}"
+    )
+
+
+# -- MoveIt 1, files picked with an arg ---------------------------------------------------------------
+
+CONTEXT = """<launch>
+  <arg name="dof" default="6"/>
+  <arg name="load_robot_description" default="false"/>
+  <param if="$(arg load_robot_description)" name="robot_description"
+         textfile="$(find vx_description)/urdf/vx$(arg dof).urdf"/>
+  <param name="robot_description_semantic" textfile="$(find vx_moveit_config)/config/$(arg dof)dof/vx.srdf"/>
+  <group ns="robot_description_planning">
+    <rosparam command="load" file="$(find vx_moveit_config)/config/$(arg dof)dof/default_joint_limits.yaml"/>
+  </group>
+  <group ns="robot_description_kinematics">
+    <rosparam command="load" file="$(find vx_moveit_config)/config/kinematics.yaml"/>
+  </group>
+</launch>
+"""
+MOVE_GROUP = """<launch>
+  <arg name="dof" default="6"/>
+  <include file="$(dirname)/planning_context.launch"><arg name="dof" value="$(arg dof)"/></include>
+  <node name="move_group" pkg="moveit_ros_move_group" type="move_group">
+    <include file="$(dirname)/trajectory_execution.launch.xml" pass_all_args="true"/>
+  </node>
+</launch>
+"""
+EXECUTION = """<launch>
+  <arg name="dof"/>
+  <param name="moveit_controller_manager" value="moveit_simple_controller_manager/MoveItSimpleControllerManager"/>
+  <rosparam file="$(find vx_moveit_config)/config/$(arg dof)dof/controllers.yaml"/>
+</launch>
+"""
+CONTROLLERS = """controller_list:
+  - name: vx{dof}/arm_trajectory
+    action_ns: follow_joint_trajectory
+    type: FollowJointTrajectory
+    default: true
+    joints: [{joints}]
+  - name: vx{dof}/gripper_command
+    action_ns: gripper_cmd
+    type: GripperCommand
+    default: true
+    joints: [gripper_finger_left_joint]
+"""
+
+
+def arg_selected(root: Path) -> tuple[Path, list[Path]]:
+    """`vx_moveit_config` (MoveIt 1): SRDF, joint limits (0.41 rad/s, scaling 1.0) and
+    controllers in `config/$(arg dof)dof/`, the dof arg 6 by default."""
+    files = {"vx_description/package.xml": CATKIN.format(name="vx_description")}
+    config = "vx_moveit_config"
+    for dof in (6, 7):
+        files[f"vx_description/urdf/vx{dof}.urdf"] = _arm_urdf("vx", dof, gripper=True)
+        files[f"{config}/config/{dof}dof/vx.srdf"] = _srdf("vx", dof, gripper=True)
+        files[f"{config}/config/{dof}dof/default_joint_limits.yaml"] = _limits(dof, 0.41, 1.2, 1.0)
+        joints = ", ".join(_joints(dof))
+        files[f"{config}/config/{dof}dof/controllers.yaml"] = CONTROLLERS.format(dof=dof, joints=joints)
+    files.update(
+        {
+            f"{config}/package.xml": CATKIN.format(name=config),
+            f"{config}/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  URDF:\n    package: vx_description\n"
+                "    relative_path: urdf/vx6.urdf\n  SRDF:\n    relative_path: config/6dof/vx.srdf\n"
+            ),
+            f"{config}/config/kinematics.yaml": (
+                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
+                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
+            ),
+            f"{config}/launch/planning_context.launch": CONTEXT,
+            f"{config}/launch/move_group.launch": MOVE_GROUP,
+            f"{config}/launch/trajectory_execution.launch.xml": EXECUTION,
+        }
+    )
+    build_file_tree(root, files)
+    return root / config, [root]
+
+
+# -- MoveIt 2, a Python launch and <robot>_controllers.yaml ------------------------------------------
+
+LAUNCH_PY = """from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+from moveit_configs_utils import MoveItConfigsBuilder
+
+
+def generate_launch_description():
+    use_sim = LaunchConfiguration("use_sim")
+    mappings = {"gripper": "true", "use_sim": use_sim, "robot_ip": LaunchConfiguration("robot_ip")}
+    moveit_config = (
+        MoveItConfigsBuilder("bot", package_name="bot_moveit_config")
+        .robot_description(mappings=mappings)
+        .joint_limits(file_path="config/limits/bot_joint_limits.yaml")
+        .planning_pipelines(pipelines=["ompl"])
+        .to_moveit_configs()
+    )
+    move_group = Node(package="moveit_ros_move_group", executable="move_group",
+                      parameters=[moveit_config.to_dict()])
+    return LaunchDescription([
+        DeclareLaunchArgument("use_sim", default_value="false"),
+        DeclareLaunchArgument("robot_ip"),
+        move_group,
+    ])
+"""
+BOT_CONTROLLERS = """moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager
+moveit_simple_controller_manager:
+  controller_names: [bot_arm_controller, bot_hand_controller]
+  bot_arm_controller:
+    type: FollowJointTrajectory
+    action_ns: follow_joint_trajectory
+    default: true
+    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]
+  bot_hand_controller:
+    type: GripperCommand
+    action_ns: gripper_cmd
+    default: true
+    joints: [gripper_finger_left_joint]
+"""
+ROS2_CONTROLLERS = """controller_manager:
+  ros__parameters:
+    update_rate: 100
+    bot_arm_controller:
+      type: joint_trajectory_controller/JointTrajectoryController
+    bot_hand_controller:
+      type: position_controllers/GripperActionController
+    joint_state_broadcaster:
+      type: joint_state_broadcaster/JointStateBroadcaster
+bot_arm_controller:
+  ros__parameters:
+    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]
+    command_interfaces: [position]
+    state_interfaces: [position, velocity]
+bot_hand_controller:
+  ros__parameters:
+    joint: gripper_finger_left_joint
+"""
+BOT_XACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="bot">
+  <xacro:arg name="gripper" default="false"/>
+  <xacro:arg name="use_sim" default="true"/>
+  {body}
+</robot>
+"""
+
+
+def python_launch(root: Path) -> tuple[Path, list[Path]]:
+    """`bot_moveit_config` (MoveIt 2): MoveItConfigsBuilder in launch/move_group.launch.py,
+    controllers in config/bot_controllers.yaml, limits in config/limits/, TRAC-IK."""
+    body = _arm_urdf("bot", 6, gripper=True).split("\n", 2)[2].rsplit("</robot>", 1)[0]
+    config = "bot_moveit_config"
+    build_file_tree(
+        root,
+        {
+            "bot_description/package.xml": AMENT.format(name="bot_description"),
+            "bot_description/urdf/bot.urdf.xacro": BOT_XACRO.format(body=body),
+            f"{config}/package.xml": AMENT.format(name=config),
+            f"{config}/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  urdf:\n    package: bot_description\n"
+                "    relative_path: urdf/bot.urdf.xacro\n  srdf:\n    relative_path: config/bot.srdf\n"
+                "  package_settings:\n    author_name: Bot Maker\n    author_email: maker@bot.example\n"
+            ),
+            f"{config}/config/bot.srdf": _srdf("bot", 6, gripper=True),
+            f"{config}/config/bot_controllers.yaml": BOT_CONTROLLERS,
+            f"{config}/config/ros2_controllers.yaml": ROS2_CONTROLLERS,
+            f"{config}/config/limits/bot_joint_limits.yaml": _limits(6, 0.8, 2.5, 0.5),
+            f"{config}/config/kinematics.yaml": (
+                "arm:\n  kinematics_solver: trac_ik_kinematics_plugin/TRAC_IKKinematicsPlugin\n"
+                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
+                "  solve_type: Distance\n  epsilon: 1.0e-05\n"
+            ),
+            f"{config}/config/ompl_planning.yaml": (
+                "planner_configs:\n  RRTConnectkConfigDefault:\n    type: geometric::RRTConnect\n"
+                "arm:\n  planner_configs: [RRTConnectkConfigDefault]\n  default_planner_config: RRTConnectkConfigDefault\n"
+            ),
+            f"{config}/launch/move_group.launch.py": LAUNCH_PY,
+        },
+    )
+    return root / config, [root]
+
+
+# -- MoveIt 1, a 4-DOF arm with position-only IK -------------------------------------------------------
+
+
+def position_only(root: Path) -> tuple[Path, list[Path]]:
+    """`scara_moveit_config` (MoveIt 1 Setup Assistant layout, no launch files): a 4-DOF arm
+    whose IK must ignore orientation (`position_only_ik: True`)."""
+    config = "scara_moveit_config"
+    build_file_tree(
+        root,
+        {
+            "scara_description/package.xml": CATKIN.format(name="scara_description"),
+            "scara_description/urdf/scara.urdf": _arm_urdf("scara", 4, gripper=False),
+            f"{config}/package.xml": CATKIN.format(name=config),
+            f"{config}/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  URDF:\n    package: scara_description\n"
+                "    relative_path: urdf/scara.urdf\n  SRDF:\n    relative_path: config/scara.srdf\n"
+                "  CONFIG:\n    author_name: Scara Dev\n    author_email: dev@scara.example\n"
+            ),
+            f"{config}/config/scara.srdf": _srdf("scara", 4, gripper=False),
+            f"{config}/config/kinematics.yaml": (
+                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
+                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.005\n"
+                "  position_only_ik: True\n"
+            ),
+            f"{config}/config/joint_limits.yaml": _limits(4, 0.9, 3.0, 0.25),
+            f"{config}/config/simple_moveit_controllers.yaml": (
+                "controller_list:\n  - name: scara_controller\n    action_ns: follow_joint_trajectory\n"
+                "    type: FollowJointTrajectory\n    default: true\n    joints: [joint_1, joint_2, joint_3, joint_4]\n"
+            ),
+        },
+    )
+    return root / config, [root]
+
+
+PACKAGES = {"arg_selected": arg_selected, "python_launch": python_launch, "position_only": position_only}
