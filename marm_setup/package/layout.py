@@ -29,7 +29,7 @@ from marm_setup.package.launch_ros1 import YamlLoad
 from marm_setup.package.model import Source
 from marm_setup.package.perception_files import ServoConfig, read_sensors, read_servo
 from marm_setup.package.planning_file import PlanningPipeline, read_pipeline
-from marm_setup.package.where import Located, Param, Where
+from marm_setup.package.where import Located, Param, Where, unwrap_parameters
 
 DRIVER_FILES = {
     "ros2_controllers": "config/ros2_controllers.yaml",
@@ -294,15 +294,6 @@ def _ros2_pipelines(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) ->
             )
             kinds.sources.append(Source(f"pipeline:{name}", doc.where.file, how))
     kinds.values["pipelines"] = tuple(sorted(pipelines, key=lambda p: (p.name != "ompl", p.name)))
-
-
-def unwrap_parameters(doc: Located) -> Located:
-    """`{node: {ros__parameters: X}}` (or `/**`) -> X, keeping its key path; else `doc`."""
-    if doc.is_mapping and len(doc.data) == 1:
-        ((node, body),) = doc.items()
-        if body.is_mapping and body.get("ros__parameters").is_mapping:
-            return body.get("ros__parameters")
-    return doc
 
 
 def read_move_group_file(files: PackageFiles, kinds: Kinds, rel: str, how: str) -> tuple[Param, ...] | None:

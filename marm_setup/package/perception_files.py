@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from marm_setup.package.where import Located, Param, Where
+from marm_setup.package.where import Located, Param, Where, unwrap_parameters
 
 SERVO_KEYS = frozenset(
     {"command_in_type", "publish_period", "command_out_topic", "ee_frame_name", "planning_frame"}
@@ -76,7 +76,8 @@ class ServoConfig:
 
 def read_servo(doc: Located) -> ServoConfig | None:
     """The servo parameters of a file (top level or under `moveit_servo`), or None."""
-    for section in (doc.get("moveit_servo"), doc):
+    params = unwrap_parameters(doc)
+    for section in (params.get("moveit_servo"), params):
         data = section.data if isinstance(section.data, dict) else {}
         if "move_group_name" in data and SERVO_KEYS & set(data):
             return ServoConfig(section.where, section.params())

@@ -42,6 +42,7 @@ from marm_setup.package.setup_files import (
     read_setup_assistant,
 )
 from marm_setup.package.srdf_file import SrdfFile, read_srdf_file, srdf_robot_name
+from marm_setup.package.where import unwrap_parameters
 
 
 @dataclass(frozen=True)
@@ -254,8 +255,6 @@ MOVE_GROUP_KEYS = (
 
 
 def _holds_moveit_params(files: PackageFiles, rel: str) -> bool:
-    from marm_setup.package.layout import unwrap_parameters
-
     doc = files.yaml(rel)
     params = unwrap_parameters(doc) if doc is not None else None
     return params is not None and params.is_mapping and any(k in params.data for k in MOVE_GROUP_KEYS)

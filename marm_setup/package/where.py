@@ -155,3 +155,13 @@ class Located:
     @property
     def is_mapping(self) -> bool:
         return isinstance(self.data, dict)
+
+
+def unwrap_parameters(doc: Located) -> Located:
+    """A ROS 2 parameter file's `{node: {ros__parameters: X}}` (or `/**`) -> X, keeping its key
+    path; anything else unchanged."""
+    if doc.is_mapping and len(doc.data) == 1:
+        ((_node, body),) = doc.items()
+        if body.is_mapping and body.get("ros__parameters").is_mapping:
+            return body.get("ros__parameters")
+    return doc

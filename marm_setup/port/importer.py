@@ -21,10 +21,10 @@ from marm_setup.port.package import (
     report_leftovers,
     report_marm_setup,
     report_metadata,
-    report_perception,
     report_pipelines,
     robot_source,
 )
+from marm_setup.port.perception import port_perception
 from marm_setup.port.planners import port_planners
 from marm_setup.port.report import PortItem, PortLog, where
 from marm_setup.robot.model import RobotModel
@@ -67,7 +67,7 @@ def port_package(pkg: MoveItPackage, robot: RobotModel, request: PortRequest) ->
     model = _with_settings(pkg, model, robot, log)
     model = _with_controllers(pkg, model, robot, log)
     report_pipelines(pkg, request.target, log)
-    report_perception(pkg, log)
+    model = port_perception(pkg, model, robot, log)
     _report_runtime_files(pkg, log)
     report_leftovers(pkg, read_files(pkg), log)
     return Ported(model, _motion_first(log.items), pkg.shown, pkg.target, pkg.layout)

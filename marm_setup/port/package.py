@@ -116,20 +116,6 @@ def report_pipelines(pkg: MoveItPackage, target: str, log: PortLog) -> None:
             log.dropped(f"planning_pipelines.{name}", src, detail, "planners")
 
 
-def report_perception(pkg: MoveItPackage, log: PortLog) -> None:
-    """3D sensors and MoveIt Servo: each setting, exactly; the setup has no place for them yet."""
-    if pkg.sensors is not None:
-        for sensor in pkg.sensors.sensors:
-            params = ", ".join(f"{p.key}: {p.value}" for p in sensor.params)
-            detail = f"{sensor.plugin} ({params}): marm_setup.yaml has no sensors yet; copy it by hand"
-            log.dropped(f"sensors[{sensor.name}]", sensor.where, detail, "perception")
-        if not pkg.sensors.sensors:
-            log.carried("sensors", pkg.sensors.where, "none configured (an empty list)", "perception")
-    for servo in pkg.servo:
-        detail = f"{len(servo.params)} moveit_servo parameters: marm_setup.yaml has no servo yet; copy the file by hand"
-        log.dropped(f"servo[{servo.group or '?'}]", servo.where, detail, "perception")
-
-
 def report_leftovers(pkg: MoveItPackage, read: set[str], log: PortLog) -> None:
     """Every file of the source package the port did not read, with what to do about it."""
     for rel in pkg.files:

@@ -83,24 +83,25 @@ def test_every_source_file_is_accounted_for(tmp_path):
     assert sensors[0]["status"] == "carried" and "none configured" in sensors[0]["detail"]
 
 
-def test_sensors_and_servo_settings_are_each_reported_exactly(tmp_path):
-    """A 3D sensor and a MoveIt Servo file: the setup has no place for them yet, so each is a
-    dropped line naming its plugin and parameters (never a silent leftover)."""
+def test_sensors_and_servo_settings_are_carried(tmp_path):
+    """A 3D sensor and a MoveIt Servo file reach marm_setup.yaml's `sensors` and `servo` (a MoveIt
+    1 sensor, unnamed, is named by its type and index); a key the setup has no place for is a line."""
     _generate(tmp_path / "a", "ros1", "noetic")
     (tmp_path / "a" / "config" / "sensors_3d.yaml").write_text(
         "sensors:\n  - sensor_plugin: occupancy_map_monitor/PointCloudOctomapUpdater\n"
-        "    point_cloud_topic: /camera/points\n    max_range: 5.0\n"
+        "    point_cloud_topic: /camera/points\n    max_range: 3.0\n    mystery: 1\n"
     )
-    (tmp_path / "a" / "config" / "arm_servo.yaml").write_text(
-        "move_group_name: arm\ncommand_in_type: unitless\npublish_period: 0.034\nplanning_frame: base_link\n"
-    )
-    result = _port(tmp_path / "a", tmp_path / "b", "--format", "json")
+    servo = tmp_path / "a" / "config" / "arm_servo.yaml"
+    servo.write_text(servo.read_text().replace("publish_period: 0.034", "publish_period: 0.02"))
+    result = _port(tmp_path / "a", tmp_path / "b", "--target", "ros2", "--ros-distro", "humble", "--format", "json")
+    assert result.exit_code == 0, result.output
     items = _items(result)
-    sensor = items["sensors[0]"][0]
-    assert sensor["status"] == "dropped" and sensor["area"] == "perception"
-    assert "PointCloudOctomapUpdater (point_cloud_topic: /camera/points, max_range: 5.0)" in sensor["detail"]
-    servo = items["servo[arm]"][0]
-    assert servo["status"] == "dropped" and servo["source"] == "config/arm_servo.yaml"
+    assert items["sensors[0]"][0]["status"] == "carried" and items["sensors[0]"][0]["area"] == "perception"
+    assert items["sensors[0].mystery"][0]["status"] == "dropped"
+    setup = (tmp_path / "b" / "marm_setup.yaml").read_text()
+    assert "name: pointcloud_0" in setup and "topic: /camera/points" in setup and "max_range: 3.0" in setup
+    assert "group: arm" in setup and "publish_period: 0.02" in setup
+    assert "publish_period: 0.02" in (tmp_path / "b" / "config" / "arm_servo.yaml").read_text()
 
 
 def test_from_package_with_a_spec_is_one_error_line(tmp_path):
