@@ -10,7 +10,8 @@ __all__, __getattr__, __dir__ = lazy_api(
     __name__,
     {
         "problem": "planning_problem plan_between",
-        "planner": "PlannerOptions plan_joint_path",
+        "planner": "plan_joint_path",
+        "space": "PlannerOptions GroupSpace group_space",
         "timing": "time_parameterize",
         "execution": "fake_execute",
         "trajectory_io": "write_trajectory",

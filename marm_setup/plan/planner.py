@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from marm_setup.plan.rrt import interpolate, rrt_connect, shortcut, verify_path
-from marm_setup.robot.kinematics import bounds
+from marm_setup.plan.space import GroupSpace, PlannerOptions, group_space
 from marm_setup.robot.model import LIMIT_TOLERANCE, RobotModel
 
 Pair = tuple[str, str]
@@ -37,19 +37,6 @@ __all__ = [
     "plan_joint_path",
     "state_problem",
 ]
-
-
-@dataclass(frozen=True, slots=True)
-class PlannerOptions:
-    """Planner settings: steps in joint units ([rad] or [m], Euclidean), budgets in count and [s]."""
-
-    max_step: float = 0.02  # edge collision-check resolution
-    max_range: float = 0.6  # longest tree extension
-    max_iterations: int = 20000
-    max_time_s: float = 10.0
-    shortcut_iterations: int = 30
-    shortcut_patience: int = 5  # stop shortcutting after this many failed attempts in a row
-    coarse_stride: int = 8  # a line's every 8th state is checked first, in one call; then the rest
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,35 +63,6 @@ class PlanFailed:
 
 
 PlanResult = PlanFound | PlanFailed
-
-
-@dataclass(frozen=True, eq=False)
-class GroupSpace:
-    """The planning space: group joint indices among the active joints, bounds, held joints."""
-
-    joint_names: tuple[str, ...]
-    index: np.ndarray
-    lower: np.ndarray
-    upper: np.ndarray
-    q_base: np.ndarray  # full configuration supplying every joint outside the group
-
-    def to_full(self, q: np.ndarray) -> np.ndarray:
-        q = np.atleast_2d(q)
-        full = np.repeat(self.q_base[None, :], len(q), axis=0)
-        full[:, self.index] = q
-        return full
-
-
-def group_space(robot: RobotModel, joint_names: Sequence[str], q_base: np.ndarray) -> GroupSpace:
-    """The space of `joint_names` (active joints of `robot`), others held at `q_base`."""
-    names = robot.active_joint_names
-    unknown = [n for n in joint_names if n not in names]
-    if unknown:
-        raise ValueError(f"not active joints: {', '.join(unknown)}")
-    index = np.array([names.index(n) for n in joint_names], dtype=int)
-    lower, upper = bounds(robot)
-    q_base = np.asarray(q_base, dtype=float)
-    return GroupSpace(tuple(joint_names), index, lower[index], upper[index], q_base.copy())
 
 
 def discretize_path(q_path: np.ndarray, max_step: float) -> np.ndarray:

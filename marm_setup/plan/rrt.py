@@ -9,12 +9,11 @@ force, which beats a k-d tree at the few thousand nodes these queries need.
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING, Protocol
+from typing import Protocol
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from marm_setup.plan.planner import GroupSpace, PlannerOptions
+from marm_setup.plan.space import GroupSpace, PlannerOptions
 
 
 class LineChecker(Protocol):
