@@ -2,13 +2,29 @@
 
 from __future__ import annotations
 
+import enum
 import json
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-ERROR = "error"
-WARNING = "warning"
-SEVERITIES = (ERROR, WARNING)
+
+class Severity(str, enum.Enum):
+    """An error is what MoveIt (or its launcher, driver or controller manager) would fail on or
+    do wrong; a warning what MoveIt warns about, or a likely mistake (DESIGN §5)."""
+
+    ERROR = "error"
+    WARNING = "warning"
+
+    def __str__(self) -> str:
+        return self.value
+
+    def __format__(self, spec: str) -> str:
+        return format(self.value, spec)
+
+
+ERROR = Severity.ERROR
+WARNING = Severity.WARNING
+SEVERITIES = tuple(Severity)
 INTERNAL = "internal.error"  # a crash inside validate itself (exit 2), never the package's fault
 
 _COLOURS = {ERROR: "\x1b[31m", WARNING: "\x1b[33m"}
@@ -39,7 +55,7 @@ class Finding:
     `evidence` (not part of its identity) a state that shows it, where one does."""
 
     rule: str
-    severity: str  # error | warning
+    severity: Severity
     file: str  # relative to the package (or the path the user gave for files outside it)
     element: str  # e.g. `group[arm]/chain`, `panda_arm.kinematics_solver`, `line 12`
     message: str
@@ -48,7 +64,8 @@ class Finding:
 
     def __post_init__(self) -> None:
         if self.severity not in SEVERITIES:
-            raise ValueError(f"severity must be one of {SEVERITIES}, got {self.severity!r}")
+            raise ValueError(f"severity must be one of {[s.value for s in SEVERITIES]}, got {self.severity!r}")
+        object.__setattr__(self, "severity", Severity(self.severity))
 
     @property
     def is_error(self) -> bool:
@@ -69,7 +86,7 @@ def warning(
 
 def sort_findings(findings: Iterable[Finding]) -> list[Finding]:
     """Sorted by file, then element, then rule and message; exact duplicates dropped."""
-    return sorted(set(findings), key=lambda f: (f.file, f.element, f.rule, f.message, f.severity, f.hint))
+    return sorted(set(findings), key=lambda f: (f.file, f.element, f.rule, f.message, f.severity.value, f.hint))
 
 
 def count(findings: Iterable[Finding]) -> tuple[int, int]:

@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING
 from marm_setup.errors import InputError
 from marm_setup.robot.load import parse_xacro_args
 from marm_setup.robot.model import RobotModel
-from marm_setup.setup.model import ROS_DISTROS, TARGETS, CollisionSettings, RobotSource, SetupModel
+from marm_setup.ros import ROS_DISTROS, TARGETS, Distro, Target
+from marm_setup.setup.model import CollisionSettings, RobotSource, SetupModel
 
 if TYPE_CHECKING:
     from marm_setup.collision.matrix import Progress
@@ -148,9 +149,7 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
     check_output_dir(request.out, force=request.force, shown=str(request.out))
     pkg, notes = _discover_for_port(request)
     robot = _package_robot(pkg, request.xacro_args)
-    target = request.target or "ros2"
-    if target not in TARGETS:
-        raise InputError(f"'{target}' is not one of: {', '.join(TARGETS)}", element="--target")
+    target = target_of(request.target, None, "--target")
     distro = _distro(
         InitRequest(Path(), request.out, ros_distro=request.ros_distro, env_distro=request.env_distro),
         {},
@@ -425,16 +424,20 @@ def _read_spec(path: Path | None) -> dict:
     return read_yaml_mapping(path)
 
 
-def _target(request: InitRequest, spec: dict) -> str:
-    target = request.target or spec.get("target") or "ros2"
-    if target not in TARGETS:
-        raise InputError(
-            f"'{target}' is not one of: {', '.join(TARGETS)}", path=str(request.spec), element="target"
-        )
-    return target
+def _target(request: InitRequest, spec: dict) -> Target:
+    return target_of(request.target or spec.get("target"), str(request.spec), "target")
 
 
-def _distro(request: InitRequest, spec: dict, target: str) -> str:
+def target_of(given: object, path: str | None, element: str) -> Target:
+    """`given` as a Target (None: ros2, the default); InputError naming the valid ones."""
+    if given is None:
+        return Target.ROS2
+    if given not in TARGETS:
+        raise InputError(f"'{given}' is not one of: {', '.join(TARGETS)}", path=path, element=element)
+    return Target(given)
+
+
+def _distro(request: InitRequest, spec: dict, target: Target) -> Distro:
     """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
     else the target's default (noetic for ros1, humble for ros2)."""
     from marm_setup.setup.checks import distro_problem
@@ -448,8 +451,8 @@ def _distro(request: InitRequest, spec: dict, target: str) -> str:
             raise InputError(
                 problem, path=None if where == "--ros-distro" else str(request.spec), element=where
             )
-        return given
-    return request.env_distro if request.env_distro in distros else distros[0]
+        return Distro(given)
+    return Distro(request.env_distro) if request.env_distro in distros else distros[0]
 
 
 def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupModel:
@@ -574,7 +577,7 @@ def reused_ros2_control(model: SetupModel, robot: RobotModel) -> list[str]:
     """What the package's ros2_control systems are and what use_mock_hardware does to each
     (ros2): the generated system, each `<ros2_control>` system the description already has
     (reused), and how the demo puts those on mock hardware (render/hardware.py)."""
-    if model.target != "ros2":
+    if model.target != Target.ROS2:
         return []
     from marm_setup.render.context import ros2_control_joints
     from marm_setup.render.hardware import description_hardware, hardware_lines

@@ -17,6 +17,7 @@ from pathlib import Path
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error
 from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssistantFile
+from marm_setup.ros import Target
 
 SRDF_GLOBS = ("config/*.srdf", "srdf/*.srdf", "config/*.srdf.xacro", "srdf/*.srdf.xacro")
 MARM_MOVEIT_YAML = "config/moveit.yaml"
@@ -31,15 +32,15 @@ class Description:
     xacro_args: tuple[tuple[str, str], ...]
 
 
-def detect_target(root: Path, package_xml: PackageXml | None, marm: MarmSetupFile | None) -> str:
+def detect_target(root: Path, package_xml: PackageXml | None, marm: MarmSetupFile | None) -> Target:
     """ros2 for ament packages, ros1 for catkin; falls back on marm_setup.yaml and file names."""
     build = package_xml.build_type if package_xml is not None else None
     if build is not None:
-        return "ros2" if build == "ament" else "ros1"
+        return Target.ROS2 if build == "ament" else Target.ROS1
     if marm is not None and marm.target is not None:
         return marm.target
     ros2_files = ("config/moveit_controllers.yaml", "config/ros2_controllers.yaml", MARM_MOVEIT_YAML)
-    return "ros2" if any((root / f).is_file() for f in ros2_files) else "ros1"
+    return Target.ROS2 if any((root / f).is_file() for f in ros2_files) else Target.ROS1
 
 
 SrdfChoice = tuple[str, tuple[tuple[str, str], ...]]  # (relative path, xacro args)

@@ -24,6 +24,7 @@ from marm_setup.package.planning_file import PlanningPipeline
 from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssistantFile
 from marm_setup.package.srdf_file import SrdfFile
 from marm_setup.package.where import Param
+from marm_setup.ros import Distro, Target
 
 if TYPE_CHECKING:
     from marm_setup.setup.srdf import Srdf
@@ -43,7 +44,7 @@ class MoveItPackage:
     root: Path  # absolute
     shown: str  # the folder as the user typed it
     name: str  # package.xml <name>, or the folder name
-    target: str  # ros1 (catkin, MoveIt 1) | ros2 (ament, MoveIt 2)
+    target: Target  # ros1 (catkin, MoveIt 1) | ros2 (ament, MoveIt 2)
     layout: str  # moveit1 | moveit2 | marm_ros2 (our single config/moveit.yaml)
     urdf: Path  # the robot description (discovery fails, InputError, when there is none)
     urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro, ...
@@ -94,7 +95,7 @@ class MoveItPackage:
         return tuple(t.file for t in self.launch)
 
     @property
-    def ros_distro(self) -> str | None:
+    def ros_distro(self) -> Distro | None:
         """The distro marm_setup.yaml names (`ros_distro`), else None."""
         return self.marm_setup.ros_distro if self.marm_setup is not None else None
 

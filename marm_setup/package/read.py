@@ -43,6 +43,7 @@ from marm_setup.package.setup_files import (
 )
 from marm_setup.package.srdf_file import SrdfFile, read_srdf_file, srdf_robot_name
 from marm_setup.package.where import unwrap_parameters
+from marm_setup.ros import Target
 
 
 @dataclass(frozen=True)
@@ -63,7 +64,7 @@ class _Setup:
     sa: SetupAssistantFile | None
     package_xml: PackageXml | None
     paths: tuple[Path, ...]  # for $(find): this package, the user's, marm_setup.yaml's, its folder
-    target: str
+    target: Target
     name: str
 
 
@@ -95,7 +96,7 @@ def read_package(
         shown=shown,
         name=found.name,
         target=found.target,
-        layout=kinds.values.pop("layout", "moveit2" if found.target == "ros2" else "moveit1"),  # type: ignore[arg-type]
+        layout=kinds.values.pop("layout", "moveit2" if found.target == Target.ROS2 else "moveit1"),  # type: ignore[arg-type]
         urdf=description.urdf,
         urdf_origin=description.origin,
         xacro_args=description.xacro_args,
@@ -106,7 +107,7 @@ def read_package(
         srdf_file=srdf_file,
         launch=tuple(trees.values()),
         python_launch_files=python_launch_names(root),
-        ros2_control_files=_ros2_control_files(files) if found.target == "ros2" else (),
+        ros2_control_files=_ros2_control_files(files) if found.target == Target.ROS2 else (),
         files=files.listing(),
         sources=(*kinds.sources, *_srdf_source(srdf_file, launched)),
         problems=tuple(problems),
@@ -150,11 +151,11 @@ def _finder(paths: tuple[Path, ...]) -> Callable[[str], str | None]:
 
 
 def _launched(
-    files: PackageFiles, trees: Mapping[str, LaunchXml], paths: tuple[Path, ...], target: str, name: str
+    files: PackageFiles, trees: Mapping[str, LaunchXml], paths: tuple[Path, ...], target: Target, name: str
 ) -> _Launched:
     """What the launch files load; subst_value files get their launch args before any is read."""
     find = _finder(paths)
-    if target == "ros1":
+    if target == Target.ROS1:
         ros1: Ros1Launch = evaluate_ros1(files.root, trees, find)
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
@@ -226,8 +227,8 @@ def _description(
     )
 
 
-def _kinds(files: PackageFiles, target: str, launched: _Launched, problems: list[Finding]) -> Kinds:
-    if target == "ros1":
+def _kinds(files: PackageFiles, target: Target, launched: _Launched, problems: list[Finding]) -> Kinds:
+    if target == Target.ROS1:
         return read_ros1_kinds(files, launched.loads)
     assert launched.builder is not None
     kinds = read_ros2_kinds(files, launched.loads, launched.builder, launched.control_files)

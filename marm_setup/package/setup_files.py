@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from marm_setup.errors import InputError
 from marm_setup.package.where import Located
+from marm_setup.ros import TARGETS, Distro, Target
 
 if TYPE_CHECKING:
     from marm_setup.setup.model import SetupModel
@@ -86,8 +87,8 @@ class MarmSetupFile:
 
     readable: bool
     robot_name: str | None = None
-    target: str | None = None
-    ros_distro: str | None = None
+    target: Target | None = None
+    ros_distro: Distro | None = None
     urdf: str | None = None
     xacro_args: tuple[tuple[str, str], ...] = ()
     package_paths: tuple[str, ...] = ()
@@ -112,8 +113,8 @@ def read_marm_setup(doc: Located | None, shown: str = "marm_setup.yaml") -> Marm
     return MarmSetupFile(
         True,
         _text(data.get("robot_name")) if data.get("robot_name") else None,
-        data.get("target") if data.get("target") in ("ros1", "ros2") else None,
-        data.get("ros_distro") if isinstance(data.get("ros_distro"), str) else None,
+        Target(data["target"]) if data.get("target") in TARGETS else None,
+        Distro(data["ros_distro"]) if data.get("ros_distro") in set(Distro) else None,
         robot.get("urdf") if isinstance(robot.get("urdf"), str) else None,
         xacro_pairs(robot.get("xacro_args")),
         tuple(p for p in paths if isinstance(p, str)) if isinstance(paths, list) else (),

@@ -32,6 +32,7 @@ from marm_setup.plan.planner import (
 from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_config, time_parameterize
 from marm_setup.robot.kinematics import wrap_continuous
 from marm_setup.robot.model import RobotModel
+from marm_setup.ros import Target
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.limits import timing_problem
 from marm_setup.setup.srdf import allowed_pairs
@@ -71,7 +72,7 @@ def initial_configuration(package: MoveItPackage, robot: RobotModel) -> np.ndarr
 def _limits_section(package: MoveItPackage) -> tuple[dict[str, LoadedLimit], float, float]:
     """The joints' limits as MoveIt reads the file, and the default scaling factors."""
     limits = package.joint_limits
-    entries = effective_limits(limits, package.target == "ros2")
+    entries = effective_limits(limits, package.target == Target.ROS2)
     if limits is None:
         return entries, 1.0, 1.0
     return entries, _scaling(limits.velocity_scaling), _scaling(limits.acceleration_scaling)

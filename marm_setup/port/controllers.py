@@ -11,6 +11,7 @@ from marm_setup.package.driver_file import ArbotixFile, ArbotixServo, DriverCont
 from marm_setup.package.model import MoveItPackage
 from marm_setup.port.report import PortLog
 from marm_setup.robot.model import RobotModel
+from marm_setup.ros import Target
 from marm_setup.setup.domain import (
     DRIVER_ACTION_NS,
     DRIVER_CONTROLLERS,
@@ -48,7 +49,7 @@ def port_controllers(
         log.changed("controllers", "", detail, "controllers")
         return ()
     out: list[Controller] = []
-    merged = pkg.alt_moveit_controllers if pkg.target == "ros2" else ()
+    merged = pkg.alt_moveit_controllers if pkg.target == Target.ROS2 else ()
     for i, listed in enumerate((moveit, *merged)):
         _report_manager_settings(listed, log)
         for skipped in listed.skipped:
@@ -70,7 +71,7 @@ def port_controllers(
                         "the new package has one set holding both"
                     )
                     log.changed(f"controllers[{c.name}]", c.where, detail, "controllers")
-    if pkg.target == "ros1":
+    if pkg.target == Target.ROS1:
         _report_conditional(pkg, out, log)
     return tuple(out)
 
@@ -144,10 +145,10 @@ def _controller(
     return Controller(name, kind, action_ns, joints, group, c.default)
 
 
-def _kind(kind: str, joints: tuple[str, ...], target: str, setting: str, src: str, log: PortLog) -> str:
+def _kind(kind: str, joints: tuple[str, ...], target: Target, setting: str, src: str, log: PortLog) -> str:
     """ros2_control's GripperActionController drives one joint (`joint`): a GripperCommand
     controller of several joints becomes a JointTrajectoryController over all of them."""
-    if target == "ros2" and kind == GRIPPER_COMMAND and len(joints) > 1:
+    if target == Target.ROS2 and kind == GRIPPER_COMMAND and len(joints) > 1:
         detail = (
             f"GripperCommand -> FollowJointTrajectory: ros2_control's GripperActionController drives one joint, "
             f"a JointTrajectoryController drives all {len(joints)}"
@@ -191,12 +192,12 @@ def _action_ns(
 # -- driver side ---------------------------------------------------------------------------------
 
 
-def report_shared_joints(controllers: tuple[Controller, ...], target: str, log: PortLog) -> None:
+def report_shared_joints(controllers: tuple[Controller, ...], target: Target, log: PortLog) -> None:
     """ros2_control lends each command interface to one active controller (hardware_interface
     resource_manager.hpp `command_interface_is_claimed`: "Any command interface can only be claimed
     by a single instance"; controller_manager.cpp refuses to activate a controller whose interface
     is claimed, "Resource conflict"): controllers that share joints cannot all be active."""
-    if target != "ros2":
+    if target != Target.ROS2:
         return
     for i, a in enumerate(controllers):
         for b in controllers[i + 1 :]:
@@ -260,13 +261,13 @@ def _driver_item(d: DriverController, ours: Controller | None, driver: str | Non
 
 
 def port_arbotix(
-    pkg: MoveItPackage, robot: RobotModel, target: str, log: PortLog
+    pkg: MoveItPackage, robot: RobotModel, target: Target, log: PortLog
 ) -> tuple[ArbotixJoint, ...]:
     """Servo ids and speeds of `arbotix.yaml` (ros1 only); the rest of the file reported."""
     arbotix: ArbotixFile | None = pkg.arbotix
     if arbotix is None:
         return ()
-    if target != "ros1":
+    if target != Target.ROS1:
         detail = (
             "ROS 2 has no ArbotiX driver: the new package drives ros2_control mock hardware; "
             "write your hardware interface by hand"

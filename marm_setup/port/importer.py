@@ -28,6 +28,7 @@ from marm_setup.port.perception import port_perception
 from marm_setup.port.planners import port_planners
 from marm_setup.port.report import PortItem, PortLog, where
 from marm_setup.robot.model import RobotModel
+from marm_setup.ros import Distro, Target
 from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
 from marm_setup.setup.model import EndEffector, GroupState, Kinematics, SetupModel, VirtualJoint
 
@@ -39,8 +40,8 @@ class PortRequest:
     """Where the new package goes and what it is written for (target and distro resolved)."""
 
     out: Path
-    target: str
-    ros_distro: str
+    target: Target
+    ros_distro: Distro
     name: str | None = None
     package_paths: tuple[Path, ...] = ()  # the user's --package-path folders
     notes: tuple[PortItem, ...] = ()  # report items of the steps before the port (finding the package)
@@ -51,7 +52,7 @@ class Ported:
     model: SetupModel
     items: tuple[PortItem, ...]
     source: str  # the package folder as the user typed it
-    source_target: str  # ros1 | ros2
+    source_target: Target
     source_layout: str  # moveit1 | moveit2 | marm_ros2
 
 
@@ -186,7 +187,7 @@ def _with_settings(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, log
     names = [g.name for g in model.groups]
     kinematics = _without_unsolvable(port_kinematics(pkg.kinematics, names, log), pkg, robot, log)
     planning = planning_joints(model.groups, robot, model.passive_joints)
-    ros2 = pkg.target == "ros2"
+    ros2 = pkg.target == Target.ROS2
     overrides, scaling = port_joint_limits(
         pkg.joint_limits, robot, planning, model.default_acceleration, ros2, log
     )
@@ -257,7 +258,7 @@ def _with_controllers(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, 
     report_driver(pkg, controllers, model.driver_key, log)
     report_shared_joints(controllers, model.target, log)
     arbotix = port_arbotix(pkg, robot, model.target, log)
-    if model.target == "ros1" and model.driver == "arbotix" and not arbotix:
+    if model.target == Target.ROS1 and model.driver == "arbotix" and not arbotix:
         model = dataclasses.replace(model, controllers=controllers)
         arbotix = derive_group_settings(model, robot).arbotix_joints
         ids = ", ".join(f"{a.joint}={a.id}" for a in arbotix)
@@ -266,14 +267,14 @@ def _with_controllers(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, 
             "",
             f"ros1 packages drive an ArbotiX bus: servo ids assigned ({ids}); check them",
         )
-    if model.target == "ros1" and model.driver is None:
+    if model.target == Target.ROS1 and model.driver is None:
         log.todo(
             "driver",
             "",
             "the new ros1 package writes no hardware driver files (no arbotix.yaml in the source): "
             "launch your robot's driver so it serves the controllers' actions",
         )
-    if model.target == "ros2":
+    if model.target == Target.ROS2:
         log.todo(
             "ros2_control hardware",
             "",

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from marm_setup.package.model import MoveItPackage
 from marm_setup.port.report import PortLog, where
+from marm_setup.ros import Target
 from marm_setup.setup.model import Author, RobotSource
 
 # Pipelines each target's templates write (templates/<target>/config and launch).
@@ -62,7 +63,7 @@ def port_author(pkg: MoveItPackage, log: PortLog) -> Author:
     return Author()
 
 
-def report_metadata(pkg: MoveItPackage, name: str, target: str, log: PortLog) -> None:
+def report_metadata(pkg: MoveItPackage, name: str, target: Target, log: PortLog) -> None:
     """Package name, licence, version, description, urls and dependencies."""
     xml = pkg.package_xml
     src = xml.file if xml is not None else "package.xml"
@@ -96,7 +97,7 @@ def _short(text: str) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def report_pipelines(pkg: MoveItPackage, target: str, log: PortLog) -> None:
+def report_pipelines(pkg: MoveItPackage, target: Target, log: PortLog) -> None:
     """The planning pipelines the source package configures, and whether the new one has them."""
     found: dict[str, list[str]] = {}
     for rel in pkg.files:

@@ -16,6 +16,7 @@ from marm_setup.package.where import Param
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
 from marm_setup.robot.model import RobotModel
+from marm_setup.ros import Distro
 from marm_setup.setup.domain import SENSOR_TYPES, SERVO_POSITION, SERVO_TRAJECTORY
 from marm_setup.setup.model import Sensor, Servo, ServoScale, SetupModel
 
@@ -88,7 +89,7 @@ def _or_default(servos: tuple[Servo, ...], model: SetupModel, robot: RobotModel)
 
     default = default_servos(model, robot)
     plans = {p.group: p for p in plan_servos(dataclasses.replace(model, servo=default), robot)}
-    period = 0.01 if model.distro == "jazzy" else 0.034
+    period = 0.01 if model.distro == Distro.JAZZY else 0.034
     bare = []
     for servo in servos:
         plan = plans.get(servo.group)

@@ -14,6 +14,7 @@ from pathlib import PurePosixPath
 from marm_setup.errors import InputError
 from marm_setup.names import name_problem
 from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.ros import Target
 from marm_setup.setup.domain import (
     ARBOTIX_GRIPPER_ACTION_NS,
     FOLLOW_JOINT_TRAJECTORY,
@@ -322,7 +323,7 @@ def hardware_context(
 
 def pipeline_context(model: SetupModel) -> dict:
     """ros2: every pipeline as moveit.yaml writes it, and Humble's top-level capabilities."""
-    if model.target != "ros2":
+    if model.target != Target.ROS2:
         return {}
     from marm_setup.render.pipelines import pipeline_infos, top_level_capabilities
 
@@ -351,7 +352,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "arbotix_servos": arbotix_servos(model, robot),
         "gripper_nodes": gripper_nodes(model, robot),
         "ros2_control_joints": own_joints,
-        "trajectory_demo": trajectory_demo(model, robot) if model.target == "ros1" else None,
+        "trajectory_demo": trajectory_demo(model, robot) if model.target == Target.ROS1 else None,
         # the Setup Assistant's demo publishes an identity TF for every virtual joint, whatever its type
         "static_tfs": model.virtual_joints,
         "rviz": rviz_view(model, robot),
@@ -362,6 +363,6 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "cartesian_limits": CARTESIAN_LIMITS,
         "arbotix_gripper_action_ns": ARBOTIX_GRIPPER_ACTION_NS,
         "servos": servos,
-        "forward_controllers": forward_controllers(servos) if model.target == "ros2" else [],
+        "forward_controllers": forward_controllers(servos) if model.target == Target.ROS2 else [],
         "perception": plan_perception(model, robot),
     }

@@ -15,7 +15,8 @@ from marm_setup.names import did_you_mean, with_hint
 from marm_setup.render.context import build_context
 from marm_setup.robot.model import RobotModel
 from marm_setup.robot.ros_packages import package_name
-from marm_setup.setup.model import TARGETS, SetupModel
+from marm_setup.ros import TARGETS, Target
+from marm_setup.setup.model import SetupModel
 from marm_setup.setup.yaml_io import dump_setup
 from marm_setup.templating import RenderedFile, render_template
 
@@ -79,14 +80,16 @@ def output_path(template_path: str, robot_name: str) -> str:
     return f"{folder}/{name}" if folder else name
 
 
-def target_templates(target: str, driver: str | None = None) -> list[tuple[str, str]]:
+def target_templates(target: Target, driver: str | None = None) -> list[tuple[str, str]]:
     """(template name, template path in the package) for one target; common files first.
     Driver files (`arbotix.yaml`, ...) only for the driver named, and only for ros1."""
     if target not in TARGET_FILES:
         raise InputError(
             with_hint(f"unknown target '{target}'", did_you_mean(target, TARGETS)), element="target"
         )
-    other_drivers = {p for d, files in DRIVER_FILES.items() if d != driver or target != "ros1" for p in files}
+    other_drivers = {
+        p for d, files in DRIVER_FILES.items() if d != driver or target != Target.ROS1 for p in files
+    }
     common = [(f"common/{p}.j2", p) for p in COMMON_FILES]
     return common + [(f"{target}/{p}.j2", p) for p in TARGET_FILES[target] if p not in other_drivers]
 
@@ -97,7 +100,7 @@ def pipeline_templates(model: SetupModel) -> list[tuple[str, str, dict]]:
     ros2 writes every pipeline into moveit.yaml)."""
     from marm_setup.setup.domain import PIPELINES
 
-    if model.target != "ros1":
+    if model.target != Target.ROS1:
         return []
     out = []
     configs = {"ompl": "ompl_planning.yaml", "chomp": "chomp_planning.yaml", "pilz": "cartesian_limits.yaml"}
@@ -110,7 +113,7 @@ def pipeline_templates(model: SetupModel) -> list[tuple[str, str, dict]]:
     return out
 
 
-def servo_and_sensor_templates(target: str, context: dict) -> list[tuple[str, str, dict]]:
+def servo_and_sensor_templates(target: Target, context: dict) -> list[tuple[str, str, dict]]:
     """(template, path, extra context) of the servo files (a config per servo group and one launch
     file) and the perception files (ros1: the Setup Assistant's sensors_3d.yaml and sensor
     manager launch files; ros2: sensors_3d.yaml, loaded by move_group)."""
@@ -119,11 +122,11 @@ def servo_and_sensor_templates(target: str, context: dict) -> list[tuple[str, st
         for plan in context["servos"]
     ]
     if context["servos"]:
-        launch = "launch/servo.launch" if target == "ros1" else "launch/servo.launch.xml"
+        launch = "launch/servo.launch" if target == Target.ROS1 else "launch/servo.launch.xml"
         out.append((f"{target}/{launch}.j2", launch, {}))
     if context["perception"] is not None:
         out.append((f"{target}/config/sensors_3d.yaml.j2", "config/sensors_3d.yaml", {}))
-        if target == "ros1":
+        if target == Target.ROS1:
             for launch in (
                 "launch/sensor_manager.launch.xml",
                 "launch/robot_moveit_sensor_manager.launch.xml",
@@ -193,7 +196,7 @@ def hardware_templates(model: SetupModel, context: dict) -> list[tuple[str, str,
     a ros2 package whose description has no proven switch (render/hardware.py)."""
     from marm_setup.render.hardware import MOCK_SCRIPT
 
-    if model.target != "ros2" or context["description_hardware"].mode != "replace":
+    if model.target != Target.ROS2 or context["description_hardware"].mode != "replace":
         return []
     return [(f"ros2/{MOCK_SCRIPT}.j2", MOCK_SCRIPT, {})]
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from marm_setup.ros import Distro
 from marm_setup.setup.domain import PIPELINES
 from marm_setup.setup.model import PipelineParameterValue, SetupModel
 from marm_setup.setup.pipeline_params import effective_parameters
@@ -44,7 +45,7 @@ def pipeline_infos(model: SetupModel) -> list[PipelineInfo]:
         pipeline = PIPELINES[key]
         values = dict(effective_parameters(key, model.distro, given.get(key, ())))
         adapters = {k: tuple(values.pop(k, ())) for k in ADAPTER_KEYS}  # type: ignore[arg-type]
-        capabilities = str(values.pop("capabilities", "")) if model.distro == "humble" else ""
+        capabilities = str(values.pop("capabilities", "")) if model.distro == Distro.HUMBLE else ""
         out.append(
             PipelineInfo(
                 key,

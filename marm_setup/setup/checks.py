@@ -17,9 +17,10 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
 from marm_setup.robot.model import MIN_RATE, RobotModel
+from marm_setup.ros import ROS_DISTROS, Target
 from marm_setup.setup.domain import KINEMATICS_KEYS
 from marm_setup.setup.limits import joint_limits, timing_problem
-from marm_setup.setup.model import ROS_DISTROS, Controller, SetupModel
+from marm_setup.setup.model import Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
 from marm_setup.setup.rules import Style, check_semantics, setup_element
 from marm_setup.setup.sensors import check_sensors
@@ -106,9 +107,9 @@ def _check_author(c: _Checker) -> None:
         raise c.fail(f"{exc}: catkin_pkg rejects package.xml with it", "author.email") from None
 
 
-def distro_problem(target: str, distro: str | None) -> str | None:
+def distro_problem(target: Target, distro: str | None) -> str | None:
     """Why `distro` is not one the target is written for (None: it is, or none is given)."""
-    distros = ROS_DISTROS.get(target, ())
+    distros = ROS_DISTROS[target]
     if distro is None or distro in distros:
         return None
     return f"'{distro}' is not a {target} distro (valid: {', '.join(distros)})"
@@ -140,7 +141,7 @@ def _check_pipeline_parameters(c: _Checker) -> None:
     from marm_setup.setup.pipeline_params import parameter_problem
 
     model = c.model
-    if model.pipeline_parameters and model.target != "ros2":
+    if model.pipeline_parameters and model.target != Target.ROS2:
         raise c.fail(
             "written for ROS 2 (humble, jazzy) only: noetic's pipeline launch files keep MoveIt's defaults",
             "pipeline_parameters",

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from marm_setup.ros import Target
+
 # srdfdom's virtual joint types (srdfdom model.cpp loadVirtualJoints accepts these three).
 VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
 
@@ -66,7 +68,7 @@ DRIVER_ACTION_NS = {
 DEFAULT_ACTION_NS = {FOLLOW_JOINT_TRAJECTORY: FOLLOW_JOINT_TRAJECTORY_NS, GRIPPER_COMMAND: GRIPPER_CMD_NS}
 # Hardware drivers whose files a ros1 package can carry (`driver:` in the setup).
 DRIVERS = ("arbotix",)
-ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == "ros2"}
+ROS2_ACTION_NS = {kind: ns for (target, kind), ns in DRIVER_ACTION_NS.items() if target == Target.ROS2}
 
 # -- kinematics solvers --------------------------------------------------------------------------
 
@@ -128,8 +130,8 @@ class Pipeline:
     distros: tuple[str, ...]
     from_source: tuple[str, ...] = ()
 
-    def plugin(self, target: str) -> str:
-        return self.plugin_ros1 if target == "ros1" else self.plugin_ros2
+    def plugin(self, target: Target) -> str:
+        return self.plugin_ros1 if target == Target.ROS1 else self.plugin_ros2
 
 
 # The setup's `planning_pipelines` names. STOMP is not in Humble's binaries: moveit2's humble

@@ -14,6 +14,7 @@ import dataclasses
 
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
+from marm_setup.ros import Target
 from marm_setup.setup.domain import DEFAULT_ACTION_NS, FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND
 from marm_setup.setup.groups import active_group_joints, groups_by_name, is_chain
 from marm_setup.setup.limb_words import tokens
@@ -55,7 +56,7 @@ def infer(
     *,
     package_name: str,
     source: RobotSource,
-    target: str = "ros2",
+    target: Target = Target.ROS2,
     arm_required: bool = True,
     driver: str | None = None,
 ) -> Inference:
@@ -184,7 +185,7 @@ def derive_group_settings(model: SetupModel, robot: RobotModel) -> SetupModel:
     )
     planners = tuple(PlannerDefaults(g.name) for g in groups)
     arbotix: tuple[ArbotixJoint, ...] = ()
-    if model.target == "ros1" and model.driver == "arbotix":
+    if model.target == Target.ROS1 and model.driver == "arbotix":
         joints = [j for c in controllers for j in c.joints]
         arbotix = tuple(ArbotixJoint(j, i) for i, j in enumerate(joints, start=1))
     return dataclasses.replace(

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from marm_setup.collision.pairs import DisabledPair
+from marm_setup.ros import ROS_DISTROS, Distro, Target
 from marm_setup.setup.domain import (
     DEFAULT_PIPELINES,
     DEFAULT_PLANNER,
@@ -17,17 +18,14 @@ from marm_setup.setup.domain import (
     MOCK_HARDWARE,
 )
 
-TARGETS = ("ros2", "ros1")
 # a value of a planning pipeline parameter (setup.pipeline_params checks it against its type)
 PipelineParameterValue = float | int | bool | str | tuple[str, ...]
-# The ROS distros each target is written for, the target's default first. Humble and Jazzy differ
-# in MoveIt's planning pipeline parameters (DESIGN §4): Humble's PlanningPipeline reads one
-# `planning_plugin` string and `request_adapters` as one space-separated string
-# (moveit2 humble, moveit_ros/planning/planning_pipeline/src/planning_pipeline.cpp l.58-77);
-# Jazzy's reads the `planning_plugins`, `request_adapters` and `response_adapters` lists
-# (moveit2 jazzy, same file, PlanningPipeline::configure, via planning_pipeline_parameters).
-# Rolling writes what Jazzy writes, so it is not a distro of its own here.
-ROS_DISTROS = {"ros1": ("noetic",), "ros2": ("humble", "jazzy")}
+# The targets and their distros (marm_setup.ros). Humble and Jazzy differ in MoveIt's planning
+# pipeline parameters (DESIGN §4): Humble's PlanningPipeline reads one `planning_plugin` string
+# and `request_adapters` as one space-separated string (moveit2 humble, moveit_ros/planning/
+# planning_pipeline/src/planning_pipeline.cpp l.58-77); Jazzy's reads the `planning_plugins`,
+# `request_adapters` and `response_adapters` lists (moveit2 jazzy, same file,
+# PlanningPipeline::configure, via planning_pipeline_parameters).
 
 
 @dataclass(frozen=True, slots=True)
@@ -282,8 +280,8 @@ class SetupModel:
     package_name: str
     robot_name: str
     robot: RobotSource
-    target: str = "ros2"
-    ros_distro: str | None = None  # None: the target's default (ROS_DISTROS[target][0])
+    target: Target = Target.ROS2
+    ros_distro: Distro | None = None  # None: the target's default (ROS_DISTROS[target][0])
     driver: str | None = None  # ros1: the hardware driver whose files to write (arbotix), or none
     author: Author = field(default_factory=Author)
     virtual_joints: tuple[VirtualJoint, ...] = ()
@@ -317,9 +315,9 @@ class SetupModel:
     srdf_extras: SrdfExtras = field(default_factory=SrdfExtras)
 
     @property
-    def distro(self) -> str:
+    def distro(self) -> Distro:
         """The ROS distro the package is written for."""
-        return self.ros_distro or ROS_DISTROS.get(self.target, ("",))[0]
+        return self.ros_distro or ROS_DISTROS[self.target][0]
 
     def group(self, name: str) -> Group:
         return next(g for g in self.groups if g.name == name)
@@ -327,7 +325,7 @@ class SetupModel:
     @property
     def driver_key(self) -> str | None:
         """Whose action namespaces the controllers must use: `ros2` (ros2_control) or the ros1 driver."""
-        return "ros2" if self.target == "ros2" else self.driver
+        return Target.ROS2 if self.target == Target.ROS2 else self.driver
 
     def served_action_ns(self, kind: str) -> str | None:
         """The action_ns the driver serves for a controller type, or None when any will do."""

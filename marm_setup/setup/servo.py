@@ -21,6 +21,7 @@ from collections.abc import Mapping
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.robot.model import RobotModel
+from marm_setup.ros import Distro, Target
 from marm_setup.setup.domain import (
     FOLLOW_JOINT_TRAJECTORY,
     FORWARD_POSITION_CONTROLLER,
@@ -192,7 +193,7 @@ def _check_group(
             path,
             f"{where}.group",
         )
-    if model.distro == "jazzy" and servo.group not in {k.group for k in model.kinematics}:
+    if model.distro == Distro.JAZZY and servo.group not in {k.group for k in model.kinematics}:
         raise _fail(
             f"group '{servo.group}' has no IK solver (kinematics): Jazzy's servo takes its planning "
             "and end-effector frames from it",
@@ -250,7 +251,7 @@ def _check_position_output(
 ) -> None:
     """A forward position controller exists only in ros2_control, claims position commands, and
     has a name of its own (added to `forward`)."""
-    if model.target != "ros2":
+    if model.target != Target.ROS2:
         raise _fail(
             "a forward position controller is a ros2_control one: a ros1 package has none "
             "(use command_out: trajectory)",

@@ -19,6 +19,7 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from marm_setup.robot.model import RobotModel
+from marm_setup.ros import Target
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.model import GroupState, SetupModel
 from marm_setup.setup.srdf import Srdf, setup_to_srdf
@@ -68,7 +69,7 @@ def start_configuration(robot: RobotModel, values: Mapping[str, float] | None = 
 
 
 def demo_start_values(
-    target: str,
+    target: Target,
     srdf: Srdf | None,
     robot: RobotModel,
     initial: Iterable[tuple[str, str]],
@@ -77,7 +78,7 @@ def demo_start_values(
     """Joint values a package's demo sets at start (others stay at their defaults): for ros1
     the `initial` (group, pose) entries of fake_controllers.yaml, for ros2 the values of
     initial_positions.yaml (`positions`, joint -> value as written)."""
-    if target == "ros1":
+    if target == Target.ROS1:
         return initial_pose_values(srdf, robot, initial)
     return initial_position_values(positions, robot)
 

@@ -32,21 +32,12 @@ from marm_setup.setup.domain import (
     SERVO_OUTPUTS,
     VIRTUAL_JOINT_TYPES,
 )
-from marm_setup.setup.model import (
-    TARGETS,
-    Controller,
-    PlannerDefaults,
-    Sensor,
-    Servo,
-    SetupModel,
-    VirtualJoint,
-)
+from marm_setup.setup.model import Controller, PlannerDefaults, Sensor, Servo, SetupModel, VirtualJoint
 
 HEADER = "# marm-setup: this robot's MoveIt setup. Edit it, then run `marm-setup render DIR`.\n"
 
 # Fields whose strings must be one of a few values: (class, field) -> allowed values.
 CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
-    (SetupModel, "target"): TARGETS,
     (SetupModel, "driver"): DRIVERS,
     (VirtualJoint, "type"): VIRTUAL_JOINT_TYPES,
     (Controller, "type"): MOVEIT_CONTROLLER_TYPES,

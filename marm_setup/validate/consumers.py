@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
+from marm_setup.ros import Target
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -97,7 +98,7 @@ def ros2_python() -> tuple[str, str] | None:
 def run_consumer(pkg: MoveItPackage, robot: RobotModel | None, distro: str | None) -> ConsumerRun:
     """The real consumer for the package's target, when the user has it."""
     seconds = float(os.environ.get(TIMEOUT_ENV, TIMEOUT))
-    if pkg.target == "ros2":
+    if pkg.target == Target.ROS2:
         found = ros2_python()
         if found is None:
             return ConsumerRun((), "static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)")

@@ -20,6 +20,7 @@ from marm_setup.package.launch_ros1 import launch_nodes
 from marm_setup.package.model import MoveItPackage
 from marm_setup.package.read import read_package
 from marm_setup.package.start import package_start_values
+from marm_setup.ros import Target
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
     check_fake_controllers,
@@ -52,7 +53,7 @@ class Validation:
 
     findings: tuple[Finding, ...]
     package: str  # package.xml <name>
-    target: str  # ros1 | ros2
+    target: Target
     layout: str  # moveit1 | moveit2 | marm_ros2
     urdf: str  # the robot description, as the user would type it
     urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro
@@ -220,7 +221,7 @@ def check_as_launched(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[lis
 
     distro = pkg.ros_distro
     out = guarded("launch", check_install_paths, pkg)
-    if pkg.target == "ros2":
+    if pkg.target == Target.ROS2:
         out += guarded("launch", check_ros2_launch, pkg, distro)
         out += guarded("params", check_params_files, pkg.root)
     run = run_consumer(pkg, robot, distro)
@@ -324,7 +325,7 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out
     out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
-    if pkg.target == "ros2" and pkg.layout == "moveit2":
+    if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
         out += check_ros2_namespace(moveit)
     out += check_moveit_controllers(moveit, robot)
     out += check_coverage(moveit, pkg.srdf, robot, pkg.alt_moveit_controllers)
@@ -364,7 +365,7 @@ def check_with_scene(
     start = package_start_values(pkg, robot)
     out = guarded("pose", check_pose_collisions, pkg.srdf, robot, scene, pkg.srdf_path, start)
     if (
-        pkg.target == "ros2" and pkg.initial_positions is not None
+        pkg.target == Target.ROS2 and pkg.initial_positions is not None
     ):  # ros1 starts at named poses, checked above
         file = pkg.initial_positions.where.file
         out += guarded("pose", check_start_state, pkg.srdf, robot, scene, file, start)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import enum
 import os
 from pathlib import Path
 from typing import Annotated
@@ -19,12 +18,7 @@ from marm_setup.cli.common import (
     load_robot_from_cli,
     parse_count,
 )
-
-
-class Target(str, enum.Enum):
-    ros2 = "ros2"
-    ros1 = "ros1"
-
+from marm_setup.ros import Target
 
 OutOption = Annotated[Path, typer.Option("--out", help="Package folder to create.", metavar="DIR")]
 NameOption = Annotated[

@@ -33,6 +33,7 @@ from marm_setup.package.driver_file import Ros2ControlFile
 from marm_setup.package.model import MoveItPackage
 from marm_setup.package.planning_file import PlanningPipeline
 from marm_setup.package.where import Param
+from marm_setup.ros import Distro, Target
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 
 if TYPE_CHECKING:
@@ -51,7 +52,7 @@ HUMBLE_ADAPTERS = "default_planner_request_adapters/"
 JAZZY_ADAPTERS = ("default_planning_request_adapters/", "default_planning_response_adapters/")
 
 
-def check_pipeline_format(pipeline: PlanningPipeline, distro: str) -> list[Finding]:
+def check_pipeline_format(pipeline: PlanningPipeline, distro: Distro) -> list[Finding]:
     """One pipeline's planner and adapter parameters as `distro` (humble | jazzy) reads them."""
     if not pipeline.is_mapping:
         return []
@@ -60,7 +61,7 @@ def check_pipeline_format(pipeline: PlanningPipeline, distro: str) -> list[Findi
     def where(*keys: object) -> str:
         return pipeline.where.child(*keys).element
 
-    if distro == "humble":
+    if distro == Distro.HUMBLE:
         return _humble_format(pipeline.name, data, pipeline.where.file, where)
     return _jazzy_format(pipeline.name, data, pipeline.where.file, where)
 
@@ -193,10 +194,10 @@ def check_package_runtime(pkg: MoveItPackage, robot: RobotModel) -> list[Finding
     out: list[Finding] = []
     if pkg.ompl is not None and pkg.srdf is not None:
         out += check_projection_evaluators(pkg.ompl, pkg.srdf, robot)
-    if pkg.target != "ros2":
+    if pkg.target != Target.ROS2:
         return out
     distro = pkg.ros_distro
-    if distro in ("humble", "jazzy"):
+    if distro in (Distro.HUMBLE, Distro.JAZZY):
         from marm_setup.validate.rules.pipeline_param_rules import check_pipeline_parameters
 
         for pipeline in _ros2_pipelines(pkg):

@@ -12,6 +12,7 @@ from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
 from marm_setup.package.launch_xml import LaunchXml
+from marm_setup.ros import Target
 
 FIND = re.compile(r"\$\((find|find-pkg-share)\s+([^\s)]+)\)|\$\((dirname)\)")
 ARG_USE = re.compile(r"\$\((arg|var)\s+([^\s)]+)\)|\barg\(\s*['\"]([^'\"]+)['\"]\s*\)")
@@ -19,16 +20,20 @@ PATH_TAIL = re.compile(r"[^\s'\"]*")
 FILE_ATTRS = ("file", "textfile", "command")
 
 
-def check_launch_files(root: Path, package: str, launch: tuple[LaunchXml, ...], target: str) -> list[Finding]:
+def check_launch_files(
+    root: Path, package: str, launch: tuple[LaunchXml, ...], target: Target
+) -> list[Finding]:
     """Every launch rule over the package's (parsed) launch files."""
     out: list[Finding] = [t.problem for t in launch if t.problem is not None]
     parsed = {t.file: t.root for t in launch if t.root is not None}
-    shared_args = set().union(*(_defined_args(t) for t in parsed.values())) if target == "ros2" else set()
+    shared_args = (
+        set().union(*(_defined_args(t) for t in parsed.values())) if target == Target.ROS2 else set()
+    )
     passed = passed_args(parsed, root, package)
     for rel, tree in parsed.items():
         out += check_paths(tree, rel, root, package)
         out += check_args(tree, rel, _defined_args(tree) | shared_args | passed.get(rel, set()))
-        if target == "ros2":
+        if target == Target.ROS2:
             out += check_description_types(tree, rel)
     return out
 

@@ -20,6 +20,7 @@ from marm_setup.findings import Finding, error, warning
 from marm_setup.package.joint_limits_file import JointLimitEntry, JointLimitsFile
 from marm_setup.package.where import Param
 from marm_setup.robot.model import Joint, RobotModel, limit_slack
+from marm_setup.ros import Target
 from marm_setup.setup.groups import planning_joints
 
 if TYPE_CHECKING:
@@ -43,7 +44,9 @@ def _below(value: float, limit: float) -> bool:
     return value < limit - limit_slack(limit)
 
 
-def check_joint_limits(limits: JointLimitsFile, srdf: Srdf, robot: RobotModel, target: str) -> list[Finding]:
+def check_joint_limits(
+    limits: JointLimitsFile, srdf: Srdf, robot: RobotModel, target: Target
+) -> list[Finding]:
     """Every rule on a `robot_description_planning`-style file (`{joint_limits: {...}}`)."""
     file = limits.where.file
     if limits.joints is None:
@@ -65,7 +68,7 @@ def check_joint_limits(limits: JointLimitsFile, srdf: Srdf, robot: RobotModel, t
             out.append(error("limits.malformed", file, where, "expected a mapping"))
         else:
             out += _check_entry(file, entry, robot.joint(entry.joint))
-    if target == "ros2":
+    if target == Target.ROS2:
         out += _check_floats(limits)
     return out
 

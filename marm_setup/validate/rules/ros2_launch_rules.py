@@ -31,6 +31,7 @@ from lxml import etree
 from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot.ros_packages import find_packages
+from marm_setup.ros import Target
 from marm_setup.validate.launch_eval import ON_STDERR_DEFAULT, Call, LaunchEvaluator, parse_call
 
 if TYPE_CHECKING:
@@ -188,7 +189,7 @@ def _leaves_package(pkg: MoveItPackage, rel: str, text: str, m: re.Match) -> Fin
     line = text.count("\n", 0, m.start()) + 1
     msg = f"'{m.group(0)}' climbs out of the package's share folder: once installed nothing is there"
     hint = "install the file into the package (or use a file of a ROS package by its name)"
-    if pkg.target == "ros2":
+    if pkg.target == Target.ROS2:
         return error("launch.leaves-package", rel, f"line {line}", msg, hint)
     return warning(
         "launch.leaves-package", rel, f"line {line}", f"{msg} (works from a catkin devel space)", hint
