@@ -5,7 +5,7 @@ from __future__ import annotations
 import enum
 import json
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 
 class Severity(str, enum.Enum):
@@ -50,6 +50,18 @@ class Evidence:
 
 
 @dataclass(frozen=True, slots=True)
+class Location:
+    """Where a finding is, as data (its `element` is the same for people): the kind of element
+    (`group`, `group_state`, `virtual_joint`, `end_effector`, `kinematics`, ...) and its name;
+    `refers` the element it names that does not exist or cannot be used (`("group", "arm")` for
+    an unknown group), so callers decide by these, never by parsing text."""
+
+    kind: str = ""
+    name: str = ""
+    refers: tuple[str, str] | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class Finding:
     """One problem: a stable rule id (`srdf.unknown-link`), severity, where it is, what, and a fix;
     `evidence` (not part of its identity) a state that shows it, where one does."""
@@ -61,10 +73,13 @@ class Finding:
     message: str
     hint: str = ""
     evidence: Evidence | None = field(default=None, compare=False)
+    location: Location = Location()
 
     def __post_init__(self) -> None:
         if self.severity not in SEVERITIES:
-            raise ValueError(f"severity must be one of {[s.value for s in SEVERITIES]}, got {self.severity!r}")
+            raise ValueError(
+                f"severity must be one of {[s.value for s in SEVERITIES]}, got {self.severity!r}"
+            )
         object.__setattr__(self, "severity", Severity(self.severity))
 
     @property
@@ -73,20 +88,34 @@ class Finding:
 
 
 def error(
-    rule: str, file: str, element: str, message: str, hint: str = "", evidence: Evidence | None = None
+    rule: str,
+    file: str,
+    element: str,
+    message: str,
+    hint: str = "",
+    evidence: Evidence | None = None,
+    at: Location = Location(),
 ) -> Finding:
-    return Finding(rule, ERROR, file, element, message, hint, evidence)
+    return Finding(rule, ERROR, file, element, message, hint, evidence, at)
 
 
 def warning(
-    rule: str, file: str, element: str, message: str, hint: str = "", evidence: Evidence | None = None
+    rule: str,
+    file: str,
+    element: str,
+    message: str,
+    hint: str = "",
+    evidence: Evidence | None = None,
+    at: Location = Location(),
 ) -> Finding:
-    return Finding(rule, WARNING, file, element, message, hint, evidence)
+    return Finding(rule, WARNING, file, element, message, hint, evidence, at)
 
 
 def sort_findings(findings: Iterable[Finding]) -> list[Finding]:
     """Sorted by file, then element, then rule and message; exact duplicates dropped."""
-    return sorted(set(findings), key=lambda f: (f.file, f.element, f.rule, f.message, f.severity.value, f.hint))
+    return sorted(
+        set(findings), key=lambda f: (f.file, f.element, f.rule, f.message, f.severity.value, f.hint)
+    )
 
 
 def count(findings: Iterable[Finding]) -> tuple[int, int]:
@@ -142,9 +171,12 @@ def format_json(findings: Iterable[Finding], *, checked: dict | None = None) -> 
 
 
 def finding_dict(f: Finding) -> dict:
-    """A finding as plain data; `evidence` only where the finding has one."""
+    """A finding as plain data; `evidence` only where the finding has one, `location` only
+    where it says something."""
     keys = ("rule", "severity", "file", "element", "message", "hint")
     out: dict = {key: getattr(f, key) for key in keys}
     if f.evidence is not None:
         out["evidence"] = f.evidence.as_dict()
+    if f.location != Location():
+        out["location"] = {k: v for k, v in asdict(f.location).items() if v not in ("", None)}
     return out

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
+from marm_setup.findings import Finding, Location
 from marm_setup.robot.load import parse_xacro_args
 from marm_setup.robot.model import RobotModel
 from marm_setup.ros import ROS_DISTROS, TARGETS, Distro, Target
@@ -171,32 +172,40 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
     )
     changes = write_package(model, robot, request.out, force=request.force)
     validation = validate(request.out, plan=request.plan)
-    ported = _with_validation_notes(ported, pkg, validation, request.package_paths)
+    ported = _with_validation_notes(ported, pkg, validation)
     return PortResult(
         ported, model, tuple(format_change(c, forced=request.force) for c in changes), validation
     )
 
 
-def _with_validation_notes(ported, pkg, validation, package_paths):
+def _with_validation_notes(ported: Ported, pkg: MoveItPackage, validation: Validation) -> Ported:
     """One report line per validation error of the new package, saying whether the source
     package has the same error (the port carried it as it was) or the port made it."""
     from marm_setup.port.report import PortItem
-    from marm_setup.validate.runner import validate
+    from marm_setup.validate.runner import validate_read
 
     errors = [f for f in validation.findings if f.is_error]
     if not errors:
         return ported
-    source = validate(pkg.root, package_paths=package_paths, plan=False)
-    before = {(f.rule, f.message) for f in source.findings if f.is_error}  # elements differ per layout
+    source = validate_read(pkg, plan=False).validation  # the package model the port read
+    before = {_identity(f) for f in source.findings if f.is_error}
     items = []
     for f in errors:
         why = (
             "the source package has the same error: the port carried the setting as it was; fix it in marm_setup.yaml"
-            if (f.rule, f.message) in before
+            if _identity(f) in before
             else "new in the port: please report it"
         )
         items.append(PortItem("todo", f"validate {f.rule}", f"{f.file}: {f.element}", f"{f.message}; {why}"))
     return dataclasses.replace(ported, items=(*ported.items, *items))
+
+
+def _identity(finding: Finding) -> tuple:
+    """What makes a finding the same in two packages of different layouts (their files and
+    elements differ): its rule and structured location, else its rule and message."""
+    if finding.location != Location():
+        return finding.rule, finding.location
+    return finding.rule, finding.message
 
 
 def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[PortItem, ...]]:

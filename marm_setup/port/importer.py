@@ -4,7 +4,6 @@ robot -> a SetupModel for the target, plus the port report of every setting."""
 from __future__ import annotations
 
 import dataclasses
-import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,7 +31,12 @@ from marm_setup.ros import Distro, Target
 from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
 from marm_setup.setup.model import EndEffector, GroupState, Kinematics, SetupModel, VirtualJoint
 
-DROPPABLE = re.compile(r"(virtual_joints|end_effectors|group_states)\[(.+?)\]")
+# The SRDF elements the port leaves out when MoveIt fails on or skips them (their setup key).
+DROPPABLE = {
+    "virtual_joint": "virtual_joints",
+    "end_effector": "end_effectors",
+    "group_state": "group_states",
+}
 
 
 @dataclass(frozen=True)
@@ -147,9 +151,9 @@ def _without_srdf_errors(model: SetupModel, robot: RobotModel, file: str, log: P
 
     drop: dict[tuple[str, str], str] = {}
     for f in check_semantics(setup_to_srdf(model), robot, file, setup_element):
-        m = DROPPABLE.match(f.element)
-        if f.is_error and m:
-            drop.setdefault((m[1], m[2]), f.message)
+        kind = DROPPABLE.get(f.location.kind)
+        if f.is_error and kind is not None:
+            drop.setdefault((kind, f.location.name), f.message)
     for (kind, name), message in drop.items():
         log.dropped(f"{kind}[{name}]", where(file, kind), f"{message} (left out of the new package)", "srdf")
 

@@ -13,7 +13,7 @@ from collections import Counter
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
-from marm_setup.findings import Finding, error, warning
+from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.names import did_you_mean
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.domain import VIRTUAL_JOINT_TYPES
@@ -74,18 +74,23 @@ class _Rules:
         self.srdf, self.robot, self.file, self.style = srdf, robot, file, style
         self.groups = groups_by_name(srdf.groups)
 
-    def error(self, rule: str, where: Where, message: str, hint: str = "") -> Finding:
-        return error(rule, self.file, self.style(where), message, hint)
+    def error(
+        self, rule: str, where: Where, message: str, hint: str = "", refers: tuple[str, str] | None = None
+    ) -> Finding:
+        return error(
+            rule, self.file, self.style(where), message, hint, at=Location(where.kind, where.name, refers)
+        )
 
     def warning(self, rule: str, where: Where, message: str, hint: str = "") -> Finding:
-        return warning(rule, self.file, self.style(where), message, hint)
+        return warning(rule, self.file, self.style(where), message, hint, at=Location(where.kind, where.name))
 
     def unknown(self, rule: str, kind: str, name: str, known: Iterable[str], where: Where) -> list[Finding]:
         """[the unknown-name finding] when `name` is not in `known`, else []."""
         known = tuple(known)
         if name in known:
             return []
-        return [self.error(rule, where, f"unknown {kind} '{name}'", did_you_mean(name, known))]
+        refers = ("group" if kind.endswith("group") else kind, name)
+        return [self.error(rule, where, f"unknown {kind} '{name}'", did_you_mean(name, known), refers)]
 
     def link(self, name: str, where: Where) -> list[Finding]:
         return self.unknown("srdf.unknown-link", "link", name, self.robot.link_map, where)

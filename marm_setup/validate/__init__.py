@@ -9,7 +9,7 @@ from marm_setup.exports import lazy_api
 __all__, __getattr__, __dir__ = lazy_api(
     __name__,
     {
-        "runner": "validate validate_package matrix_settings Validation ValidatedPackage",
+        "runner": "validate validate_package validate_read matrix_settings Validation ValidatedPackage",
         "runtime": "check_runtime PlannedPair",
     },
 )

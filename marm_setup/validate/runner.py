@@ -149,6 +149,21 @@ def validate_package(
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
     pkg = read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
+    return validate_read(
+        pkg, xacro_args=xacro_args, plan=plan, matrix_trials=matrix_trials, progress=progress
+    )
+
+
+def validate_read(
+    pkg: MoveItPackage,
+    *,
+    xacro_args: Mapping[str, str] | None = None,
+    plan: bool = True,
+    matrix_trials: int = MATRIX_TRIALS,
+    progress: Progress | None = None,
+) -> ValidatedPackage:
+    """Validate a package already read (its model), keeping what was planned; the
+    `--xacro-arg`s given for it, if any, are checked against what its xacros take."""
     findings = list(pkg.problems)
     xml = pkg.package_xml.file if pkg.package_xml is not None else None
     findings += guarded("package", check_package_xml, pkg.root, xml)
@@ -232,8 +247,7 @@ def without_skipped_group_cascade(findings: list[Finding], pkg: MoveItPackage) -
     """Drop 'unknown group' findings about a group the SRDF has but that could not be read (its
     own finding says why): subgroups, kinematics, OMPL and controllers name it rightly."""
     gone = pkg.srdf_file.skipped_groups if pkg.srdf_file is not None else frozenset()
-    marks = tuple(f"{kind} '{g}'" for g in gone for kind in ("unknown group", "unknown subgroup"))
-    return [f for f in findings if not any(mark in f.message for mark in marks)]
+    return [f for f in findings if f.location.refers not in {("group", g) for g in gone}]
 
 
 def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str, ...]:

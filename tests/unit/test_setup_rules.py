@@ -177,3 +177,20 @@ def test_a_limit_written_rounded_is_the_same_limit():
     assert limit_slack(2.0943951) >= 2.0944 - 2.0943951  # 5 significant digits
     assert limit_slack(2.0943951) < 2.1 - 2.0943951
     assert limit_slack(0.0) == LIMIT_TOLERANCE
+
+
+def test_findings_carry_their_element_and_what_they_name_as_data(marm_setup):
+    """Callers (validate's cascade filter, the port) read Finding.location, never the text: the
+    element's kind and name, and the unknown element it refers to."""
+    from marm_setup.findings import Location
+
+    model, marm = marm_setup
+    arm = model.groups[0]
+    broken = dataclasses.replace(
+        model,
+        groups=(*model.groups, Group("both", subgroups=(arm.name, "gone"))),
+        end_effectors=(EndEffector("ee", "nothere", "link1"),),
+    )
+    found = {f.rule: f.location for f in check_semantics(setup_to_srdf(broken), marm, "x.srdf", srdf_element)}
+    assert found["srdf.unknown-subgroup"] == Location("group", "both", ("group", "gone"))
+    assert found["srdf.ee-unknown-group"] == Location("end_effector", "ee", ("group", "nothere"))

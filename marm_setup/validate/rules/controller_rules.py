@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from marm_setup.findings import Finding, error, warning
+from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package.controllers_file import (
     SIMPLE_MANAGER,
     ControllersFile,
@@ -202,7 +202,10 @@ def _check_initial(fake: ControllersFile, srdf: Srdf) -> list[Finding]:
     for item in fake.initial or ():
         where = item.where.element
         if item.group not in groups:
-            out.append(error("controller.fake-initial-pose", file, where, f"unknown group '{item.group}'"))
+            at = Location("fake_controllers.initial", item.group, ("group", item.group))
+            out.append(
+                error("controller.fake-initial-pose", file, where, f"unknown group '{item.group}'", at=at)
+            )
         elif (item.group, item.pose) not in states:
             msg = f"group '{item.group}' has no pose '{item.pose}'"
             out.append(error("controller.fake-initial-pose", file, where, msg))

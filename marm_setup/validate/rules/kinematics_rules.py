@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from marm_setup.findings import Finding, error, warning
+from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package.kinematics_file import GroupKinematics, KinematicsFile
 from marm_setup.robot.model import RobotModel
 from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KINEMATICS_PLUGINS
@@ -30,7 +30,8 @@ def check_kinematics(kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel) 
         if entry.group not in by_name:
             known = ", ".join(sorted(by_name)) or "none"
             msg = f"unknown group '{entry.group}' (groups: {known})"
-            out.append(error("kinematics.unknown-group", file, where, msg))
+            at = Location("kinematics", entry.group, ("group", entry.group))
+            out.append(error("kinematics.unknown-group", file, where, msg, at=at))
         elif entry.params is None:
             out.append(error("kinematics.malformed", file, where, "expected a mapping"))
         else:

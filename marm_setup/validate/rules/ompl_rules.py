@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, Location, error
 from marm_setup.package.planning_file import GroupPlanning, PlanningPipeline
 from marm_setup.package.where import FrozenMapping
 
@@ -28,7 +28,8 @@ def check_ompl(ompl: PlanningPipeline, srdf: Srdf) -> list[Finding]:
         if entry.group not in groups:
             known = ", ".join(sorted(groups)) or "none"
             msg = f"unknown group '{entry.group}' (groups: {known})"
-            out.append(error("ompl.unknown-group", file, entry.where.element, msg))
+            at = Location("ompl", entry.group, ("group", entry.group))
+            out.append(error("ompl.unknown-group", file, entry.where.element, msg, at=at))
             continue
         out += _check_group(file, entry, configs)
     return out
