@@ -155,7 +155,7 @@ class GeneratedPackages:
         return vendor.urdf, [vendor.root], list(vendor.xacro_args), []
 
     def _rerender(self, humble: Generated, distro: str, out: Path) -> Generated:
-        from marm_setup.cli.commands.render import load_package_setup
+        from marm_setup.pipeline.render import load_package_setup
         from marm_setup.pipeline import write_package
 
         model, robot = load_package_setup(humble.out)

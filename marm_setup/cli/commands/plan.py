@@ -35,32 +35,15 @@ def plan(
     package_path: PackagePaths = None,
 ) -> None:
     """Plan a collision-free, time-parameterised joint trajectory between named poses."""
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.errors import InputError, PlanningFailed
-    from marm_setup.package import read_package
-    from marm_setup.plan.planner import PlanFailed
-    from marm_setup.plan.problem import plan_between, planning_problem, pose
-    from marm_setup.plan.trajectory_io import write_trajectory
-    from marm_setup.robot.load import load_robot
+    from marm_setup.pipeline.plan import PlanRequest, run_plan
 
-    if seed < 0:
-        raise InputError(f"must be >= 0, got {seed}", element="--seed")
-    package = read_package(package_dir, urdf=urdf, package_paths=package_path or ())
-    robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
-    problem = planning_problem(package, robot, CollisionScene(robot), group)
-    srdf_shown = package.user_path(package.srdf_path)
-    q_start, q_goal = pose(problem, from_pose, srdf_shown), pose(problem, to_pose, srdf_shown)
-    outcome = plan_between(problem, robot, q_start, q_goal, seed)
-    where = f"group[{group}]/{from_pose} -> {to_pose}"
-    if isinstance(outcome, PlanFailed):
-        raise PlanningFailed(f"no plan: {outcome.reason}", path=srdf_shown, element=where)
-    if not outcome.execution.ok:
-        message = "fake execution failed: " + "; ".join(outcome.execution.violations)
-        raise PlanningFailed(message, path=srdf_shown, element=where)
-    typer.echo(f"planned {group}: {from_pose} -> {to_pose} ({', '.join(problem.joint_names)})")
-    typer.echo(_summary(problem, outcome))
+    request = PlanRequest(
+        package_dir, group, from_pose, to_pose, output, seed, urdf, tuple(package_path or ())
+    )
+    result = run_plan(request)
+    typer.echo(f"planned {group}: {from_pose} -> {to_pose} ({', '.join(result.problem.joint_names)})")
+    typer.echo(_summary(result.problem, result.outcome))
     if output is not None:
-        write_trajectory(outcome.trajectory, output)
         typer.echo(f"wrote {output}")
 
 

@@ -46,27 +46,23 @@ def report(
     trajectories animated. Exit 0 when the package has no errors, 1 when it has (the page is
     written either way), 2 when it cannot be read."""
     from marm_setup.cli.progress import StageProgress
-    from marm_setup.errors import InputError
     from marm_setup.findings import INTERNAL, count
-    from marm_setup.render.writer import write_text_atomic
-    from marm_setup.report.build import build_report
+    from marm_setup.pipeline.report import ReportRequest, run_report
     from marm_setup.robot.load import parse_xacro_args
 
-    if output.suffix.lower() not in (".html", ".htm"):
-        raise InputError(f"expected an .html file, got '{output.name}'", path=str(output), element="--output")
+    request = ReportRequest(
+        package,
+        output,
+        urdf=urdf,
+        srdf=srdf,
+        xacro_args=parse_xacro_args(xacro_arg or []),
+        package_paths=tuple(package_path or ()),
+        plan=not no_plan,
+        trials=None if trials is None else parse_count(trials, element="--trials"),
+        jobs=default_jobs(jobs),
+    )
     with StageProgress() as progress:
-        result = build_report(
-            package,
-            urdf=urdf,
-            srdf=srdf,
-            xacro_args=parse_xacro_args(xacro_arg or []),
-            package_paths=package_path or [],
-            plan=not no_plan,
-            trials=None if trials is None else parse_count(trials, element="--trials"),
-            jobs=default_jobs(jobs),
-            progress=progress,
-        )
-    write_text_atomic(output, result.html, shown=str(output))
+        result = run_report(request, progress)
     findings = result.validated.validation.findings
     errors, warnings = count(findings)
     megabytes = len(result.html.encode()) / 1e6

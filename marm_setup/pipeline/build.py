@@ -1,0 +1,276 @@
+"""init's setup: inference, then an imported SRDF, then the SPEC overlaid, the distro chosen;
+checked against the robot. Reads only the SPEC and the SRDF."""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.errors import InputError
+from marm_setup.robot.load import parse_xacro_args
+from marm_setup.robot.model import RobotModel
+from marm_setup.ros import ROS_DISTROS, TARGETS, Distro, Target
+from marm_setup.setup.model import RobotSource, SetupModel
+
+if TYPE_CHECKING:
+    pass
+
+
+@dataclass(frozen=True)
+class InitRequest:
+    urdf: Path
+    out: Path
+    name: str | None = None
+    target: str | None = None
+    ros_distro: str | None = None  # None: the SPEC's, else env_distro if it fits the target, else the default
+    env_distro: str | None = None  # $ROS_DISTRO of the caller
+    spec: Path | None = None
+    from_srdf: Path | None = None
+    trials: int | None = None  # None: the SPEC's collision.trials, else 10000
+    seed: int | None = None  # None: the SPEC's collision.seed, else 0
+    jobs: int = 1  # worker processes of the collision matrix (the result does not depend on it)
+    force: bool = False
+    keep_matrix: bool = False  # take a SPEC's collision.disabled as it is (else recompute, User pairs kept)
+    xacro_args: tuple[str, ...] = ()
+    package_paths: tuple[Path, ...] = ()
+
+
+@dataclass(frozen=True)
+class Built:
+    model: SetupModel
+    notes: tuple[str, ...]
+    poses_given: bool  # the SPEC or SRDF gives named poses: none are inferred
+
+
+def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
+    """Inference, then the SRDF import, then the SPEC; checked against the robot."""
+    return build(request, robot).model
+
+
+def build(request: InitRequest, robot: RobotModel) -> Built:
+    from marm_setup.names import ros_package_name
+    from marm_setup.setup.checks import check_setup, package_name_problem, setup_warnings
+    from marm_setup.setup.infer import REFERENCE, infer
+
+    if request.name and (problem := package_name_problem(request.name)):
+        raise InputError(problem, element="--name")
+    spec = _read_spec(request.spec)
+    target = _target(request, spec)
+    name = request.name or spec.get("package_name") or ros_package_name(f"{robot.name}_moveit_config")
+    given = bool(spec) or request.from_srdf is not None  # may give the groups inference cannot find
+    driver = spec.get("driver") if isinstance(spec.get("driver"), str) else None
+    inference = infer(
+        robot,
+        package_name=str(name),
+        source=_source(request),
+        target=target,
+        arm_required=not given,
+        driver=driver,
+    )
+    model, notes = inference.model, inference.notes
+    inferred_groups = bool(model.groups)
+    srdf_args: frozenset[str] | None = None
+    if request.from_srdf is not None:
+        model, notes, srdf_args = _import_srdf(request, model, notes, robot)
+    _check_xacro_args(request, robot, srdf_args)
+    if spec:
+        model = _with_spec(model, spec, request, robot, inferred_groups)
+    model = dataclasses.replace(model, ros_distro=choose_distro(request, spec, model.target))
+    if not model.groups:
+        raise InputError(
+            f"no planning groups: no limb to infer, and the SPEC / SRDF gives none (see {REFERENCE})",
+            path=str(request.spec or request.from_srdf),
+            element="groups",
+        )
+    check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
+    poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
+    if not (request.name or spec.get("package_name")):
+        notes = (*notes, *_taken_name_warnings(str(name), request))
+    return Built(model, (*notes, *_empty_group_warnings(model), *setup_warnings(model)), poses_given)
+
+
+def _with_spec(
+    model: SetupModel, spec: dict, request: InitRequest, robot: RobotModel, inferred_groups: bool
+) -> SetupModel:
+    """`model` with the SPEC's sections in place of its own, fitted to the robot; group settings
+    filled when the groups are all the SPEC's, home poses when neither SPEC nor SRDF gives poses."""
+    from marm_setup.setup.infer import fill_group_settings, fit_to_spec, home_poses
+    from marm_setup.setup.spec_overlay import spec_items, without_replaced
+
+    model = _make_room_for_spec(model, spec)
+    merged = without_replaced(model, _apply_spec(model, spec, request), robot, spec_items(spec))
+    model = fit_to_spec(merged, robot, spec)
+    if not inferred_groups:
+        model = fill_group_settings(model, robot)
+    if "group_states" not in spec and request.from_srdf is None:
+        model = dataclasses.replace(model, group_states=home_poses(model, robot))
+    return model
+
+
+def _import_srdf(
+    request: InitRequest, model: SetupModel, notes: tuple[str, ...], robot: RobotModel
+) -> tuple[SetupModel, tuple[str, ...], frozenset[str] | None]:
+    """`model` with the SRDF's elements, as srdfdom and MoveIt load them: what they skip is
+    dropped with a warning line each (setup/srdf_load.py); the rest must pass the rules. A
+    `.srdf.xacro` is expanded first with the `--xacro-arg`s (also returned: the arguments it
+    takes). An SRDF without groups keeps the inferred ones (and their notes); one whose groups
+    all fail to load is refused: MoveIt would have nothing to plan for."""
+    from marm_setup.setup.checks import check_setup
+    from marm_setup.setup.infer import derive_group_settings
+    from marm_setup.setup.rules import srdf_element
+    from marm_setup.setup.srdf import load_srdf, srdf_to_setup
+    from marm_setup.setup.srdf_load import as_moveit_loads
+
+    path = request.from_srdf
+    assert path is not None
+    skipped: list[InputError] = []
+    args = parse_xacro_args(list(request.xacro_args))
+    raw, declared = load_srdf(path, skipped, xacro_args=args, package_paths=request.package_paths)
+    srdf, dropped = as_moveit_loads(raw, robot)
+    lines = [f"{e.element}: {e.message}" if e.element else e.message for e in skipped] + list(dropped)
+    named = len(raw.groups) + sum(1 for e in skipped if (e.element or "").startswith("group["))
+    if named and not any(g.chain or g.joints or g.links for g in srdf.groups):  # subgroups hold nothing else
+        why = f" (first: {lines[0]})" if lines else ""
+        raise InputError(
+            f"none of its {named} groups holds a joint or link of robot '{robot.name}' as MoveIt loads it{why}",
+            path=str(path),
+            element="groups",
+        )
+    warnings = tuple(f"warning: {path}: {line} (as MoveIt loads it: left out or changed)" for line in lines)
+    if srdf.groups:
+        model, notes = derive_group_settings(srdf_to_setup(srdf, model), robot), ()
+    else:
+        model = srdf_to_setup(srdf, model)
+        notes = (*notes, f"{path} defines no groups: the inferred ones are kept, with its collision pairs")
+    check_setup(model, robot, str(path), srdf_element)
+    return model, (*notes, *warnings), declared
+
+
+def _check_xacro_args(request: InitRequest, robot: RobotModel, srdf_args: frozenset[str] | None) -> None:
+    """Every `--xacro-arg` must be an argument of the robot's xacro or of the SRDF xacro."""
+    from marm_setup.robot.xacro_expand import check_xacro_args
+
+    given = parse_xacro_args(list(request.xacro_args))
+    if srdf_args is None:
+        check_xacro_args(given, robot.xacro_args, path=str(request.urdf))
+        return
+    declared = {*(robot.xacro_args or ()), *srdf_args}
+    check_xacro_args(given, declared, path=str(request.urdf), others=(str(request.from_srdf),))
+
+
+# Config packages people have installed or cloned under their default name (<robot>_moveit_config)
+
+
+WELL_KNOWN_PACKAGES = {
+    "panda_moveit_config": "MoveIt's own panda_moveit_config",  # the moveit/panda_moveit_config repository
+}
+
+
+def _taken_name_warnings(name: str, request: InitRequest) -> tuple[str, ...]:
+    """A warning when the default package name is another package's: one whose package.xml the
+    package paths (and the environment, the folders around the URDF) hold, or a well-known one."""
+    from marm_setup.robot.ros_packages import find_packages
+
+    found = find_packages(request.package_paths, near=Path(request.urdf)).manifests.get(name)
+    if found is not None and found.resolve() != request.out.resolve():
+        other = f"is also the package at {found}: two packages of one name break a workspace"
+    elif name in WELL_KNOWN_PACKAGES:
+        other = f"is the name of {WELL_KNOWN_PACKAGES[name]}"
+    else:
+        return ()
+    return (f"warning: package name '{name}' (the default) {other}; pass --name",)
+
+
+def _empty_group_warnings(model: SetupModel) -> tuple[str, ...]:
+    """srdfdom keeps a group that names nothing and MoveIt warns about it: so do we."""
+    return tuple(
+        f"warning: group '{g.name}' holds no chain, joints, links or subgroups (kept; MoveIt warns about it)"
+        for g in model.groups
+        if g.chain is None and not (g.joints or g.links or g.subgroups)
+    )
+
+
+def _make_room_for_spec(model: SetupModel, spec: dict) -> SetupModel:
+    """Drop what the SPEC gives in its own way: its poses replace the inferred ones (pose names
+    repeat across groups), and its end effectors those on the same groups."""
+    if "group_states" in spec:
+        model = dataclasses.replace(model, group_states=())
+    items = spec.get("end_effectors")
+    if isinstance(items, list):
+        taken = {e.get("group") for e in items if isinstance(e, dict)}
+        kept = tuple(e for e in model.end_effectors if e.group not in taken)
+        model = dataclasses.replace(model, end_effectors=kept)
+    return model
+
+
+def _read_spec(path: Path | None) -> dict:
+    if path is None:
+        return {}
+    from marm_setup.setup.yaml_io import read_yaml_mapping
+
+    return read_yaml_mapping(path)
+
+
+def _target(request: InitRequest, spec: dict) -> Target:
+    return target_of(request.target or spec.get("target"), str(request.spec), "target")
+
+
+def target_of(given: object, path: str | None, element: str) -> Target:
+    """`given` as a Target (None: ros2, the default); InputError naming the valid ones."""
+    if given is None:
+        return Target.ROS2
+    if given not in TARGETS:
+        raise InputError(f"'{given}' is not one of: {', '.join(TARGETS)}", path=path, element=element)
+    return Target(given)
+
+
+def choose_distro(request: InitRequest, spec: dict, target: Target) -> Distro:
+    """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
+    else the target's default (noetic for ros1, humble for ros2)."""
+    from marm_setup.setup.checks import distro_problem
+
+    distros = ROS_DISTROS[target]
+    for given, where in ((request.ros_distro, "--ros-distro"), (spec.get("ros_distro"), "ros_distro")):
+        if given is None:
+            continue
+        problem = distro_problem(target, given)
+        if problem:
+            raise InputError(
+                problem, path=None if where == "--ros-distro" else str(request.spec), element=where
+            )
+        return Distro(given)
+    return Distro(request.env_distro) if request.env_distro in distros else distros[0]
+
+
+def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupModel:
+    from marm_setup.setup.infer import merge_spec
+    from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
+
+    merged = merge_spec(setup_to_dict(model), spec)
+    if request.name:
+        merged["package_name"] = request.name
+    if request.target:
+        merged["target"] = request.target
+    merged["robot"] = setup_to_dict(model)["robot"]  # where the robot is comes from the command line
+    return setup_from_dict(merged, str(request.spec))
+
+
+def _source(request: InitRequest) -> RobotSource:
+    """Where the robot is, so the package can move (see `render.package.robot_reference`)."""
+    from marm_setup.render.package import robot_reference
+
+    out = request.out.resolve()
+    paths = [_relative(p, out) for p in request.package_paths]
+    urdf, paths = robot_reference(Path(request.urdf), out, paths)
+    return RobotSource(
+        urdf=urdf,
+        xacro_args=tuple(sorted(parse_xacro_args(list(request.xacro_args)).items())),
+        package_paths=tuple(paths),
+    )
+
+
+def _relative(path: Path, base: Path) -> str:
+    return Path(os.path.relpath(Path(path).resolve(), base)).as_posix()

@@ -1,0 +1,176 @@
+"""`init --from-package`: read the package (its package model), port it, check the setup, render
+and write it, then validate the new package and say which of its errors the source has too."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.errors import InputError
+from marm_setup.findings import Finding, Location
+from marm_setup.pipeline.build import InitRequest, choose_distro, target_of
+from marm_setup.pipeline.write import with_collision_matrix, write_package
+from marm_setup.robot.load import parse_xacro_args
+from marm_setup.robot.model import RobotModel
+from marm_setup.setup.model import SetupModel
+
+if TYPE_CHECKING:
+    from marm_setup.collision.matrix import Progress
+    from marm_setup.package.model import MoveItPackage
+    from marm_setup.port.importer import Ported
+    from marm_setup.port.report import PortItem
+    from marm_setup.validate.runner import Validation
+
+
+@dataclass(frozen=True)
+class PortInitRequest:
+    """`init --from-package PKG --out DIR`: port PKG into a new package for `target`."""
+
+    package: Path
+    out: Path
+    name: str | None = None
+    target: str | None = None  # None: ros2
+    ros_distro: str | None = None  # None: env_distro if it fits the target, else the default
+    env_distro: str | None = None
+    force: bool = False
+    package_paths: tuple[Path, ...] = ()
+    urdf: Path | None = None  # the robot description, instead of the one the package names
+    xacro_args: tuple[str, ...] = ()  # NAME:=VALUE, instead of the ones the package passes
+    plan: bool = True  # validate's runtime checks on the new package
+    jobs: int = 1
+
+
+@dataclass(frozen=True)
+class PortResult:
+    ported: Ported  # its model is the one before the collision matrix
+    model: SetupModel
+    status_lines: tuple[str, ...]
+    validation: Validation  # of the new package
+
+
+def run_port(request: PortInitRequest, progress: Progress | None = None) -> PortResult:
+    """Read the package, port it, check the setup, render and write it, then validate the result."""
+    from marm_setup.port.importer import PortRequest, port_package
+    from marm_setup.render.writer import check_output_dir, format_change
+    from marm_setup.setup.checks import check_setup
+    from marm_setup.validate.runner import validate
+
+    check_output_dir(request.out, force=request.force, shown=str(request.out))
+    pkg, notes = _discover_for_port(request)
+    robot = _package_robot(pkg, request.xacro_args)
+    target = target_of(request.target, None, "--target")
+    distro = choose_distro(
+        InitRequest(Path(), request.out, ros_distro=request.ros_distro, env_distro=request.env_distro),
+        {},
+        target,
+    )
+    ported = port_package(
+        pkg,
+        robot,
+        PortRequest(request.out, target, distro, request.name, tuple(request.package_paths), notes),
+    )
+    check_setup(ported.model, robot, pkg.user_path(pkg.srdf_path))
+    model = with_collision_matrix(
+        ported.model,
+        robot,
+        trials=ported.model.collision.trials,
+        seed=ported.model.collision.seed,
+        jobs=request.jobs,
+        progress=progress,
+    )
+    changes = write_package(model, robot, request.out, force=request.force)
+    validation = validate(request.out, plan=request.plan)
+    ported = _with_validation_notes(ported, pkg, validation)
+    return PortResult(
+        ported, model, tuple(format_change(c, forced=request.force) for c in changes), validation
+    )
+
+
+def _with_validation_notes(ported: Ported, pkg: MoveItPackage, validation: Validation) -> Ported:
+    """One report line per validation error of the new package, saying whether the source
+    package has the same error (the port carried it as it was) or the port made it."""
+    from marm_setup.port.report import PortItem
+    from marm_setup.validate.runner import validate_read
+
+    errors = [f for f in validation.findings if f.is_error]
+    if not errors:
+        return ported
+    source = validate_read(pkg, plan=False).validation  # the package model the port read
+    before = {_identity(f) for f in source.findings if f.is_error}
+    items = []
+    for f in errors:
+        why = (
+            "the source package has the same error: the port carried the setting as it was; fix it in marm_setup.yaml"
+            if _identity(f) in before
+            else "new in the port: please report it"
+        )
+        items.append(PortItem("todo", f"validate {f.rule}", f"{f.file}: {f.element}", f"{f.message}; {why}"))
+    return dataclasses.replace(ported, items=(*ported.items, *items))
+
+
+def _identity(finding: Finding) -> tuple:
+    """What makes a finding the same in two packages of different layouts (their files and
+    elements differ): its rule and structured location, else its rule and message."""
+    if finding.location != Location():
+        return finding.rule, finding.location
+    return finding.rule, finding.message
+
+
+def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[PortItem, ...]]:
+    """The package as validate reads it; a MoveIt 2 `config/<robot>.urdf.xacro` wrapper (the
+    new package writes its own) gives way to the description `.setup_assistant` names."""
+    from marm_setup.package.description import setup_assistant_description
+    from marm_setup.package.read import read_package
+    from marm_setup.port.report import PortItem
+
+    args = parse_xacro_args(list(request.xacro_args)) or None
+    pkg = read_package(
+        request.package, urdf=request.urdf, package_paths=request.package_paths, xacro_args=args
+    )
+    if pkg.urdf_origin != "config/<robot>.urdf.xacro":
+        return pkg, ()
+    sa = pkg.setup_assistant
+    found = (
+        setup_assistant_description(sa, pkg.package_paths, pkg.shown, ())
+        if sa is not None and sa.urdf_package and sa.urdf_path
+        else None
+    )
+    if found is None:
+        raise InputError(
+            f"the robot description is the package's own wrapper {pkg.urdf.name} (the new package writes its "
+            "own) and .setup_assistant names no other: give the robot's URDF (init URDF --from-package PKG)",
+            path=pkg.user_path(pkg.urdf.relative_to(pkg.root).as_posix()),
+        )
+    path, sa_args = found.urdf, sa.urdf_xacro_args if sa is not None else ()
+    wrapper = pkg.urdf.relative_to(pkg.root).as_posix()
+    pkg = read_package(
+        request.package, urdf=path, package_paths=request.package_paths, xacro_args=args or dict(sa_args)
+    )
+    note = PortItem(
+        "changed",
+        "robot.urdf",
+        f"{wrapper}, .setup_assistant",
+        f"{wrapper} wraps the description for the source's own launch files (the new package writes its "
+        f"own wrapper): the description .setup_assistant names is used, {path}",
+    )
+    return pkg, (note,)
+
+
+def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> RobotModel:
+    """The package's robot; its load failure is the one error line, and so is a `--xacro-arg`
+    (`xacro_args`) that neither its description nor its SRDF xacro takes."""
+    from marm_setup.validate.runner import check_given_xacro_args, load_package_robot
+
+    robot, problems = load_package_robot(pkg)
+    if robot is None:
+        from marm_setup.setup.checks import as_input_error
+
+        found = problems[0]
+        if found.rule == "urdf.missing":  # its hint is validate's --urdf: init says how it takes one
+            raise InputError(found.message, path=found.file, element=found.element or None, needs="--urdf")
+        raise as_input_error(found)
+    if xacro_args:
+        check_given_xacro_args(pkg, robot, parse_xacro_args(list(xacro_args)))
+    return robot

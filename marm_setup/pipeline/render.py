@@ -1,0 +1,96 @@
+"""`render DIR`: a generated package's marm_setup.yaml and robot, rendered again and written,
+hand-edited files left alone unless forced; `collisions DIR` loads a package the same way."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.errors import ConflictError, InputError
+
+if TYPE_CHECKING:
+    from marm_setup.render.writer import FileChange
+    from marm_setup.robot.model import RobotModel
+    from marm_setup.setup.model import SetupModel
+
+# What a robot loaded from marm_setup.yaml needs is given there, not by an option
+SETUP_KEYS = {"--package-path": "robot.package_paths", "--xacro-arg": "robot.xacro_args"}
+
+
+@dataclass(frozen=True)
+class RenderResult:
+    """Each file's change, files no longer generated, whether the changes were written, and why
+    not when hand-edited files kept them from it (for the caller to raise after saying what
+    would have changed)."""
+
+    changes: tuple[FileChange, ...]
+    stale: tuple[str, ...]
+    written: bool
+    refused: ConflictError | None = None
+    warnings: tuple[str, ...] = ()  # what the setup asks for that its distro's MoveIt may not do
+
+
+def run_render(
+    pkg_dir: Path, urdf: Path | None = None, *, force: bool = False, dry_run: bool = False
+) -> RenderResult:
+    """Render DIR from DIR/marm_setup.yaml (which render never rewrites) and, unless `dry_run`,
+    write it; nothing is written when a hand-edited file would be overwritten without `force`
+    (`refused` says which)."""
+    from marm_setup.render.package import SETUP_FILE, render_package
+    from marm_setup.render.writer import apply_writes, conflicts, plan_writes, stale_files
+    from marm_setup.setup.checks import setup_warnings
+
+    if urdf is not None and not urdf.is_file():
+        raise InputError("file not found", path=str(urdf), element="--urdf")
+    model, robot = load_package_setup(pkg_dir, urdf)
+    warnings = tuple(setup_warnings(model))
+    rendered = [f for f in render_package(model, robot) if f.path != SETUP_FILE]
+    changes = plan_writes(rendered, pkg_dir)
+    stale = tuple(stale_files(changes, pkg_dir, keep=[SETUP_FILE]))
+    if dry_run:
+        return RenderResult(tuple(changes), stale, False, warnings=warnings)
+    clashing = conflicts(changes)
+    if clashing and not force:
+        refused = ConflictError(
+            f"{len(clashing)} hand-edited file(s) not overwritten: {', '.join(clashing)} (use --force)",
+            path=str(pkg_dir),
+        )
+        return RenderResult(tuple(changes), stale, False, refused, warnings)
+    apply_writes(changes, pkg_dir, force=force)
+    return RenderResult(tuple(changes), stale, True, warnings=warnings)
+
+
+def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupModel, RobotModel]:
+    """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names (or
+    `urdf`, when given: the package moved away from the description it names)."""
+    from marm_setup.robot.load import load_robot
+    from marm_setup.robot.ros_packages import description_file
+    from marm_setup.robot.xacro_expand import check_xacro_args
+    from marm_setup.setup.checks import check_setup
+    from marm_setup.setup.yaml_io import load_setup
+
+    setup_path = pkg_dir / "marm_setup.yaml"
+    if not pkg_dir.is_dir():
+        raise InputError("not a directory", path=str(pkg_dir))
+    if not setup_path.is_file():
+        raise InputError(
+            "no marm_setup.yaml here (create the package with `marm-setup init`)", path=str(pkg_dir)
+        )
+    model = load_setup(setup_path)
+    source = model.robot
+    package_paths = [p for p in (_relative_to(pkg_dir, p) for p in source.package_paths) if p.is_dir()]
+    try:
+        urdf = description_file(source.urdf, pkg_dir, package_paths) if urdf is None else urdf
+        robot = load_robot(urdf, dict(source.xacro_args), package_paths)
+    except InputError as exc:  # the robot's package paths and xacro args are the setup file's
+        exc.needs = SETUP_KEYS.get(exc.needs or "", exc.needs)
+        raise
+    check_xacro_args(dict(source.xacro_args), robot.xacro_args, path=str(setup_path), key="robot.xacro_args")
+    check_setup(model, robot, str(setup_path))  # an edit may name unknown joints or leave limits
+    return model, robot
+
+
+def _relative_to(base: Path, path: str) -> Path:
+    candidate = Path(path)
+    return candidate if candidate.is_absolute() else base / candidate

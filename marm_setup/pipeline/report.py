@@ -1,0 +1,49 @@
+"""`report`: one offline HTML page of a config package (report.build_report), written atomically."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from marm_setup.errors import InputError
+
+if TYPE_CHECKING:
+    from marm_setup.report.build import Report
+
+
+@dataclass(frozen=True)
+class ReportRequest:
+    package: Path
+    output: Path  # .html or .htm
+    urdf: Path | None = None
+    srdf: Path | None = None
+    xacro_args: dict[str, str] = field(default_factory=dict)
+    package_paths: tuple[Path, ...] = ()
+    plan: bool = True
+    trials: int | None = None  # the matrix's; None: the package's, else report.build.DEFAULT_TRIALS
+    jobs: int = 1
+
+
+def run_report(request: ReportRequest, progress: Callable[[str, int, int], None] | None = None) -> Report:
+    """Build the page and write it (the page is written whatever the package's findings)."""
+    from marm_setup.render.writer import write_text_atomic
+    from marm_setup.report.build import build_report
+
+    output = request.output
+    if output.suffix.lower() not in (".html", ".htm"):
+        raise InputError(f"expected an .html file, got '{output.name}'", path=str(output), element="--output")
+    result = build_report(
+        request.package,
+        urdf=request.urdf,
+        srdf=request.srdf,
+        xacro_args=request.xacro_args,
+        package_paths=request.package_paths,
+        plan=request.plan,
+        trials=request.trials,
+        jobs=request.jobs,
+        progress=progress,
+    )
+    write_text_atomic(output, result.html, shown=str(output))
+    return result
