@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 if TYPE_CHECKING:
-    from marm_setup.robot.model import RobotModel
+    from marm_setup.robot import RobotModel
 
 UrdfArg = Annotated[
     Path, typer.Argument(help="Robot description: .urdf, .xacro or .urdf.xacro.", metavar="URDF")
@@ -48,8 +48,7 @@ def load_robot_from_cli(
     """Load a robot from command-line options (the import stays out of --help); a `--xacro-arg`
     the description does not take is an InputError, unless `check_args` is false (the caller
     checks it against more files: init's SRDF xacro)."""
-    from marm_setup.robot.load import load_robot, parse_xacro_args
-    from marm_setup.robot.xacro_expand import check_xacro_args
+    from marm_setup.robot import check_xacro_args, load_robot, parse_xacro_args
 
     args = parse_xacro_args(xacro_args or [])
     robot = load_robot(urdf, args, package_paths or [])

@@ -10,7 +10,7 @@ from marm_setup.cli.common import one_line
 
 if TYPE_CHECKING:
     from marm_setup.pipeline import PortResult
-    from marm_setup.port.report import PortItem
+    from marm_setup.port import PortItem
 
 HEADINGS = {
     "carried": "carried over",
@@ -24,7 +24,7 @@ def format_port_text(result: PortResult) -> str:
     """The port report as text: a summary line; first what changes how the robot moves (what
     was not carried as it was, one line each, and how many settings were), then the other
     items under one heading per status."""
-    from marm_setup.port.report import STATUSES, counts
+    from marm_setup.port import STATUSES, counts
 
     ported = result.ported
     n = counts(ported.items)
@@ -52,7 +52,7 @@ def format_port_text(result: PortResult) -> str:
 def closing_line(result: PortResult) -> str:
     """The last line: the new package's validation summary and what was not carried."""
     from marm_setup.findings import summary as validation_summary
-    from marm_setup.port.report import summary
+    from marm_setup.port import summary
 
     return f"{validation_summary(result.validation.findings)}; {summary(result.ported.items)}"
 
@@ -67,7 +67,7 @@ def format_port_json(result: PortResult) -> str:
     """One JSON document: the port (source, target, counts, items), the files written and the
     new package's validation (its summary and findings)."""
     from marm_setup.findings import format_json
-    from marm_setup.port.report import counts, summary
+    from marm_setup.port import counts, summary
 
     ported, validation = result.ported, result.validation
     doc = {

@@ -4,15 +4,34 @@ matrix, SRDF updates and the matrix report.
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
 
+from typing import TYPE_CHECKING
+
 from marm_setup.exports import lazy_api
 
-__all__, __getattr__, __dir__ = lazy_api(
-    __name__,
-    {
-        "pairs": "DisabledPair DisabledReason link_pair",
-        "scene": "CollisionScene",
-        "matrix": "CollisionMatrix compute_collision_matrix",
-        "srdf_update": "update_srdf render_minimal_srdf read_srdf_entries",
-        "report": "describe_matrix render_matrix_svg render_matrix_html",
-    },
-)
+API = {
+    "pairs": "DisabledPair DisabledReason link_pair",
+    "scene": "CollisionScene",
+    "matrix": "CollisionMatrix compute_collision_matrix Progress ROUND trial_samples",
+    "srdf_update": "load_srdf_text read_srdf_entries render_minimal_srdf update_srdf",
+    "report": "describe_matrix format_summary render_matrix_html render_matrix_svg",
+}
+__all__, __getattr__, __dir__ = lazy_api(__name__, API)
+
+if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.collision.matrix import ROUND as ROUND
+    from marm_setup.collision.matrix import CollisionMatrix as CollisionMatrix
+    from marm_setup.collision.matrix import Progress as Progress
+    from marm_setup.collision.matrix import compute_collision_matrix as compute_collision_matrix
+    from marm_setup.collision.matrix import trial_samples as trial_samples
+    from marm_setup.collision.pairs import DisabledPair as DisabledPair
+    from marm_setup.collision.pairs import DisabledReason as DisabledReason
+    from marm_setup.collision.pairs import link_pair as link_pair
+    from marm_setup.collision.report import describe_matrix as describe_matrix
+    from marm_setup.collision.report import format_summary as format_summary
+    from marm_setup.collision.report import render_matrix_html as render_matrix_html
+    from marm_setup.collision.report import render_matrix_svg as render_matrix_svg
+    from marm_setup.collision.scene import CollisionScene as CollisionScene
+    from marm_setup.collision.srdf_update import load_srdf_text as load_srdf_text
+    from marm_setup.collision.srdf_update import read_srdf_entries as read_srdf_entries
+    from marm_setup.collision.srdf_update import render_minimal_srdf as render_minimal_srdf
+    from marm_setup.collision.srdf_update import update_srdf as update_srdf

@@ -33,8 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from marm_setup.robot.kinematics import origin_matrix
-from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.robot import Joint, RobotModel, origin_matrix
 
 CERT_MARGIN = 1e-5  # [m] kept below every certified distance (coal's GJK tolerance is 1e-6)
 MOVING = ("revolute", "continuous", "prismatic")

@@ -23,8 +23,7 @@ import numpy as np
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.collision.trials import CHUNK, Work, trial_samples
 from marm_setup.collision.workers import Workers
-from marm_setup.robot.kinematics import default_configuration, sample_configurations
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel, default_configuration, sample_configurations
 
 __all__ = ["CHUNK", "CollisionMatrix", "PairStats", "compute_collision_matrix", "trial_samples"]
 

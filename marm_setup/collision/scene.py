@@ -23,9 +23,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from marm_setup.collision.pairs import link_pair
-from marm_setup.robot.kinematics import forward_kinematics, link_index, origin_matrix
-from marm_setup.robot.meshes import load_mesh
-from marm_setup.robot.model import Box, CollisionShape, Cylinder, Mesh, RobotModel, Sphere
+from marm_setup.robot import (
+    Box,
+    CollisionShape,
+    Cylinder,
+    Mesh,
+    RobotModel,
+    Sphere,
+    forward_kinematics,
+    link_index,
+    load_mesh,
+    origin_matrix,
+)
 
 Pair = tuple[str, str]
 _EPS = 1e-9

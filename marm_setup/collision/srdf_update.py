@@ -19,7 +19,7 @@ from lxml import etree
 from marm_setup import bounded_read
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
-from marm_setup.robot.load import xml_syntax_message
+from marm_setup.robot import xml_syntax_message
 
 COMPUTED = frozenset(
     {DisabledReason.ADJACENT, DisabledReason.DEFAULT, DisabledReason.ALWAYS, DisabledReason.NEVER}

@@ -14,8 +14,7 @@ from dataclasses import astuple, dataclass
 import numpy as np
 
 from marm_setup.collision.scene import HULL_MARGIN
-from marm_setup.robot.kinematics import sample_configurations
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel, sample_configurations
 
 Pair = tuple[str, str]
 CHUNK = 1000  # trial samples per chunk (fixed: independent of jobs and CPU count)

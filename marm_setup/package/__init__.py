@@ -5,15 +5,60 @@ into a typed value that keeps its file and key path. validate, port and plan rea
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
 
+from typing import TYPE_CHECKING
+
 from marm_setup.exports import lazy_api
 
-__all__, __getattr__, __dir__ = lazy_api(
-    __name__,
-    {
-        "read": "read_package",
-        "model": "MoveItPackage Source",
-        "limits": "LoadedLimit effective_limits",
-        "start": "package_start_values",
-        "where": "Where Param",
-    },
-)
+API = {
+    "read": "read_package",
+    "model": "MoveItPackage Source",
+    "limits": "effective_limits LoadedLimit",
+    "start": "package_start_values",
+    "where": "FrozenMapping Param Value Where",
+    "description": "marm_package_paths setup_assistant_description",
+    "controllers_file": "ControllersFile MoveItController SIMPLE_MANAGER SkippedController",
+    "driver_file": "ArbotixFile ArbotixServo DriverController DriverFile InitialPositions Ros2ControlFile",
+    "kinematics_file": "GroupKinematics KinematicsFile",
+    "joint_limits_file": "JointLimitEntry JointLimitsFile",
+    "perception_files": "Sensor ServoConfig",
+    "planning_file": "GroupPlanning PlanningPipeline",
+    "launch_xml": "LaunchXml",
+    "srdf_file": "SrdfFile",
+    "launch_ros1": "launch_nodes",
+}
+__all__, __getattr__, __dir__ = lazy_api(__name__, API)
+
+if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.package.controllers_file import SIMPLE_MANAGER as SIMPLE_MANAGER
+    from marm_setup.package.controllers_file import ControllersFile as ControllersFile
+    from marm_setup.package.controllers_file import MoveItController as MoveItController
+    from marm_setup.package.controllers_file import SkippedController as SkippedController
+    from marm_setup.package.description import marm_package_paths as marm_package_paths
+    from marm_setup.package.description import setup_assistant_description as setup_assistant_description
+    from marm_setup.package.driver_file import ArbotixFile as ArbotixFile
+    from marm_setup.package.driver_file import ArbotixServo as ArbotixServo
+    from marm_setup.package.driver_file import DriverController as DriverController
+    from marm_setup.package.driver_file import DriverFile as DriverFile
+    from marm_setup.package.driver_file import InitialPositions as InitialPositions
+    from marm_setup.package.driver_file import Ros2ControlFile as Ros2ControlFile
+    from marm_setup.package.joint_limits_file import JointLimitEntry as JointLimitEntry
+    from marm_setup.package.joint_limits_file import JointLimitsFile as JointLimitsFile
+    from marm_setup.package.kinematics_file import GroupKinematics as GroupKinematics
+    from marm_setup.package.kinematics_file import KinematicsFile as KinematicsFile
+    from marm_setup.package.launch_ros1 import launch_nodes as launch_nodes
+    from marm_setup.package.launch_xml import LaunchXml as LaunchXml
+    from marm_setup.package.limits import LoadedLimit as LoadedLimit
+    from marm_setup.package.limits import effective_limits as effective_limits
+    from marm_setup.package.model import MoveItPackage as MoveItPackage
+    from marm_setup.package.model import Source as Source
+    from marm_setup.package.perception_files import Sensor as Sensor
+    from marm_setup.package.perception_files import ServoConfig as ServoConfig
+    from marm_setup.package.planning_file import GroupPlanning as GroupPlanning
+    from marm_setup.package.planning_file import PlanningPipeline as PlanningPipeline
+    from marm_setup.package.read import read_package as read_package
+    from marm_setup.package.srdf_file import SrdfFile as SrdfFile
+    from marm_setup.package.start import package_start_values as package_start_values
+    from marm_setup.package.where import FrozenMapping as FrozenMapping
+    from marm_setup.package.where import Param as Param
+    from marm_setup.package.where import Value as Value
+    from marm_setup.package.where import Where as Where

@@ -125,7 +125,7 @@ def find_description(
 def _marm_description(
     root: Path, marm: MarmSetupFile, paths: tuple[Path, ...], args: tuple[tuple[str, str], ...]
 ) -> Description:
-    from marm_setup.robot.ros_packages import description_file
+    from marm_setup.robot import description_file
 
     assert marm.urdf is not None
     try:
@@ -140,7 +140,7 @@ def setup_assistant_description(
 ) -> Description:
     """The description `.setup_assistant` names (its URDF package and relative_path);
     InputError when the package is not found."""
-    from marm_setup.robot.ros_packages import find_package, find_packages
+    from marm_setup.robot import find_package, find_packages
 
     where = str(Path(shown) / ".setup_assistant")
     pkg_dir = find_package(str(sa.urdf_package), find_packages(paths), path=where, element="URDF.package")

@@ -29,7 +29,7 @@ def parse_launch(path: Path, rel: str) -> LaunchXml:
     from lxml import etree
 
     from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
-    from marm_setup.robot.load import xml_syntax_message
+    from marm_setup.robot import xml_syntax_message
 
     try:
         data = read_bytes(path, XML_BYTES, shown=rel)

@@ -27,7 +27,7 @@ from marm_setup.package.where import Param
 from marm_setup.ros import Distro, Target
 
 if TYPE_CHECKING:
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.setup import Srdf
 
 
 @dataclass(frozen=True, slots=True)

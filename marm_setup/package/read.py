@@ -127,7 +127,7 @@ def _setup(files: PackageFiles, shown: str, package_paths: Iterable[str | Path])
 
 
 def _name(root: Path) -> str:
-    from marm_setup.robot.ros_packages import package_name
+    from marm_setup.robot import package_name
 
     return package_name(root) or root.name
 
@@ -141,7 +141,7 @@ def _package_xml(files: PackageFiles) -> PackageXml | None:
 
 
 def _finder(paths: tuple[Path, ...]) -> Callable[[str], str | None]:
-    from marm_setup.robot.ros_packages import PackageIndex, find_packages
+    from marm_setup.robot import PackageIndex, find_packages
 
     try:
         packages = find_packages(paths)

@@ -12,7 +12,7 @@ from marm_setup.package.where import Located
 from marm_setup.ros import TARGETS, Distro, Target
 
 if TYPE_CHECKING:
-    from marm_setup.setup.model import SetupModel
+    from marm_setup.setup import SetupModel
 
 # marm_setup.yaml keys no rendered file holds: a port keeps them from the source's file.
 KEPT_KEYS = ("collision", "default_acceleration", "driver")
@@ -128,7 +128,7 @@ def read_marm_setup(doc: Located | None, shown: str = "marm_setup.yaml") -> Marm
 
 
 def _kept(data: dict, keys: tuple[str, ...], shown: str) -> tuple[SetupModel | None, InputError | None]:
-    from marm_setup.setup.yaml_io import setup_from_dict
+    from marm_setup.setup import setup_from_dict
 
     try:
         given = {"package_name": "-", "robot_name": "-", "robot": {"urdf": "-"}, **{k: data[k] for k in keys}}

@@ -16,7 +16,7 @@ from marm_setup.findings import Finding, error, warning
 if TYPE_CHECKING:
     from lxml import etree
 
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.setup import Srdf
 
 
 @dataclass(frozen=True, slots=True)
@@ -47,7 +47,7 @@ def read_srdf_file(
 ) -> SrdfFile:
     """The SRDF at `rel`; what cannot be read becomes findings in `problems` (`srdf.parse`,
     `srdf.unsupported`)."""
-    from marm_setup.setup.srdf import parse_srdf_document
+    from marm_setup.setup import parse_srdf_document
 
     xacro_args = tuple(sorted(args.items()))
     skipped: list[InputError] = []
@@ -82,7 +82,7 @@ def _srdf_text(
             return read_text(file, XML_BYTES, shown=rel), None
         except (OSError, UnicodeDecodeError) as exc:
             raise InputError(f"cannot read: {exc}", path=rel) from None
-    from marm_setup.setup.srdf import expand_srdf_xacro
+    from marm_setup.setup import expand_srdf_xacro
 
     out = expand_srdf_xacro(file, args, paths, shown=rel)
     return out.xml, frozenset(out.declared)
@@ -114,7 +114,7 @@ def _without_groups(srdf: Srdf, gone: frozenset[str]) -> Srdf:
 
 
 def _duplicate_pairs(root: etree._Element) -> tuple[tuple[str, str, int], ...]:
-    from marm_setup.collision.pairs import link_pair
+    from marm_setup.collision import link_pair
 
     counts = Counter(
         link_pair(e.get("link1", ""), e.get("link2", "")) for e in root.iterchildren("disable_collisions")

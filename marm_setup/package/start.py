@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from marm_setup.package.model import MoveItPackage
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.start_state import demo_start_values
+from marm_setup.robot import RobotModel
+from marm_setup.setup import demo_start_values
 
 
 def package_start_values(pkg: MoveItPackage, robot: RobotModel) -> dict[str, float]:

@@ -10,10 +10,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
-from marm_setup.robot.load import parse_xacro_args
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel, parse_xacro_args
 from marm_setup.ros import ROS_DISTROS, TARGETS, Distro, Target
-from marm_setup.setup.model import RobotSource, SetupModel
+from marm_setup.setup import RobotSource, SetupModel
 
 if TYPE_CHECKING:
     pass
@@ -52,8 +51,7 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
 
 def build(request: InitRequest, robot: RobotModel) -> Built:
     from marm_setup.names import ros_package_name
-    from marm_setup.setup.checks import check_setup, package_name_problem, setup_warnings
-    from marm_setup.setup.infer import REFERENCE, infer
+    from marm_setup.setup import REFERENCE, check_setup, infer_setup, package_name_problem, setup_warnings
 
     if request.name and (problem := package_name_problem(request.name)):
         raise InputError(problem, element="--name")
@@ -62,7 +60,7 @@ def build(request: InitRequest, robot: RobotModel) -> Built:
     name = request.name or spec.get("package_name") or ros_package_name(f"{robot.name}_moveit_config")
     given = bool(spec) or request.from_srdf is not None  # may give the groups inference cannot find
     driver = spec.get("driver") if isinstance(spec.get("driver"), str) else None
-    inference = infer(
+    inference = infer_setup(
         robot,
         package_name=str(name),
         source=_source(request),
@@ -97,8 +95,7 @@ def _with_spec(
 ) -> SetupModel:
     """`model` with the SPEC's sections in place of its own, fitted to the robot; group settings
     filled when the groups are all the SPEC's, home poses when neither SPEC nor SRDF gives poses."""
-    from marm_setup.setup.infer import fill_group_settings, fit_to_spec, home_poses
-    from marm_setup.setup.spec_overlay import spec_items, without_replaced
+    from marm_setup.setup import fill_group_settings, fit_to_spec, home_poses, spec_items, without_replaced
 
     model = _make_room_for_spec(model, spec)
     merged = without_replaced(model, _apply_spec(model, spec, request), robot, spec_items(spec))
@@ -118,11 +115,14 @@ def _import_srdf(
     `.srdf.xacro` is expanded first with the `--xacro-arg`s (also returned: the arguments it
     takes). An SRDF without groups keeps the inferred ones (and their notes); one whose groups
     all fail to load is refused: MoveIt would have nothing to plan for."""
-    from marm_setup.setup.checks import check_setup
-    from marm_setup.setup.infer import derive_group_settings
-    from marm_setup.setup.rules import srdf_element
-    from marm_setup.setup.srdf import load_srdf, srdf_to_setup
-    from marm_setup.setup.srdf_load import as_moveit_loads
+    from marm_setup.setup import (
+        as_moveit_loads,
+        check_setup,
+        derive_group_settings,
+        load_srdf,
+        srdf_element,
+        srdf_to_setup,
+    )
 
     path = request.from_srdf
     assert path is not None
@@ -151,7 +151,7 @@ def _import_srdf(
 
 def _check_xacro_args(request: InitRequest, robot: RobotModel, srdf_args: frozenset[str] | None) -> None:
     """Every `--xacro-arg` must be an argument of the robot's xacro or of the SRDF xacro."""
-    from marm_setup.robot.xacro_expand import check_xacro_args
+    from marm_setup.robot import check_xacro_args
 
     given = parse_xacro_args(list(request.xacro_args))
     if srdf_args is None:
@@ -172,7 +172,7 @@ WELL_KNOWN_PACKAGES = {
 def _taken_name_warnings(name: str, request: InitRequest) -> tuple[str, ...]:
     """A warning when the default package name is another package's: one whose package.xml the
     package paths (and the environment, the folders around the URDF) hold, or a well-known one."""
-    from marm_setup.robot.ros_packages import find_packages
+    from marm_setup.robot import find_packages
 
     found = find_packages(request.package_paths, near=Path(request.urdf)).manifests.get(name)
     if found is not None and found.resolve() != request.out.resolve():
@@ -209,7 +209,7 @@ def _make_room_for_spec(model: SetupModel, spec: dict) -> SetupModel:
 def _read_spec(path: Path | None) -> dict:
     if path is None:
         return {}
-    from marm_setup.setup.yaml_io import read_yaml_mapping
+    from marm_setup.setup import read_yaml_mapping
 
     return read_yaml_mapping(path)
 
@@ -230,7 +230,7 @@ def target_of(given: object, path: str | None, element: str) -> Target:
 def choose_distro(request: InitRequest, spec: dict, target: Target) -> Distro:
     """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
     else the target's default (noetic for ros1, humble for ros2)."""
-    from marm_setup.setup.checks import distro_problem
+    from marm_setup.setup import distro_problem
 
     distros = ROS_DISTROS[target]
     for given, where in ((request.ros_distro, "--ros-distro"), (spec.get("ros_distro"), "ros_distro")):
@@ -246,8 +246,7 @@ def choose_distro(request: InitRequest, spec: dict, target: Target) -> Distro:
 
 
 def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupModel:
-    from marm_setup.setup.infer import merge_spec
-    from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
+    from marm_setup.setup import merge_spec, setup_from_dict, setup_to_dict
 
     merged = merge_spec(setup_to_dict(model), spec)
     if request.name:
@@ -260,7 +259,7 @@ def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupMod
 
 def _source(request: InitRequest) -> RobotSource:
     """Where the robot is, so the package can move (see `render.package.robot_reference`)."""
-    from marm_setup.render.package import robot_reference
+    from marm_setup.render import robot_reference
 
     out = request.out.resolve()
     paths = [_relative(p, out) for p in request.package_paths]

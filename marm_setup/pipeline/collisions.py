@@ -16,9 +16,8 @@ from marm_setup.names import did_you_mean, with_hint
 if TYPE_CHECKING:
     import numpy as np
 
-    from marm_setup.collision.matrix import CollisionMatrix, Progress
-    from marm_setup.collision.pairs import DisabledPair
-    from marm_setup.robot.model import RobotModel
+    from marm_setup.collision import CollisionMatrix, DisabledPair, Progress
+    from marm_setup.robot import RobotModel
 
 
 @dataclass(frozen=True)
@@ -53,9 +52,12 @@ def run_collisions(
     request: CollisionsRequest, robot: RobotModel, progress: Progress | None = None
 ) -> CollisionsResult:
     """Compute the matrix; update or write the SRDF and the report the request names."""
-    from marm_setup.collision.matrix import compute_collision_matrix
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.collision.srdf_update import load_srdf_text, read_srdf_entries
+    from marm_setup.collision import (
+        CollisionScene,
+        compute_collision_matrix,
+        load_srdf_text,
+        read_srdf_entries,
+    )
 
     srdf, srdf_text = request.srdf, None
     if srdf is not None:
@@ -93,8 +95,8 @@ def pose_configuration(robot: RobotModel, srdf_text: str, name: str, shown: str)
     """The default configuration with the SRDF pose `name` laid over it: a pose of any group,
     composite ones included; where several groups have a pose of that name (a `home` per
     group), all of them. Multi-DOF values (a virtual joint's) do not move the robot's links."""
-    from marm_setup.robot.kinematics import default_configuration
-    from marm_setup.setup.srdf import parse_srdf_string
+    from marm_setup.robot import default_configuration
+    from marm_setup.setup import parse_srdf_string
 
     states = parse_srdf_string(srdf_text, shown).group_states
     named = [s for s in states if s.name == name]
@@ -121,8 +123,8 @@ def _write_srdf(
     srdf, output = request.srdf, request.output
     if srdf is None and output is None:
         return matrix.disabled  # nothing to write: no Jinja, no writer imported
-    from marm_setup.collision.srdf_update import render_minimal_srdf, update_srdf
-    from marm_setup.render.writer import write_text_atomic
+    from marm_setup.collision import render_minimal_srdf, update_srdf
+    from marm_setup.render import write_text_atomic
 
     if srdf is None or srdf_text is None:  # the text is read whenever --srdf is given
         if output is not None:
@@ -152,7 +154,7 @@ def _pair_changes(old_pairs: Sequence[DisabledPair], new: Sequence[DisabledPair]
 def _check_same_robot(robot: RobotModel, srdf_text: str, shown: str) -> None:
     """An SRDF of another robot (its name, or links its pairs and groups name) is refused: updating
     it would rewrite a file the matrix does not belong to."""
-    from marm_setup.setup.srdf import parse_srdf_string
+    from marm_setup.setup import parse_srdf_string
 
     srdf = parse_srdf_string(srdf_text, shown)
     if srdf.robot_name and srdf.robot_name != robot.name:
@@ -171,7 +173,7 @@ def _check_same_robot(robot: RobotModel, srdf_text: str, shown: str) -> None:
 
 def srdf_changes(old_text: str, new: Sequence[DisabledPair], shown: str, *, verbose: bool) -> list[str]:
     """What the update changed: pairs added and removed per reason, and with `verbose` each pair."""
-    from marm_setup.setup.srdf import parse_srdf_string
+    from marm_setup.setup import parse_srdf_string
 
     old_pairs = parse_srdf_string(old_text, shown).disabled
     lines = [f"changes to {shown}: {_pair_changes(old_pairs, new)}"]
@@ -190,8 +192,8 @@ def srdf_changes(old_text: str, new: Sequence[DisabledPair], shown: str, *, verb
 def _write_report(
     report: Path, matrix: CollisionMatrix, robot: RobotModel, disabled: Sequence[DisabledPair]
 ) -> None:
-    from marm_setup.collision.report import render_matrix_html, render_matrix_svg
-    from marm_setup.render.writer import write_text_atomic
+    from marm_setup.collision import render_matrix_html, render_matrix_svg
+    from marm_setup.render import write_text_atomic
 
     links = [name for name in robot.links_in_tree_order if robot.link(name).has_geometry]
     svg = render_matrix_svg(matrix, robot.name, links, disabled)
@@ -220,12 +222,10 @@ def run_package_collisions(
     """Recompute a generated package's matrix into its marm_setup.yaml and SRDF together (its
     User pairs kept), so the next `render` has nothing to disagree with; with `force` a
     hand-edited file is overwritten (kept as `.orig`, as render does)."""
-    from marm_setup.collision.matrix import compute_collision_matrix
-    from marm_setup.collision.pairs import DisabledReason
+    from marm_setup.collision import DisabledReason, compute_collision_matrix
     from marm_setup.pipeline.render import load_package_setup
-    from marm_setup.render.package import render_package
-    from marm_setup.render.writer import apply_writes, format_change, plan_writes
-    from marm_setup.setup.model import CollisionSettings
+    from marm_setup.render import apply_writes, format_change, plan_writes, render_package
+    from marm_setup.setup import CollisionSettings
 
     model, robot = load_package_setup(pkg)
     matrix = compute_collision_matrix(

@@ -9,13 +9,11 @@ from typing import TYPE_CHECKING
 
 from marm_setup.pipeline.build import InitRequest, build
 from marm_setup.pipeline.write import describe, reused_ros2_control, with_collision_matrix, write_package
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.model import SetupModel
+from marm_setup.robot import RobotModel
+from marm_setup.setup import SetupModel
 
 if TYPE_CHECKING:
-    from marm_setup.collision.matrix import Progress
-    from marm_setup.collision.pairs import DisabledPair
-    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision import CollisionScene, DisabledPair, Progress
 
 
 @dataclass(frozen=True)
@@ -28,7 +26,7 @@ class InitResult:
 
 def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None = None) -> InitResult:
     """`progress(done, total)` is called while the matrix samples (see compute_collision_matrix)."""
-    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision import CollisionScene
 
     built = build(request, robot)
     model, user = _matrix_to_compute(built.model, request)
@@ -48,7 +46,7 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     notes += start_notes
     lines = describe(model, matrix_given=given) + reused_ros2_control(model, robot)
     changes = write_package(model, robot, request.out, force=request.force)
-    from marm_setup.render.writer import format_change
+    from marm_setup.render import format_change
 
     return InitResult(
         model, tuple(lines), tuple(format_change(c, forced=request.force) for c in changes), notes
@@ -59,8 +57,7 @@ def _with_poses(
     model: SetupModel, robot: RobotModel, scene: CollisionScene, seed: int, request: InitRequest
 ) -> tuple[SetupModel, tuple[str, ...]]:
     """The setup with inferred collision-free poses (home, ready), and notes on what was guessed."""
-    from marm_setup.setup.checks import check_setup
-    from marm_setup.setup.poses import infer_poses
+    from marm_setup.setup import check_setup, infer_poses
 
     poses = infer_poses(model, robot, scene, seed=seed)
     model = dataclasses.replace(model, group_states=poses.states)
@@ -72,7 +69,7 @@ def _with_start_poses(
     model: SetupModel, robot: RobotModel, scene: CollisionScene
 ) -> tuple[SetupModel, tuple[str, ...]]:
     """The setup with start poses the demo can start at out of collision (setup/poses.py)."""
-    from marm_setup.setup.poses import choose_start_poses
+    from marm_setup.setup import choose_start_poses
 
     starts, notes = choose_start_poses(model, robot, scene)
     return dataclasses.replace(model, start_poses=starts), notes
@@ -83,7 +80,7 @@ def _matrix_to_compute(
 ) -> tuple[SetupModel, tuple[DisabledPair, ...]]:
     """A SPEC's matrix (an old marm_setup.yaml's, maybe stale) is computed again unless
     `keep_matrix`, its User pairs kept; an imported SRDF's matrix is the import: kept."""
-    from marm_setup.collision.pairs import DisabledReason
+    from marm_setup.collision import DisabledReason
 
     if request.from_srdf is not None or request.keep_matrix or not model.collision.disabled:
         return model, ()

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 from marm_setup.errors import InputError, PlanningFailed
 
 if TYPE_CHECKING:
-    from marm_setup.plan.problem import Executed, PlanningProblem
+    from marm_setup.plan import Executed, PlanningProblem
 
 
 @dataclass(frozen=True)
@@ -33,12 +33,10 @@ class PlanResult:
 
 def run_plan(request: PlanRequest) -> PlanResult:
     """The executed plan; PlanningFailed (exit 1) when there is none or its execution fails."""
-    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision import CollisionScene
     from marm_setup.package import read_package
-    from marm_setup.plan.planner import PlanFailed
-    from marm_setup.plan.problem import plan_between, planning_problem, pose
-    from marm_setup.plan.trajectory_io import write_trajectory
-    from marm_setup.robot.load import load_robot
+    from marm_setup.plan import PlanFailed, plan_between, planning_problem, pose, write_trajectory
+    from marm_setup.robot import load_robot
 
     if request.seed < 0:
         raise InputError(f"must be >= 0, got {request.seed}", element="--seed")

@@ -12,16 +12,14 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding, Location
 from marm_setup.pipeline.build import InitRequest, choose_distro, target_of
 from marm_setup.pipeline.write import with_collision_matrix, write_package
-from marm_setup.robot.load import parse_xacro_args
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.model import SetupModel
+from marm_setup.robot import RobotModel, parse_xacro_args
+from marm_setup.setup import SetupModel
 
 if TYPE_CHECKING:
-    from marm_setup.collision.matrix import Progress
-    from marm_setup.package.model import MoveItPackage
-    from marm_setup.port.importer import Ported
-    from marm_setup.port.report import PortItem
-    from marm_setup.validate.runner import Validation
+    from marm_setup.collision import Progress
+    from marm_setup.package import MoveItPackage
+    from marm_setup.port import Ported, PortItem
+    from marm_setup.validate import Validation
 
 
 @dataclass(frozen=True)
@@ -52,10 +50,10 @@ class PortResult:
 
 def run_port(request: PortInitRequest, progress: Progress | None = None) -> PortResult:
     """Read the package, port it, check the setup, render and write it, then validate the result."""
-    from marm_setup.port.importer import PortRequest, port_package
-    from marm_setup.render.writer import check_output_dir, format_change
-    from marm_setup.setup.checks import check_setup
-    from marm_setup.validate.runner import validate
+    from marm_setup.port import PortRequest, port_package
+    from marm_setup.render import check_output_dir, format_change
+    from marm_setup.setup import check_setup
+    from marm_setup.validate import validate
 
     check_output_dir(request.out, force=request.force, shown=str(request.out))
     pkg, notes = _discover_for_port(request)
@@ -91,8 +89,8 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
 def _with_validation_notes(ported: Ported, pkg: MoveItPackage, validation: Validation) -> Ported:
     """One report line per validation error of the new package, saying whether the source
     package has the same error (the port carried it as it was) or the port made it."""
-    from marm_setup.port.report import PortItem
-    from marm_setup.validate.runner import validate_read
+    from marm_setup.port import PortItem
+    from marm_setup.validate import validate_read
 
     errors = [f for f in validation.findings if f.is_error]
     if not errors:
@@ -121,9 +119,8 @@ def _identity(finding: Finding) -> tuple:
 def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[PortItem, ...]]:
     """The package as validate reads it; a MoveIt 2 `config/<robot>.urdf.xacro` wrapper (the
     new package writes its own) gives way to the description `.setup_assistant` names."""
-    from marm_setup.package.description import setup_assistant_description
-    from marm_setup.package.read import read_package
-    from marm_setup.port.report import PortItem
+    from marm_setup.package import read_package, setup_assistant_description
+    from marm_setup.port import PortItem
 
     args = parse_xacro_args(list(request.xacro_args)) or None
     pkg = read_package(
@@ -161,11 +158,11 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
 def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> RobotModel:
     """The package's robot; its load failure is the one error line, and so is a `--xacro-arg`
     (`xacro_args`) that neither its description nor its SRDF xacro takes."""
-    from marm_setup.validate.runner import check_given_xacro_args, load_package_robot
+    from marm_setup.validate import check_given_xacro_args, load_package_robot
 
     robot, problems = load_package_robot(pkg)
     if robot is None:
-        from marm_setup.setup.checks import as_input_error
+        from marm_setup.setup import as_input_error
 
         found = problems[0]
         if found.rule == "urdf.missing":  # its hint is validate's --urdf: init says how it takes one

@@ -10,9 +10,9 @@ from typing import TYPE_CHECKING
 from marm_setup.errors import ConflictError, InputError
 
 if TYPE_CHECKING:
-    from marm_setup.render.writer import FileChange
-    from marm_setup.robot.model import RobotModel
-    from marm_setup.setup.model import SetupModel
+    from marm_setup.render import FileChange
+    from marm_setup.robot import RobotModel
+    from marm_setup.setup import SetupModel
 
 # What a robot loaded from marm_setup.yaml needs is given there, not by an option
 SETUP_KEYS = {"--package-path": "robot.package_paths", "--xacro-arg": "robot.xacro_args"}
@@ -37,9 +37,15 @@ def run_render(
     """Render DIR from DIR/marm_setup.yaml (which render never rewrites) and, unless `dry_run`,
     write it; nothing is written when a hand-edited file would be overwritten without `force`
     (`refused` says which)."""
-    from marm_setup.render.package import SETUP_FILE, render_package
-    from marm_setup.render.writer import apply_writes, conflicts, plan_writes, stale_files
-    from marm_setup.setup.checks import setup_warnings
+    from marm_setup.render import (
+        SETUP_FILE,
+        apply_writes,
+        conflicts,
+        plan_writes,
+        render_package,
+        stale_files,
+    )
+    from marm_setup.setup import setup_warnings
 
     if urdf is not None and not urdf.is_file():
         raise InputError("file not found", path=str(urdf), element="--urdf")
@@ -64,11 +70,8 @@ def run_render(
 def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupModel, RobotModel]:
     """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names (or
     `urdf`, when given: the package moved away from the description it names)."""
-    from marm_setup.robot.load import load_robot
-    from marm_setup.robot.ros_packages import description_file
-    from marm_setup.robot.xacro_expand import check_xacro_args
-    from marm_setup.setup.checks import check_setup
-    from marm_setup.setup.yaml_io import load_setup
+    from marm_setup.robot import check_xacro_args, description_file, load_robot
+    from marm_setup.setup import check_setup, load_setup
 
     setup_path = pkg_dir / "marm_setup.yaml"
     if not pkg_dir.is_dir():

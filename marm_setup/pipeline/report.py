@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 from marm_setup.errors import InputError
 
 if TYPE_CHECKING:
-    from marm_setup.report.build import Report
+    from marm_setup.report import Report
 
 
 @dataclass(frozen=True)
@@ -28,8 +28,8 @@ class ReportRequest:
 
 def run_report(request: ReportRequest, progress: Callable[[str, int, int], None] | None = None) -> Report:
     """Build the page and write it (the page is written whatever the package's findings)."""
-    from marm_setup.render.writer import write_text_atomic
-    from marm_setup.report.build import build_report
+    from marm_setup.render import write_text_atomic
+    from marm_setup.report import build_report
 
     output = request.output
     if output.suffix.lower() not in (".html", ".htm"):

@@ -7,15 +7,13 @@ import dataclasses
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
-from marm_setup.setup.model import CollisionSettings, SetupModel
+from marm_setup.setup import CollisionSettings, SetupModel
 
 if TYPE_CHECKING:
-    from marm_setup.collision.matrix import Progress
-    from marm_setup.collision.pairs import DisabledPair
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.render.writer import FileChange
+    from marm_setup.collision import CollisionScene, DisabledPair, Progress
+    from marm_setup.render import FileChange
     from marm_setup.templating import RenderedFile
 
 
@@ -50,7 +48,7 @@ def _disabled_pairs(
     progress: Progress | None,
     scene: CollisionScene | None = None,
 ) -> tuple[DisabledPair, ...]:
-    from marm_setup.collision.matrix import compute_collision_matrix
+    from marm_setup.collision import compute_collision_matrix
 
     matrix = compute_collision_matrix(
         robot,
@@ -67,8 +65,8 @@ def _disabled_pairs(
 
 def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
     """What the setup holds; the matrix line says whether it was computed or taken as given."""
-    from marm_setup.collision.pairs import DisabledReason
-    from marm_setup.setup.infer import describe_setup
+    from marm_setup.collision import DisabledReason
+    from marm_setup.setup import describe_setup
 
     counts = {r: sum(1 for d in model.collision.disabled if d.reason is r) for r in DisabledReason}
     summary = ", ".join(f"{n} {r.value}" for r, n in counts.items() if n)
@@ -90,9 +88,8 @@ def reused_ros2_control(model: SetupModel, robot: RobotModel) -> list[str]:
     (reused), and how the demo puts those on mock hardware (render/hardware.py)."""
     if model.target != Target.ROS2:
         return []
-    from marm_setup.render.context import ros2_control_joints
-    from marm_setup.render.hardware import description_hardware, hardware_lines
-    from marm_setup.setup.model import Ros2ControlHardware
+    from marm_setup.render import description_hardware, hardware_lines, ros2_control_joints
+    from marm_setup.setup import Ros2ControlHardware
 
     own = model.ros2_control or Ros2ControlHardware()
     joints = len(ros2_control_joints(model, robot))
@@ -101,7 +98,7 @@ def reused_ros2_control(model: SetupModel, robot: RobotModel) -> list[str]:
 
 def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool) -> list[FileChange]:
     """Render every file and write them atomically; returns the file changes."""
-    from marm_setup.render.writer import apply_writes, check_output_dir, plan_writes
+    from marm_setup.render import apply_writes, check_output_dir, plan_writes
 
     check_output_dir(out, force=force)
     rendered = _render(model, robot)
@@ -111,6 +108,6 @@ def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: boo
 
 
 def _render(model: SetupModel, robot: RobotModel) -> list[RenderedFile]:
-    from marm_setup.render.package import render_package
+    from marm_setup.render import render_package
 
     return render_package(model, robot)

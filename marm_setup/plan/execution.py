@@ -15,7 +15,7 @@ import numpy as np
 
 from marm_setup.plan.planner import GroupSpace, ValidityChecker
 from marm_setup.plan.timing import JointLimits, TimedTrajectory
-from marm_setup.robot.model import LIMIT_TOLERANCE
+from marm_setup.robot import LIMIT_TOLERANCE
 
 
 @dataclass(frozen=True, slots=True)

@@ -18,7 +18,7 @@ import numpy as np
 
 from marm_setup.plan.rrt import interpolate, rrt_connect, shortcut, verify_path
 from marm_setup.plan.space import GroupSpace, PlannerOptions, group_space
-from marm_setup.robot.model import LIMIT_TOLERANCE, RobotModel
+from marm_setup.robot import LIMIT_TOLERANCE, RobotModel
 
 Pair = tuple[str, str]
 ValidityChecker = Callable[[np.ndarray], Sequence[Pair | None]]

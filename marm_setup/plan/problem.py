@@ -16,10 +16,7 @@ import numpy as np
 
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
-from marm_setup.package.limits import LoadedLimit, effective_limits
-from marm_setup.package.model import MoveItPackage
-from marm_setup.package.start import package_start_values
-from marm_setup.package.where import Param
+from marm_setup.package import LoadedLimit, MoveItPackage, Param, effective_limits, package_start_values
 from marm_setup.plan.execution import ExecutionOptions, ExecutionReport, fake_execute
 from marm_setup.plan.planner import (
     PlanFailed,
@@ -30,16 +27,19 @@ from marm_setup.plan.planner import (
     plan_joint_path,
 )
 from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_config, time_parameterize
-from marm_setup.robot.kinematics import wrap_continuous
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel, wrap_continuous
 from marm_setup.ros import Target
-from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.limits import timing_problem
-from marm_setup.setup.srdf import allowed_pairs
-from marm_setup.setup.start_state import pose_configuration, start_configuration
+from marm_setup.setup import (
+    active_group_joints,
+    allowed_pairs,
+    groups_by_name,
+    pose_configuration,
+    start_configuration,
+    timing_problem,
+)
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision import CollisionScene
 
 
 @dataclass(frozen=True, eq=False)

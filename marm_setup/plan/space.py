@@ -8,8 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from marm_setup.robot.kinematics import bounds
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel, bounds
 
 
 @dataclass(frozen=True, slots=True)

@@ -19,10 +19,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from marm_setup.errors import InputError
-from marm_setup.package.limits import LoadedLimit
+from marm_setup.package import LoadedLimit
 from marm_setup.plan.rrt import merge_collinear
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.limits import timing_problem
+from marm_setup.robot import RobotModel
+from marm_setup.setup import timing_problem
 
 __all__ = [
     "JointLimits",

@@ -36,6 +36,6 @@ def dump_trajectory(traj: TimedTrajectory) -> str:
 
 def write_trajectory(traj: TimedTrajectory, path: str | PathLike) -> None:
     """Write the YAML file (UTF-8, LF) atomically; InputError naming `path` when it cannot."""
-    from marm_setup.render.writer import write_text_atomic
+    from marm_setup.render import write_text_atomic
 
     write_text_atomic(Path(path), dump_trajectory(traj), shown=str(path))

@@ -4,12 +4,21 @@ report of every setting carried over, changed or dropped.
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
 
+from typing import TYPE_CHECKING
+
 from marm_setup.exports import lazy_api
 
-__all__, __getattr__, __dir__ = lazy_api(
-    __name__,
-    {
-        "importer": "PortRequest Ported port_package",
-        "report": "PortItem counts",
-    },
-)
+API = {
+    "importer": "port_package Ported PortRequest",
+    "report": "counts PortItem STATUSES summary",
+}
+__all__, __getattr__, __dir__ = lazy_api(__name__, API)
+
+if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.port.importer import Ported as Ported
+    from marm_setup.port.importer import PortRequest as PortRequest
+    from marm_setup.port.importer import port_package as port_package
+    from marm_setup.port.report import STATUSES as STATUSES
+    from marm_setup.port.report import PortItem as PortItem
+    from marm_setup.port.report import counts as counts
+    from marm_setup.port.report import summary as summary

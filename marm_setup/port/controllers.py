@@ -6,13 +6,19 @@ from __future__ import annotations
 
 import math
 
-from marm_setup.package.controllers_file import ControllersFile, MoveItController, SkippedController
-from marm_setup.package.driver_file import ArbotixFile, ArbotixServo, DriverController
-from marm_setup.package.model import MoveItPackage
+from marm_setup.package import (
+    ArbotixFile,
+    ArbotixServo,
+    ControllersFile,
+    DriverController,
+    MoveItController,
+    MoveItPackage,
+    SkippedController,
+)
 from marm_setup.port.report import PortLog
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
-from marm_setup.setup.domain import (
+from marm_setup.setup import (
     DRIVER_ACTION_NS,
     DRIVER_CONTROLLERS,
     FOLLOW_JOINT_TRAJECTORY,
@@ -20,9 +26,12 @@ from marm_setup.setup.domain import (
     GRIPPER_COMMAND,
     MOVEIT_CONTROLLER_TYPES,
     ROS2_CONTROLLER_TYPES,
+    ArbotixJoint,
+    Controller,
+    SetupModel,
+    active_group_joints,
+    groups_by_name,
 )
-from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.model import ArbotixJoint, Controller, SetupModel
 
 # What the new package's driver side is, per SetupModel.driver_key (ros2_control, the ros1
 # driver, or none: a ros1 package without driver files).

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from marm_setup.errors import InputError
-from marm_setup.package.model import MoveItPackage
+from marm_setup.package import MoveItPackage
 from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver, report_shared_joints
 from marm_setup.port.kinematics import port_kinematics
 from marm_setup.port.limits import port_joint_limits
@@ -26,10 +26,18 @@ from marm_setup.port.package import (
 from marm_setup.port.perception import port_perception
 from marm_setup.port.planners import port_planners
 from marm_setup.port.report import PortItem, PortLog, where
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.ros import Distro, Target
-from marm_setup.setup.groups import active_group_joints, groups_by_name, planning_joints
-from marm_setup.setup.model import EndEffector, GroupState, Kinematics, SetupModel, VirtualJoint
+from marm_setup.setup import (
+    EndEffector,
+    GroupState,
+    Kinematics,
+    SetupModel,
+    VirtualJoint,
+    active_group_joints,
+    groups_by_name,
+    planning_joints,
+)
 
 # The SRDF elements the port leaves out when MoveIt fails on or skips them (their setup key).
 DROPPABLE = {
@@ -113,7 +121,7 @@ def _base(pkg: MoveItPackage, robot: RobotModel, request: PortRequest, log: Port
 
 
 def _with_srdf(pkg: MoveItPackage, model: SetupModel, log: PortLog) -> SetupModel:
-    from marm_setup.setup.srdf import srdf_to_setup
+    from marm_setup.setup import srdf_to_setup
 
     srdf, file = pkg.srdf, pkg.srdf_path or ""
     assert srdf is not None  # port_package refuses a package without one
@@ -146,8 +154,7 @@ def _without_srdf_errors(model: SetupModel, robot: RobotModel, file: str, log: P
     """Drop the virtual joints, end effectors and group states MoveIt fails on or skips (the SRDF
     rules of setup/rules.py that init and validate share), each with a report line: the new
     package must load, and the source never had them working."""
-    from marm_setup.setup.rules import check_semantics, setup_element
-    from marm_setup.setup.srdf import setup_to_srdf
+    from marm_setup.setup import check_semantics, setup_element, setup_to_srdf
 
     drop: dict[tuple[str, str], str] = {}
     for f in check_semantics(setup_to_srdf(model), robot, file, setup_element):
@@ -213,8 +220,7 @@ def _without_unsolvable(
 ) -> tuple[Kinematics, ...]:
     """Drop chain-only solvers (KDL, LMA, cached KDL) on groups that are no chain: MoveIt cannot
     initialise them there, so the group had no IK solver (validate's kinematics rule)."""
-    from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS
-    from marm_setup.setup.groups import is_chain
+    from marm_setup.setup import CHAIN_ONLY_PLUGINS, is_chain
 
     assert pkg.srdf is not None
     by_name = groups_by_name(pkg.srdf.groups)
@@ -251,7 +257,7 @@ def _projections(model: SetupModel, robot: RobotModel) -> Callable[[str], str | 
 
 
 def _with_controllers(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
-    from marm_setup.setup.infer import derive_group_settings
+    from marm_setup.setup import derive_group_settings
 
     derived = derive_group_settings(model, robot)
     controllers = port_controllers(pkg, model, robot, log) or derived.controllers

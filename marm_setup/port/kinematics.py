@@ -6,10 +6,9 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from marm_setup.package.kinematics_file import GroupKinematics, KinematicsFile
+from marm_setup.package import GroupKinematics, KinematicsFile
 from marm_setup.port.report import PortLog
-from marm_setup.setup.domain import MOVEIT_KINEMATICS_PLUGINS
-from marm_setup.setup.model import Kinematics
+from marm_setup.setup import MOVEIT_KINEMATICS_PLUGINS, Kinematics
 
 # MoveIt's kinematics.yaml keys per group -> Kinematics field
 KINEMATICS_KEYS = {

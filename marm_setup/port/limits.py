@@ -6,13 +6,11 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from marm_setup.package.joint_limits_file import JointLimitEntry, JointLimitsFile
-from marm_setup.package.limits import LoadedLimit, effective_limits
-from marm_setup.package.where import Where
+from marm_setup.package import JointLimitEntry, JointLimitsFile, LoadedLimit, Where, effective_limits
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
-from marm_setup.robot.model import RobotModel, limit_slack
-from marm_setup.setup.model import JointLimitOverride
+from marm_setup.robot import RobotModel, limit_slack
+from marm_setup.setup import JointLimitOverride
 
 # joint_limits' default scaling factors -> SetupModel field
 SCALING_KEYS = {

@@ -10,10 +10,10 @@ import re
 from collections.abc import Callable
 from pathlib import Path
 
-from marm_setup.package.model import MoveItPackage
+from marm_setup.package import MoveItPackage
 from marm_setup.port.report import PortLog, where
 from marm_setup.ros import Target
-from marm_setup.setup.model import Author, RobotSource
+from marm_setup.setup import Author, RobotSource
 
 # Pipelines each target's templates write (templates/<target>/config and launch).
 TARGET_PIPELINES = {"ros1": ("ompl",), "ros2": ("ompl", "pilz_industrial_motion_planner")}
@@ -26,8 +26,8 @@ METADATA_TAGS = ("version", "description", "url", "author")
 def robot_source(pkg: MoveItPackage, out: Path, user_paths: tuple[Path, ...], log: PortLog) -> RobotSource:
     """The URDF relative to the new package, the package's xacro args and the folders holding the
     description's packages (the user's --package-path, then marm_setup.yaml's)."""
-    from marm_setup.package.description import marm_package_paths
-    from marm_setup.render.package import robot_reference
+    from marm_setup.package import marm_package_paths
+    from marm_setup.render import robot_reference
 
     paths = [*user_paths, *marm_package_paths(pkg.root, pkg.marm_setup)]
     urdf, rel_list = robot_reference(

@@ -9,16 +9,21 @@ import dataclasses
 from collections.abc import Callable
 
 from marm_setup.errors import InputError
-from marm_setup.package.model import MoveItPackage
-from marm_setup.package.perception_files import Sensor as SourceSensor
-from marm_setup.package.perception_files import ServoConfig
-from marm_setup.package.where import Param
+from marm_setup.package import MoveItPackage, Param, ServoConfig
+from marm_setup.package import Sensor as SourceSensor
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.ros import Distro
-from marm_setup.setup.domain import SENSOR_TYPES, SERVO_POSITION, SERVO_TRAJECTORY
-from marm_setup.setup.model import Sensor, Servo, ServoScale, SetupModel
+from marm_setup.setup import (
+    SENSOR_TYPES,
+    SERVO_POSITION,
+    SERVO_TRAJECTORY,
+    Sensor,
+    Servo,
+    ServoScale,
+    SetupModel,
+)
 
 PLUGIN_TYPES = {kind.plugin: name for name, kind in SENSOR_TYPES.items()}
 SENSOR_FIELDS = {f.name for f in dataclasses.fields(Sensor)} - {"name", "type", "topic"}
@@ -40,8 +45,7 @@ OUTPUT_TYPES = {
 
 def port_perception(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
     """`model` with the source's sensors and servos the setup's checks take."""
-    from marm_setup.setup.sensors import check_sensors
-    from marm_setup.setup.servo import check_servos
+    from marm_setup.setup import check_sensors, check_servos
 
     sensors: list[Sensor] = []
     for index, found in enumerate(pkg.sensors.sensors if pkg.sensors is not None else ()):
@@ -85,7 +89,7 @@ SCALE_DEFAULTS = {"linear": 0.4, "rotational": 0.8, "joint": 0.5}
 def _or_default(servos: tuple[Servo, ...], model: SetupModel, robot: RobotModel) -> tuple[Servo, ...] | None:
     """None (the target's default servos) when the ported ones are exactly what it writes by
     default, so a package marm-setup wrote ports back to the same marm_setup.yaml; else them."""
-    from marm_setup.setup.servo import default_servos, plan_servos
+    from marm_setup.setup import default_servos, plan_servos
 
     default = default_servos(model, robot)
     plans = {p.group: p for p in plan_servos(dataclasses.replace(model, servo=default), robot)}

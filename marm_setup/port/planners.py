@@ -5,16 +5,10 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from marm_setup.package.planning_file import GroupPlanning, PlanningPipeline
-from marm_setup.package.where import FrozenMapping, Value
+from marm_setup.package import FrozenMapping, GroupPlanning, PlanningPipeline, Value
 from marm_setup.port.kinematics import short, yaml_text
 from marm_setup.port.report import PortLog
-from marm_setup.setup.domain import (
-    DEFAULT_PLANNER,
-    OMPL_PLANNER_NAMES,
-    OMPL_PLANNERS,
-)
-from marm_setup.setup.model import PlannerDefaults
+from marm_setup.setup import DEFAULT_PLANNER, OMPL_PLANNER_NAMES, OMPL_PLANNERS, PlannerDefaults
 
 OMPL_TYPES = {ompl_type: name for name, ompl_type in OMPL_PLANNERS}
 GROUP_OMPL_KEYS = (

@@ -13,9 +13,9 @@ from pathlib import PurePosixPath
 
 from marm_setup.errors import InputError
 from marm_setup.names import name_problem
-from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.robot import Joint, RobotModel
 from marm_setup.ros import Target
-from marm_setup.setup.domain import (
+from marm_setup.setup import (
     ARBOTIX_GRIPPER_ACTION_NS,
     FOLLOW_JOINT_TRAJECTORY,
     GRIPPER_COMMAND,
@@ -23,20 +23,21 @@ from marm_setup.setup.domain import (
     OMPL_PLANNERS,
     PIPELINES,
     ROS2_CONTROLLER_TYPES,
-)
-from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.limits import joint_limits
-from marm_setup.setup.model import (
     Controller,
     GroupState,
     Kinematics,
     PlannerDefaults,
     Ros2ControlHardware,
     SetupModel,
+    active_group_joints,
+    forward_controllers,
+    groups_by_name,
+    joint_limits,
+    model_start_values,
+    plan_perception,
+    plan_servos,
+    start_pose,
 )
-from marm_setup.setup.sensors import plan_perception
-from marm_setup.setup.servo import forward_controllers, plan_servos
-from marm_setup.setup.start_state import model_start_values, start_pose
 
 XACRO_ARG_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
@@ -228,7 +229,7 @@ def ros2_control_joints(model: SetupModel, robot: RobotModel) -> list[Ros2Contro
     joint gets a state (TF) whether or not a controller drives it; mimic joints carry their
     factors (and are left out when their leader is the description's), mimic and passive joints
     get no command interface. Each starts at the demo's start state."""
-    from marm_setup.robot.ros2_control import described_joints
+    from marm_setup.robot import described_joints
 
     covered = described_joints(robot)
     start = model_start_values(model, robot)

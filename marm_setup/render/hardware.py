@@ -16,9 +16,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from marm_setup.robot.model import RobotModel
-from marm_setup.robot.ros2_control import MOCK_PLUGIN, HardwareArg, Ros2ControlSystem, described_systems
-from marm_setup.setup.model import Ros2ControlHardware
+from marm_setup.robot import MOCK_PLUGIN, HardwareArg, RobotModel, Ros2ControlSystem, described_systems
+from marm_setup.setup import Ros2ControlHardware
 
 MOCK_SCRIPT = "scripts/with_mock_hardware.py"
 

@@ -13,11 +13,9 @@ from pathlib import Path
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.render.context import build_context
-from marm_setup.robot.model import RobotModel
-from marm_setup.robot.ros_packages import package_name
+from marm_setup.robot import RobotModel, package_name
 from marm_setup.ros import TARGETS, Target
-from marm_setup.setup.model import SetupModel
-from marm_setup.setup.yaml_io import dump_setup
+from marm_setup.setup import SetupModel, dump_setup
 from marm_setup.templating import RenderedFile, render_template
 
 COMMON_FILES = ("config/robot.srdf", ".setup_assistant")
@@ -98,7 +96,7 @@ def pipeline_templates(model: SetupModel) -> list[tuple[str, str, dict]]:
     """(template, path, extra context) of the files the setup's planning pipelines add (ros1: one
     launch file per pipeline, ompl_planning.yaml, chomp_planning.yaml, Pilz's cartesian_limits.yaml;
     ros2 writes every pipeline into moveit.yaml)."""
-    from marm_setup.setup.domain import PIPELINES
+    from marm_setup.setup import PIPELINES
 
     if model.target != Target.ROS1:
         return []

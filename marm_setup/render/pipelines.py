@@ -8,9 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from marm_setup.ros import Distro
-from marm_setup.setup.domain import PIPELINES
-from marm_setup.setup.model import PipelineParameterValue, SetupModel
-from marm_setup.setup.pipeline_params import effective_parameters
+from marm_setup.setup import PIPELINES, PipelineParameterValue, SetupModel, effective_parameters
 
 ADAPTER_KEYS = ("request_adapters", "response_adapters")
 

@@ -17,9 +17,9 @@ from marm_setup.report.content import Drawing, MatrixSection, drawn_links, page_
 from marm_setup.report.geometry import MAX_FACES, MeshArrays, RobotGeometry, robot_geometry
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.robot.model import RobotModel
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.collision import CollisionScene
+    from marm_setup.robot import RobotModel
+    from marm_setup.setup import Srdf
     from marm_setup.validate import ValidatedPackage
 
 Progress = Callable[[str, int, int], None]  # (stage, done, total)
@@ -103,8 +103,8 @@ def _drawing(
     step: Callable[[str], Callable[[int, int], None]],
 ) -> Drawing:
     """What the 3D view draws for a package whose robot and SRDF loaded."""
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.package.start import package_start_values
+    from marm_setup.collision import CollisionScene
+    from marm_setup.package import package_start_values
     from marm_setup.report.motions import motions
     from marm_setup.report.states import robot_states
 
@@ -126,8 +126,7 @@ def _matrix_section(
     progress: Callable[[int, int], None],
 ) -> MatrixSection | None:
     """The matrix picture and pairs: reasons from the SRDF, counts from a fresh computation."""
-    from marm_setup.collision.matrix import compute_collision_matrix
-    from marm_setup.collision.report import describe_matrix, render_matrix_svg
+    from marm_setup.collision import compute_collision_matrix, describe_matrix, render_matrix_svg
     from marm_setup.validate import matrix_settings
 
     if not scene.candidate_pairs:

@@ -18,10 +18,8 @@ from marm_setup.report.frames import link_frames
 from marm_setup.report.geometry import RobotGeometry, Shape
 from marm_setup.report.motions import Motion
 from marm_setup.report.states import RobotState
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.groups import group_links, groups_by_name
-from marm_setup.setup.model import EndEffector, VirtualJoint
-from marm_setup.setup.srdf import Srdf
+from marm_setup.robot import RobotModel
+from marm_setup.setup import EndEffector, Srdf, VirtualJoint, group_links, groups_by_name
 
 
 @dataclass(frozen=True)

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from marm_setup.plan.timing import TimedTrajectory
-from marm_setup.robot.kinematics import forward_kinematics, link_index
-from marm_setup.robot.model import RobotModel
+from marm_setup.plan import TimedTrajectory
+from marm_setup.robot import RobotModel, forward_kinematics, link_index
 
 FRAME_RATE = 25.0  # [1/s] trajectory samples the page steps through
 MAX_FRAMES = 100  # per trajectory: a long one is sampled more sparsely

@@ -16,8 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from marm_setup.robot.kinematics import origin_matrix
-from marm_setup.robot.model import Box, CollisionShape, Cylinder, Mesh, RobotModel, Sphere
+from marm_setup.robot import Box, CollisionShape, Cylinder, Mesh, RobotModel, Sphere, origin_matrix
 
 MAX_FACES = 4000  # triangles per mesh: a collision view stays readable, a page stays small
 AREA_KEPT = 0.95  # a decimated mesh keeps at least this share of its surface area, else less is cut
@@ -99,7 +98,7 @@ def _mesh_arrays(mesh: Mesh, shown: str, element: str, max_faces: int) -> MeshAr
     """The mesh file as an indexed mesh (corners merged), decimated above `max_faces`."""
     import trimesh
 
-    from marm_setup.robot.meshes import load_mesh
+    from marm_setup.robot import load_mesh
 
     data = load_mesh(mesh.path, mesh.scale, shown=shown, element=element)
     solid = trimesh.Trimesh(np.asarray(data.vertices), np.asarray(data.faces), process=True)

@@ -8,9 +8,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from marm_setup.plan.planner import PlanFailed, group_space
+from marm_setup.plan import PlanFailed, group_space
 from marm_setup.report.frames import link_frames, trajectory_samples
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 
 if TYPE_CHECKING:
     from marm_setup.validate import PlannedPair

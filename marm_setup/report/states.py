@@ -16,12 +16,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from marm_setup.findings import Finding
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.srdf import Srdf, allowed_pairs
-from marm_setup.setup.start_state import pose_configuration, start_configuration
+from marm_setup.robot import RobotModel
+from marm_setup.setup import Srdf, allowed_pairs, pose_configuration, start_configuration
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision import CollisionScene
 
 Pair = tuple[str, str]
 

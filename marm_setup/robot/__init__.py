@@ -4,18 +4,76 @@ batched forward kinematics, and its text description.
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
 
+from typing import TYPE_CHECKING
+
 from marm_setup.exports import lazy_api
 
-__all__, __getattr__, __dir__ = lazy_api(
-    __name__,
-    {
-        "load": "load_robot parse_xacro_args",
-        "xacro_expand": "expand_xacro run_xacro check_xacro_args",
-        "model": "RobotModel Link Joint",
-        "kinematics": "forward_kinematics sample_configurations default_configuration",
-        "meshes": "load_mesh",
-        "ros_packages": "find_packages find_package resolve_uri",
-        "describe": "describe_robot format_tree",
-        "ros2_control": "Ros2ControlSystem described_systems described_joints",
-    },
-)
+API = {
+    "load": "load_robot parse_xacro_args xml_syntax_message",
+    "xacro_expand": "check_xacro_args expand_xacro run_xacro XacroOutput",
+    "model": (
+        "Box CollisionShape Cylinder Joint limit_slack LIMIT_TOLERANCE Link Mesh MIN_RATE RobotModel Sphere"
+    ),
+    "kinematics": (
+        "bounds default_configuration forward_kinematics link_index origin_matrix sample_configurations "
+        "wrap_continuous"
+    ),
+    "meshes": "load_mesh",
+    "ros_packages": (
+        "description_file find_package find_packages package_name PackageIndex PackageMap resolve_uri"
+    ),
+    "describe": "describe_robot format_tree",
+    "ros2_control": (
+        "ANY_MOCK described_joints described_systems HardwareArg MOCK_PLUGIN MOCK_PLUGINS "
+        "on_mock_hardware Ros2ControlSystem systems_in_urdf"
+    ),
+    "urdf": "strict_float",
+}
+__all__, __getattr__, __dir__ = lazy_api(__name__, API)
+
+if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.robot.describe import describe_robot as describe_robot
+    from marm_setup.robot.describe import format_tree as format_tree
+    from marm_setup.robot.kinematics import bounds as bounds
+    from marm_setup.robot.kinematics import default_configuration as default_configuration
+    from marm_setup.robot.kinematics import forward_kinematics as forward_kinematics
+    from marm_setup.robot.kinematics import link_index as link_index
+    from marm_setup.robot.kinematics import origin_matrix as origin_matrix
+    from marm_setup.robot.kinematics import sample_configurations as sample_configurations
+    from marm_setup.robot.kinematics import wrap_continuous as wrap_continuous
+    from marm_setup.robot.load import load_robot as load_robot
+    from marm_setup.robot.load import parse_xacro_args as parse_xacro_args
+    from marm_setup.robot.load import xml_syntax_message as xml_syntax_message
+    from marm_setup.robot.meshes import load_mesh as load_mesh
+    from marm_setup.robot.model import LIMIT_TOLERANCE as LIMIT_TOLERANCE
+    from marm_setup.robot.model import MIN_RATE as MIN_RATE
+    from marm_setup.robot.model import Box as Box
+    from marm_setup.robot.model import CollisionShape as CollisionShape
+    from marm_setup.robot.model import Cylinder as Cylinder
+    from marm_setup.robot.model import Joint as Joint
+    from marm_setup.robot.model import Link as Link
+    from marm_setup.robot.model import Mesh as Mesh
+    from marm_setup.robot.model import RobotModel as RobotModel
+    from marm_setup.robot.model import Sphere as Sphere
+    from marm_setup.robot.model import limit_slack as limit_slack
+    from marm_setup.robot.ros2_control import ANY_MOCK as ANY_MOCK
+    from marm_setup.robot.ros2_control import MOCK_PLUGIN as MOCK_PLUGIN
+    from marm_setup.robot.ros2_control import MOCK_PLUGINS as MOCK_PLUGINS
+    from marm_setup.robot.ros2_control import HardwareArg as HardwareArg
+    from marm_setup.robot.ros2_control import Ros2ControlSystem as Ros2ControlSystem
+    from marm_setup.robot.ros2_control import described_joints as described_joints
+    from marm_setup.robot.ros2_control import described_systems as described_systems
+    from marm_setup.robot.ros2_control import on_mock_hardware as on_mock_hardware
+    from marm_setup.robot.ros2_control import systems_in_urdf as systems_in_urdf
+    from marm_setup.robot.ros_packages import PackageIndex as PackageIndex
+    from marm_setup.robot.ros_packages import PackageMap as PackageMap
+    from marm_setup.robot.ros_packages import description_file as description_file
+    from marm_setup.robot.ros_packages import find_package as find_package
+    from marm_setup.robot.ros_packages import find_packages as find_packages
+    from marm_setup.robot.ros_packages import package_name as package_name
+    from marm_setup.robot.ros_packages import resolve_uri as resolve_uri
+    from marm_setup.robot.urdf import strict_float as strict_float
+    from marm_setup.robot.xacro_expand import XacroOutput as XacroOutput
+    from marm_setup.robot.xacro_expand import check_xacro_args as check_xacro_args
+    from marm_setup.robot.xacro_expand import expand_xacro as expand_xacro
+    from marm_setup.robot.xacro_expand import run_xacro as run_xacro

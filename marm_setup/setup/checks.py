@@ -16,7 +16,7 @@ from collections.abc import Iterable, Iterator
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
-from marm_setup.robot.model import MIN_RATE, RobotModel
+from marm_setup.robot import MIN_RATE, RobotModel
 from marm_setup.ros import ROS_DISTROS, Target
 from marm_setup.setup.domain import KINEMATICS_KEYS
 from marm_setup.setup.limits import joint_limits, timing_problem

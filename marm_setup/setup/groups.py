@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from types import MappingProxyType
 
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.setup.model import Group
 
 

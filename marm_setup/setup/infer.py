@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 
 from marm_setup.errors import InputError
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
 from marm_setup.setup.domain import DEFAULT_ACTION_NS, FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND
 from marm_setup.setup.groups import active_group_joints, groups_by_name, is_chain
@@ -51,7 +51,7 @@ class Inference:
     notes: tuple[str, ...] = ()
 
 
-def infer(
+def infer_setup(
     robot: RobotModel,
     *,
     package_name: str,

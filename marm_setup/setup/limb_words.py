@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 from collections import Counter
 
-from marm_setup.robot.model import Joint
+from marm_setup.robot import Joint
 
 KIND_WORDS = {
     "hand": ("finger", "gripper", "hand", "thumb", "knuckle", "jaw", "claw", "palm", "robotiq", "pinch"),

@@ -14,7 +14,7 @@ import math
 from collections import Counter
 from dataclasses import dataclass, field
 
-from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.robot import Joint, RobotModel
 from marm_setup.setup.limb_tips import limb_tip
 from marm_setup.setup.limb_words import (
     BASE_KINDS,

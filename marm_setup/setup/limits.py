@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from marm_setup.robot.model import MIN_RATE, RobotModel
+from marm_setup.robot import MIN_RATE, RobotModel
 from marm_setup.setup.groups import planning_joints
 from marm_setup.setup.model import SetupModel
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from marm_setup.collision.pairs import DisabledPair
+from marm_setup.collision import DisabledPair
 from marm_setup.ros import ROS_DISTROS, Distro, Target
 from marm_setup.setup.domain import (
     DEFAULT_PIPELINES,

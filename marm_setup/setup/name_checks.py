@@ -10,7 +10,7 @@ from collections.abc import Iterable, Iterator
 
 from marm_setup.errors import InputError
 from marm_setup.names import name_problem
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.setup.model import SetupModel
 
 

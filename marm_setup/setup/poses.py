@@ -16,8 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from marm_setup.robot.kinematics import default_configuration
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel, default_configuration
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.model import GroupState, SetupModel, StartPose
 from marm_setup.setup.srdf import allowed_pairs, setup_to_srdf
@@ -29,7 +28,7 @@ from marm_setup.setup.start_state import (
 )
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision import CollisionScene
 
 HOME, READY = "home", "ready"
 SEARCH_SCALES = (0.05, 0.1, 0.2, 0.4, 0.8)  # [rad] (or that share of a prismatic joint's range)

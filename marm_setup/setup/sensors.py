@@ -17,7 +17,7 @@ import dataclasses
 
 from marm_setup.errors import InputError
 from marm_setup.names import name_problem
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.setup.domain import DEFAULT_OCTOMAP_RESOLUTION, SENSOR_TYPES
 from marm_setup.setup.model import Sensor, SetupModel
 

@@ -20,7 +20,7 @@ from collections.abc import Mapping
 
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.ros import Distro, Target
 from marm_setup.setup.domain import (
     FOLLOW_JOINT_TRAJECTORY,

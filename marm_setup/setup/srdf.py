@@ -15,9 +15,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup import bounded_read
-from marm_setup.collision.pairs import DisabledPair, DisabledReason, link_pair
+from marm_setup.collision import DisabledPair, DisabledReason, link_pair
 from marm_setup.errors import InputError
-from marm_setup.robot.urdf import strict_float
+from marm_setup.robot import strict_float
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -37,7 +37,7 @@ from marm_setup.setup.model import (
 )
 
 if TYPE_CHECKING:
-    from marm_setup.robot.xacro_expand import XacroOutput
+    from marm_setup.robot import XacroOutput
 
 
 @dataclass(frozen=True, slots=True)
@@ -114,8 +114,7 @@ def expand_srdf_xacro(
 ) -> XacroOutput:
     """The SRDF a `.srdf.xacro` makes: the real xacro with `xacro_args`, `$(find pkg)` from
     `package_paths` and the folders around it, in the bounded child process (robot/xacro_expand)."""
-    from marm_setup.robot.ros_packages import find_packages
-    from marm_setup.robot.xacro_expand import run_xacro
+    from marm_setup.robot import find_packages, run_xacro
 
     file = Path(path)
     packages = find_packages([Path(p) for p in package_paths], near=file)
@@ -160,7 +159,7 @@ def parse_srdf_document(
 
 def srdf_syntax_error(exc, shown: str) -> InputError:
     """libxml2's complaint on one line, the element naming its line (as for a URDF)."""
-    from marm_setup.robot.load import xml_syntax_message
+    from marm_setup.robot import xml_syntax_message
 
     return InputError(
         f"not well-formed XML: {xml_syntax_message(exc)}", path=shown, element=f"line {exc.lineno}"

@@ -27,7 +27,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.model import EndEffector, Group, GroupState
 from marm_setup.setup.srdf import Srdf

@@ -18,7 +18,7 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.model import GroupState, SetupModel
@@ -53,7 +53,7 @@ def pose_configuration(
     state: GroupState, robot: RobotModel, base: Mapping[str, float] | None = None
 ) -> np.ndarray:
     """The full active configuration of a named pose: its values over `base` over the default state."""
-    from marm_setup.robot.kinematics import default_configuration
+    from marm_setup.robot import default_configuration
 
     q = default_configuration(robot)
     index = {name: i for i, name in enumerate(robot.active_joint_names)}

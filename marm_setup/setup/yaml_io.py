@@ -19,7 +19,7 @@ from os import PathLike
 import yaml
 
 from marm_setup import bounded_read
-from marm_setup.collision.pairs import DisabledPair
+from marm_setup.collision import DisabledPair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.safe_yaml import UniqueKeyLoader, load_yaml

@@ -30,8 +30,8 @@ from marm_setup.ros import Target
 if TYPE_CHECKING:
     from lxml import etree
 
-    from marm_setup.package.model import MoveItPackage
-    from marm_setup.robot.model import RobotModel
+    from marm_setup.package import MoveItPackage
+    from marm_setup.robot import RobotModel
 
 ROS2_PYTHON_ENV = "MARM_SETUP_ROS2_PYTHON"
 ROSLAUNCH_ENV = "MARM_SETUP_ROSLAUNCH"
@@ -112,7 +112,7 @@ def run_consumer(pkg: MoveItPackage, robot: RobotModel | None, distro: str | Non
 def _packages(pkg: MoveItPackage, robot: RobotModel | None) -> dict[str, str]:
     """Packages the launch files may name: every package.xml package on the package paths and
     every package the robot description used."""
-    from marm_setup.robot.ros_packages import find_packages
+    from marm_setup.robot import find_packages
 
     found = find_packages(pkg.package_paths)
     out = {name: str(found[name]) for name in found}
@@ -160,7 +160,7 @@ def _stopped(pkg: MoveItPackage, seconds: float) -> Finding:
 
 def ros2_findings(report: dict, distro: str | None) -> list[Finding]:
     """Findings from ros2_launch_check.py's report."""
-    from marm_setup.robot.ros2_control import ANY_MOCK, MOCK_PLUGINS
+    from marm_setup.robot import ANY_MOCK, MOCK_PLUGINS
 
     out = []
     mocks = MOCK_PLUGINS.get(distro or "", ANY_MOCK)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
 from marm_setup.errors import InputError
-from marm_setup.robot.ros_packages import PackageMap
+from marm_setup.robot import PackageMap
 
 ON_STDERR_DEFAULT = "fail"  # launch/substitutions/command.py: Command(..., on_stderr='fail')
 MOCK_SCRIPT_NAME = "with_mock_hardware.py"
@@ -145,7 +145,7 @@ class LaunchEvaluator:
 
 def run_static_command(command: str, packages: PackageMap, on_stderr: str = ON_STDERR_DEFAULT) -> CommandRun:
     """`xacro`, `cat` and the generated mock-hardware script, run as launch would run them."""
-    from marm_setup.robot.ros2_control import on_mock_hardware
+    from marm_setup.robot import on_mock_hardware
 
     try:
         words = shlex.split(command)
@@ -176,7 +176,7 @@ def _xacro_args(words: list[str]) -> dict[str, str]:
 
 
 def _xacro(file: str, args: dict[str, str], packages: PackageMap, command: str, on_stderr: str) -> CommandRun:
-    from marm_setup.robot.xacro_expand import run_xacro
+    from marm_setup.robot import run_xacro
 
     try:
         expansion = run_xacro(Path(file), args, packages, shown=Path(file).name)

@@ -16,10 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound, remedy
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
-from marm_setup.package.launch_ros1 import launch_nodes
-from marm_setup.package.model import MoveItPackage
-from marm_setup.package.read import read_package
-from marm_setup.package.start import package_start_values
+from marm_setup.package import MoveItPackage, launch_nodes, package_start_values, read_package
 from marm_setup.ros import Target
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
@@ -40,8 +37,8 @@ from marm_setup.validate.rules.srdf_rules import check_srdf
 from marm_setup.validate.rules.write_state_rules import check_pending_write
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.robot.model import RobotModel
+    from marm_setup.collision import CollisionScene
+    from marm_setup.robot import RobotModel
     from marm_setup.validate.runtime import PlannedPair, Progress
 
 MATRIX_TRIALS = 1000
@@ -215,7 +212,7 @@ def check_given_xacro_args(pkg: MoveItPackage, robot: RobotModel, given: Mapping
     """The `--xacro-arg`s the user gave for a package must each be an argument of its robot
     description's xacro or of its SRDF xacro (the arguments the package model's SRDF reader saw
     it take); else an InputError (robot/xacro_expand.check_xacro_args)."""
-    from marm_setup.robot.xacro_expand import check_xacro_args
+    from marm_setup.robot import check_xacro_args
 
     left = set(given) - set(robot.xacro_args or ())
     srdf = pkg.srdf_file
@@ -280,7 +277,7 @@ def user_urdf(pkg: MoveItPackage) -> str:
 
 def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Finding]]:
     """(RobotModel or None, findings): the URDF loads and its meshes resolve."""
-    from marm_setup.robot.load import load_robot
+    from marm_setup.robot import load_robot
 
     shown = shown_path(pkg, pkg.urdf) if pkg.urdf_origin != "--urdf" else str(pkg.urdf)
     if not pkg.urdf.is_file():  # named by marm_setup.yaml or .setup_assistant (--urdf is checked earlier)
@@ -368,7 +365,7 @@ def check_with_scene(
 ) -> tuple[list[Finding], list[PlannedPair] | None]:
     """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
     with the pose pairs the runtime checks planned (None when they did not run)."""
-    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.collision import CollisionScene
     from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing
     from marm_setup.validate.rules.pose_rules import check_pose_collisions, check_start_state
 

@@ -24,19 +24,21 @@ import numpy as np
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, error, warning
-from marm_setup.plan.planner import PlanFailed, PlannerOptions, state_problem
-from marm_setup.plan.problem import (
+from marm_setup.plan import (
+    PlanFailed,
+    PlannerOptions,
     PlanningProblem,
     group_names_with_poses,
     plan_between,
     planning_problem,
+    state_problem,
 )
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.package.model import MoveItPackage
-    from marm_setup.plan.problem import Executed
+    from marm_setup.collision import CollisionScene
+    from marm_setup.package import MoveItPackage
+    from marm_setup.plan import Executed
 
 RUNTIME_OPTIONS = PlannerOptions(max_time_s=5.0)
 Progress = Callable[[int, int], None]  # (pose pairs done, pose pairs in all)

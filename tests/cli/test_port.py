@@ -93,7 +93,9 @@ def test_sensors_and_servo_settings_are_carried(tmp_path):
     )
     servo = tmp_path / "a" / "config" / "arm_servo.yaml"
     servo.write_text(servo.read_text().replace("publish_period: 0.034", "publish_period: 0.02"))
-    result = _port(tmp_path / "a", tmp_path / "b", "--target", "ros2", "--ros-distro", "humble", "--format", "json")
+    result = _port(
+        tmp_path / "a", tmp_path / "b", "--target", "ros2", "--ros-distro", "humble", "--format", "json"
+    )
     assert result.exit_code == 0, result.output
     items = _items(result)
     assert items["sensors[0]"][0]["status"] == "carried" and items["sensors[0]"][0]["area"] == "perception"

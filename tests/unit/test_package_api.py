@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-PACKAGES = ("robot", "collision", "setup", "render", "plan", "validate", "port")
+PACKAGES = ("robot", "collision", "setup", "render", "package", "plan", "validate", "port", "report", "pipeline")
 
 
 @pytest.mark.parametrize("package", PACKAGES)
@@ -32,3 +32,24 @@ def test_light_module_does_not_load_coal_through_its_package():
     code = "import sys, marm_setup.collision.pairs; print('coal' in sys.modules, 'trimesh' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+@pytest.mark.parametrize("package", PACKAGES)
+def test_type_checkers_see_the_same_names(package):
+    """The TYPE_CHECKING imports of each `__init__` name exactly its API table, each from its
+    module (other packages import these names from the package; the import-linter contracts
+    refuse a reach into its modules)."""
+    import ast
+    from pathlib import Path
+
+    module = importlib.import_module(f"marm_setup.{package}")
+    tree = ast.parse(Path(module.__file__).read_text(encoding="utf-8"))
+    typed = {
+        (node.module.rsplit(".", 1)[-1], alias.name)
+        for block in tree.body
+        if isinstance(block, ast.If)
+        for node in block.body
+        if isinstance(node, ast.ImportFrom)
+        for alias in node.names
+    }
+    assert typed == {(m, name) for m, names in module.API.items() for name in names.split()}

@@ -9,7 +9,8 @@ import pytest
 from marm_setup.errors import InputError
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import derive_group_settings, infer, merge_spec
+from marm_setup.setup.infer import derive_group_settings, merge_spec
+from marm_setup.setup.infer import infer_setup as infer
 from marm_setup.setup.limb_tips import tool_frame
 from marm_setup.setup.model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
 from tests.conftest import MARM_URDF, realworld

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import fit_to_spec, infer, merge_spec
+from marm_setup.setup.infer import fit_to_spec, infer_setup, merge_spec
 from marm_setup.setup.model import RobotSource
 from marm_setup.setup.spec_overlay import spec_items, without_replaced
 from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
@@ -20,7 +20,7 @@ def _overlay(tmp_path, spec: dict):
     """(inferred, result) of `spec` over the inferred setup, as init assembles it."""
     build_file_tree(tmp_path, {"r.urdf": urdf(ROBOT)})
     robot = load_robot(tmp_path / "r.urdf")
-    inferred = infer(robot, package_name="p", source=RobotSource("r.urdf")).model
+    inferred = infer_setup(robot, package_name="p", source=RobotSource("r.urdf")).model
     merged = setup_from_dict(merge_spec(setup_to_dict(inferred), spec))
     model = fit_to_spec(without_replaced(inferred, merged, robot, spec_items(spec)), robot, spec)
     check_setup(model, robot, "spec.yaml")

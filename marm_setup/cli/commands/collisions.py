@@ -26,8 +26,7 @@ from marm_setup.errors import InputError
 
 if TYPE_CHECKING:
     from marm_setup.cli.progress import SamplingProgress
-    from marm_setup.collision.matrix import CollisionMatrix
-    from marm_setup.collision.pairs import DisabledPair
+    from marm_setup.collision import CollisionMatrix, DisabledPair
 
 REPORT_SUFFIXES = (".svg", ".html")
 
@@ -100,7 +99,7 @@ def collisions(
         _check_options(min_collision_fraction, seed, padding, None, False, None)
         _refuse_unused(xacro_arg=xacro_arg, package_path=package_path)
         from marm_setup.cli.progress import SamplingProgress
-        from marm_setup.pipeline.collisions import run_package_collisions
+        from marm_setup.pipeline import run_package_collisions
 
         with SamplingProgress(confirmed=yes) as progress:
             done = run_package_collisions(
@@ -113,7 +112,7 @@ def collisions(
     if default_pose is not None and srdf is None:
         raise InputError("needs --srdf (the SRDF holding the pose)", element="--default-pose")
     from marm_setup.cli.progress import SamplingProgress
-    from marm_setup.pipeline.collisions import CollisionsRequest, run_collisions
+    from marm_setup.pipeline import CollisionsRequest, run_collisions
 
     request = CollisionsRequest(
         trials=count,
@@ -174,7 +173,7 @@ def _print_result(
     progress: SamplingProgress,
     format: OutputFormat,
 ) -> None:
-    from marm_setup.collision.report import describe_matrix, format_summary
+    from marm_setup.collision import describe_matrix, format_summary
 
     if format is OutputFormat.json:
         typer.echo(json.dumps(describe_matrix(matrix, robot_name, disabled), indent=2))

@@ -111,7 +111,7 @@ def init(
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.errors import InputError
     from marm_setup.pipeline import InitRequest, run_init
-    from marm_setup.render.writer import check_output_dir
+    from marm_setup.render import check_output_dir
 
     if from_package is not None:
         given = [o for o, v in (("--setup", setup), ("--from-srdf", from_srdf)) if v]

@@ -23,7 +23,7 @@ def inspect(
     format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
 ) -> None:
     """Print the kinematic tree: joints (type, limits, mimic) and links (with/without geometry)."""
-    from marm_setup.robot.describe import describe_robot, format_tree
+    from marm_setup.robot import describe_robot, format_tree
 
     robot = load_robot_from_cli(urdf, xacro_arg, package_path)
     if format is OutputFormat.json:

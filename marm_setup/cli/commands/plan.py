@@ -10,7 +10,7 @@ import typer
 from marm_setup.cli.common import PackagePaths
 
 if TYPE_CHECKING:
-    from marm_setup.plan.problem import Executed, PlanningProblem
+    from marm_setup.plan import Executed, PlanningProblem
 
 PackageDir = Annotated[
     Path, typer.Argument(help="MoveIt config package folder (ours or the Setup Assistant's).", metavar="DIR")
@@ -35,7 +35,7 @@ def plan(
     package_path: PackagePaths = None,
 ) -> None:
     """Plan a collision-free, time-parameterised joint trajectory between named poses."""
-    from marm_setup.pipeline.plan import PlanRequest, run_plan
+    from marm_setup.pipeline import PlanRequest, run_plan
 
     request = PlanRequest(
         package_dir, group, from_pose, to_pose, output, seed, urdf, tuple(package_path or ())
@@ -49,7 +49,7 @@ def plan(
 
 def _summary(problem: PlanningProblem, outcome: Executed) -> str:
     """The indented summary lines of a successful, fake-executed plan."""
-    from marm_setup.plan.planner import path_length
+    from marm_setup.plan import path_length
 
     traj, result = outcome.trajectory, outcome.plan
     return "\n".join(

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 if TYPE_CHECKING:
-    from marm_setup.render.writer import FileChange
+    from marm_setup.render import FileChange
 DirArg = Annotated[Path, typer.Argument(help="Config package folder holding marm_setup.yaml.", metavar="DIR")]
 
 
@@ -26,8 +26,8 @@ def render(
     ] = None,
 ) -> None:
     """Re-render every generated file of DIR from DIR/marm_setup.yaml (create / update / unchanged / conflict)."""
-    from marm_setup.pipeline.render import run_render
-    from marm_setup.render.writer import format_change
+    from marm_setup.pipeline import run_render
+    from marm_setup.render import format_change
 
     result = run_render(dir, urdf, force=force, dry_run=dry_run)
     for line in result.warnings:
@@ -45,7 +45,7 @@ def render(
 
 
 def _summary(changes: tuple[FileChange, ...]) -> str:
-    from marm_setup.render.writer import STATUS_WORDS
+    from marm_setup.render import STATUS_WORDS
 
     counts = {word: 0 for word in STATUS_WORDS.values()}
     for change in changes:

@@ -47,8 +47,8 @@ def report(
     written either way), 2 when it cannot be read."""
     from marm_setup.cli.progress import StageProgress
     from marm_setup.findings import INTERNAL, count
-    from marm_setup.pipeline.report import ReportRequest, run_report
-    from marm_setup.robot.load import parse_xacro_args
+    from marm_setup.pipeline import ReportRequest, run_report
+    from marm_setup.robot import parse_xacro_args
 
     request = ReportRequest(
         package,

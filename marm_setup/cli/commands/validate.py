@@ -11,7 +11,7 @@ import typer
 from marm_setup.cli.common import OutputFormat, PackagePaths, PackageSrdf, PackageUrdf, XacroArgs, echo_err
 
 if TYPE_CHECKING:
-    from marm_setup.validate.runner import Validation
+    from marm_setup.validate import Validation
 
 
 def validate(
@@ -30,7 +30,7 @@ def validate(
     controllers, OMPL, launch files. Exit 0 clean, 1 with errors (or warnings with --strict),
     2 when the package cannot be read."""
     from marm_setup.findings import INTERNAL, count, format_json, format_text
-    from marm_setup.robot.load import parse_xacro_args
+    from marm_setup.robot import parse_xacro_args
 
     as_json = format is OutputFormat.json
     options = dict(
@@ -56,7 +56,7 @@ def validate(
 def _run(package: Path, options: dict, *, show_progress: bool = True) -> Validation:
     """The validation; planning's progress drawn on a terminal (stderr), never for json."""
     from marm_setup.cli.progress import StageProgress
-    from marm_setup.validate.runner import validate as run_validation
+    from marm_setup.validate import validate as run_validation
 
     with StageProgress(enabled=show_progress) as progress:
         return run_validation(package, progress=progress.stage("planning pose pairs"), **options)

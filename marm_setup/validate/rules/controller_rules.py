@@ -7,25 +7,21 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
-from marm_setup.package.controllers_file import (
-    SIMPLE_MANAGER,
-    ControllersFile,
-    MoveItController,
-    SkippedController,
-)
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.domain import (
+from marm_setup.package import SIMPLE_MANAGER, ControllersFile, MoveItController, SkippedController
+from marm_setup.robot import RobotModel
+from marm_setup.setup import (
     ARBOTIX_GRIPPER_ACTION_NS,
     FOLLOW_JOINT_TRAJECTORY,
     FOLLOW_JOINT_TRAJECTORY_NS,
     GRIPPER_CMD_NS,
     MOVEIT_CONTROLLER_TYPES,
+    active_group_joints,
+    groups_by_name,
 )
-from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.validate.rules.controller_selection import select_controllers
 
 if TYPE_CHECKING:
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.setup import Srdf
 
 
 def skipped_reason(skipped: SkippedController) -> tuple[str, str]:

@@ -17,7 +17,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from itertools import combinations
 
-from marm_setup.package.controllers_file import MoveItController
+from marm_setup.package import MoveItController
 
 
 @dataclass(frozen=True, slots=True)

@@ -29,16 +29,13 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package.driver_file import Ros2ControlFile
-from marm_setup.package.model import MoveItPackage
-from marm_setup.package.planning_file import PlanningPipeline
-from marm_setup.package.where import Param
+from marm_setup.package import MoveItPackage, Param, PlanningPipeline, Ros2ControlFile
 from marm_setup.ros import Distro, Target
-from marm_setup.setup.groups import active_group_joints, groups_by_name
+from marm_setup.setup import active_group_joints, groups_by_name
 
 if TYPE_CHECKING:
-    from marm_setup.robot.model import RobotModel
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.robot import RobotModel
+    from marm_setup.setup import Srdf
 
 PUBLISH_FLAGS = (
     "publish_planning_scene",
@@ -95,7 +92,7 @@ def _built_from_source(plugin: object, file: str, where: Callable[..., str]) -> 
     """A planner Humble's binaries lack (STOMP: moveit2's humble branch has no
     moveit_planners/stomp; moveit/moveit2#2550, #2742): move_group loads it only where the user
     built it from source."""
-    from marm_setup.setup.domain import PIPELINES
+    from marm_setup.setup import PIPELINES
 
     found = next(
         (p for p in PIPELINES.values() if p.plugin_ros2 == plugin and "humble" in p.from_source), None
@@ -189,7 +186,7 @@ def check_package_runtime(pkg: MoveItPackage, robot: RobotModel) -> list[Finding
     """The rules above on a config package: projection evaluators (both targets), then for ROS 2
     the distro's pipeline format (the distro marm_setup.yaml names), publishing flags and
     ros2_control systems."""
-    from marm_setup.robot.ros2_control import described_joints
+    from marm_setup.robot import described_joints
 
     out: list[Finding] = []
     if pkg.ompl is not None and pkg.srdf is not None:
@@ -213,7 +210,7 @@ def check_package_runtime(pkg: MoveItPackage, robot: RobotModel) -> list[Finding
 
 def check_expanded_systems(robot: RobotModel) -> list[Finding]:
     """A joint in two `<ros2_control>` systems of the URDF the package loads."""
-    from marm_setup.robot.ros2_control import described_systems
+    from marm_setup.robot import described_systems
 
     seen: dict[str, str] = {}
     out = []

@@ -7,10 +7,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from marm_setup.findings import Finding, error
-from marm_setup.package.controllers_file import ControllersFile, MoveItController
-from marm_setup.package.driver_file import ArbotixFile, DriverController, DriverFile
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.domain import (
+from marm_setup.package import ArbotixFile, ControllersFile, DriverController, DriverFile, MoveItController
+from marm_setup.robot import RobotModel
+from marm_setup.setup import (
     DRIVER_CONTROLLERS,
     FOLLOW_JOINT_TRAJECTORY,
     FOLLOW_JOINT_TRAJECTORY_NS,

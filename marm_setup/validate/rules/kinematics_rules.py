@@ -6,14 +6,18 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
-from marm_setup.package.kinematics_file import GroupKinematics, KinematicsFile
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.domain import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KINEMATICS_PLUGINS
-from marm_setup.setup.groups import groups_by_name, is_chain
+from marm_setup.package import GroupKinematics, KinematicsFile
+from marm_setup.robot import RobotModel
+from marm_setup.setup import (
+    CHAIN_ONLY_PLUGINS,
+    IKFAST_PLUGIN_SUFFIX,
+    KINEMATICS_PLUGINS,
+    groups_by_name,
+    is_chain,
+)
 
 if TYPE_CHECKING:
-    from marm_setup.setup.model import Group
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.setup import Group, Srdf
 
 POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
 

@@ -11,7 +11,7 @@ from pathlib import Path
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package.launch_xml import LaunchXml
+from marm_setup.package import LaunchXml
 from marm_setup.ros import Target
 
 FIND = re.compile(r"\$\((find|find-pkg-share)\s+([^\s)]+)\)|\$\((dirname)\)")

@@ -17,14 +17,13 @@ from numbers import Real
 from typing import TYPE_CHECKING, TypeGuard
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package.joint_limits_file import JointLimitEntry, JointLimitsFile
-from marm_setup.package.where import Param
-from marm_setup.robot.model import Joint, RobotModel, limit_slack
+from marm_setup.package import JointLimitEntry, JointLimitsFile, Param
+from marm_setup.robot import Joint, RobotModel, limit_slack
 from marm_setup.ros import Target
-from marm_setup.setup.groups import planning_joints
+from marm_setup.setup import planning_joints
 
 if TYPE_CHECKING:
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.setup import Srdf
 
 FLAGS = {
     "max_velocity": "has_velocity_limits",

@@ -27,13 +27,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from marm_setup.collision.pairs import DisabledReason
+from marm_setup.collision import DisabledReason
 from marm_setup.findings import Evidence, Finding, error, warning
-from marm_setup.robot.model import RobotModel
+from marm_setup.robot import RobotModel
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.collision import CollisionScene
+    from marm_setup.setup import Srdf
 
 DEFAULT_TRIALS = 1000
 DEFAULT_SEED = 0
@@ -51,8 +51,8 @@ def check_matrix_missing(
 ) -> list[Finding]:
     """Enabled pairs in collision in at least ALWAYS_FRACTION of the first (at most) ROUND
     resampled states, the size of one Always round."""
-    from marm_setup.collision.matrix import ROUND, trial_samples
-    from marm_setup.setup.srdf import allowed_pairs
+    from marm_setup.collision import ROUND, trial_samples
+    from marm_setup.setup import allowed_pairs
 
     pairs = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
     samples = min(trials, ROUND)
@@ -86,7 +86,7 @@ def check_matrix_fresh(
     seed: int = DEFAULT_SEED,
 ) -> list[Finding]:
     """Resample `trials` random states; every Never pair seen colliding means a stale matrix."""
-    from marm_setup.collision.matrix import trial_samples
+    from marm_setup.collision import trial_samples
 
     geometry = set(scene.links)
     never = [

@@ -12,7 +12,7 @@ from marm_setup.findings import Finding, warning
 from marm_setup.names import name_problem
 
 if TYPE_CHECKING:
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.setup import Srdf
 
 
 def check_srdf_names(srdf: Srdf, file: str) -> list[Finding]:

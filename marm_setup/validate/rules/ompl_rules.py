@@ -5,11 +5,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error
-from marm_setup.package.planning_file import GroupPlanning, PlanningPipeline
-from marm_setup.package.where import FrozenMapping
+from marm_setup.package import FrozenMapping, GroupPlanning, PlanningPipeline
 
 if TYPE_CHECKING:
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.setup import Srdf
 
 
 def check_ompl(ompl: PlanningPipeline, srdf: Srdf) -> list[Finding]:

@@ -20,9 +20,9 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.setup.domain import PIPELINES
-from marm_setup.setup.pipeline_params import (
+from marm_setup.setup import (
     ADAPTER_FAMILIES,
+    PIPELINES,
     STRUCTURE_KEYS,
     flatten,
     known_parameters,
@@ -33,7 +33,7 @@ from marm_setup.setup.pipeline_params import (
 )
 
 if TYPE_CHECKING:
-    from marm_setup.package.planning_file import PlanningPipeline
+    from marm_setup.package import PlanningPipeline
 
 # checked by distro_rules' format rules
 FORMAT_KEYS = frozenset({"request_adapters", "response_adapters", "capabilities"})

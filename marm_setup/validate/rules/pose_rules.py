@@ -9,15 +9,19 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Evidence, Finding, error
-from marm_setup.package.driver_file import InitialPositions
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.groups import group_joints, groups_by_name
-from marm_setup.setup.srdf import allowed_pairs
-from marm_setup.setup.start_state import pose_configuration, start_configuration
+from marm_setup.package import InitialPositions
+from marm_setup.robot import RobotModel
+from marm_setup.setup import (
+    allowed_pairs,
+    group_joints,
+    groups_by_name,
+    pose_configuration,
+    start_configuration,
+)
 
 if TYPE_CHECKING:
-    from marm_setup.collision.scene import CollisionScene
-    from marm_setup.setup.srdf import Srdf
+    from marm_setup.collision import CollisionScene
+    from marm_setup.setup import Srdf
 
 
 def check_pose_collisions(

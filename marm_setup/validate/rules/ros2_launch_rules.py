@@ -30,12 +30,12 @@ from lxml import etree
 
 from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
 from marm_setup.findings import Finding, error, warning
-from marm_setup.robot.ros_packages import find_packages
+from marm_setup.robot import find_packages
 from marm_setup.ros import Target
 from marm_setup.validate.launch_eval import ON_STDERR_DEFAULT, Call, LaunchEvaluator, parse_call
 
 if TYPE_CHECKING:
-    from marm_setup.package.model import MoveItPackage
+    from marm_setup.package import MoveItPackage
 
 DESCRIPTION_NODES = ("robot_state_publisher", "ros2_control_node")
 SHARE_PATH = re.compile(
@@ -120,7 +120,7 @@ def check_demo_hardware(
     tree: etree._Element, rel: str, ev: LaunchEvaluator, distro: str | None
 ) -> list[Finding]:
     """The demo's robot description, with the default args, has only mock ros2_control hardware."""
-    from marm_setup.robot.ros2_control import systems_in_urdf
+    from marm_setup.robot import systems_in_urdf
 
     out, seen = [], set()
     for node in tree.iter("node"):

@@ -4,9 +4,9 @@ end effectors, virtual and passive joints, disabled pairs), plus what only a fil
 from __future__ import annotations
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package.srdf_file import SrdfFile
-from marm_setup.robot.model import RobotModel
-from marm_setup.setup.rules import check_semantics, srdf_element
+from marm_setup.package import SrdfFile
+from marm_setup.robot import RobotModel
+from marm_setup.setup import check_semantics, srdf_element
 
 
 def check_srdf(srdf_file: SrdfFile, robot: RobotModel) -> list[Finding]:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, warning
-from marm_setup.render.commit_record import COMMIT, read_commit
+from marm_setup.render import COMMIT, read_commit
 
 
 def check_pending_write(root: Path) -> list[Finding]:
