@@ -1,5 +1,6 @@
-"""init's setup: inference, then an imported SRDF, then the SPEC overlaid, the distro chosen;
-checked against the robot. Reads only the SPEC and the SRDF."""
+"""init's setup: inference, then an imported SRDF, then the SPEC laid over it as a typed patch
+(setup.assemble), the distro chosen; checked once against the robot. Reads only the SPEC and the
+SRDF."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from marm_setup.ros import ROS_DISTROS, TARGETS, Distro, Target
 from marm_setup.setup import RobotSource, SetupModel
 
 if TYPE_CHECKING:
-    pass
+    from marm_setup.setup import Partial
 
 
 @dataclass(frozen=True)
@@ -50,23 +51,25 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
 
 
 def build(request: InitRequest, robot: RobotModel) -> Built:
+    """The setup init writes: inferred, the SRDF imported, the SPEC laid over it as a typed
+    patch, the distro chosen, then checked once against the robot."""
     from marm_setup.names import ros_package_name
-    from marm_setup.setup import REFERENCE, check_setup, infer_setup, package_name_problem, setup_warnings
+    from marm_setup.setup import REFERENCE, infer_setup, package_name_problem, setup_warnings
 
     if request.name and (problem := package_name_problem(request.name)):
         raise InputError(problem, element="--name")
     spec = _read_spec(request.spec)
-    target = _target(request, spec)
-    name = request.name or spec.get("package_name") or ros_package_name(f"{robot.name}_moveit_config")
-    given = bool(spec) or request.from_srdf is not None  # may give the groups inference cannot find
-    driver = spec.get("driver") if isinstance(spec.get("driver"), str) else None
+    target = target_of(request.target, None, "--target") if request.target else spec_target(spec)
+    given_name = request.name or spec.get("package_name")
+    name = str(given_name or ros_package_name(f"{robot.name}_moveit_config"))
+    driver = spec.get("driver")
     inference = infer_setup(
         robot,
-        package_name=str(name),
+        package_name=name,
         source=_source(request),
         target=target,
-        arm_required=not given,
-        driver=driver,
+        arm_required=not (spec.keys or request.from_srdf is not None),  # they may give the groups
+        driver=driver if isinstance(driver, str) else None,
     )
     model, notes = inference.model, inference.notes
     inferred_groups = bool(model.groups)
@@ -74,8 +77,7 @@ def build(request: InitRequest, robot: RobotModel) -> Built:
     if request.from_srdf is not None:
         model, notes, srdf_args = _import_srdf(request, model, notes, robot)
     _check_xacro_args(request, robot, srdf_args)
-    if spec:
-        model = _with_spec(model, spec, request, robot, inferred_groups)
+    model = _with_spec(model, spec, request, robot, inferred_groups)
     model = dataclasses.replace(model, ros_distro=choose_distro(request, spec, model.target))
     if not model.groups:
         raise InputError(
@@ -83,28 +85,37 @@ def build(request: InitRequest, robot: RobotModel) -> Built:
             path=str(request.spec or request.from_srdf),
             element="groups",
         )
-    check_setup(model, robot, str(request.spec or request.from_srdf or request.urdf))
-    poses_given = "group_states" in spec or (request.from_srdf is not None and bool(model.group_states))
-    if not (request.name or spec.get("package_name")):
-        notes = (*notes, *_taken_name_warnings(str(name), request))
+    model = _checked(model, robot, request, spec)
+    poses_given = "group_states" in spec.keys or (request.from_srdf is not None and bool(model.group_states))
+    if not given_name:
+        notes = (*notes, *_taken_name_warnings(name, request))
     return Built(model, (*notes, *_empty_group_warnings(model), *setup_warnings(model)), poses_given)
 
 
 def _with_spec(
-    model: SetupModel, spec: dict, request: InitRequest, robot: RobotModel, inferred_groups: bool
+    model: SetupModel, spec: Partial, request: InitRequest, robot: RobotModel, inferred_groups: bool
 ) -> SetupModel:
-    """`model` with the SPEC's sections in place of its own, fitted to the robot; group settings
-    filled when the groups are all the SPEC's, home poses when neither SPEC nor SRDF gives poses."""
-    from marm_setup.setup import fill_group_settings, fit_to_spec, home_poses, spec_items, without_replaced
+    """`model` with the SPEC laid over it (setup.assemble), the command line's name and target
+    in place of the SPEC's."""
+    from marm_setup.setup import Partial, with_spec
 
-    model = _make_room_for_spec(model, spec)
-    merged = without_replaced(model, _apply_spec(model, spec, request), robot, spec_items(spec))
-    model = fit_to_spec(merged, robot, spec)
-    if not inferred_groups:
-        model = fill_group_settings(model, robot)
-    if "group_states" not in spec and request.from_srdf is None:
-        model = dataclasses.replace(model, group_states=home_poses(model, robot))
-    return model
+    if not spec.keys:
+        return model
+    given = {"package_name": request.name, "target": Target(request.target) if request.target else None}
+    overrides = tuple((k, v) for k, v in given.items() if v is not None)
+    patch = Partial(spec.cls, (*(kv for kv in spec.values if kv[0] not in dict(overrides)), *overrides))
+    from_srdf = request.from_srdf is not None
+    return with_spec(model, patch, robot, inferred_groups=inferred_groups, poses_from_srdf=from_srdf)
+
+
+def _checked(model: SetupModel, robot: RobotModel, request: InitRequest, spec: Partial) -> SetupModel:
+    """The one check of the assembled setup, its errors naming the input they come from: the
+    SPEC's keys, else the SRDF's elements, else the setup's keys for the URDF."""
+    from marm_setup.setup import checked, setup_element, srdf_element
+
+    if request.from_srdf is not None and not spec.keys:
+        return checked(model, robot, str(request.from_srdf), srdf_element)
+    return checked(model, robot, str(request.spec or request.from_srdf or request.urdf), setup_element)
 
 
 def _import_srdf(
@@ -115,14 +126,7 @@ def _import_srdf(
     `.srdf.xacro` is expanded first with the `--xacro-arg`s (also returned: the arguments it
     takes). An SRDF without groups keeps the inferred ones (and their notes); one whose groups
     all fail to load is refused: MoveIt would have nothing to plan for."""
-    from marm_setup.setup import (
-        as_moveit_loads,
-        check_setup,
-        derive_group_settings,
-        load_srdf,
-        srdf_element,
-        srdf_to_setup,
-    )
+    from marm_setup.setup import as_moveit_loads, derive_group_settings, load_srdf, srdf_to_setup
 
     path = request.from_srdf
     assert path is not None
@@ -145,7 +149,6 @@ def _import_srdf(
     else:
         model = srdf_to_setup(srdf, model)
         notes = (*notes, f"{path} defines no groups: the inferred ones are kept, with its collision pairs")
-    check_setup(model, robot, str(path), srdf_element)
     return model, (*notes, *warnings), declared
 
 
@@ -193,29 +196,18 @@ def _empty_group_warnings(model: SetupModel) -> tuple[str, ...]:
     )
 
 
-def _make_room_for_spec(model: SetupModel, spec: dict) -> SetupModel:
-    """Drop what the SPEC gives in its own way: its poses replace the inferred ones (pose names
-    repeat across groups), and its end effectors those on the same groups."""
-    if "group_states" in spec:
-        model = dataclasses.replace(model, group_states=())
-    items = spec.get("end_effectors")
-    if isinstance(items, list):
-        taken = {e.get("group") for e in items if isinstance(e, dict)}
-        kept = tuple(e for e in model.end_effectors if e.group not in taken)
-        model = dataclasses.replace(model, end_effectors=kept)
-    return model
+def _read_spec(path: Path | None) -> Partial:
+    """The SPEC as a typed patch (none given: an empty one); its robot is the command line's."""
+    from marm_setup.setup import COMMAND_LINE_KEYS, Partial, patch_from_dict, read_yaml_mapping
 
-
-def _read_spec(path: Path | None) -> dict:
     if path is None:
-        return {}
-    from marm_setup.setup import read_yaml_mapping
-
-    return read_yaml_mapping(path)
+        return Partial(SetupModel, ())
+    return patch_from_dict(read_yaml_mapping(path), str(path), ignore=COMMAND_LINE_KEYS)
 
 
-def _target(request: InitRequest, spec: dict) -> Target:
-    return target_of(request.target or spec.get("target"), str(request.spec), "target")
+def spec_target(spec: Partial) -> Target:
+    given = spec.get("target")
+    return given if isinstance(given, Target) else Target.ROS2
 
 
 def target_of(given: object, path: str | None, element: str) -> Target:
@@ -227,13 +219,17 @@ def target_of(given: object, path: str | None, element: str) -> Target:
     return Target(given)
 
 
-def choose_distro(request: InitRequest, spec: dict, target: Target) -> Distro:
+def choose_distro(request: InitRequest, spec: Partial, target: Target) -> Distro:
     """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
     else the target's default (noetic for ros1, humble for ros2)."""
     from marm_setup.setup import distro_problem
 
     distros = ROS_DISTROS[target]
-    for given, where in ((request.ros_distro, "--ros-distro"), (spec.get("ros_distro"), "ros_distro")):
+    from_spec = spec.get("ros_distro")
+    for given, where in (
+        (request.ros_distro, "--ros-distro"),
+        (str(from_spec) if from_spec else None, "ros_distro"),
+    ):
         if given is None:
             continue
         problem = distro_problem(target, given)
@@ -243,18 +239,6 @@ def choose_distro(request: InitRequest, spec: dict, target: Target) -> Distro:
             )
         return Distro(given)
     return Distro(request.env_distro) if request.env_distro in distros else distros[0]
-
-
-def _apply_spec(model: SetupModel, spec: dict, request: InitRequest) -> SetupModel:
-    from marm_setup.setup import merge_spec, setup_from_dict, setup_to_dict
-
-    merged = merge_spec(setup_to_dict(model), spec)
-    if request.name:
-        merged["package_name"] = request.name
-    if request.target:
-        merged["target"] = request.target
-    merged["robot"] = setup_to_dict(model)["robot"]  # where the robot is comes from the command line
-    return setup_from_dict(merged, str(request.spec))
 
 
 def _source(request: InitRequest) -> RobotSource:

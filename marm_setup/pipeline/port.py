@@ -13,7 +13,7 @@ from marm_setup.findings import Finding, Location
 from marm_setup.pipeline.build import InitRequest, choose_distro, target_of
 from marm_setup.pipeline.write import with_collision_matrix, write_package
 from marm_setup.robot import RobotModel, parse_xacro_args
-from marm_setup.setup import SetupModel
+from marm_setup.setup import Partial, SetupModel
 
 if TYPE_CHECKING:
     from marm_setup.collision import Progress
@@ -61,7 +61,7 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
     target = target_of(request.target, None, "--target")
     distro = choose_distro(
         InitRequest(Path(), request.out, ros_distro=request.ros_distro, env_distro=request.env_distro),
-        {},
+        Partial(SetupModel, ()),
         target,
     )
     ported = port_package(

@@ -14,10 +14,13 @@ API = {
         "Kinematics PipelineParameterValue PlannerDefaults RobotSource Ros2ControlHardware Sensor Servo "
         "ServoScale SetupModel VirtualJoint"
     ),
-    "yaml_io": "dump_setup load_setup read_yaml_mapping setup_from_dict setup_to_dict",
+    "yaml_io": (
+        "dump_setup load_setup Partial patch_from_dict read_yaml_mapping setup_from_dict setup_to_dict"
+    ),
+    "assemble": "apply_patch checked COMMAND_LINE_KEYS with_spec",
     "infer": (
         "derive_group_settings describe_setup fill_group_settings fit_to_spec home_poses infer_setup "
-        "Inference merge_spec REFERENCE"
+        "Inference REFERENCE"
     ),
     "checks": "as_input_error check_setup distro_problem package_name_problem setup_warnings",
     "rules": "check_semantics setup_element srdf_element",
@@ -39,7 +42,7 @@ API = {
     "limits": "joint_limits timing_problem",
     "sensors": "check_sensors plan_perception",
     "servo": "check_servos default_servos forward_controllers plan_servos",
-    "spec_overlay": "spec_items without_replaced",
+    "spec_overlay": "patch_items spec_items without_replaced",
     "pipeline_params": (
         "ADAPTER_FAMILIES effective_parameters flatten known_parameters other_distros_reading parameter "
         "STRUCTURE_KEYS unknown_name_hint value_problem"
@@ -48,6 +51,10 @@ API = {
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.setup.assemble import COMMAND_LINE_KEYS as COMMAND_LINE_KEYS
+    from marm_setup.setup.assemble import apply_patch as apply_patch
+    from marm_setup.setup.assemble import checked as checked
+    from marm_setup.setup.assemble import with_spec as with_spec
     from marm_setup.setup.checks import as_input_error as as_input_error
     from marm_setup.setup.checks import check_setup as check_setup
     from marm_setup.setup.checks import distro_problem as distro_problem
@@ -91,7 +98,6 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.infer import fit_to_spec as fit_to_spec
     from marm_setup.setup.infer import home_poses as home_poses
     from marm_setup.setup.infer import infer_setup as infer_setup
-    from marm_setup.setup.infer import merge_spec as merge_spec
     from marm_setup.setup.limits import joint_limits as joint_limits
     from marm_setup.setup.limits import timing_problem as timing_problem
     from marm_setup.setup.model import ArbotixJoint as ArbotixJoint
@@ -132,6 +138,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.servo import default_servos as default_servos
     from marm_setup.setup.servo import forward_controllers as forward_controllers
     from marm_setup.setup.servo import plan_servos as plan_servos
+    from marm_setup.setup.spec_overlay import patch_items as patch_items
     from marm_setup.setup.spec_overlay import spec_items as spec_items
     from marm_setup.setup.spec_overlay import without_replaced as without_replaced
     from marm_setup.setup.srdf import Srdf as Srdf
@@ -149,8 +156,10 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.start_state import pose_configuration as pose_configuration
     from marm_setup.setup.start_state import start_configuration as start_configuration
     from marm_setup.setup.start_state import start_pose as start_pose
+    from marm_setup.setup.yaml_io import Partial as Partial
     from marm_setup.setup.yaml_io import dump_setup as dump_setup
     from marm_setup.setup.yaml_io import load_setup as load_setup
+    from marm_setup.setup.yaml_io import patch_from_dict as patch_from_dict
     from marm_setup.setup.yaml_io import read_yaml_mapping as read_yaml_mapping
     from marm_setup.setup.yaml_io import setup_from_dict as setup_from_dict
     from marm_setup.setup.yaml_io import setup_to_dict as setup_to_dict

@@ -11,6 +11,7 @@ a virtual joint that fits the base: none when the root is `world`, floating for 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Collection
 
 from marm_setup.errors import InputError
 from marm_setup.robot import RobotModel
@@ -32,7 +33,6 @@ from marm_setup.setup.model import (
     SetupModel,
     VirtualJoint,
 )
-from marm_setup.setup.yaml_io import ITEM_KEYS
 
 HOME = "home"
 REFERENCE = "docs/setup-file.md"
@@ -221,52 +221,12 @@ def _controllers(model: SetupModel, robot: RobotModel) -> tuple[Controller, ...]
 DERIVED_LISTS = ("controllers", "kinematics", "planners", "arbotix_joints")
 
 
-def fit_to_spec(model: SetupModel, robot: RobotModel, spec: dict) -> SetupModel:
+def fit_to_spec(model: SetupModel, robot: RobotModel, keys: Collection[str]) -> SetupModel:
     """A merged setup made whole (`setup.spec_overlay.without_replaced` has taken out what the
-    SPEC replaced): the lists the SPEC does not give (controllers, kinematics, ...) derived
-    again for the final groups."""
+    SPEC replaced): the lists the SPEC's `keys` do not name (controllers, kinematics, ...)
+    derived again for the final groups."""
     derived = derive_group_settings(model, robot)
-    return dataclasses.replace(model, **{n: getattr(derived, n) for n in DERIVED_LISTS if n not in spec})
-
-
-def merge_spec(base: dict, spec: dict) -> dict:
-    """Overlay a partial SPEC on an inferred setup (both as YAML dicts).
-
-    Mappings merge key by key; lists of named items (name / group / joint) merge by that key,
-    a SPEC item replacing the inferred one of the same key and new items appended; any other
-    value in the SPEC replaces the inferred one.
-    """
-    out = dict(base)
-    for key, value in spec.items():
-        old = out.get(key)
-        if isinstance(old, dict) and isinstance(value, dict):
-            out[key] = merge_spec(old, value)
-        elif isinstance(old, list) and isinstance(value, list):
-            out[key] = _merge_items(old, value)
-        else:
-            out[key] = value
-    return out
-
-
-def _item_key(item: object) -> str | None:
-    if isinstance(item, dict):
-        for key in ITEM_KEYS:
-            if isinstance(item.get(key), str):
-                return f"{key}={item[key]}"
-    return None
-
-
-def _merge_items(old: list, new: list) -> list:
-    """Inferred items in place, replaced by the SPEC's of the same key; the SPEC's others appended
-    (duplicates in the SPEC are kept, so the model checks report them)."""
-    if not all(_item_key(i) is not None for i in (*old, *new)):
-        return new
-    first_new: dict[str | None, int] = {}
-    for index, item in enumerate(new):
-        first_new.setdefault(_item_key(item), index)
-    used = {first_new[_item_key(o)] for o in old if _item_key(o) in first_new}
-    out = [new[first_new[_item_key(o)]] if _item_key(o) in first_new else o for o in old]
-    return out + [item for index, item in enumerate(new) if index not in used]
+    return dataclasses.replace(model, **{n: getattr(derived, n) for n in DERIVED_LISTS if n not in keys})
 
 
 def describe_setup(model: SetupModel) -> list[str]:

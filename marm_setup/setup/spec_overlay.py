@@ -18,7 +18,7 @@ from typing import Any
 from marm_setup.robot import RobotModel
 from marm_setup.setup.groups import active_group_joints, groups_by_name
 from marm_setup.setup.model import Group, SetupModel
-from marm_setup.setup.yaml_io import ITEM_KEYS
+from marm_setup.setup.yaml_io import ITEM_KEYS, Partial
 
 # the lists whose items belong to a group, and the fields naming it
 GROUP_FIELDS = {
@@ -41,6 +41,15 @@ def spec_items(spec: Mapping) -> dict[str, frozenset[str]]:
     for key, value in spec.items():
         if isinstance(value, list):
             out[str(key)] = frozenset(k for k in map(_dict_key, value) if k is not None)
+    return out
+
+
+def patch_items(spec: Partial) -> dict[str, frozenset[str]]:
+    """`spec_items` of a SPEC read as a typed patch (`yaml_io.patch_from_dict`)."""
+    out = {}
+    for key, value in spec.values:
+        if isinstance(value, tuple):
+            out[key] = frozenset(k for k in map(_item_key, value) if k is not None)
     return out
 
 

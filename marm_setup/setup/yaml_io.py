@@ -129,6 +129,59 @@ def setup_from_dict(data: dict, path: str | None = None) -> SetupModel:
 
 
 @dataclasses.dataclass(frozen=True)
+class Partial:
+    """Some fields of a setup (or of a mapping inside it: collision, author, ...), each read and
+    type-checked as `setup_from_dict` reads it; the others keep the values they had."""
+
+    cls: type
+    values: tuple[tuple[str, object], ...]
+
+    @property
+    def keys(self) -> frozenset[str]:
+        return frozenset(name for name, _ in self.values)
+
+    def get(self, name: str) -> object:
+        return next((value for key, value in self.values if key == name), None)
+
+
+def patch_from_dict(data: dict, path: str | None = None, ignore: tuple[str, ...] = ()) -> Partial:
+    """A SPEC (any subset of marm_setup.yaml) as a typed patch of a SetupModel: the same key and
+    type errors as `setup_from_dict`; keys in `ignore` are left out (given elsewhere)."""
+    return _load_partial(SetupModel, {k: v for k, v in data.items() if k not in ignore}, _Ctx(path), "")
+
+
+def _load_partial(cls, data, ctx: _Ctx, where: str) -> Partial:
+    if not isinstance(data, dict):
+        raise ctx.fail(f"expected a mapping, got {_kind(data)}", where)
+    hints = _hints(cls)
+    for key in data:
+        if key not in hints:
+            raise ctx.fail(
+                _unknown_key(key, [f.name for f in dataclasses.fields(cls)]), _join(where, str(key))
+            )
+    values = []
+    for f in dataclasses.fields(cls):
+        if f.name not in data:
+            continue
+        inner, key_where = _dataclass_of(hints[f.name]), _join(where, f.name)
+        if inner is not None and isinstance(data[f.name], dict):
+            values.append((f.name, _load_partial(inner, data[f.name], ctx, key_where)))
+            continue
+        value = _load_value(hints[f.name], data[f.name], ctx, key_where)
+        _check_choice(cls, f.name, value, ctx, key_where)
+        values.append((f.name, value))
+    return Partial(cls, tuple(values))
+
+
+def _dataclass_of(hint) -> type | None:
+    """The dataclass a field holds (also when it may be None), else None."""
+    if typing.get_origin(hint) in (typing.Union, types.UnionType):
+        inner = [a for a in typing.get_args(hint) if a is not type(None)]
+        hint = inner[0] if len(inner) == 1 else None
+    return hint if dataclasses.is_dataclass(hint) and isinstance(hint, type) else None
+
+
+@dataclasses.dataclass(frozen=True)
 class _Ctx:
     path: str | None
 

@@ -9,7 +9,7 @@ import pytest
 from marm_setup.errors import InputError
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import derive_group_settings, merge_spec
+from marm_setup.setup.infer import derive_group_settings
 from marm_setup.setup.infer import infer_setup as infer
 from marm_setup.setup.limb_tips import tool_frame
 from marm_setup.setup.model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
@@ -167,24 +167,35 @@ def test_robot_without_actuated_joints_is_an_input_error(tmp_path):
         infer(load_robot(tmp_path / "r.urdf"), package_name="p", source=SOURCE)
 
 
-def test_merge_spec_by_item_name():
-    base = {
-        "target": "ros2",
-        "author": {"name": "a", "email": "e"},
-        "group_states": [{"name": "home", "group": "arm", "values": {"j": 0.0}}],
-        "passive_joints": ["x"],
-    }
+def test_a_spec_patches_the_setup_by_key_and_by_item_name():
+    """`collision: {trials}` keeps the other collision keys, a named item replaces the one of its
+    name, a list of unnamed values replaces the list; the patch is typed as marm_setup.yaml is."""
+    from marm_setup.setup.assemble import apply_patch
+    from marm_setup.setup.model import Author, GroupState, RobotSource, SetupModel
+    from marm_setup.setup.yaml_io import patch_from_dict
+
+    base = SetupModel(
+        "p",
+        "r",
+        RobotSource("x"),
+        author=Author("a", "e"),
+        group_states=(GroupState("home", "arm", (("j", 0.0),)),),
+        passive_joints=("x",),
+    )
     spec = {
         "author": {"name": "b"},
+        "collision": {"trials": 2000},
         "group_states": [
             {"name": "forward", "group": "arm", "values": {"j": 0.4}},
             {"name": "home", "group": "arm", "values": {"j": 0.1}},
         ],
         "passive_joints": ["y"],
     }
-    merged = merge_spec(base, spec)
-    assert merged["author"] == {"name": "b", "email": "e"}
-    assert [s["name"] for s in merged["group_states"]] == ["home", "forward"]
-    assert merged["group_states"][0]["values"] == {"j": 0.1}
-    assert merged["passive_joints"] == ["y"]
-    assert base["author"] == {"name": "a", "email": "e"}
+    merged = apply_patch(base, patch_from_dict(spec, "spec.yaml"))
+    assert merged.author == Author("b", "e")
+    assert (merged.collision.trials, merged.collision.seed) == (2000, base.collision.seed)
+    assert [s.name for s in merged.group_states] == ["home", "forward"]
+    assert merged.group_states[0].values == (("j", 0.1),)
+    assert merged.passive_joints == ("y",)
+    with pytest.raises(InputError, match="collision.trials"):
+        patch_from_dict({"collision": {"trials": "many"}}, "spec.yaml")

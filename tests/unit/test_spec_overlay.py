@@ -6,11 +6,12 @@ goes; what the SPEC leaves alone stays."""
 from __future__ import annotations
 
 from marm_setup.robot.load import load_robot
+from marm_setup.setup.assemble import apply_patch
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import fit_to_spec, infer_setup, merge_spec
+from marm_setup.setup.infer import fit_to_spec, infer_setup
 from marm_setup.setup.model import RobotSource
-from marm_setup.setup.spec_overlay import spec_items, without_replaced
-from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
+from marm_setup.setup.spec_overlay import patch_items, spec_items, without_replaced
+from marm_setup.setup.yaml_io import patch_from_dict
 from tests.helpers import ARM, FINGERS, build_file_tree, fixed_link, urdf
 
 ROBOT = ARM + fixed_link("l3", "hand", True) + fixed_link("hand", "hand_tcp") + FINGERS
@@ -21,8 +22,10 @@ def _overlay(tmp_path, spec: dict):
     build_file_tree(tmp_path, {"r.urdf": urdf(ROBOT)})
     robot = load_robot(tmp_path / "r.urdf")
     inferred = infer_setup(robot, package_name="p", source=RobotSource("r.urdf")).model
-    merged = setup_from_dict(merge_spec(setup_to_dict(inferred), spec))
-    model = fit_to_spec(without_replaced(inferred, merged, robot, spec_items(spec)), robot, spec)
+    patch = patch_from_dict(spec)
+    assert patch_items(patch) == spec_items(spec)
+    merged = apply_patch(inferred, patch)
+    model = fit_to_spec(without_replaced(inferred, merged, robot, patch_items(patch)), robot, patch.keys)
     check_setup(model, robot, "spec.yaml")
     return inferred, model
 
