@@ -15,12 +15,13 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 # The marm course robot: look at it, generate its MoveIt 1 package, validate it (static rules
-# plus planning between its named poses), and plan home -> forward into a trajectory file.
+# plus planning between its named poses, plus the real `roslaunch --dump-params` where roslaunch
+# is installed), and plan home -> forward into a trajectory file.
 demo: $(STAMP)
 	$(BIN)/marm-setup inspect fixtures/marm/urdf/marm.urdf.xacro
 	$(BIN)/marm-setup init fixtures/marm/urdf/marm.urdf.xacro --out $(DEMO_OUT) \
 		--setup fixtures/marm/marm_setup.yaml --target ros1 --force
-	$(BIN)/marm-setup validate $(DEMO_OUT)
+	MARM_SETUP_ROSLAUNCH=$$(command -v roslaunch) $(BIN)/marm-setup validate $(DEMO_OUT)
 	$(BIN)/marm-setup plan $(DEMO_OUT) --group arm --from home --to forward \
 		--output $(DEMO_DIR)/home_to_forward.yaml
 

@@ -19,6 +19,7 @@ import os
 import shutil
 import signal
 import subprocess
+import sys
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,6 +27,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.ros import Target
+from marm_setup.safe_yaml import YamlLimitError, load_yaml
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -59,9 +61,13 @@ def _command(env_name: str, fallback: str) -> str | None:
 
 
 def _environment(home: str) -> dict[str, str]:
-    """The child's environment: the user's, with ROS logs and discovery kept local."""
+    """The child's environment: the user's, with ROS logs and discovery kept local, and this
+    interpreter's scripts last on PATH (a launch file's `command="xacro ..."` finds the xacro
+    marm-setup runs when the user's ROS has none, e.g. Debian's roslaunch)."""
+    path = os.pathsep.join(p for p in (os.environ.get("PATH", ""), os.path.dirname(sys.executable)) if p)
     return {
         **os.environ,
+        "PATH": path,
         "ROS_HOME": home,
         "ROS_LOG_DIR": os.path.join(home, "log"),
         "ROS_AUTOMATIC_DISCOVERY_RANGE": "OFF",
@@ -227,9 +233,11 @@ def _dump_problem(done: subprocess.CompletedProcess) -> str:
 
     if done.returncode == 0:  # a parameter tree: every key a global name (roslaunch prints
         try:  # some failures to stdout and exits 0, e.g. "Unable to load file ...")
-            tree = yaml.safe_load(done.stdout)
+            tree = load_yaml(done.stdout)
             if isinstance(tree, dict) and all(str(key).startswith("/") for key in tree):
                 return ""
+        except YamlLimitError:
+            return ""  # a tree too large to read back: roslaunch printed parameters, not a failure
         except yaml.YAMLError:
             pass
     noise = ("ROS path [", "The traceback for the exception", "... logging to", "Checking log directory")

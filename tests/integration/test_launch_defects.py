@@ -13,6 +13,8 @@ from __future__ import annotations
 import os
 import re
 import shutil
+import sys
+from pathlib import Path
 
 import pytest
 
@@ -237,3 +239,27 @@ def test_ros1_package_through_real_roslaunch(tmp_path, real_ros1):
     found = _rules(broken, "ros1.launch")
     assert list(found) == ["launch/demo.launch"]
     assert "no_such_package" in next(f.message for f in broken.findings if f.rule == "ros1.launch")
+
+
+def test_ros1_consumer_finds_the_xacro_marm_setup_runs(tmp_path, monkeypatch):
+    """Debian's roslaunch has no xacro of its own: the launch files' `command="xacro ..."` runs
+    the xacro installed beside marm-setup (its interpreter's scripts, last on the child's PATH)."""
+    from typer.testing import CliRunner
+
+    from marm_setup.cli.app import app
+    from tests.conftest import FIXTURES
+
+    roslaunch = shutil.which("roslaunch")
+    if roslaunch is None or not (Path(sys.executable).parent / "xacro").exists():
+        pytest.skip("needs roslaunch on PATH and xacro beside this interpreter")
+    out = tmp_path / "marm_moveit_config"
+    urdf = FIXTURES / "marm" / "urdf" / "marm.urdf.xacro"
+    made = CliRunner().invoke(
+        app, ["init", str(urdf), "--out", str(out), "--target", "ros1", "--trials", "200"]
+    )
+    assert made.exit_code == 0, made.output
+    monkeypatch.setenv("PATH", os.pathsep.join(("/usr/bin", "/bin")))
+    monkeypatch.setenv("MARM_SETUP_ROSLAUNCH", roslaunch)
+    checked = validate(out, plan=False)
+    assert "roslaunch --dump-params" in checked.launched_by
+    assert [f.message for f in checked.findings if f.rule == "ros1.launch"] == []
