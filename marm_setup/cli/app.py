@@ -15,6 +15,7 @@ from typing import Annotated, ParamSpec, TypeVar
 import typer
 
 from marm_setup import __version__
+from marm_setup.cli.closed_stdout import tolerate_closed_stdout
 from marm_setup.cli.common import echo_err
 from marm_setup.errors import MarmError, permission_error, remedy
 
@@ -128,6 +129,7 @@ def main() -> None:
             "package it was); cd into it again"
         )
         sys.exit(2)
+    tolerate_closed_stdout()
     try:
         code = app(prog_name="marm-setup", standalone_mode=False)
     except typer.TyperException as exc:  # the errors of the click typer bundles: usage errors
