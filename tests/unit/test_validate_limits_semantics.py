@@ -64,3 +64,17 @@ def test_zero_acceleration_without_acceleration_limits_is_the_setup_assistant_de
     assert ("limits.not-float", "error", "joint_limits.panda_joint1.max_acceleration") in found(
         broken, panda1, "ros2"
     )
+
+
+def test_a_rate_no_trajectory_can_be_timed_with_is_an_error_without_planning(panda1):
+    """1.0e-320 rad/s is positive, but times the 0.1 scaling it is below the planner's MIN_RATE:
+    `validate --no-plan` reports it as init and the planner would (setup/limits.py)."""
+    assert found(PANDA_LIMITS.replace("2.1750", "1.0e-320", 1), panda1) == [
+        ("limits.untimeable", "error", "joint_limits.panda_joint1.max_velocity")
+    ]
+    # 5e-6 rad/s alone can be timed, not at the file's 0.1 scaling
+    assert found(PANDA_LIMITS.replace("max_acceleration: 1.875", "max_acceleration: 5.0e-6"), panda1) == [
+        ("limits.untimeable", "error", "joint_limits.panda_joint2.max_acceleration")
+    ]
+    unscaled = PANDA_LIMITS.replace("default_acceleration_scaling_factor: 0.1\n", "")
+    assert found(unscaled.replace("max_acceleration: 1.875", "max_acceleration: 5.0e-6"), panda1) == []

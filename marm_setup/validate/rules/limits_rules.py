@@ -20,7 +20,7 @@ from marm_setup.findings import Finding, error, warning
 from marm_setup.package import JointLimitEntry, JointLimitsFile, Param
 from marm_setup.robot import Joint, RobotModel, limit_slack
 from marm_setup.ros import Target
-from marm_setup.setup import planning_joints
+from marm_setup.setup import planning_joints, timing_problem
 
 if TYPE_CHECKING:
     from marm_setup.setup import Srdf
@@ -67,8 +67,30 @@ def check_joint_limits(
             out.append(error("limits.malformed", file, where, "expected a mapping"))
         else:
             out += _check_entry(file, entry, robot.joint(entry.joint))
+    out += _check_timing(limits)
     if target == Target.ROS2:
         out += _check_floats(limits)
+    return out
+
+
+def _check_timing(limits: JointLimitsFile) -> list[Finding]:
+    """A positive rate so small (1.0e-320) that, times the package's default scaling factor,
+    no trajectory can be timed: the same rule `init` and the planner apply (setup/limits.py
+    timing_problem), here without planning (`validate --no-plan`)."""
+    out = []
+    for entry in sorted(limits.joints or (), key=lambda e: e.joint):
+        for key, scaling in (
+            ("max_velocity", limits.velocity_scaling),
+            ("max_acceleration", limits.acceleration_scaling),
+        ):
+            value = entry.param(key)
+            if not _truthy(entry.param(FLAGS[key])) or value is None or not _number(value.value):
+                continue
+            factor = scaling.value if scaling is not None and _number(scaling.value) else 1.0
+            if problem := timing_problem(entry.joint, key, value.value, factor):
+                out.append(
+                    error("limits.untimeable", limits.where.file, f"{entry.where.element}.{key}", problem)
+                )
     return out
 
 
