@@ -12,7 +12,8 @@ API = {
     "load": "load_robot parse_xacro_args xml_syntax_message",
     "xacro_expand": "check_xacro_args expand_xacro run_xacro XacroOutput",
     "model": (
-        "Box CollisionShape Cylinder Joint limit_slack LIMIT_TOLERANCE Link Mesh MIN_RATE RobotModel Sphere"
+        "Box CollisionShape Cylinder described_joints described_systems Joint limit_slack LIMIT_TOLERANCE Link "
+        "Mesh MIN_RATE RobotModel Sphere"
     ),
     "kinematics": (
         "bounds default_configuration forward_kinematics link_index origin_matrix sample_configurations "
@@ -24,8 +25,7 @@ API = {
     ),
     "describe": "describe_robot format_tree",
     "ros2_control": (
-        "ANY_MOCK described_joints described_systems HardwareArg MOCK_PLUGIN MOCK_PLUGINS "
-        "on_mock_hardware Ros2ControlSystem systems_in_urdf"
+        "ANY_MOCK HardwareArg MOCK_PLUGIN MOCK_PLUGINS on_mock_hardware Ros2ControlSystem systems_in_urdf"
     ),
     "urdf": "strict_float",
 }
@@ -55,14 +55,14 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.model import Mesh as Mesh
     from marm_setup.robot.model import RobotModel as RobotModel
     from marm_setup.robot.model import Sphere as Sphere
+    from marm_setup.robot.model import described_joints as described_joints
+    from marm_setup.robot.model import described_systems as described_systems
     from marm_setup.robot.model import limit_slack as limit_slack
     from marm_setup.robot.ros2_control import ANY_MOCK as ANY_MOCK
     from marm_setup.robot.ros2_control import MOCK_PLUGIN as MOCK_PLUGIN
     from marm_setup.robot.ros2_control import MOCK_PLUGINS as MOCK_PLUGINS
     from marm_setup.robot.ros2_control import HardwareArg as HardwareArg
     from marm_setup.robot.ros2_control import Ros2ControlSystem as Ros2ControlSystem
-    from marm_setup.robot.ros2_control import described_joints as described_joints
-    from marm_setup.robot.ros2_control import described_systems as described_systems
     from marm_setup.robot.ros2_control import on_mock_hardware as on_mock_hardware
     from marm_setup.robot.ros2_control import systems_in_urdf as systems_in_urdf
     from marm_setup.robot.ros_packages import PackageIndex as PackageIndex

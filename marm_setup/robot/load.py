@@ -11,15 +11,15 @@ from pathlib import Path
 
 from lxml import etree
 
-from marm_setup import bounded_read
 from marm_setup.errors import InputError
 from marm_setup.robot.model import RobotModel
 from marm_setup.robot.ros2_control import HardwareArg, MockSwitch, systems_in_urdf
 from marm_setup.robot.ros_packages import find_packages
+from marm_setup.robot.text_input import read_text
 from marm_setup.robot.urdf import parse_urdf
 from marm_setup.robot.xacro_expand import expand_xacro, run_xacro
 
-__all__ = ["expand_xacro", "load_robot", "parse_xacro_args", "parse_xml", "read_text", "xml_syntax_message"]
+__all__ = ["expand_xacro", "load_robot", "parse_xacro_args", "parse_xml", "xml_syntax_message"]
 
 
 def parse_xacro_args(items: Iterable[str]) -> dict[str, str]:
@@ -72,17 +72,6 @@ def load_robot(
     return dataclasses.replace(
         robot, packages=used, xacro_args=declared, mock_switch=switch, hardware_args=hardware_args
     )
-
-
-def read_text(file: Path, *, shown: str) -> str:
-    """The UTF-8 text of `file` (at most XML_BYTES); unreadable, too large or non-UTF-8 content
-    is an InputError."""
-    try:
-        return bounded_read.read_text(file, bounded_read.XML_BYTES, shown=shown)
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text (byte {exc.start})", path=shown) from None
-    except OSError as exc:
-        raise InputError(f"cannot read: {exc.strerror or exc}", path=shown) from None
 
 
 def parse_xml(text: str, *, shown: str) -> etree._Element:

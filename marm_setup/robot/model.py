@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING
 
+from marm_setup.robot.ros2_control import Ros2ControlSystem, systems_in_urdf
+
 if TYPE_CHECKING:
     from marm_setup.robot.ros2_control import HardwareArg, MockSwitch
 
@@ -279,3 +281,15 @@ class RobotModel:
         if link in self.parent_joint_of:
             nbrs.append(self.parent_joint_of[link].parent)
         return nbrs
+
+
+def described_systems(robot: RobotModel) -> tuple[Ros2ControlSystem, ...]:
+    """The `<ros2_control>` elements directly under the (expanded) URDF's `<robot>`."""
+    return systems_in_urdf(robot.urdf_xml)
+
+
+def described_joints(robot: RobotModel) -> frozenset[str]:
+    """Joints some `<ros2_control>` of the description drives or reports, with the setup's xacro
+    args or with its mock switch on (a switch may add systems or joints, e.g. mimic joints)."""
+    systems = described_systems(robot) + (robot.mock_switch.mock if robot.mock_switch else ())
+    return frozenset(j for system in systems for j in system.joints)

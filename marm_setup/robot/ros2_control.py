@@ -14,8 +14,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from marm_setup.robot.model import RobotModel
-
 MOCK_PLUGIN = "mock_components/GenericSystem"
 MOCK_PLUGINS = {
     "humble": frozenset({MOCK_PLUGIN, "fake_components/GenericSystem"}),
@@ -85,18 +83,6 @@ def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
         params = tuple((p.get("name", ""), (p.text or "").strip()) for p in element.findall("hardware/param"))
         systems.append(Ros2ControlSystem(element.get("name", ""), plugin.strip(), joints, kind, params))
     return tuple(systems)
-
-
-def described_systems(robot: RobotModel) -> tuple[Ros2ControlSystem, ...]:
-    """The `<ros2_control>` elements directly under the (expanded) URDF's `<robot>`."""
-    return systems_in_urdf(robot.urdf_xml)
-
-
-def described_joints(robot: RobotModel) -> frozenset[str]:
-    """Joints some `<ros2_control>` of the description drives or reports, with the setup's xacro
-    args or with its mock switch on (a switch may add systems or joints, e.g. mimic joints)."""
-    systems = described_systems(robot) + (robot.mock_switch.mock if robot.mock_switch else ())
-    return frozenset(j for system in systems for j in system.joints)
 
 
 def on_mock_hardware(xml: str) -> str:

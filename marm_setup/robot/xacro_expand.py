@@ -78,8 +78,8 @@ def expand_xacro(file: Path, args: dict[str, str], packages: PackageMap, *, show
 def run_xacro(file: Path, args: Mapping[str, str], packages: PackageMap, *, shown: str) -> XacroOutput:
     """Run the real xacro on `file` with `args`, resolving `$(find pkg)` from `packages`, in a
     child process bounded in time and memory (xacro evaluates `${...}` as Python)."""
-    from marm_setup.robot.load import read_text
     from marm_setup.robot.sandbox import ChildDied, TimeLimitExceeded, run_limited
+    from marm_setup.robot.text_input import read_text
 
     text = read_text(file, shown=shown).replace("$(find-pkg-share ", "$(find ")
     seconds = float(os.environ.get("MARM_SETUP_XACRO_TIMEOUT", XACRO_SECONDS))
