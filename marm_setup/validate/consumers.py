@@ -61,18 +61,21 @@ def _command(env_name: str, fallback: str) -> str | None:
 
 
 def _environment(home: str) -> dict[str, str]:
-    """The child's environment: the user's, with ROS logs and discovery kept local, and this
-    interpreter's scripts last on PATH (a launch file's `command="xacro ..."` finds the xacro
-    marm-setup runs when the user's ROS has none, e.g. Debian's roslaunch)."""
-    path = os.pathsep.join(p for p in (os.environ.get("PATH", ""), os.path.dirname(sys.executable)) if p)
+    """The child's environment: the user's, with ROS logs and discovery kept local."""
     return {
         **os.environ,
-        "PATH": path,
         "ROS_HOME": home,
         "ROS_LOG_DIR": os.path.join(home, "log"),
         "ROS_AUTOMATIC_DISCOVERY_RANGE": "OFF",
         "ROS_LOCALHOST_ONLY": "1",
     }
+
+
+def _with_our_scripts_last(path: str) -> str:
+    """PATH with this interpreter's scripts last: a ROS 1 launch file's `command="xacro ..."`
+    finds the xacro marm-setup runs when the user's ROS has none (Debian's roslaunch). Not for
+    ROS 2: its launch check puts its own interpreter's xacro (ament-aware) last."""
+    return os.pathsep.join(p for p in (path, os.path.dirname(sys.executable)) if p)
 
 
 def _run(argv: list[str], env: dict[str, str], seconds: float) -> subprocess.CompletedProcess | None:
@@ -207,7 +210,11 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
     out = []
     with tempfile.TemporaryDirectory(prefix="marm_ros1_") as home:
         roots = [str(pkg.root), *(str(p) for p in pkg.package_paths), os.environ.get("ROS_PACKAGE_PATH", "")]
-        env = {**_environment(home), "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r)}
+        env = {
+            **_environment(home),
+            "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r),
+            "PATH": _with_our_scripts_last(os.environ.get("PATH", "")),
+        }
         for launch in pkg.launch:
             rel = launch.file
             if not rel.endswith(".launch") or launch.root is None or _needs_args(launch.root):
