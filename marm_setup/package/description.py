@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from marm_setup.errors import InputError
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, warning
 from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssistantFile
 from marm_setup.ros import Target
 
@@ -78,10 +78,14 @@ def choose_srdf(
 
 
 def _missing_sa_srdf(sa: SetupAssistantFile) -> Finding:
+    """Only the Setup Assistant reads `.setup_assistant` (moveit/moveit `moveit_setup_assistant/
+    src/tools/moveit_config_data.cpp` `inputSetupAssistantYAML`); move_group takes the SRDF its
+    launch files load, so a stale name there (often beside a `.srdf.xacro`) is a warning."""
     msg = (
-        f"names the SRDF '{sa.srdf_path}', which does not exist: the Setup Assistant cannot load this package"
+        f"names the SRDF '{sa.srdf_path}', which does not exist: the Setup Assistant cannot load this "
+        "package (move_group never reads this file)"
     )
-    return error("srdf.missing", ".setup_assistant", f"{sa.srdf_key}.relative_path", msg, "fix the path")
+    return warning("srdf.missing", ".setup_assistant", f"{sa.srdf_key}.relative_path", msg, "fix the path")
 
 
 def find_description(

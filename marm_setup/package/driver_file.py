@@ -31,6 +31,7 @@ class DriverController:
 class DriverFile:
     where: Where
     controllers: tuple[DriverController, ...]
+    well_formed: bool = True  # the controllers' mapping is one (ROS 2: controller_manager.ros__parameters)
 
     def controller(self, name: str) -> DriverController | None:
         return next((c for c in self.controllers if c.name == name), None)
@@ -47,7 +48,7 @@ def read_ros2_controllers(doc: Located) -> DriverFile:
             out.append(
                 DriverController(name, str(entry.data["type"]), _joints(params), entry.where, _others(params))
             )
-    return DriverFile(doc.where, tuple(out))
+    return DriverFile(doc.where, tuple(out), manager.is_mapping)
 
 
 def read_ros_controllers(doc: Located) -> DriverFile:
@@ -57,7 +58,7 @@ def read_ros_controllers(doc: Located) -> DriverFile:
         for name, entry in doc.items()
         if entry.is_mapping and "type" in entry.data
     ]
-    return DriverFile(doc.where, tuple(out))
+    return DriverFile(doc.where, tuple(out), doc.is_mapping)
 
 
 def _joints(params: Located) -> tuple[str, ...] | None:

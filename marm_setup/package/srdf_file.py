@@ -90,9 +90,15 @@ def _srdf_text(
 
 def _skipped_element(rel: str, exc: InputError) -> Finding:
     """An SRDF element left out: srdfdom also skips one missing an attribute (logging an error);
-    a form srdfdom reads but this validator does not model is only not checked."""
+    a form srdfdom reads but this validator does not model is only not checked. A virtual joint
+    srdfdom skips (srdfdom src/model.cpp `loadVirtualJoints`) leaves MoveIt its default: a fixed
+    root joint (moveit/moveit `moveit_core/robot_model/src/robot_model.cpp` l.972-976,
+    "Assuming fixed joint"), and MoveIt plans: a warning."""
     if "not supported" in exc.message:
         return warning("srdf.unsupported", rel, exc.element or "", f"not checked: {exc.message}")
+    if (exc.element or "").split("[", 1)[0] == "virtual_joint":
+        msg = f"{exc.message} (srdfdom skips this element: MoveIt assumes a fixed root joint)"
+        return warning("srdf.parse", rel, exc.element or "", msg)
     return error("srdf.parse", rel, exc.element or "", f"{exc.message} (srdfdom skips this element)")
 
 

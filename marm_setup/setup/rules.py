@@ -149,9 +149,11 @@ def check_virtual_joints(r: _Rules) -> list[Finding]:
         out += missing
         if not missing and vj.child_link != r.robot.root:
             out += _virtual_joint_off_root(r, vj, where)
-        if vj.parent_frame in r.robot.link_map and vj.parent_frame != r.robot.root:
+        if vj.parent_frame in r.robot.link_map and vj.parent_frame not in (r.robot.root, vj.child_link):
             # robot_state_publisher puts that link below the root; the virtual joint's TF would put
-            # the root below it: a loop tf2 refuses
+            # the root below it: a loop tf2 refuses. A parent frame that is the child link itself
+            # is an identity: MoveIt builds the joint (robot_model.cpp l.953-968 in moveit/moveit)
+            # and tf2 ignores a self transform (buffer_core.cpp TF_SELF_TRANSFORM): no loop
             msg = f"parent frame '{vj.parent_frame}' is one of the robot's own links: TF would form a loop"
             out.append(
                 r.error("srdf.virtual-joint-parent", Where("virtual_joint", vj.name, ("parent_frame",)), msg)
@@ -323,9 +325,21 @@ def check_disabled_links(r: _Rules) -> list[Finding]:
     out: list[Finding] = []
     for i, pair in enumerate(r.srdf.disabled):
         name = f"{pair.link1} {pair.link2}"
+        if pair.link1 == pair.link2:
+            out.append(_self_pair(r, name, i))
         for n, link in ((1, pair.link1), (2, pair.link2)):
             out += [
                 warning(f.rule, f.file, f.element, f"{f.message} (srdfdom ignores the pair)", f.hint)
                 for f in r.link(link, Where("disable_collisions", name, (f"link{n}",), i))
             ]
     return out
+
+
+def _self_pair(r: _Rules, name: str, index: int) -> Finding:
+    """A `disable_collisions` of a link with itself (xacro macros emit them): srdfdom keeps it
+    (model.cpp `loadCollisionPairs` checks only that both links exist) and MoveIt's allowed
+    collision matrix gets an entry no check ever asks for (a link is never checked against
+    itself), so it is harmless: a warning, a likely slip in the macro."""
+    where = Where("disable_collisions", name, (), index)
+    msg = "a link paired with itself: the entry does nothing (MoveIt never checks a link against itself)"
+    return r.warning("srdf.self-pair", where, msg, "remove it, or name the other link")

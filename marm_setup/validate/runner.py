@@ -24,6 +24,8 @@ from marm_setup.validate.rules.controller_rules import (
     check_listed,
     check_moveit_controllers,
     check_ros2_namespace,
+    check_ros_control_coverage,
+    uses_ros_control_interface,
 )
 from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
@@ -335,6 +337,10 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
             msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out
+    if uses_ros_control_interface(moveit):
+        driver = pkg.ros2_controllers or pkg.ros_controllers
+        out += check_ros_control_coverage(moveit, driver, pkg.srdf, robot)
+        return out + (check_driver_controllers(moveit, driver, robot) if driver is not None else [])
     out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
     if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
         out += check_ros2_namespace(moveit)

@@ -250,7 +250,20 @@ SRDF_CASES = [
         match="panda_link0 panda_link4",
     ),
     Case("srdf-malformed", "ros1", text(SRDF1, "</robot>", "</robt>"), "srdf.parse"),
-    Case("srdf-missing", "ros1", delete(SRDF1), "srdf.missing", also=("launch.missing-file",)),
+    Case(
+        "srdf-missing",
+        "ros1",
+        lambda pkg: (delete(SRDF1)(pkg), text(".setup_assistant", "SRDF:", "SRDF_NOT_READ:")(pkg)),
+        "srdf.missing",
+        also=("launch.missing-file",),
+    ),
+    Case(  # only the Setup Assistant reads .setup_assistant: move_group loads the SRDF that exists
+        "srdf-missing-setup-assistant-name",
+        "ros1",
+        text(".setup_assistant", "relative_path: config/panda.srdf", "relative_path: config/gone.srdf"),
+        "srdf.missing",
+        severity="warning",
+    ),
     Case(
         "ros2-srdf-xacro-unknown-group",
         "ros2",
@@ -354,7 +367,13 @@ POSE_CASES = [
 ]
 
 KINEMATICS_CASES = [
-    Case("kin-unknown-group", "ros1", text(KIN, "panda_arm:", "panda_armm:"), "kinematics.unknown-group"),
+    Case(
+        "kin-unknown-group",
+        "ros1",
+        text(KIN, "panda_arm:", "panda_armm:"),
+        "kinematics.unknown-group",
+        severity="warning",
+    ),
     Case(
         "kin-unknown-solver",
         "ros1",
@@ -619,6 +638,7 @@ OMPL_CASES = [
         "ros1",
         text(OMPL, "\npanda_arm_hand:\n", "\npanda_arm_hando:\n"),
         "ompl.unknown-group",
+        severity="warning",
     ),
     Case(
         "ompl-unknown-config",

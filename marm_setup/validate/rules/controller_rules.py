@@ -7,7 +7,13 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
-from marm_setup.package import SIMPLE_MANAGER, ControllersFile, MoveItController, SkippedController
+from marm_setup.package import (
+    SIMPLE_MANAGER,
+    ControllersFile,
+    DriverFile,
+    MoveItController,
+    SkippedController,
+)
 from marm_setup.robot import RobotModel
 from marm_setup.setup import (
     ARBOTIX_GRIPPER_ACTION_NS,
@@ -205,4 +211,56 @@ def _check_initial(fake: ControllersFile, srdf: Srdf) -> list[Finding]:
         elif (item.group, item.pose) not in states:
             msg = f"group '{item.group}' has no pose '{item.pose}'"
             out.append(error("controller.fake-initial-pose", file, where, msg))
+    return out
+
+
+# -- moveit_ros_control_interface: controllers found at run time ------------------------------------
+
+ROS_CONTROL_INTERFACE = "moveit_ros_control_interface/"
+# The controller types moveit_ros_control_interface has a handle for (moveit/moveit2
+# moveit_plugins/moveit_ros_control_interface/moveit_ros_control_interface_plugins.xml); the
+# admittance controller's handle is empty (it executes nothing).
+EXECUTING_TYPES = frozenset(
+    {
+        "joint_trajectory_controller/JointTrajectoryController",
+        "position_controllers/GripperActionController",
+        "effort_controllers/GripperActionController",
+        "parallel_gripper_action_controller/GripperActionController",
+    }
+)
+
+
+def uses_ros_control_interface(controllers: ControllersFile) -> bool:
+    """The manager is moveit_ros_control_interface's (`Ros2ControlManager`, MoveIt 1's
+    `MoveItControllerManager`): it asks the controller manager for its controllers."""
+    return controllers.manager.startswith(ROS_CONTROL_INTERFACE)
+
+
+def check_ros_control_coverage(
+    controllers: ControllersFile, driver: DriverFile | None, srdf: Srdf, robot: RobotModel
+) -> list[Finding]:
+    """moveit_ros_control_interface needs no controller list: it lists ros2_control's
+    controllers at run time (moveit/moveit2 moveit_plugins/moveit_ros_control_interface/src/
+    controller_manager_plugin.cpp l.184-260, `discover` calls list_controllers and makes a handle
+    for each type it has a plugin for). Which controllers run is decided by the spawners of the
+    launch files, which validate does not run: a group joint no executing controller of the
+    driver file drives, or no driver file at all, is a warning saying what could not be read."""
+    file = controllers.where.file
+    if driver is None:
+        msg = (
+            f"{controllers.manager} takes MoveIt's controllers from the controller manager at run "
+            "time and no ros2_controllers.yaml was found: which joints they drive was not checked"
+        )
+        return [warning("controller.not-checked", file, "moveit_controller_manager", msg)]
+    covered = {j for d in driver.controllers if d.type in EXECUTING_TYPES for j in d.joints or ()}
+    out = []
+    for joint, groups in sorted(_group_joints(srdf, robot).items()):
+        if joint not in covered:
+            msg = (
+                f"joint '{joint}' (group {', '.join(groups)}) is in no trajectory or gripper "
+                f"controller of {driver.where.file}: MoveIt cannot execute its motions unless another "
+                "controller manager's file provides one"
+            )
+            where = controllers.where.child(f"joint[{joint}]").element
+            out.append(warning("controller.uncovered-joint", file, where, msg))
     return out

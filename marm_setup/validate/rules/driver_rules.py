@@ -20,10 +20,19 @@ from marm_setup.setup import (
 
 
 def check_driver_controllers(moveit: ControllersFile, driver: DriverFile, robot: RobotModel) -> list[Finding]:
-    """MoveIt's controllers exist in the driver file with a matching type, joints and action."""
+    """MoveIt's controllers exist in the driver file with a matching type, joints and action.
+
+    A driver file without controllers (the Setup Assistant's ROS 1 `ros_controllers.yaml` with
+    only `hardware_interface` / `generic_hw_control_loop`, moveit/moveit `moveit_setup_assistant/
+    src/tools/moveit_config_data.cpp` l.1063-1074) is nothing to check: the spawner starts only
+    the controllers named in its args (`templates/moveit_config_pkg_template/launch/
+    ros_controllers.launch` l.8-9, `[ROS_CONTROLLERS]`, empty then), so nothing loads a
+    controller from the file and nothing fails; MoveIt's controllers come from elsewhere."""
     file = driver.where.file
+    if not driver.well_formed:
+        return [error("controller.driver-malformed", file, "", "expected a mapping of controllers")]
     if not driver.controllers:
-        return [error("controller.driver-malformed", file, "", "no controllers (entries with a type) found")]
+        return []
     out: list[Finding] = []
     for d in sorted(driver.controllers, key=lambda d: d.name):
         if d.type.rsplit("/", 1)[-1] not in JOINT_DRIVER_CONTROLLERS:

@@ -1,4 +1,10 @@
-"""kinematics.yaml: groups exist, solver plugin known, KDL on chains only, positive timeout/resolution."""
+"""kinematics.yaml: groups exist, solver plugin known, KDL on chains only, positive timeout/resolution.
+
+A group the SRDF lacks is only a warning: the kinematics plugin loader looks up
+`<group>/kinematics_solver` for each group of the SRDF and never reads other keys (moveit/moveit
+`moveit_ros/planning/kinematics_plugin_loader/src/kinematics_plugin_loader.cpp` l.286-309,
+moveit/moveit2 the same file l.254-265); such a key is a leftover or a typo.
+"""
 
 from __future__ import annotations
 
@@ -33,9 +39,10 @@ def check_kinematics(kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel) 
         where = entry.where.element
         if entry.group not in by_name:
             known = ", ".join(sorted(by_name)) or "none"
-            msg = f"unknown group '{entry.group}' (groups: {known})"
+            msg = f"unknown group '{entry.group}' (groups: {known}): MoveIt never reads it"
             at = Location("kinematics", entry.group, ("group", entry.group))
-            out.append(error("kinematics.unknown-group", file, where, msg, at=at))
+            hint = "a leftover or a typo: rename it to a group of the SRDF, or remove it"
+            out.append(warning("kinematics.unknown-group", file, where, msg, hint, at=at))
         elif entry.params is None:
             out.append(error("kinematics.malformed", file, where, "expected a mapping"))
         else:

@@ -1,10 +1,16 @@
-"""ompl_planning.yaml: groups exist, referenced planner configs exist, default planner config exists."""
+"""ompl_planning.yaml: groups exist, referenced planner configs exist, default planner config exists.
+
+A group the SRDF lacks is only a warning: OMPL reads the file per group of the robot model and
+never looks at other keys (moveit/moveit `moveit_planners/ompl/ompl_interface/src/
+ompl_interface.cpp` l.176 and moveit/moveit2 the same file l.164, `loadPlannerConfigurations`
+loops over `robot_model_->getJointModelGroupNames()`); such a key is a leftover or a typo.
+"""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from marm_setup.findings import Finding, Location, error
+from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package import FrozenMapping, GroupPlanning, PlanningPipeline
 
 if TYPE_CHECKING:
@@ -26,9 +32,10 @@ def check_ompl(ompl: PlanningPipeline, srdf: Srdf) -> list[Finding]:
     for entry in sorted(ompl.groups, key=lambda g: g.group):
         if entry.group not in groups:
             known = ", ".join(sorted(groups)) or "none"
-            msg = f"unknown group '{entry.group}' (groups: {known})"
+            msg = f"unknown group '{entry.group}' (groups: {known}): OMPL never reads it"
             at = Location("ompl", entry.group, ("group", entry.group))
-            out.append(error("ompl.unknown-group", file, entry.where.element, msg, at=at))
+            hint = "a leftover or a typo: rename it to a group of the SRDF, or remove it"
+            out.append(warning("ompl.unknown-group", file, entry.where.element, msg, hint, at=at))
             continue
         out += _check_group(file, entry, configs)
     return out
