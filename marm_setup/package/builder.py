@@ -46,6 +46,7 @@ class Chosen:
 class BuilderFiles:
     robot_name: str
     calls: tuple[BuilderCall, ...]  # this package's builder calls (launch files sorted)
+    others: tuple[str, ...] = ()  # other robots the package's launch files build (not read)
 
     def explicit(self, method: str) -> Chosen | None:
         """The file the first launch file naming one passes to `method`, if any."""
@@ -63,17 +64,22 @@ class BuilderFiles:
         return next((c.pipelines for c in self.calls if c.pipelines is not None), None)
 
 
-def builder_files(calls: tuple[BuilderCall, ...], package: str) -> BuilderFiles:
+def builder_files(calls: tuple[BuilderCall, ...], package: str, wanted: tuple[str, ...] = ()) -> BuilderFiles:
     """The calls that build this package's config (its own name, or the default package name of
-    their robot name), and the robot name they use."""
+    their robot name), and the robot name they use. A package whose launch files build several
+    robots (one launch file each) is read for one: the first of `wanted` (the robot names the
+    user's --srdf / --urdf suggest) it builds, else the first launch file's."""
     mine = tuple(
         c
         for c in calls
         if (c.package_name or (f"{c.robot_name}_moveit_config" if c.robot_name else None)) in (package, None)
     )
-    robot = next((c.robot_name for c in mine if c.robot_name), None)
+    robots = [c.robot_name for c in mine if c.robot_name]
+    robot = next((r for r in wanted if r in robots), robots[0] if robots else None)
+    mine = tuple(c for c in mine if c.robot_name in (robot, None))
     default = package[: -len("_moveit_config")] if package.endswith("_moveit_config") else package
-    return BuilderFiles(robot or default, mine)
+    others = tuple(sorted(set(robots) - {robot}))
+    return BuilderFiles(robot or default, mine, others)
 
 
 def chosen_file(builder: BuilderFiles, method: str, root: Path) -> Chosen | None:

@@ -160,6 +160,14 @@ def _why_no_urdf(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile 
         return ".setup_assistant gives no URDF package and relative_path"
     if (root / "marm_setup.yaml").is_file():
         return "marm_setup.yaml gives no robot.urdf"
+    if any(root.glob("launch/*.py")):
+        # moveit/moveit2 moveit_configs_utils/moveit_configs_builder.py l.213-242: a builder
+        # whose description file does not exist takes it from /robot_description at run time
+        return (
+            "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro, and its Python launch "
+            "files name no description file validate can read: at run time it comes from the "
+            "/robot_description topic or a launch command"
+        )
     return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro"
 
 

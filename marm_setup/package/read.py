@@ -15,7 +15,7 @@ from typing import Any
 
 from marm_setup.bounded_read import XML_BYTES
 from marm_setup.errors import InputError
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, error, warning
 from marm_setup.package.builder import BuilderFiles, builder_files, chosen_file
 from marm_setup.package.description import (
     MARM_MOVEIT_YAML,
@@ -84,7 +84,8 @@ def read_package(
     files = PackageFiles(root, problems)
     found = _setup(files, shown, package_paths)
     trees = {rel: parse_launch(root / rel, rel) for rel in launch_file_names(root)}
-    launched = _launched(files, trees, found.paths, found.target, found.name)
+    launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
+    problems += _other_robots(launched.builder)
     srdf_rel, srdf_args = _srdf_choice(root, srdf, found.marm, found.sa, launched, problems)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
@@ -150,8 +151,44 @@ def _finder(paths: tuple[Path, ...]) -> Callable[[str], str | None]:
     return lambda name: str(packages[name]) if name in packages else None
 
 
+def _wanted_robots(srdf: str | Path | None, urdf: str | Path | None) -> tuple[str, ...]:
+    """Robot names the user's --srdf (its `<robot name>`) and --urdf (its file name, as
+    MoveItConfigsBuilder's `config/<robot_name>.urdf.xacro`) point at."""
+    out = []
+    if srdf is not None and (name := srdf_robot_name(Path(srdf).resolve().parent, Path(srdf).name)):
+        out.append(name)
+    if urdf is not None:
+        out.append(Path(urdf).name.split(".", 1)[0])
+    return tuple(out)
+
+
+def _other_robots(builder: BuilderFiles | None) -> list[Finding]:
+    """A package whose launch files build several robots is validated for one of them."""
+    if builder is None or not builder.others:
+        return []
+    launch = builder.calls[0].launch if builder.calls else "its launch files"
+    msg = (
+        f"the launch files also build {', '.join(builder.others)}: validated {builder.robot_name} "
+        f"(what {launch} loads)"
+    )
+    return [
+        warning(
+            "launch.several-robots",
+            launch,
+            "MoveItConfigsBuilder",
+            msg,
+            "pass --srdf and --urdf of another robot to validate it",
+        )
+    ]
+
+
 def _launched(
-    files: PackageFiles, trees: Mapping[str, LaunchXml], paths: tuple[Path, ...], target: Target, name: str
+    files: PackageFiles,
+    trees: Mapping[str, LaunchXml],
+    paths: tuple[Path, ...],
+    target: Target,
+    name: str,
+    wanted: tuple[str, ...] = (),
 ) -> _Launched:
     """What the launch files load; subst_value files get their launch args before any is read."""
     find = _finder(paths)
@@ -163,7 +200,7 @@ def _launched(
         return _Launched(ros1.loads, ros1.semantic)
     xml = evaluate_ros2_xml(files.root, trees, find)
     python = read_python_launch(files.root, python_launch_names(files.root), find)
-    builder = builder_files(python.builders, name)
+    builder = builder_files(python.builders, name, wanted)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
