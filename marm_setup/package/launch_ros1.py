@@ -79,6 +79,7 @@ class _Walk:
     loads: list[YamlLoad] = field(default_factory=list)
     semantic: list[tuple[SemanticLoad, bool]] = field(default_factory=list)
     params: list[LaunchParam] = field(default_factory=list)
+    included: set[str] = field(default_factory=set)
 
 
 @dataclass(frozen=True)
@@ -94,13 +95,19 @@ class _Context:
 def evaluate_ros1(
     root: Path, trees: Mapping[str, LaunchXml], find: Callable[[str], str | None]
 ) -> Ros1Launch:
-    """Walk every launch file as an entry point (sorted) and merge what they load."""
+    """Walk every launch file as an entry point and merge what they load: first the files no
+    other launch file includes (what a user starts: demo.launch, move_group.launch, in name
+    order), whose args reach the included ones as roslaunch passes them, then the included
+    files on their own defaults."""
     loads: dict[tuple[str, str], YamlLoad] = {}
     semantic: list[tuple[SemanticLoad, bool]] = []
     params: dict[str, LaunchParam] = {}
-    for rel in sorted(trees):
-        walk = _Walk(root, trees, find)
+    walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
+    for rel, walk in walks.items():
         _walk_file(walk, rel, {}, "", False, "", 0)
+    included = set().union(*(w.included for w in walks.values()))
+    for rel in sorted(walks, key=lambda r: (r in included, r)):
+        walk = walks[rel]
         for load in walk.loads:
             known = loads.get((load.file, load.ns))
             if known is None or (known.conditional and not load.conditional):
@@ -215,6 +222,7 @@ def _include(
         if value is not None:
             given[name] = value
     ns = _ns(ctx, elem.get("ns"))
+    walk.included.add(target)
     _walk_file(walk, target, given, ns, ctx.conditional, ctx.manager, ctx.depth + 1)
 
 

@@ -8,6 +8,12 @@ an error and which skips the rest of that joint's keys. MoveIt 1's robot_model_l
 (same loop, `nh.getParam`) reads them in the same order: a max_acceleration sets
 has_acceleration_limits, and a later `has_acceleration_limits: false` clears it again, so
 `max_acceleration: 0` beside it (the Setup Assistant's own default) is never used.
+
+Which overrides apply (what `limits.above-urdf` compares with the URDF): min/max_position
+whenever given, in both (`has_position_limits` is never read: moveit/moveit robot_model_loader.cpp
+l.120-136, moveit/moveit2 l.138-165); max_velocity in MoveIt 1 whenever given unless
+`has_velocity_limits: false` follows (l.138-146), in MoveIt 2 only under `has_velocity_limits:
+true` (l.169-176, l.196-208). Values may be written in rosparam's `!degrees` (package.rosparam).
 """
 
 from __future__ import annotations
@@ -66,7 +72,7 @@ def check_joint_limits(
         elif entry.params is None:
             out.append(error("limits.malformed", file, where, "expected a mapping"))
         else:
-            out += _check_entry(file, entry, robot.joint(entry.joint))
+            out += _check_entry(file, entry, robot.joint(entry.joint), target)
     out += _check_timing(limits)
     if target == Target.ROS2:
         out += _check_floats(limits)
@@ -114,7 +120,15 @@ def _truthy(param: Param | None) -> bool:
     return param is not None and bool(param.value)
 
 
-def _check_entry(file: str, entry: JointLimitEntry, joint: Joint) -> list[Finding]:
+def _velocity_applies(entry: JointLimitEntry, target: Target) -> bool:
+    """Whether MoveIt uses the entry's max_velocity (see the module docstring)."""
+    flag = entry.param("has_velocity_limits")
+    if target == Target.ROS2:
+        return _truthy(flag)
+    return flag is None or bool(flag.value)
+
+
+def _check_entry(file: str, entry: JointLimitEntry, joint: Joint, target: Target) -> list[Finding]:
     out: list[Finding] = []
     where = entry.where.element
     for key, flag in FLAGS.items():
@@ -129,7 +143,7 @@ def _check_entry(file: str, entry: JointLimitEntry, joint: Joint) -> list[Findin
             out.append(error("limits.non-positive", file, f"{where}.{key}", msg))
     velocity = entry.param("max_velocity")
     if (
-        _truthy(entry.param("has_velocity_limits"))
+        _velocity_applies(entry, target)
         and velocity is not None
         and _number(velocity.value)
         and joint.velocity
@@ -142,7 +156,7 @@ def _check_entry(file: str, entry: JointLimitEntry, joint: Joint) -> list[Findin
 
 
 def _check_positions(file: str, entry: JointLimitEntry, joint: Joint) -> list[Finding]:
-    if not _truthy(entry.param("has_position_limits")) or joint.lower is None or joint.upper is None:
+    if joint.lower is None or joint.upper is None:
         return []
     out = []
     where = entry.where.element

@@ -1,0 +1,265 @@
+"""Forms published MoveIt packages use that validate once called errors (issue 22, families 1-7),
+and two defects it missed (8-9): one minimal vendor-style package each (tests/vendor_packages.py),
+changed in the one way the published package is. An error claims MoveIt would fail; these load
+and plan, so each is a warning or nothing, and the defects are reported."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from marm_setup.findings import Finding
+from marm_setup.package.builder import builder_files
+from marm_setup.package.launch_python import BuilderCall
+from marm_setup.package.read import read_package
+from marm_setup.validate.runner import validate
+from tests.vendor_packages import PACKAGES
+
+SRDF6 = "config/6dof/vx.srdf"
+VJ = '<virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base_link"/>'
+
+
+def findings(source: Path, paths: list[Path], **options) -> list[Finding]:
+    return list(validate(source, package_paths=paths, plan=False, matrix_trials=0, **options).findings)
+
+
+def errors(found: list[Finding]) -> list[tuple[str, str]]:
+    return [(f.rule, f.element) for f in found if f.is_error]
+
+
+def of_rule(found: list[Finding], rule: str) -> list[tuple[str, str]]:
+    return [(str(f.severity), f.element) for f in found if f.rule == rule]
+
+
+def edit(file: Path, old: str, new: str) -> None:
+    text = file.read_text()
+    assert old in text, f"{old!r} not in {file}"
+    file.write_text(text.replace(old, new, 1))
+
+
+# -- 1: an SRDF .xacro's args from the launch files' arg defaults, through includes ----------------
+
+HAND_SRDF = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="vx">
+  <xacro:arg name="hand" default="false"/>
+  <group name="arm"><chain base_link="base_link" tip_link="link6"/></group>
+  <xacro:if value="$(arg hand)"><group name="gripper"><joint name="gripper_finger_left_joint"/></group></xacro:if>
+  <virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base_link"/>
+</robot>
+"""
+
+
+def test_srdf_xacro_args_come_from_the_entry_launch_files_defaults(tmp_path):
+    """start.launch (load_gripper default true) includes move_group.launch (default false), which
+    passes it to planning_context.launch's `xacro vx.srdf.xacro hand:=$(arg load_gripper)`: what
+    roslaunch start.launch loads has the gripper group, so its kinematics entry is no unknown
+    group. move_group.launch sorts first but is included: it is not where the user starts."""
+    source, paths = PACKAGES["arg_selected"](tmp_path)
+    (source / "config/vx.srdf.xacro").write_text(HAND_SRDF)
+    launch = source / "launch"
+    edit(
+        launch / "planning_context.launch",
+        '<param name="robot_description_semantic" textfile="$(find vx_moveit_config)/config/$(arg dof)dof/vx.srdf"/>',
+        '<arg name="load_gripper" default="false"/>'
+        '<param name="robot_description_semantic" '
+        "command=\"xacro '$(find vx_moveit_config)/config/vx.srdf.xacro' hand:=$(arg load_gripper)\"/>",
+    )
+    edit(
+        launch / "move_group.launch",
+        '<arg name="dof" default="6"/>',
+        '<arg name="dof" default="6"/><arg name="load_gripper" default="false"/>',
+    )
+    edit(
+        launch / "move_group.launch",
+        '<arg name="dof" value="$(arg dof)"/></include>',
+        '<arg name="dof" value="$(arg dof)"/><arg name="load_gripper" value="$(arg load_gripper)"/></include>',
+    )
+    (launch / "start.launch").write_text(
+        '<launch><arg name="load_gripper" default="true"/><include file="$(dirname)/move_group.launch">'
+        '<arg name="load_gripper" value="$(arg load_gripper)"/></include></launch>'
+    )
+    edit(source / "config/kinematics.yaml", "arm:", "gripper:\n  kinematics_solver: x/Y\narm:")
+    pkg = read_package(source, package_paths=paths)
+    assert (pkg.srdf_path, pkg.srdf_file.xacro_args) == ("config/vx.srdf.xacro", (("hand", "true"),))
+    assert [g.name for g in pkg.srdf.groups] == ["arm", "gripper"]
+    found = findings(source, paths)
+    assert of_rule(found, "kinematics.unknown-group") == []
+    assert errors(found) == []
+
+
+# -- 2: groups in kinematics.yaml / ompl_planning.yaml the SRDF lacks --------------------------------
+
+
+def test_groups_the_srdf_lacks_are_warnings(tmp_path):
+    """MoveIt reads both files per group of the robot model; another key is never read."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    edit(source / "config/kinematics.yaml", "arm:", "old_arm:\n  kinematics_solver: x/Y\narm:")
+    edit(source / "config/ompl_planning.yaml", "arm:", "old_arm:\n  planner_configs: [Nope]\narm:")
+    found = findings(source, paths)
+    assert of_rule(found, "kinematics.unknown-group") == [("warning", "old_arm")]
+    assert of_rule(found, "ompl.unknown-group") == [("warning", "old_arm")]
+    assert errors(found) == []
+
+
+# -- 3: a driver controllers file without controllers ------------------------------------------------
+
+SA_ROS_CONTROLLERS = """vx:
+  generic_hw_control_loop:
+    loop_hz: 300
+  hardware_interface:
+    joints: [joint_1, joint_2]
+    sim_control_mode: 1
+"""
+
+
+def test_a_driver_file_without_controllers_is_nothing(tmp_path):
+    """The Setup Assistant's ROS 1 ros_controllers.yaml with only hardware_interface: its
+    spawner is given no controllers, nothing loads one from it; a list instead of a mapping
+    still is malformed."""
+    source, paths = PACKAGES["position_only"](tmp_path)
+    (source / "config/ros_controllers.yaml").write_text(SA_ROS_CONTROLLERS)
+    found = findings(source, paths)
+    assert [f for f in found if f.file == "config/ros_controllers.yaml"] == []
+    (source / "config/ros_controllers.yaml").write_text("[1, 2]\n")
+    assert of_rule(findings(source, paths), "controller.driver-malformed") == [("error", "")]
+
+
+# -- 4: a virtual joint whose parent frame is its own child link ------------------------------------
+
+
+def test_a_virtual_joint_parented_to_its_own_child_is_no_tf_loop(tmp_path):
+    source, paths = PACKAGES["arg_selected"](tmp_path)
+    srdf = source / SRDF6
+    edit(
+        srdf,
+        VJ,
+        VJ.replace('parent_frame="world" child_link="base_link"', 'parent_frame="link1" child_link="link1"'),
+    )
+    found = findings(source, paths)
+    assert of_rule(found, "srdf.virtual-joint-parent") == []
+    assert errors(found) == []  # MoveIt skips it (child is not the root): a warning of its own
+    edit(srdf, 'parent_frame="link1"', 'parent_frame="link2"')
+    assert of_rule(findings(source, paths), "srdf.virtual-joint-parent") == [
+        ("error", "virtual_joint[world_joint]")
+    ]
+
+
+# -- 5: .setup_assistant naming an SRDF that does not exist ------------------------------------------
+
+
+def test_setup_assistant_naming_a_missing_srdf_is_a_warning(tmp_path):
+    """Only the Setup Assistant reads .setup_assistant; move_group loads the SRDF the launch
+    files name (config/6dof/vx.srdf)."""
+    source, paths = PACKAGES["arg_selected"](tmp_path)
+    edit(source / ".setup_assistant", "relative_path: config/6dof/vx.srdf", "relative_path: config/vx.srdf")
+    found = findings(source, paths)
+    assert of_rule(found, "srdf.missing") == [("warning", "SRDF.relative_path")]
+    assert errors(found) == []
+
+
+# -- 6: a virtual joint without a name ---------------------------------------------------------------
+
+
+def test_a_virtual_joint_without_a_name_is_a_warning(tmp_path):
+    """srdfdom skips it; MoveIt assumes a fixed root joint and plans. Another element without a
+    name srdfdom skips stays an error."""
+    source, paths = PACKAGES["arg_selected"](tmp_path)
+    srdf = source / SRDF6
+    edit(srdf, 'name="world_joint" ', "")
+    found = findings(source, paths)
+    assert of_rule(found, "srdf.parse") == [("warning", "virtual_joint")]
+    assert errors(found) == []
+    edit(srdf, '<group_state name="bent"', "<group_state")
+    assert ("srdf.parse", "group_state") in errors(findings(source, paths))
+
+
+# -- 7: ROS 2 packages whose launch files are Python ---------------------------------------------------
+
+
+def test_ros2_control_manager_needs_no_controller_list(tmp_path):
+    """Ros2ControlManager takes MoveIt's controllers from ros2_control at run time: no list is
+    needed, and a group joint no trajectory or gripper controller drives is a warning."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / "config/bot_controllers.yaml").write_text(
+        "moveit_controller_manager: moveit_ros_control_interface/Ros2ControlManager\n"
+    )
+    found = findings(source, paths)
+    assert errors(found) == []
+    assert of_rule(found, "controller.uncovered-joint") == []
+    edit(
+        source / "config/ros2_controllers.yaml",
+        "type: position_controllers/GripperActionController",
+        "type: x/Other",
+    )
+    found = findings(source, paths)
+    assert errors(found) == []
+    assert of_rule(found, "controller.uncovered-joint") == [("warning", "joint[gripper_finger_left_joint]")]
+
+
+def test_a_package_building_several_robots_is_read_for_one():
+    """One launch file per robot (open_manipulator_moveit_config): the calls of the robot the
+    user's --srdf / --urdf names are read, not a mix of the first file naming each."""
+    calls = tuple(
+        BuilderCall(
+            f"launch/{r}.launch.py", r, "om_moveit_config", files=(("joint_limits", f"config/{r}/l.yaml"),)
+        )
+        for r in ("omx", "omy")
+    )
+    first = builder_files(calls, "om_moveit_config")
+    assert (first.robot_name, first.others, first.explicit("joint_limits").file) == (
+        "omx",
+        ("omy",),
+        "config/omx/l.yaml",
+    )
+    chosen = builder_files(calls, "om_moveit_config", ("omy",))
+    assert (chosen.robot_name, chosen.explicit("joint_limits").file) == ("omy", "config/omy/l.yaml")
+
+
+def test_a_description_only_the_run_time_gives_says_so(tmp_path):
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / ".setup_assistant").unlink()
+    import pytest
+
+    from marm_setup.errors import InputError
+
+    with pytest.raises(InputError, match="Python launch files name no description file"):
+        read_package(source, package_paths=paths)
+
+
+# -- 8: a joint_limits.yaml override above the URDF's limit, in rosparam's degrees ------------------
+
+
+def test_a_limit_in_degrees_above_the_urdf_is_reported(tmp_path):
+    """rosparam's `!degrees 90` is 1.571 rad/s, above the URDF's 1.0: MoveIt uses the override.
+    The forms once missed: MoveIt applies min/max_position without has_position_limits (it never
+    reads that key), and MoveIt 1 a max_velocity without has_velocity_limits."""
+    source, paths = PACKAGES["arg_selected"](tmp_path)
+    limits = source / "config/6dof/default_joint_limits.yaml"
+    edit(limits, "max_velocity: 0.41", "max_velocity: !degrees 90")
+    edit(limits, "joint_2:\n    has_velocity_limits: true\n", "joint_2:\n    max_position: !degrees 180\n")
+    found = findings(source, paths)
+    assert of_rule(found, "limits.above-urdf") == [
+        ("warning", "joint_limits.joint_1.max_velocity"),
+        ("warning", "joint_limits.joint_2.max_position"),
+    ]
+    messages = [f.message for f in found if f.rule == "limits.above-urdf"]
+    assert messages == [
+        "max_velocity 1.5708 is above the URDF's 1",
+        "max_position 3.14159 is above the URDF's 2",
+    ]
+    edit(limits, "has_velocity_limits: true\n    max_velocity: !degrees 90", "max_velocity: !degrees 90")
+    assert len(of_rule(findings(source, paths), "limits.above-urdf")) == 2  # MoveIt 1 still applies it
+
+
+# -- 9: <disable_collisions> of a link with itself ---------------------------------------------------
+
+
+def test_a_link_disabled_against_itself_is_a_warning(tmp_path):
+    source, paths = PACKAGES["arg_selected"](tmp_path)
+    edit(
+        source / SRDF6,
+        "</robot>",
+        '<disable_collisions link1="link2" link2="link2" reason="Adjacent"/></robot>',
+    )
+    found = findings(source, paths)
+    assert of_rule(found, "srdf.self-pair") == [("warning", "disable_collisions[link2 link2]")]
+    assert errors(found) == []
