@@ -4,23 +4,26 @@ launch XML.
 roslaunch (`ros_comm/tools/roslaunch/src/roslaunch/substitution_args.py`): `$(arg x)` the arg's
 value, `$(find pkg)` the package folder, `$(env X)` / `$(optenv X default)` the environment,
 `$(dirname)` the launch file's folder, `$(anon name)` a unique name, `$(eval ...)` Python over
-the args. ROS 2 launch XML (`launch/substitutions`, `launch_ros/substitutions`) spells an arg
-`$(var x)` and a package `$(find-pkg-share pkg)`. A substitution that cannot be resolved (an
+the args (here a restricted evaluator, package/eval_expr.py). ROS 2 launch XML
+(`launch/substitutions`, `launch_ros/substitutions`) spells an arg `$(var x)` and a package
+`$(find-pkg-share pkg)`. A substitution that cannot be resolved (an
 unknown arg, package or variable) raises SubstitutionError naming it.
 """
 
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-ROS1_COMMANDS = ("arg", "find", "env", "optenv", "dirname", "eval", "anon")
+from marm_setup.package.eval_expr import EvalRefused, evaluate_expression
+from marm_setup.untrusted import CodeNotRun, excerpt, refuse_code
+
+ROS1_COMMANDS = ("arg", "find", "env", "optenv", "dirname", "anon")
 ROS2_COMMANDS = ("var", "find-pkg-share", "find-pkg-prefix", "env", "optenv", "dirname", "eval", "anon")
-_PATTERN = r"\$\(({commands})(?=[\s)])\s*([^()]*(?:\([^()]*\)[^()]*)*)\)"
-MAX_ROUNDS = 20  # an arg's value may hold substitutions itself; a cycle stops here
+EVAL_SECONDS = 5.0  # one `$(eval)` in its child process; the evaluator bounds each step besides
+EVAL_MEMORY = 2 << 30  # [bytes] as xacro's child
 
 
 class SubstitutionError(ValueError):
@@ -42,57 +45,137 @@ class Scope:
 
 
 def substitute(text: str, scope: Scope) -> str:
-    """`text` with every substitution resolved; SubstitutionError names the first that fails."""
-    commands = ROS2_COMMANDS if scope.ros2 else ROS1_COMMANDS
-    pattern = re.compile(_PATTERN.format(commands="|".join(re.escape(c) for c in commands)))
+    """`text` with every substitution resolved, in one pass over the text as written: what a
+    substitution gives is never read for substitutions again (roslaunch resolve_args,
+    substitution_args.py:349-393, resolves the text it was given; a `$(dirname)` whose folder
+    holds `$(eval ...)` is a folder name). roslaunch evaluates `$(eval ...)` only as the whole
+    text (:377-378); ROS 2 anywhere, after the substitutions inside it. SubstitutionError names
+    the first that fails."""
     environ = os.environ if scope.environ is None else scope.environ
+    stripped = text.strip()
+    whole = stripped.startswith("$(eval ") and _closing(stripped, 0) == len(stripped) - 1
+    if whole and not scope.ros2:
+        return evaluate(stripped[7:-1], scope, environ)
+    return _substitute(text, scope, environ)
 
-    def one(match: re.Match) -> str:
-        return _resolve(match.group(1), match.group(2).strip(), scope, environ)
 
-    for _round in range(MAX_ROUNDS):
-        if "$(" not in text:
+def _substitute(text: str, scope: Scope, environ: Mapping[str, str]) -> str:
+    commands = ROS2_COMMANDS if scope.ros2 else ROS1_COMMANDS
+    out: list[str] = []
+    i = 0
+    while (start := text.find("$(", i)) >= 0:
+        end = _closing(text, start)
+        if end < 0:
             break
-        previous, text = text, pattern.sub(one, text)
-        if previous == text:
-            break
-    return text
+        body = text[start + 2 : end]
+        command = body.split(None, 1)[0] if body.strip() else ""
+        rest = body[len(command) :] if body[: len(command)] == command else ""
+        if command not in commands:
+            if command == "eval":
+                raise SubstitutionError("$(eval ...): roslaunch evaluates it only as a whole attribute")
+            out.append(text[i : start + 2])
+            i = start + 2
+            continue
+        out.append(text[i:start])
+        if command == "eval":
+            out.append(evaluate(_substitute(rest, scope, environ), scope, environ))
+        else:
+            out.append(_resolve(command, _substitute(rest, scope, environ).strip(), scope, environ))
+        i = end + 1
+    out.append(text[i:])
+    return "".join(out)
+
+
+def _closing(text: str, start: int) -> int:
+    """The index of the `)` closing the `$(` at `start` (parentheses in quotes not counted), or -1."""
+    depth, quote = 0, ""
+    for i in range(start + 1, len(text)):
+        c = text[i]
+        if quote:
+            quote = "" if c == quote else quote
+        elif c in "'\"" and depth > 0:
+            quote = c
+        elif c == "(":
+            depth += 1
+        elif c == ")":
+            depth -= 1
+            if depth == 0:
+                return i
+    return -1
 
 
 def _resolve(command: str, rest: str, scope: Scope, environ: Mapping[str, str]) -> str:
     words = rest.split()
     if command in ("arg", "var"):
         if not words or words[0] not in scope.args:
-            raise SubstitutionError(f"$({command} {rest}): no such arg in the launch file that loads it")
+            raise SubstitutionError(
+                f"$({command} {excerpt(rest)}): no such arg in the launch file that loads it"
+            )
         return str(scope.args[words[0]])
     if command in ("find", "find-pkg-share", "find-pkg-prefix"):
         folder = scope.find(words[0]) if words else None
         if folder is None:
-            raise SubstitutionError(f"$({command} {rest}): unknown package")
+            raise SubstitutionError(f"$({command} {excerpt(rest)}): unknown package")
         return str(folder)
     if command == "env":
         if not words or words[0] not in environ:
-            raise SubstitutionError(f"$(env {rest}): variable not set")
+            raise SubstitutionError(f"$(env {excerpt(rest)}): variable not set")
         return environ[words[0]]
     if command == "optenv":
         return environ.get(words[0], " ".join(words[1:])) if words else ""
     if command == "dirname":
         return scope.dirname
-    if command == "anon":
-        return f"{words[0] if words else ''}_anon"
-    return evaluate(rest, scope.args)
+    return f"{words[0] if words else ''}_anon"
 
 
-def evaluate(expression: str, args: Mapping[str, str]) -> str:
-    """roslaunch's `$(eval ...)` (substitution_args.py `_eval`): Python with `arg()` and the args."""
-    if "__" in expression:
-        raise SubstitutionError("$(eval ...) may not contain double underscores")
-    names: dict[str, Any] = {name: auto_value(value) for name, value in args.items()}
-    names.update(arg=lambda name: auto_value(args[name]), true=True, false=False)
+def evaluate(expression: str, scope: Scope, environ: Mapping[str, str] | None = None) -> str:
+    """`$(eval ...)` (roslaunch substitution_args.py `_eval` :324-347; ROS 2 launch's
+    PythonExpression) by the restricted evaluator (package/eval_expr.py), in a child process
+    bounded in time and memory as xacro is; under `--untrusted` not at all. SubstitutionError
+    names the expression (an excerpt) and why."""
+    from marm_setup.robot import ChildDied, TimeLimitExceeded, run_limited
+
+    shown = excerpt(expression.strip())
     try:
-        return str(eval(expression, {"__builtins__": {}}, names))  # noqa: S307 - roslaunch's own semantics
-    except Exception as exc:  # noqa: BLE001 - any failure of the expression is the author's
-        raise SubstitutionError(f"$(eval {expression}): {exc}") from None
+        refuse_code(f"$(eval {shown})", scope.dirname or "launch file")
+    except CodeNotRun:
+        raise SubstitutionError(
+            f"$(eval {shown}): not evaluated (--untrusted runs no package code)"
+        ) from None
+    env = dict(os.environ if environ is None else environ)
+    try:
+        return run_limited(
+            lambda: _evaluate_here(expression, scope, env), seconds=EVAL_SECONDS, memory_bytes=EVAL_MEMORY
+        )
+    except (TimeLimitExceeded, ChildDied) as exc:
+        raise SubstitutionError(f"$(eval {shown}): stopped ({exc})") from None
+
+
+def _evaluate_here(expression: str, scope: Scope, environ: Mapping[str, str]) -> str:
+    """The evaluation itself (in the child): the launch's functions over `scope`."""
+    args = scope.args
+
+    def arg(name: str) -> Any:
+        if name not in args:
+            raise SubstitutionError(f"$(eval ...): no arg '{excerpt(str(name))}'")
+        return auto_value(args[name])
+
+    def optenv(name: str, default: str = "") -> str:
+        return environ.get(name, default)
+
+    functions: dict[str, Callable[..., Any]] = {
+        "arg": arg,
+        "env": lambda name: _resolve("env", str(name), scope, environ),
+        "optenv": optenv,
+        "find": lambda name: _resolve("find", str(name), scope, environ),
+        "anon": lambda name: _resolve("anon", str(name), scope, environ),
+        "dirname": lambda: scope.dirname,
+    }
+    names = {name: auto_value(value) for name, value in args.items()}
+    try:
+        return str(evaluate_expression(expression, names, functions))
+    except EvalRefused as exc:
+        raise SubstitutionError(f"$(eval {excerpt(expression.strip())}): {exc}") from None
 
 
 def auto_value(value: str) -> Any:

@@ -28,6 +28,7 @@ API = {
         "ANY_MOCK HardwareArg MOCK_PLUGIN MOCK_PLUGINS on_mock_hardware Ros2ControlSystem systems_in_urdf"
     ),
     "urdf": "strict_float",
+    "sandbox": "ChildDied run_limited TimeLimitExceeded",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -72,6 +73,9 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.ros_packages import find_packages as find_packages
     from marm_setup.robot.ros_packages import package_name as package_name
     from marm_setup.robot.ros_packages import resolve_uri as resolve_uri
+    from marm_setup.robot.sandbox import ChildDied as ChildDied
+    from marm_setup.robot.sandbox import TimeLimitExceeded as TimeLimitExceeded
+    from marm_setup.robot.sandbox import run_limited as run_limited
     from marm_setup.robot.urdf import strict_float as strict_float
     from marm_setup.robot.xacro_expand import XacroOutput as XacroOutput
     from marm_setup.robot.xacro_expand import check_xacro_args as check_xacro_args

@@ -44,7 +44,9 @@ def test_substitutions_use_the_launch_args():
     text = substitute(TAGGED, Scope({"scale": "3"}, lambda name: "/p/pkg_a" if name == "pkg_a" else None))
     data = load_ros_yaml(text)["joint_limits"]["j1"]
     assert (data["scale"], data["path"]) == (3, "/p/pkg_a/x")
-    assert substitute("v: $(eval 2 * arg('scale'))", Scope({"scale": "3"})) == "v: 6"
+    assert substitute("$(eval 2 * arg('scale'))", Scope({"scale": "3"})) == "6"
+    with pytest.raises(SubstitutionError, match="whole attribute"):  # as roslaunch refuses it
+        substitute("v: $(eval 2 * arg('scale'))", Scope({"scale": "3"}))
     with pytest.raises(SubstitutionError, match="nope"):
         substitute("v: $(arg nope)", Scope())
 
