@@ -34,6 +34,10 @@ class PathEscape(InputError):
     """A path a package names that leaves the package and the folders the user named."""
 
 
+class SymlinkEscape(PathEscape):
+    """A file of the package that is a symlink (or under one) leading outside it."""
+
+
 @contextmanager
 def no_package_code() -> Iterator[list[str]]:
     """Within: no package code runs (`refuse_code` raises); yields the list of what was skipped."""
@@ -62,6 +66,20 @@ def refuse_code(what: str, path: str, element: str | None = None) -> None:
     raise CodeNotRun(f"not run: {what} is package code (--untrusted)", path=path, element=element)
 
 
+def skips_code(what: str) -> bool:
+    """Under `--untrusted`: record `what` as skipped and say True (the caller skips it)."""
+    try:
+        refuse_code(what, "")
+    except CodeNotRun:
+        return True
+    return False
+
+
+def skipped_code() -> tuple[str, ...]:
+    """What `--untrusted` did not run so far (empty outside `no_package_code`)."""
+    return tuple(_skipped.get() or ())
+
+
 def confined(root: Path, rel: str, allowed: Iterable[Path] = (), *, shown: str, element: str) -> Path:
     """`root / rel` when `rel` is a relative path without `..` and, symlinks followed, stays
     inside `root` or one of the `allowed` folders; else PathEscape naming `shown` and `element`
@@ -79,7 +97,7 @@ def confined(root: Path, rel: str, allowed: Iterable[Path] = (), *, shown: str, 
         )
     path = root / rel
     if not inside(path, (root, *allowed)):
-        raise PathEscape(
+        raise SymlinkEscape(
             f"'{excerpt(rel)}' is a symlink leading outside the package: refused", path=shown, element=element
         )
     return path

@@ -11,6 +11,7 @@ builder's `.robot_description_semantic(file_path)`, the one a launch file sets a
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -52,21 +53,27 @@ def choose_srdf(
     sa: SetupAssistantFile | None,
     named: tuple[SrdfChoice | None, SrdfChoice | None, str | None],
     problems: list[Finding],
+    refused: Callable[[str, str, str], bool] = lambda _rel, _file, _element: False,
 ) -> tuple[str | None, tuple[tuple[str, str], ...]]:
     """(relative SRDF path or None, its xacro args) in the order of the module docstring;
     `named` is (the builder's explicit file, the launch files' `*_semantic` file, the builder's
     default). A `.setup_assistant` naming a missing SRDF is an error in `problems`: the Setup
-    Assistant cannot load the package."""
+    Assistant cannot load the package. `refused(rel, file, element)` says whether a path that
+    `file`'s `element` names leads outside the package (then it is not a candidate)."""
     builder_file, launch_file, builder_default = named
     candidates: list[SrdfChoice] = []
     if marm is not None and marm.robot_name:
-        candidates.append((f"config/{marm.robot_name}.srdf", ()))
+        rel = f"config/{marm.robot_name}.srdf"
+        if not refused(rel, "marm_setup.yaml", "robot_name"):
+            candidates.append((rel, ()))
     if builder_file is not None:
         candidates.append(builder_file)
     if launch_file is not None:
         candidates.append(launch_file)
     if sa is not None and sa.srdf_path is not None:
-        if (root / sa.srdf_path).is_file():
+        if refused(sa.srdf_path, ".setup_assistant", f"{sa.srdf_key}.relative_path"):
+            pass
+        elif (root / sa.srdf_path).is_file():
             candidates.append((sa.srdf_path, ()))
         else:
             problems.append(_missing_sa_srdf(sa))
@@ -74,7 +81,8 @@ def choose_srdf(
         candidates.append((builder_default, ()))
     for pattern in SRDF_GLOBS:
         candidates += [(p.relative_to(root).as_posix(), ()) for p in sorted(root.glob(pattern))]
-    return next(((c, a) for c, a in candidates if (root / c).is_file()), (None, ()))
+    found = (c for c in candidates if (root / c[0]).is_file() and not refused(c[0], c[0], ""))
+    return next(found, (None, ()))
 
 
 def _missing_sa_srdf(sa: SetupAssistantFile) -> Finding:

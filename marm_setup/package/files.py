@@ -9,6 +9,7 @@ an exception: each rule family runs on what could be read.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
 
 import yaml
@@ -19,22 +20,52 @@ from marm_setup.package.rosparam import RosparamLoader
 from marm_setup.package.substitution import Scope, SubstitutionError, substitute
 from marm_setup.package.where import Located, Where
 from marm_setup.safe_yaml import load_yaml_lines
+from marm_setup.untrusted import PathEscape, SymlinkEscape, confined
 
 IGNORED_PARTS = (".git", "__pycache__")
+
+
+SYMLINK_HINT = "pass --package-path DIR to read files under DIR"
+PATH_HINT = "name a file inside the package, by a relative path without '..'"
 
 
 class FileProblem(Exception):
     """A file that exists but cannot be read (permissions, encoding, size)."""
 
 
-class PackageFiles:
-    """Reads the files of the package at `root` (relative paths), recording failures."""
+class OutsidePackage(FileProblem):
+    """A path that leads outside the package and the folders the user named: not read."""
 
-    def __init__(self, root: Path, problems: list[Finding]):
+
+class PackageFiles:
+    """Reads the files of the package at `root` (relative paths), recording failures. A file is
+    read only inside `root` or the `allowed` folders the user named (untrusted.confined): a
+    symlink or a path leaving them is a `package.outside` warning naming it, never read."""
+
+    def __init__(self, root: Path, problems: list[Finding], allowed: tuple[Path, ...] = ()):
         self.root = root
         self.problems = problems
+        self.allowed = allowed
         self.scopes: dict[str, Scope] = {}  # files a launch file loads with subst_value
         self._yaml: dict[str, Located | None] = {}
+        self._refused: set[tuple[str, str]] = set()
+
+    def refused(self, rel: str, file: str | None = None, element: str = "") -> bool:
+        """Whether `rel` (named by `file`'s `element`, default: the file itself) leads outside
+        the package and the allowed folders; the first time, a `package.outside` warning."""
+        try:
+            confined(self.root, rel, self.allowed, shown=file or rel, element=element)
+            return False
+        except PathEscape as exc:
+            hint = SYMLINK_HINT if isinstance(exc, SymlinkEscape) else PATH_HINT
+            if (exc.path or "", element) not in self._refused:
+                self._refused.add((exc.path or "", element))
+                self.problems.append(warning("package.outside", exc.path or rel, element, exc.message, hint))
+            return True
+
+    def inside_only(self, rels: Iterable[str]) -> tuple[str, ...]:
+        """`rels` without those leading outside (each one a `package.outside` warning)."""
+        return tuple(rel for rel in rels if not self.refused(rel))
 
     def path(self, rel: str) -> Path:
         return self.root / rel
@@ -53,7 +84,7 @@ class PackageFiles:
             rel = p.relative_to(self.root).as_posix()
             if p.is_file() and not any(part in IGNORED_PARTS for part in Path(rel).parts):
                 out.append(rel)
-        return tuple(out)
+        return self.inside_only(out)
 
     def text(self, rel: str, limit: int = YAML_BYTES) -> str | None:
         """The file's text, None when absent; FileProblem when it cannot be read or is over
@@ -61,6 +92,8 @@ class PackageFiles:
         file = self.path(rel)
         if not file.is_file():
             return None
+        if self.refused(rel):
+            raise OutsidePackage(f"{rel} leads outside the package")
         try:
             return read_text(file, limit, shown=rel)
         except FileTooLarge as exc:
@@ -90,6 +123,8 @@ class PackageFiles:
         except SubstitutionError as exc:
             msg = f"cannot evaluate {exc} (loaded with subst_value): its rules were skipped"
             self.problems.append(warning("yaml.substitution", rel, "", msg))
+            return None
+        except OutsidePackage:  # its package.outside warning says so
             return None
         except FileProblem as exc:
             self.problems.append(error("yaml.parse", rel, "", f"cannot read: {exc}"))

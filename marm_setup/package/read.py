@@ -81,12 +81,13 @@ def read_package(
     if not root.is_dir():
         raise InputError("not a folder", path=shown)
     problems: list[Finding] = []
-    files = PackageFiles(root, problems)
+    package_paths = tuple(package_paths)
+    files = PackageFiles(root, problems, _user_folders(package_paths, urdf, srdf))
     found = _setup(files, shown, package_paths)
-    trees = {rel: parse_launch(root / rel, rel) for rel in launch_file_names(root)}
+    trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
     launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
     problems += _other_robots(launched.builder)
-    srdf_rel, srdf_args = _srdf_choice(root, srdf, found.marm, found.sa, launched, problems)
+    srdf_rel, srdf_args = _srdf_choice(files, srdf, found.marm, found.sa, launched)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
     description = _description(root, shown, urdf, xacro_args, found, srdf_rel, launched)
@@ -107,13 +108,22 @@ def read_package(
         marm_setup=found.marm,
         srdf_file=srdf_file,
         launch=tuple(trees.values()),
-        python_launch_files=python_launch_names(root),
+        python_launch_files=files.inside_only(python_launch_names(root)),
         ros2_control_files=_ros2_control_files(files) if found.target == Target.ROS2 else (),
         files=files.listing(),
         sources=(*kinds.sources, *_srdf_source(srdf_file, launched)),
         problems=tuple(problems),
         **kinds.values,  # type: ignore[arg-type]
     )
+
+
+def _user_folders(
+    package_paths: tuple[str | Path, ...], urdf: str | Path | None, srdf: str | Path | None
+) -> tuple[Path, ...]:
+    """The folders the user named: each --package-path, and those of --urdf and --srdf; a file
+    of the package may lead into them."""
+    files = (Path(f).resolve().parent for f in (urdf, srdf) if f is not None)
+    return (*(Path(p).resolve() for p in package_paths), *files)
 
 
 def _setup(files: PackageFiles, shown: str, package_paths: Iterable[str | Path]) -> _Setup:
@@ -199,7 +209,7 @@ def _launched(
                 files.scopes.setdefault(load.file, load.scope)
         return _Launched(ros1.loads, ros1.semantic)
     xml = evaluate_ros2_xml(files.root, trees, find)
-    python = read_python_launch(files.root, python_launch_names(files.root), find)
+    python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
     builder = builder_files(python.builders, name, wanted)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
@@ -214,14 +224,14 @@ def _relative(path: str, root: Path) -> str | None:
 
 
 def _srdf_choice(
-    root: Path,
+    files: PackageFiles,
     given: str | Path | None,
     marm: MarmSetupFile | None,
     sa: SetupAssistantFile | None,
     launched: _Launched,
-    problems: list[Finding],
 ) -> tuple[str | None, tuple[tuple[str, str], ...]]:
     """(relative SRDF path or None, its xacro args): `--srdf` when given, else `choose_srdf`."""
+    root = files.root
     if given is not None:
         if not Path(given).is_file():
             raise InputError("file not found", path=str(given), element="--srdf")
@@ -239,7 +249,7 @@ def _srdf_choice(
     )
     semantic = (launched.semantic.file, launched.semantic.xacro_args) if launched.semantic else None
     default = f"config/{builder.robot_name}.srdf" if builder is not None else None
-    return choose_srdf(root, marm, sa, (named, semantic, default), problems)
+    return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, files.refused)
 
 
 def _description(

@@ -18,6 +18,7 @@ from pathlib import Path
 from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
 from marm_setup.errors import InputError
 from marm_setup.robot import PackageMap
+from marm_setup.untrusted import inside
 
 ON_STDERR_DEFAULT = "fail"  # launch/substitutions/command.py: Command(..., on_stderr='fail')
 MOCK_SCRIPT_NAME = "with_mock_hardware.py"
@@ -157,6 +158,8 @@ def run_static_command(command: str, packages: PackageMap, on_stderr: str = ON_S
         mock = _xacro_args(words).get("use_mock_hardware", "true").lower() in ("true", "1")
         words = ["xacro", *words]
     if len(words) == 2 and words[0] == "cat":
+        if not inside(Path(words[1]), (packages[name] for name in packages)):
+            return CommandRun(command, on_stderr, problem="cat: a file outside the packages is not read")
         try:
             return CommandRun(command, on_stderr, read_text(words[1], XML_BYTES))
         except OSError as exc:

@@ -184,6 +184,11 @@ def check_package_xml(root: Path, rel: str | None) -> list[Finding]:
         return [error("package.missing", "package.xml", "", "no package.xml", "every ROS package needs one")]
     from catkin_pkg.package import InvalidPackage, parse_package_string
 
+    from marm_setup.untrusted import inside
+
+    if not inside(root / rel, (root,)):  # a symlink leaving the package: package.outside says so
+        return []
+
     try:  # parse_package would read the file whole, however large
         text = bounded_read.read_text(root / rel, bounded_read.XML_BYTES, shown=rel)
         parse_package_string(text, filename=str(root / rel), warnings=[])

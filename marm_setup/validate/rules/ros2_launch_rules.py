@@ -32,6 +32,7 @@ from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
 from marm_setup.findings import Finding, error, warning
 from marm_setup.robot import find_packages
 from marm_setup.ros import Target
+from marm_setup.untrusted import excerpt, inside
 from marm_setup.validate.launch_eval import ON_STDERR_DEFAULT, Call, LaunchEvaluator, parse_call
 
 if TYPE_CHECKING:
@@ -106,7 +107,7 @@ def check_command_stderr(tree: etree._Element, rel: str, ev: LaunchEvaluator) ->
                     continue
                 run = ev.command(command, on_stderr)
                 if run.stderr.strip():
-                    first = run.stderr.strip().splitlines()[0]
+                    first = excerpt(run.stderr.strip().splitlines()[0], 120)
                     msg = (
                         f"{attr}: the command writes to stderr ('{first}') and $(command) fails the "
                         "launch on any stderr output by default: nothing after it starts"
@@ -161,6 +162,8 @@ def check_install_paths(pkg: MoveItPackage) -> list[Finding]:
     )
     out = []
     for rel in files:
+        if not inside(pkg.path(rel), (pkg.root,)):  # a symlink leaving the package: package.outside
+            continue
         try:
             text = read_bytes(pkg.path(rel), XML_BYTES).decode("utf-8", errors="replace")
         except (OSError, FileTooLarge):  # too large: not searched (its own rules say why)

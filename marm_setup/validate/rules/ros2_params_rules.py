@@ -17,6 +17,7 @@ from typing import Any
 
 from marm_setup.bounded_read import YAML_BYTES, FileTooLarge, read_bytes
 from marm_setup.findings import Finding, error
+from marm_setup.untrusted import inside
 
 PARAMS_KEY = "ros__parameters"
 SKIPPED_DIRS = {".marm_setup", ".git"}
@@ -27,6 +28,8 @@ def params_files(root: Path) -> list[Path]:
     out = []
     for path in sorted(root.rglob("*.yaml")):
         if SKIPPED_DIRS & set(path.relative_to(root).parts) or not path.is_file():
+            continue
+        if not inside(path, (root,)):  # a symlink leaving the package: package.outside says so
             continue
         try:
             if PARAMS_KEY in read_bytes(path, YAML_BYTES).decode("utf-8", errors="replace"):
