@@ -77,6 +77,16 @@ JobsOption = Annotated[
 ]
 
 
+UntrustedOption = Annotated[
+    bool,
+    typer.Option(
+        "--untrusted",
+        help=(
+            "Run none of the package's code (no xacro, $(eval), $(command) or launch file): "
+            "check what can be read and say what was skipped."
+        ),
+    ),
+]
 YesOption = Annotated[
     bool,
     typer.Option(

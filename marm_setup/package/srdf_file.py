@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError, MarmError, remedy
 from marm_setup.findings import Finding, error, warning
+from marm_setup.untrusted import CodeNotRun
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -54,6 +55,8 @@ def read_srdf_file(
     try:
         text, declared = _srdf_text(root / rel, rel, paths, args)
         srdf, xml = parse_srdf_document(text, rel, skipped)
+    except CodeNotRun:  # --untrusted: its xacro did not run (the summary says so)
+        return SrdfFile(rel, xacro_args)
     except MarmError as exc:
         problems.append(error("srdf.parse", rel, exc.element or "", exc.message, remedy(exc.needs)))
         return SrdfFile(rel, xacro_args)

@@ -4,6 +4,7 @@ and write it, then validate the new package and say which of its errors the sour
 from __future__ import annotations
 
 import dataclasses
+from contextlib import nullcontext
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -14,6 +15,7 @@ from marm_setup.pipeline.build import InitRequest, choose_distro, target_of
 from marm_setup.pipeline.write import with_collision_matrix, write_package
 from marm_setup.robot import RobotModel, parse_xacro_args
 from marm_setup.setup import Partial, SetupModel
+from marm_setup.untrusted import no_package_code
 
 if TYPE_CHECKING:
     from marm_setup.collision import Progress
@@ -38,6 +40,7 @@ class PortInitRequest:
     xacro_args: tuple[str, ...] = ()  # NAME:=VALUE, instead of the ones the package passes
     plan: bool = True  # validate's runtime checks on the new package
     jobs: int = 1
+    untrusted: bool = False  # run none of the package's code (marm_setup.untrusted)
 
 
 @dataclass(frozen=True)
@@ -49,7 +52,14 @@ class PortResult:
 
 
 def run_port(request: PortInitRequest, progress: Progress | None = None) -> PortResult:
-    """Read the package, port it, check the setup, render and write it, then validate the result."""
+    """Read the package, port it, check the setup, render and write it, then validate the result;
+    with `untrusted`, none of the package's code runs (a xacro description is then an InputError
+    saying so)."""
+    with no_package_code() if request.untrusted else nullcontext():
+        return _run_port(request, progress)
+
+
+def _run_port(request: PortInitRequest, progress: Progress | None) -> PortResult:
     from marm_setup.port import PortRequest, port_package
     from marm_setup.render import check_output_dir, format_change
     from marm_setup.setup import check_setup
@@ -161,6 +171,9 @@ def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> Robo
     from marm_setup.validate import check_given_xacro_args, load_package_robot
 
     robot, problems = load_package_robot(pkg)
+    if robot is None and not problems:  # --untrusted: its xacro did not run
+        message = "not run: its xacro is package code (--untrusted); give a plain .urdf with --urdf"
+        raise InputError(f"xacro of {pkg.urdf.name}: {message}", path=str(pkg.urdf), element="xacro")
     if robot is None:
         from marm_setup.setup import as_input_error
 

@@ -80,7 +80,9 @@ def run_xacro(file: Path, args: Mapping[str, str], packages: PackageMap, *, show
     child process bounded in time and memory (xacro evaluates `${...}` as Python)."""
     from marm_setup.robot.sandbox import ChildDied, TimeLimitExceeded, run_limited
     from marm_setup.robot.text_input import read_text
+    from marm_setup.untrusted import refuse_code
 
+    refuse_code(f"xacro of {shown}", shown, "xacro")
     text = read_text(file, shown=shown).replace("$(find-pkg-share ", "$(find ")
     seconds = float(os.environ.get("MARM_SETUP_XACRO_TIMEOUT", XACRO_SECONDS))
     try:

@@ -18,6 +18,7 @@ from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFou
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
 from marm_setup.package import MoveItPackage, launch_nodes, package_start_values, read_package
 from marm_setup.ros import Target
+from marm_setup.untrusted import CodeNotRun, no_package_code, skipped_code, skips_code
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
     check_fake_controllers,
@@ -114,6 +115,7 @@ def validate(
     plan: bool = True,
     matrix_trials: int = MATRIX_TRIALS,
     progress: Progress | None = None,
+    untrusted: bool = False,
 ) -> Validation:
     """Validate the package at `path`: its findings and what was checked (`validate_package`).
 
@@ -128,6 +130,7 @@ def validate(
         plan=plan,
         matrix_trials=matrix_trials,
         progress=progress,
+        untrusted=untrusted,
     ).validation
 
 
@@ -141,12 +144,26 @@ def validate_package(
     plan: bool = True,
     matrix_trials: int = MATRIX_TRIALS,
     progress: Progress | None = None,
+    untrusted: bool = False,
 ) -> ValidatedPackage:
     """Validate the package at `path`, keeping what was read and planned; `progress(done, total)`
-    hears of each pose pair the runtime checks plan.
+    hears of each pose pair the runtime checks plan. `untrusted`: no package code runs (no
+    xacro, `$(eval)`, `$(command)` or launch file); the summary names what was skipped.
 
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
+    if untrusted:
+        with no_package_code():
+            return validate_package(
+                path,
+                urdf=urdf,
+                srdf=srdf,
+                xacro_args=xacro_args,
+                package_paths=package_paths,
+                plan=plan,
+                matrix_trials=matrix_trials,
+                progress=progress,
+            )
     pkg = read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
     return validate_read(
         pkg, xacro_args=xacro_args, plan=plan, matrix_trials=matrix_trials, progress=progress
@@ -187,6 +204,12 @@ def validate_read(
     return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
 
 
+def _untrusted_skips() -> tuple[str, ...]:
+    """The summary's line for what `--untrusted` did not run (none when all ran)."""
+    skipped = skipped_code()
+    return (f"package code (--untrusted): {'; '.join(skipped)}",) if skipped else ()
+
+
 def _validation(
     pkg: MoveItPackage,
     robot: RobotModel | None,
@@ -205,7 +228,7 @@ def _validation(
         urdf_origin=pkg.urdf_origin,
         robot=robot.name if robot is not None else None,
         planned_pairs=None if planned is None else len(planned),
-        skipped=(*skipped_families(pkg, robot), *unplanned_pairs(planned or ())),
+        skipped=(*skipped_families(pkg, robot), *unplanned_pairs(planned or ()), *_untrusted_skips()),
         launched_by=launched_by,
     )
 
@@ -236,8 +259,11 @@ def check_as_launched(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[lis
     distro = pkg.ros_distro
     out = guarded("launch", check_install_paths, pkg)
     if pkg.target == Target.ROS2:
-        out += guarded("launch", check_ros2_launch, pkg, distro)
+        if not skips_code("the $(command ...) of the XML launch files (the launch command rules)"):
+            out += guarded("launch", check_ros2_launch, pkg, distro)
         out += guarded("params", check_params_files, pkg.root)
+    if skips_code("the launch files in the user's ROS (roslaunch / ros2 launch)"):
+        return out, "static rules only (--untrusted: no launch file was run)"
     run = run_consumer(pkg, robot, distro)
     return out + list(run.findings), run.ran
 
@@ -258,7 +284,9 @@ def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str,
         if f.rule in ("srdf.parse", "srdf.unsupported")
     ]
     if robot is None:
-        out.append("every rule needing the robot (its URDF did not load)")
+        untrusted = any(s.startswith("xacro of") for s in skipped_code())
+        why = "its xacro did not run: --untrusted" if untrusted else "its URDF did not load"
+        out.append(f"every rule needing the robot ({why})")
     elif pkg.srdf is None:
         why = "no SRDF found" if pkg.srdf_path is None else f"{pkg.srdf_path} could not be read"
         out.append(f"the SRDF, pose, kinematics, limits, OMPL, controller and collision rules ({why})")
@@ -290,6 +318,8 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
         ]
     try:
         return load_robot(pkg.urdf, dict(pkg.xacro_args), pkg.package_paths), []
+    except CodeNotRun:  # --untrusted: a xacro description is not expanded (the summary says so)
+        return None, []
     except InputError as exc:
         rule = "urdf.mesh-missing" if isinstance(exc, MeshNotFound) else "urdf.load"
         message = f"{exc.message} (robot description from {pkg.urdf_origin})"

@@ -12,6 +12,7 @@ from marm_setup.cli.common import (
     JobsOption,
     OutputFormat,
     PackagePaths,
+    UntrustedOption,
     XacroArgs,
     YesOption,
     default_jobs,
@@ -102,6 +103,7 @@ def init(
         OutputFormat, typer.Option("--format", help="With --from-package: the port report as text or json.")
     ] = OutputFormat.text,
     yes: YesOption = False,
+    untrusted: UntrustedOption = False,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package;
     or, with --from-package, port an existing config package and report every setting.
@@ -134,8 +136,13 @@ def init(
             jobs=jobs,
             plan=not no_plan,
             yes=yes,
+            untrusted=untrusted,
         )
         return
+    if untrusted:
+        raise InputError(
+            "--untrusted goes with --from-package (init URDF runs the xacro you give)", element="--untrusted"
+        )
     if urdf is None:
         raise InputError("give the robot's URDF, or --from-package PKG", element="URDF")
     if seed is not None and seed < 0:
@@ -189,6 +196,7 @@ def _port(
     jobs: int | None,
     plan: bool,
     yes: bool = False,
+    untrusted: bool = False,
 ) -> None:
     """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
     from marm_setup.cli.port_report import closing_line, format_port_json, format_port_text
@@ -209,6 +217,7 @@ def _port(
         xacro_args=tuple(xacro_arg or ()),
         plan=plan,
         jobs=default_jobs(jobs),
+        untrusted=untrusted,
     )
     with SamplingProgress(enabled=format is OutputFormat.text, confirmed=yes) as progress:
         result = run_port(request, progress)

@@ -12,6 +12,7 @@ from marm_setup.cli.common import (
     PackagePaths,
     PackageSrdf,
     PackageUrdf,
+    UntrustedOption,
     XacroArgs,
     default_jobs,
     parse_count,
@@ -39,6 +40,7 @@ def report(
         ),
     ] = None,
     jobs: JobsOption = None,
+    untrusted: UntrustedOption = False,
 ) -> None:
     """Write one self-contained HTML page (works offline): the robot in 3D at each named pose,
     groups lit, contacts in red, end effectors and the virtual joint's frame, every validate
@@ -60,6 +62,7 @@ def report(
         plan=not no_plan,
         trials=None if trials is None else parse_count(trials, element="--trials"),
         jobs=default_jobs(jobs),
+        untrusted=untrusted,
     )
     with StageProgress() as progress:
         result = run_report(request, progress)

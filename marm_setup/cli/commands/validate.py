@@ -8,7 +8,15 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from marm_setup.cli.common import OutputFormat, PackagePaths, PackageSrdf, PackageUrdf, XacroArgs, echo_err
+from marm_setup.cli.common import (
+    OutputFormat,
+    PackagePaths,
+    PackageSrdf,
+    PackageUrdf,
+    UntrustedOption,
+    XacroArgs,
+    echo_err,
+)
 
 if TYPE_CHECKING:
     from marm_setup.validate import Validation
@@ -25,6 +33,7 @@ def validate(
     ] = False,
     strict: Annotated[bool, typer.Option("--strict", help="Warnings fail the check too (exit 1).")] = False,
     format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
+    untrusted: UntrustedOption = False,
 ) -> None:
     """Validate a config package: SRDF vs URDF, poses, collision matrix, kinematics, limits,
     controllers, OMPL, launch files. Exit 0 clean, 1 with errors (or warnings with --strict),
@@ -39,6 +48,7 @@ def validate(
         xacro_args=parse_xacro_args(xacro_arg or []),
         package_paths=package_path or [],
         plan=not no_plan,
+        untrusted=untrusted,
     )
     result = _run_for_json(package, options) if as_json else _run(package, options)
     if as_json:
