@@ -23,6 +23,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from tests.reliability.checks import assert_clean_exit, assert_package_parses, run
+from tests.unit.test_eval_escapes import ESCAPE, LOOKALIKE
 
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "5"))
 FUZZ = settings(max_examples=EXAMPLES, deadline=None, suppress_health_check=list(HealthCheck))
@@ -330,4 +331,111 @@ def test_fuzz_binary_stl_counts(count, delta, solid):
         elif delta:
             assert result.exit_code == 2
     finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+# -- escapes -------------------------------------------------------------------------------------
+# A package that tries to run code or read outside itself (issue 23): a symlink out of it, a
+# `..` or absolute path in marm_setup.yaml / .setup_assistant, `$(eval ...)` in a launch file
+# (the NFKC look-alike escape, unbounded work, constructs outside the allow-list, random text)
+# and a package folder whose path holds a substitution. validate (and --untrusted) exits cleanly,
+# never runs the code (no marker file) and never shows the outside file's content.
+
+SECRET = "FUZZ-SECRET-hunter2"
+EXPRESSIONS = [
+    ESCAPE.format(u=LOOKALIKE, marker="ran"),
+    "9**9**9",
+    "'a' * 10**10",
+    "(lambda: 0)()",
+    "open('ran', 'w')",
+    "arg('x').upper()",
+    "1 if true else 0",
+    "$(arg nope)",
+]
+SYMLINKED = [
+    "config/moveit.yaml",
+    "config/initial_positions.yaml",
+    "config/ros2_controllers.yaml",
+    "config/fuzzbot.srdf",
+    "package.xml",
+    "marm_setup.yaml",
+]
+PATHS = [("robot_name", "../../secret/x"), ("robot_name", "{secret}/x"), ("srdf", "{secret}/x.srdf")]
+
+
+def _secret(work: Path) -> Path:
+    secret = work / "secret"
+    secret.mkdir()
+    (secret / "creds").write_text(f"{SECRET}: 1\n", encoding="utf-8")
+    (secret / "x.srdf").write_text(
+        f'<robot name="{SECRET}"><group name="{SECRET}"/></robot>\n', encoding="utf-8"
+    )
+    return secret
+
+
+def _with_arg(pkg: Path, value: str) -> None:
+    """`<arg name="fuzz_z" default="value"/>` first in each launch file."""
+    for launch in (pkg / "launch").iterdir():
+        if launch.name.endswith((".launch", ".launch.xml")):
+            text = launch.read_text(encoding="utf-8")
+            arg = f'<arg name="fuzz_z" default="{escape(value)}"/>'
+            launch.write_text(text.replace("<launch>", f"<launch>\n  {arg}", 1), encoding="utf-8")
+
+
+def escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace('"', "&quot;").replace("<", "&lt;")
+
+
+def _with_path(pkg: Path, key: str, value: str) -> None:
+    if key == "robot_name":
+        text = (pkg / "marm_setup.yaml").read_text(encoding="utf-8")
+        start = text.index("robot_name: ")
+        end = text.index("\n", start)
+        (pkg / "marm_setup.yaml").write_text(
+            f"{text[:start]}robot_name: {value}{text[end:]}", encoding="utf-8"
+        )
+    elif (pkg / ".setup_assistant").is_file():
+        data = yaml.safe_load((pkg / ".setup_assistant").read_text(encoding="utf-8"))
+        config = data["moveit_setup_assistant_config"]
+        config.setdefault("SRDF", {})["relative_path"] = value
+        (pkg / ".setup_assistant").write_text(yaml.safe_dump(data), encoding="utf-8")
+
+
+@FUZZ
+@given(
+    kind=st.sampled_from(["symlink", "eval", "folder", "path"]),
+    symlinked=st.sampled_from(SYMLINKED),
+    expression=st.one_of(st.sampled_from(EXPRESSIONS), st.text(max_size=30)),
+    path=st.sampled_from(PATHS),
+    untrusted=st.booleans(),
+)
+def test_fuzz_escapes(kind, symlinked, expression, path, untrusted):
+    work = _workdir()
+    here = os.getcwd()
+    try:
+        os.chdir(work)  # where a `touch ran` that got through would leave its marker
+        secret = _secret(work)
+        pkg = _package(work)
+        if kind == "symlink":
+            (pkg / symlinked).unlink()
+            (pkg / symlinked).symlink_to(secret / "creds")
+        elif kind == "eval":
+            _with_arg(pkg, f"$(eval {expression})")
+        elif kind == "folder":
+            folder = work / f"$(eval {expression})".replace("/", "_").replace("\x00", "_")[:200]
+            folder.mkdir()
+            pkg = Path(shutil.move(pkg, folder / "pkg"))
+            (folder / "r.urdf").write_bytes(SAFE_ROBOT)  # marm_setup.yaml's '../r.urdf'
+            _with_arg(pkg, "$(dirname)/x")
+        else:
+            _with_path(pkg, path[0], path[1].format(secret=secret))
+        result = run("validate", pkg, "--no-plan", *(["--untrusted"] if untrusted else []))
+        assert_clean_exit(result)
+        STATS[f"escape {kind}: exit {result.exit_code}"] += 1
+        assert SECRET not in result.output
+        assert not (work / "ran").exists()
+        if kind == "symlink" and result.exit_code != 2:
+            assert "package.outside" in result.stdout
+    finally:
+        os.chdir(here)
         shutil.rmtree(work, ignore_errors=True)
