@@ -7,6 +7,8 @@ import json
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field
 
+from marm_setup.untrusted import excerpt
+
 
 class Severity(str, enum.Enum):
     """An error is what MoveIt (or its launcher, driver or controller manager) would fail on or
@@ -61,6 +63,10 @@ class Location:
     refers: tuple[str, str] | None = None
 
 
+MAX_TEXT = 2000  # characters of a finding's message or hint (names from a package can be any size)
+MAX_PATH = 500  # of its file or element
+
+
 @dataclass(frozen=True, slots=True)
 class Finding:
     """One problem: a stable rule id (`srdf.unknown-link`), severity, where it is, what, and a fix;
@@ -81,6 +87,15 @@ class Finding:
                 f"severity must be one of {[s.value for s in SEVERITIES]}, got {self.severity!r}"
             )
         object.__setattr__(self, "severity", Severity(self.severity))
+        for name, limit in (
+            ("file", MAX_PATH),
+            ("element", MAX_PATH),
+            ("message", MAX_TEXT),
+            ("hint", MAX_TEXT),
+        ):
+            value = getattr(self, name)  # package content reaches messages: printable and bounded
+            if len(value) > limit or not value.isprintable():
+                object.__setattr__(self, name, excerpt(value, limit))
 
     @property
     def is_error(self) -> bool:

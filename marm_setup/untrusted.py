@@ -114,7 +114,7 @@ def inside(path: Path, folders: Iterable[Path]) -> bool:
 
 
 def excerpt(text: str, limit: int = EXCERPT_CHARS) -> str:
-    """`text` as a message may quote it: printable characters only (others as `?`), at most
-    `limit` of them (then `...`)."""
-    shown = "".join(c if c.isprintable() else "?" for c in text[: limit + 1])
+    """`text` as a message may quote it: printable characters only (white space as a space,
+    others as `?`), at most `limit` of them (then `...`)."""
+    shown = "".join(c if c.isprintable() else " " if c in "\t\n\r" else "?" for c in text[: limit + 1])
     return shown if len(shown) <= limit else shown[: limit - 3] + "..."

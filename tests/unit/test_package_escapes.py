@@ -28,7 +28,7 @@ def pkg(marm_ros1, tmp_path):
     secret.mkdir()
     (secret / "creds").write_text(f"{SECRET}\nline: 2\n", encoding="utf-8")
     (secret / "x.srdf").write_text('<robot name="x"><group name="SECRETGROUP"/></robot>\n', encoding="utf-8")
-    out = tmp_path / "ws" / "marm_moveit_config"
+    out = tmp_path / "marm_ros1"  # the depth of the original: its relative URDF path holds
     shutil.copytree(marm_ros1, out)
     return out
 
@@ -45,7 +45,7 @@ def _assert_never_read(findings):
 def test_a_symlinked_kinematics_yaml_is_not_read(pkg):
     kinematics = pkg / "config" / "kinematics.yaml"
     kinematics.unlink()
-    kinematics.symlink_to(pkg.parent.parent / "secret" / "creds")
+    kinematics.symlink_to(pkg.parent / "secret" / "creds")
     findings = validate_package(pkg, plan=False)
     assert _outside(findings) == [("config/kinematics.yaml", "")]
     _assert_never_read(findings)
@@ -54,7 +54,7 @@ def test_a_symlinked_kinematics_yaml_is_not_read(pkg):
 
 def test_a_symlink_into_a_folder_the_user_named_is_read(pkg):
     kinematics = pkg / "config" / "kinematics.yaml"
-    outside = pkg.parent.parent / "secret" / "kinematics.yaml"
+    outside = pkg.parent / "secret" / "kinematics.yaml"
     shutil.move(kinematics, outside)
     kinematics.symlink_to(outside)
     findings = validate_package(pkg, plan=False, package_paths=[outside.parent])
@@ -62,7 +62,7 @@ def test_a_symlink_into_a_folder_the_user_named_is_read(pkg):
 
 
 def test_robot_name_with_dotdot_reads_no_srdf_outside(pkg):
-    replace_text(pkg, "marm_setup.yaml", "robot_name: marm", "robot_name: ../../../secret/x")
+    replace_text(pkg, "marm_setup.yaml", "robot_name: marm", "robot_name: ../../secret/x")
     findings = validate_package(pkg, plan=False)
     assert ("marm_setup.yaml", "robot_name") in _outside(findings)
     _assert_never_read(findings)
@@ -74,7 +74,7 @@ def test_an_absolute_setup_assistant_srdf_is_refused(pkg):
         pkg,
         ".setup_assistant",
         "relative_path: config/marm.srdf",
-        f"relative_path: {pkg.parent.parent}/secret/x.srdf",
+        f"relative_path: {pkg.parent}/secret/x.srdf",
     )
     findings = validate_package(pkg, plan=False, package_paths=[FIXTURES])
     assert (".setup_assistant", "SRDF.relative_path") in _outside(findings)
@@ -82,7 +82,7 @@ def test_an_absolute_setup_assistant_srdf_is_refused(pkg):
 
 
 def test_a_symlinked_launch_file_is_not_parsed(pkg):
-    (pkg / "launch" / "extra.launch").symlink_to(pkg.parent.parent / "secret" / "creds")
+    (pkg / "launch" / "extra.launch").symlink_to(pkg.parent / "secret" / "creds")
     findings = validate_package(pkg, plan=False)
     assert ("launch/extra.launch", "") in _outside(findings)
     _assert_never_read(findings)
@@ -99,3 +99,17 @@ def test_a_folder_named_eval_runs_nothing_through_dirname(marm_ros1, tmp_path, m
     )
     validate_package(pkg, plan=False)
     assert not (tmp_path / "ran").exists()
+
+
+def test_names_from_a_package_reach_findings_printable_and_bounded(pkg):
+    """A group name in kinematics.yaml holding a terminal escape, and a 5,000-character solver."""
+    name = "evil\\e[2J" + "x" * 1000
+    solver = "evil_solver/" + "y" * 5000
+    with open(pkg / "config" / "kinematics.yaml", "a", encoding="utf-8") as out:
+        out.write(f'"{name}":\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n')
+        out.write(f"arm_{solver[:4]}:\n  kinematics_solver: {solver}\n")
+    findings = validate_package(pkg, plan=False)
+    assert [f for f in findings if "evil" in f.element + f.message]
+    for f in findings:
+        for text in (f.file, f.element, f.message, f.hint):
+            assert text.isprintable() and len(text) <= 2000
