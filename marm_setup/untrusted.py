@@ -84,6 +84,17 @@ def confined(root: Path, rel: str, allowed: Iterable[Path] = (), *, shown: str, 
     """`root / rel` when `rel` is a relative path without `..` and, symlinks followed, stays
     inside `root` or one of the `allowed` folders; else PathEscape naming `shown` and `element`
     (never the content of what `rel` points at)."""
+    relative_inside(rel, shown=shown, element=element)
+    path = root / rel
+    if not inside(path, (root, *allowed)):
+        raise SymlinkEscape(
+            f"'{excerpt(rel)}' is a symlink leading outside the package: refused", path=shown, element=element
+        )
+    return path
+
+
+def relative_inside(rel: str, *, shown: str, element: str) -> None:
+    """PathEscape unless `rel` is a relative path without `..` (what a package file may name)."""
     pure = PurePosixPath(rel.replace("\\", "/"))
     if pure.is_absolute() or os.path.isabs(rel):
         raise PathEscape(
@@ -95,12 +106,6 @@ def confined(root: Path, rel: str, allowed: Iterable[Path] = (), *, shown: str, 
         raise PathEscape(
             f"path '{excerpt(rel)}' leaves the package ('..'): refused", path=shown, element=element
         )
-    path = root / rel
-    if not inside(path, (root, *allowed)):
-        raise SymlinkEscape(
-            f"'{excerpt(rel)}' is a symlink leading outside the package: refused", path=shown, element=element
-        )
-    return path
 
 
 def inside(path: Path, folders: Iterable[Path]) -> bool:

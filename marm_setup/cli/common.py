@@ -57,9 +57,14 @@ def load_robot_from_cli(
     return robot
 
 
+MAX_LINE = 4000  # characters of one error line (a name from a file can be any size)
+
+
 def one_line(text: str) -> str:
-    """`text` with control characters (newlines too) escaped, so a message stays one line."""
-    return "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)
+    """`text` with control characters (newlines too) escaped, so a message stays one line, of at
+    most MAX_LINE characters."""
+    line = "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text[: MAX_LINE + 1])
+    return line if len(line) <= MAX_LINE else line[: MAX_LINE - 3] + "..."
 
 
 COUNT_SUFFIXES = {"k": 1_000, "m": 1_000_000}

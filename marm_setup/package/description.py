@@ -19,6 +19,7 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding, warning
 from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssistantFile
 from marm_setup.ros import Target
+from marm_setup.untrusted import relative_inside
 
 SRDF_GLOBS = ("config/*.srdf", "srdf/*.srdf", "config/*.srdf.xacro", "srdf/*.srdf.xacro")
 MARM_MOVEIT_YAML = "config/moveit.yaml"
@@ -106,10 +107,12 @@ def find_description(
     paths: tuple[Path, ...],
     robot_names: tuple[str | None, ...],
     builder: tuple[str | None, tuple[tuple[str, str], ...] | None, str],
+    refused: Callable[[str, str, str], bool] = lambda _rel, _file, _element: False,
 ) -> Description:
     """The robot description (see the module docstring); InputError when there is none.
     `given` is (--urdf, --xacro-arg pairs); `builder` the builder's (explicit file, mappings,
-    where it was named)."""
+    where it was named); `refused` as for `choose_srdf` (a package's own description file
+    leading outside it is not taken)."""
     urdf, args = given
     if urdf is not None:
         if not Path(urdf).is_file():
@@ -118,9 +121,10 @@ def find_description(
     if marm is not None and marm.urdf is not None:
         return _marm_description(root, marm, paths, args)
     explicit, mappings, how = builder
-    if explicit is not None and (root / explicit).is_file():
+    if explicit is not None and (root / explicit).is_file() and not refused(explicit, explicit, ""):
         return Description(root / explicit, how, args or mappings or ())
-    xacros = sorted((root / "config").glob("*.urdf.xacro"))
+    found = sorted((root / "config").glob("*.urdf.xacro"))
+    xacros = [c for c in found if not refused(f"config/{c.name}", f"config/{c.name}", "")]
     named = [c for c in xacros for name in robot_names if name and c.name == f"{name}.urdf.xacro"]
     if named or (len(xacros) == 1 and not any(robot_names)):
         return Description((named or xacros)[0], "config/<robot>.urdf.xacro", args or mappings or ())
@@ -155,6 +159,7 @@ def setup_assistant_description(
     from marm_setup.robot import find_package, find_packages
 
     where = str(Path(shown) / ".setup_assistant")
+    relative_inside(str(sa.urdf_path), shown=where, element="URDF.relative_path")
     pkg_dir = find_package(str(sa.urdf_package), find_packages(paths), path=where, element="URDF.package")
     return Description(pkg_dir / str(sa.urdf_path), ".setup_assistant", args)
 

@@ -90,7 +90,7 @@ def read_package(
     srdf_rel, srdf_args = _srdf_choice(files, srdf, found.marm, found.sa, launched)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    description = _description(root, shown, urdf, xacro_args, found, srdf_rel, launched)
+    description = _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
     kinds = _kinds(files, found.target, launched, problems)
     srdf_file = _srdf(root, srdf_rel, srdf_args, xacro_args, found.paths, problems)
     return MoveItPackage(
@@ -253,7 +253,7 @@ def _srdf_choice(
 
 
 def _description(
-    root: Path,
+    files: PackageFiles,
     shown: str,
     urdf: str | Path | None,
     xacro_args: Mapping[str, str] | None,
@@ -261,6 +261,7 @@ def _description(
     srdf_rel: str | None,
     launched: _Launched,
 ) -> Description:
+    root = files.root
     builder = launched.builder
     explicit = builder.explicit("robot_description") if builder is not None else None
     rel = _relative(explicit.file, root) if explicit is not None else None
@@ -270,7 +271,16 @@ def _description(
     given = (Path(urdf) if urdf is not None else None, tuple(sorted((xacro_args or {}).items())))
     builder_source = (rel, mappings, how)
     return find_description(
-        root, shown, found.name, given, found.marm, found.sa, found.paths, robots, builder_source
+        root,
+        shown,
+        found.name,
+        given,
+        found.marm,
+        found.sa,
+        found.paths,
+        robots,
+        builder_source,
+        files.refused,
     )
 
 

@@ -9,6 +9,7 @@ import shutil
 
 import pytest
 
+from marm_setup.errors import InputError
 from tests.conftest import FIXTURES
 from tests.unit.test_eval_escapes import ESCAPE, LOOKALIKE
 from tests.validate_helpers import generate_marm, replace_text, validate_package
@@ -113,3 +114,41 @@ def test_names_from_a_package_reach_findings_printable_and_bounded(pkg):
     for f in findings:
         for text in (f.file, f.element, f.message, f.hint):
             assert text.isprintable() and len(text) <= 2000
+
+
+@pytest.fixture(scope="module")
+def marm_ros2(tmp_path_factory):
+    return generate_marm(tmp_path_factory.mktemp("marm2"), "ros2")
+
+
+def test_a_symlinked_description_wrapper_is_not_run(marm_ros2, tmp_path):
+    """MoveItConfigsBuilder's `config/<robot>.urdf.xacro` leading outside is not taken."""
+    pkg = tmp_path / "marm_ros2"
+    shutil.copytree(marm_ros2, pkg)
+    (pkg / "marm_setup.yaml").unlink()
+    outside = tmp_path / "outside.urdf.xacro"
+    outside.write_text(
+        '<robot name="marm" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="$(find no_such_package_ran)/x.xacro"/></robot>\n'
+    )
+    wrapper = pkg / "config" / "marm.urdf.xacro"
+    wrapper.unlink()
+    wrapper.symlink_to(outside)
+    findings = validate_package(pkg, plan=False, package_paths=[FIXTURES])
+    assert ("config/marm.urdf.xacro", "") in _outside(findings)
+    assert not [f for f in findings if "no_such_package_ran" in f.message]
+
+
+def test_a_setup_assistant_urdf_path_leaving_its_package_is_one_line(pkg):
+    (pkg / "marm_setup.yaml").unlink()
+    replace_text(
+        pkg, ".setup_assistant", "relative_path: urdf/marm.urdf.xacro", "relative_path: ../../x.urdf"
+    )
+    with pytest.raises(InputError, match=r"URDF.relative_path: path '../../x.urdf' leaves the package"):
+        validate_package(pkg, plan=False, package_paths=[FIXTURES])
+
+
+def test_an_error_line_is_bounded():
+    from marm_setup.cli.common import one_line
+
+    assert len(one_line("name " + "\x1b" * 10**6)) <= 4000
