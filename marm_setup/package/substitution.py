@@ -143,12 +143,32 @@ def evaluate(expression: str, scope: Scope, environ: Mapping[str, str] | None = 
             f"$(eval {shown}): not evaluated (--untrusted runs no package code)"
         ) from None
     env = dict(os.environ if environ is None else environ)
-    try:
-        return run_limited(
-            lambda: _evaluate_here(expression, scope, env), seconds=EVAL_SECONDS, memory_bytes=EVAL_MEMORY
-        )
-    except (TimeLimitExceeded, ChildDied) as exc:
-        raise SubstitutionError(f"$(eval {shown}): stopped ({exc})") from None
+    key = _memo_key(expression, scope, env)
+    if key not in _MEMO:  # the same expression over the same args: one child (an include read twice)
+        if len(_MEMO) >= MEMO_SIZE:
+            _MEMO.clear()
+        try:
+            _MEMO[key] = run_limited(
+                lambda: _evaluate_here(expression, scope, env), seconds=EVAL_SECONDS, memory_bytes=EVAL_MEMORY
+            )
+        except (TimeLimitExceeded, ChildDied) as exc:
+            _MEMO[key] = SubstitutionError(f"$(eval {shown}): stopped ({exc})")
+        except SubstitutionError as exc:
+            _MEMO[key] = exc
+    found = _MEMO[key]
+    if isinstance(found, SubstitutionError):
+        raise SubstitutionError(str(found))
+    return found
+
+
+MEMO_SIZE = 4096
+_MEMO: dict[tuple, str | SubstitutionError] = {}
+
+
+def _memo_key(expression: str, scope: Scope, environ: Mapping[str, str]) -> tuple:
+    """What an evaluation depends on (the environment only when the expression may read it)."""
+    env = tuple(sorted(environ.items())) if "env" in expression else ()
+    return (expression, tuple(sorted(scope.args.items())), scope.dirname, scope.ros2, scope.find, env)
 
 
 def _evaluate_here(expression: str, scope: Scope, environ: Mapping[str, str]) -> str:

@@ -103,3 +103,16 @@ def test_the_expression_is_quoted_short_and_printable():
     with pytest.raises(SubstitutionError) as caught:
         substitute(f"$(eval {long})", Scope())
     assert "\x1b" not in str(caught.value) and len(str(caught.value)) < 300
+
+
+def test_an_expression_over_the_same_args_is_evaluated_once(tmp_path):
+    """The same `$(eval)` over the same args (an include read twice) is one child process, not
+    one each; another arg value is evaluated again."""
+    from marm_setup.package import substitution
+
+    substitution._MEMO.clear()
+    scope = Scope({"n": "2"}, dirname=str(tmp_path))
+    assert [substitute("$(eval n * 21)", scope) for _ in range(3)] == ["42"] * 3
+    assert len(substitution._MEMO) == 1
+    assert substitute("$(eval n * 21)", Scope({"n": "1"}, dirname=str(tmp_path))) == "21"
+    assert len(substitution._MEMO) == 2
