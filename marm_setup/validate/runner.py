@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable, Mapping
+from contextlib import nullcontext
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -152,22 +153,11 @@ def validate_package(
 
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
-    if untrusted:
-        with no_package_code():
-            return validate_package(
-                path,
-                urdf=urdf,
-                srdf=srdf,
-                xacro_args=xacro_args,
-                package_paths=package_paths,
-                plan=plan,
-                matrix_trials=matrix_trials,
-                progress=progress,
-            )
-    pkg = read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
-    return validate_read(
-        pkg, xacro_args=xacro_args, plan=plan, matrix_trials=matrix_trials, progress=progress
-    )
+    with no_package_code() if untrusted else nullcontext():
+        pkg = read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
+        return validate_read(
+            pkg, xacro_args=xacro_args, plan=plan, matrix_trials=matrix_trials, progress=progress
+        )
 
 
 def validate_read(
