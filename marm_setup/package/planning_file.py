@@ -8,9 +8,12 @@ from typing import Any
 
 from marm_setup.package.where import Located, Param, Where, freeze, thaw
 
-# Keys of a pipeline file that are the pipeline's own settings, never a group.
+# Keys of a pipeline file that are the pipeline's own settings, never a group (`totg`: Jazzy's
+# AddTimeOptimalParameterization response adapter reads its parameters in that sub-namespace,
+# moveit2 jazzy planning_response_adapter_plugins/res/default_response_adapter_params.yaml).
 GLOBAL_KEYS = frozenset(
     {
+        "totg",
         "planner_configs",
         "planning_plugin",
         "planning_plugins",

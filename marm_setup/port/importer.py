@@ -20,10 +20,10 @@ from marm_setup.port.package import (
     report_leftovers,
     report_marm_setup,
     report_metadata,
-    report_pipelines,
     robot_source,
 )
 from marm_setup.port.perception import port_perception
+from marm_setup.port.pipelines import port_pipelines
 from marm_setup.port.planners import port_planners
 from marm_setup.port.report import PortItem, PortLog, where
 from marm_setup.robot import RobotModel
@@ -79,7 +79,7 @@ def port_package(pkg: MoveItPackage, robot: RobotModel, request: PortRequest) ->
     model = _without_srdf_errors(model, robot, pkg.srdf_path or "", log)
     model = _with_settings(pkg, model, robot, log)
     model = _with_controllers(pkg, model, robot, log)
-    report_pipelines(pkg, request.target, log)
+    model = port_pipelines(pkg, model, log)
     model = port_perception(pkg, model, robot, log)
     _report_runtime_files(pkg, log)
     report_leftovers(pkg, read_files(pkg), log)

@@ -1,24 +1,19 @@
 """Porting what surrounds the settings: package metadata (package.xml, `.setup_assistant`), the
-robot description's location, the planning pipelines in use, perception and servo settings, and
-every file of the source package the port does not read (each reported, so nothing goes
-silently)."""
+robot description's location, and every file of the source package the port does not read
+(each reported, so nothing goes silently)."""
 
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Callable
 from pathlib import Path
 
 from marm_setup.package import MoveItPackage
+from marm_setup.port.pipelines import PIPELINE_FILE
 from marm_setup.port.report import PortLog, where
 from marm_setup.ros import Target
 from marm_setup.setup import Author, RobotSource
 
-# Pipelines each target's templates write (templates/<target>/config and launch).
-TARGET_PIPELINES = {"ros1": ("ompl",), "ros2": ("ompl", "pilz_industrial_motion_planner")}
-PIPELINE_FILE = re.compile(r"^(?:config|launch)/([a-z0-9_]+?)_planning(?:_pipeline\.launch\.xml|\.yaml)$")
-KNOWN_PIPELINES = ("ompl", "chomp", "stomp", "lerp", "trajopt", "pilz_industrial_motion_planner", "pilz")
 LICENSE = "BSD-3-Clause"  # templates/<target>/package.xml.j2
 METADATA_TAGS = ("version", "description", "url", "author")
 
@@ -95,26 +90,6 @@ def report_metadata(pkg: MoveItPackage, name: str, target: Target, log: PortLog)
 
 def _short(text: str) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
-
-
-def report_pipelines(pkg: MoveItPackage, target: Target, log: PortLog) -> None:
-    """The planning pipelines the source package configures, and whether the new one has them."""
-    found: dict[str, list[str]] = {}
-    for rel in pkg.files:
-        m = PIPELINE_FILE.match(rel)
-        if m and m.group(1) in KNOWN_PIPELINES + ("ompl-chomp",):
-            found.setdefault(m.group(1), []).append(rel)
-    for pipeline in pkg.pipelines:
-        found.setdefault(pipeline.name, []).append(pipeline.where.file)
-    ours = TARGET_PIPELINES[target]
-    for name, files in sorted(found.items()):
-        src = ", ".join(sorted(set(files)))
-        if name in ours or (name == "pilz" and "pilz_industrial_motion_planner" in ours):
-            log.carried(f"planning_pipelines.{name}", src, "the new package configures it", "planners")
-        else:
-            plural = "s" if len(ours) > 1 else ""
-            detail = f"marm-setup writes the {', '.join(ours)} pipeline{plural} for {target}; configure {name} by hand"
-            log.dropped(f"planning_pipelines.{name}", src, detail, "planners")
 
 
 def report_leftovers(pkg: MoveItPackage, read: set[str], log: PortLog) -> None:

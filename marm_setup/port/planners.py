@@ -34,10 +34,7 @@ def port_planners(
         detail = f"no OMPL pipeline file: every group gets {DEFAULT_PLANNER} and OMPL's defaults"
         log.changed("planners", "", detail, "planners")
         return ()
-    _report_configs(ompl, log)
-    for param in ompl.settings:
-        detail = f"{short(param.value)}: the pipeline settings are the target's own (marm-setup writes them)"
-        log.changed(f"ompl.{param.key}", param.where, detail, "planners")
+    _report_configs(ompl, log)  # its settings: port.pipelines
     known = set(groups)
     out = []
     for entry in ompl.groups:
