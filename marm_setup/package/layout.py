@@ -257,10 +257,25 @@ def read_ros2_kinds(
                 "handed to ros2_control_node by a launch file",
             )
     _drivers(files, kinds)
+    _ros2_sensor_loads(files, loads, kinds)
     doc = _named(files, DEFAULT_FILES["fake_controllers"])
     kinds.put("fake_controllers", read_controllers(doc, FAKE_KEYS) if doc is not None else None, doc, SA_NAME)
     kinds.values["servo"] = _servo(files, [load.file for load in loads])
     return kinds
+
+
+def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
+    """A parameter file an XML launch file hands to a node (`<param from>`, as our
+    move_group.launch.xml does with config/sensors_3d.yaml) holding a `sensors` list, over the
+    builder's."""
+    for load in _by_preference(list(loads)):
+        doc = files.yaml(load.file)
+        params = unwrap_parameters(doc) if doc is not None else None
+        if params is not None and params.is_mapping and isinstance(params.data.get("sensors"), list):
+            kinds.put(
+                "sensors", read_sensors(params), params, f"handed to {load.ns or 'a node'} by {load.launch}"
+            )
+            return
 
 
 def _ros2_controllers(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) -> None:

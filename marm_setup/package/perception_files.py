@@ -20,6 +20,9 @@ from marm_setup.package.where import Located, Param, Where, unwrap_parameters
 SERVO_KEYS = frozenset(
     {"command_in_type", "publish_period", "command_out_topic", "ee_frame_name", "planning_frame"}
 )
+# the frames moveit_servo looks up as robot links (noetic and humble servo_calcs.cpp
+# getGlobalLinkTransform; Jazzy's servo takes its frames from the group's IK solver instead)
+SERVO_FRAMES = ("planning_frame", "ee_frame_name", "robot_link_command_frame")
 
 
 @dataclass(frozen=True, slots=True)
@@ -30,6 +33,9 @@ class Sensor:
     where: Where
     plugin: str | None
     params: tuple[Param, ...]
+
+    def param(self, key: str) -> Param | None:
+        return next((p for p in self.params if p.key == key), None)
 
 
 @dataclass(frozen=True, slots=True)
@@ -72,6 +78,16 @@ class ServoConfig:
     def group(self) -> str | None:
         found = self.param("move_group_name")
         return str(found.value) if found is not None and found.value else None
+
+    @property
+    def frames(self) -> tuple[Param, ...]:
+        """The frames it names (planning_frame, ee_frame_name, robot_link_command_frame)."""
+        return tuple(p for key in SERVO_FRAMES if (p := self.param(key)) is not None)
+
+    @property
+    def output(self) -> tuple[Param | None, Param | None]:
+        """(command_out_topic, command_out_type) as written (None: absent)."""
+        return self.param("command_out_topic"), self.param("command_out_type")
 
 
 def read_servo(doc: Located) -> ServoConfig | None:

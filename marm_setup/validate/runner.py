@@ -36,6 +36,7 @@ from marm_setup.validate.rules.launch_rules import check_launch_files, check_pac
 from marm_setup.validate.rules.limits_rules import check_joint_limits
 from marm_setup.validate.rules.name_rules import check_controller_names, check_srdf_names
 from marm_setup.validate.rules.ompl_rules import check_ompl
+from marm_setup.validate.rules.perception_rules import check_sensors, check_servos
 from marm_setup.validate.rules.pose_rules import check_initial_positions
 from marm_setup.validate.rules.srdf_rules import check_srdf
 from marm_setup.validate.rules.write_state_rules import check_pending_write
@@ -326,7 +327,7 @@ def _package_hint(exc: InputError) -> str:
 
 
 def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
-    """SRDF, poses, kinematics, limits, OMPL and controller rules (no collision checking), each
+    """SRDF, poses, kinematics, limits, OMPL, controller, servo and sensor rules (no collision checking), each
     family on its own: one that fails leaves the others running."""
     assert pkg.srdf_file is not None and pkg.srdf is not None
     srdf, file = pkg.srdf, pkg.srdf_file.path
@@ -342,6 +343,8 @@ def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf)
     out += guarded("controller", check_controllers, pkg, robot)
     out += guarded("distro", check_package_runtime, pkg, robot)
+    out += guarded("servo", check_servos, pkg, robot)
+    out += guarded("sensors", check_sensors, pkg)
     return out
 
 

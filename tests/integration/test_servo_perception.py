@@ -124,3 +124,29 @@ def test_ros2_forward_position_controller_is_loaded_inactive(tmp_path):
     assert len(forward) == 1 and "--inactive" in forward[0]
     assert not any("--inactive" in c for c in spawners if c[1] != "arm_position_controller")
     assert math.isclose(servo["moveit_servo.publish_period"][1], 0.01)
+
+
+DEPTH = "{name: depth_camera, type: depth_image, topic: /camera/depth/image_raw}"
+
+
+@pytest.mark.parametrize(
+    ("target", "distro", "command_out"),
+    [("ros1", "noetic", "trajectory"), ("ros2", "humble", "trajectory"), ("ros2", "humble", "position"),
+     ("ros2", "jazzy", "position")],
+)  # fmt: skip
+def test_validate_reads_our_servo_and_sensors_and_finds_nothing(tmp_path, target, distro, command_out):
+    """Our own packages: the package model reads the servo config and both sensors, and the servo
+    and sensor rules (validate/rules/perception_rules.py) have nothing to say about them."""
+    from marm_setup.package.read import read_package
+    from marm_setup.validate.runner import validate
+
+    extra = f"- {DEPTH}\nservo:\n- {{group: arm, command_out: {command_out}}}\n"
+    pkg = write_marm(tmp_path, target, distro, extra)
+    model = read_package(pkg)
+    assert [s.name for s in model.sensors.sensors] in (["wrist_camera", "depth_camera"], ["0", "1"])
+    assert [s.group for s in model.servo] == ["arm"]
+    found = [f for f in validate(pkg, plan=False).findings if f.rule.startswith(("servo.", "sensors."))]
+    if target == "ros1":  # no driver here (no ArbotiX): nothing says which controller runs
+        assert [(f.rule, f.severity) for f in found] == [("servo.no-controller", "warning")]
+    else:
+        assert found == []

@@ -603,6 +603,7 @@ CONTROLLER_CASES = [
         "marm_ros1",
         ydata("config/arbotix.yaml", lambda d: _rename_key(d["controllers"], "arm_controller", "arm")),
         "controller.driver-missing",
+        also=("servo.no-controller",),  # arm_servo.yaml's output topic is /arm_controller/command
     ),
     Case(
         "arbotix-gripper-node-joint",

@@ -51,9 +51,7 @@ def check_pipeline_parameters(pipeline: PlanningPipeline, distro: str) -> list[F
         where = pipeline.where.child(*name.split(".")).element
         if name.startswith("stomp_moveit."):
             msg = f"STOMP never reads {name}: it declares {name.split('.', 1)[1]} in the pipeline's namespace"
-            out.append(
-                warning("pipeline.stomp-namespace", file, where, msg, f"move it up one level ({key})")
-            )
+            out.append(warning("pipeline.stomp-namespace", file, where, msg, f"move it up one level ({key})"))
             continue
         out += _check_one(file, key, distro, name, value, where, own_adapters_only(data))
     return out
@@ -71,11 +69,7 @@ def _check_one(
         if not all_moveit:
             return []
         msg = f"MoveIt reads no {name} in a {key} pipeline's namespace on {distro}"
-        return [
-            warning(
-                "pipeline.unknown-parameter", file, where, msg, unknown_name_hint(key, distro, name)
-            )
-        ]
+        return [warning("pipeline.unknown-parameter", file, where, msg, unknown_name_hint(key, distro, name))]
     problem = value_problem(known, value, int_as_double=False)
     if problem is None:
         return []

@@ -1,0 +1,195 @@
+"""validate's servo and sensor rules on minimal packages (MoveIt 2 and MoveIt 1 layouts): a servo
+group that does not exist, frames that are no link, an output no controller takes or takes with
+another message type; sensors with an unknown plugin, no topic, missing or mistyped parameters
+(validate/rules/perception_rules.py; severities from moveit_servo and the occupancy map monitor)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from marm_setup.package.read import read_package
+from marm_setup.validate.runner import validate
+from tests.helpers import ARM, build_file_tree, urdf
+
+SRDF = """<?xml version="1.0"?>
+<robot name="bot">
+  <virtual_joint name="vj" type="fixed" parent_frame="world" child_link="base"/>
+  <group name="arm"><chain base_link="base" tip_link="l3"/></group>
+</robot>
+"""
+ROS2_XML = """<?xml version="1.0"?>
+<package format="3"><name>bot_moveit_config</name><version>0.0.0</version><description>d</description>
+<maintainer email="a@b.c">a</maintainer><license>BSD</license>
+<buildtool_depend>ament_cmake</buildtool_depend><export><build_type>ament_cmake</build_type></export></package>
+"""
+ROS1_XML = ROS2_XML.replace("ament_cmake</buildtool_depend>", "catkin</buildtool_depend>").replace(
+    "<export><build_type>ament_cmake</build_type></export>", ""
+)
+ROS2_CONTROLLERS = """
+controller_manager:
+  ros__parameters:
+    arm_controller:
+      type: joint_trajectory_controller/JointTrajectoryController
+    arm_position_controller:
+      type: position_controllers/JointGroupPositionController
+"""
+ROS1_CONTROLLERS = """
+arm_controller:
+  type: position_controllers/JointTrajectoryController
+  joints: [j1, j2, j3]
+"""
+SERVO = """
+/**:
+  ros__parameters:
+    moveit_servo:
+      move_group_name: {group}
+      planning_frame: {frame}
+      ee_frame_name: l3
+      command_in_type: unitless
+      publish_period: 0.034
+      command_out_type: {out_type}
+      command_out_topic: {topic}
+"""
+POINTCLOUD = {
+    "sensor_plugin": "occupancy_map_monitor/PointCloudOctomapUpdater",
+    "point_cloud_topic": "/camera/points",
+    "max_range": 5.0,
+    "padding_offset": 0.1,
+    "padding_scale": 1.0,
+    "point_subsample": 1,
+    "max_update_rate": 1.0,
+    "filtered_cloud_topic": "filtered_cloud",
+}
+
+
+def ros2_package(
+    root: Path, servo: dict | None = None, sensor: dict | None = None, controllers: bool = True
+) -> Path:
+    files = {
+        "package.xml": ROS2_XML,
+        "config/bot.urdf.xacro": urdf(ARM, "bot"),
+        "config/bot.srdf": SRDF,
+    }
+    if controllers:
+        files["config/ros2_controllers.yaml"] = ROS2_CONTROLLERS
+    given = {"group": "arm", "frame": "base", "out_type": "trajectory_msgs/JointTrajectory"}
+    given["topic"] = "/arm_controller/joint_trajectory"
+    files["config/arm_servo.yaml"] = SERVO.format(**{**given, **(servo or {})})
+    if sensor is not None:
+        body = "".join(f"      {k}: {v}\n" for k, v in sensor.items())
+        files["config/sensors_3d.yaml"] = f"sensors:\n  - cam\ncam:\n{body.replace('      ', '  ')}"
+    return build_file_tree(root, files)
+
+
+def ros1_package(root: Path, servo_topic: str, sensor: dict) -> Path:
+    servo = SERVO.format(
+        group="arm", frame="world", out_type="trajectory_msgs/JointTrajectory", topic=servo_topic
+    )
+    plain = "\n".join(line[6:] for line in servo.splitlines()[4:])  # MoveIt 1: top-level keys
+    body = "".join(f"    {k}: {v}\n" for k, v in sensor.items())
+    return build_file_tree(
+        root,
+        {
+            "package.xml": ROS1_XML,
+            "config/bot.urdf.xacro": urdf(ARM, "bot"),
+            "config/bot.srdf": SRDF,
+            "config/ros_controllers.yaml": ROS1_CONTROLLERS,
+            "config/arm_servo.yaml": plain + "\n",
+            "config/sensors_3d.yaml": "sensors:\n  -\n" + body.replace("    ", "    ", 1),
+        },
+    )
+
+
+def rules(pkg: Path, family: tuple[str, ...] = ("servo.", "sensors.")) -> dict[str, list[str]]:
+    out: dict[str, list[str]] = {}
+    for f in validate(pkg, plan=False).findings:
+        if f.rule.startswith(family):
+            out.setdefault(f.rule, []).append(f"{f.severity} {f.element}: {f.message}")
+    return out
+
+
+def test_a_good_package_has_no_servo_or_sensor_finding(tmp_path):
+    pkg = ros2_package(tmp_path / "bot_moveit_config", sensor=POINTCLOUD)
+    model = read_package(pkg)
+    assert [s.group for s in model.servo] == ["arm"] and model.sensors is not None
+    assert rules(pkg) == {}
+
+
+def test_a_servo_group_that_does_not_exist(tmp_path):
+    found = rules(ros2_package(tmp_path / "bot_moveit_config", {"group": "manipulator"}))
+    assert list(found) == ["servo.unknown-group"]
+    assert found["servo.unknown-group"][0].startswith("error")
+    assert "unknown group 'manipulator' (groups: arm)" in found["servo.unknown-group"][0]
+
+
+@pytest.mark.parametrize(
+    ("servo", "message"),
+    [
+        ({"topic": "/nobody/joint_trajectory"}, "no controller of config/ros2_controllers.yaml subscribes"),
+        ({"out_type": "std_msgs/Float64MultiArray"}, "arm_controller takes trajectory_msgs/JointTrajectory"),
+        (
+            {"topic": "/arm_position_controller/commands"},
+            "arm_position_controller takes std_msgs/Float64MultiArray",
+        ),
+    ],
+)
+def test_a_servo_output_with_no_controller_behind_it(tmp_path, servo, message):
+    found = rules(ros2_package(tmp_path / "bot_moveit_config", servo))
+    assert list(found) == ["servo.no-controller"], found
+    assert found["servo.no-controller"][0].startswith("error") and message in found["servo.no-controller"][0]
+
+
+def test_a_forward_position_output_to_its_controller_passes(tmp_path):
+    servo = {"out_type": "std_msgs/Float64MultiArray", "topic": "arm_position_controller/commands"}
+    assert rules(ros2_package(tmp_path / "bot_moveit_config", servo)) == {}
+
+
+def test_without_controller_files_an_unmatched_output_is_a_warning(tmp_path):
+    found = rules(ros2_package(tmp_path / "bot_moveit_config", {"topic": "/x/y"}, controllers=False))
+    assert [m.split()[0] for m in found["servo.no-controller"]] == ["warning"]
+
+
+def test_frames_that_are_no_link_and_an_unknown_output_type(tmp_path):
+    found = rules(
+        ros2_package(tmp_path / "bot_moveit_config", {"frame": "tool0", "out_type": "geometry_msgs/Twist"})
+    )
+    assert set(found) == {"servo.unknown-frame", "servo.output-type"}
+    assert "planning_frame: 'tool0' is no link" in found["servo.unknown-frame"][0]
+
+
+@pytest.mark.parametrize(
+    ("change", "rule", "severity"),
+    [
+        ({"sensor_plugin": "occupancy_map_monitor/LaserUpdater"}, "sensors.unknown-plugin", "error"),
+        ({"point_cloud_topic": "''"}, "sensors.no-topic", "error"),
+        ({"max_range": 5}, "sensors.parameter-type", "error"),  # an integer for a double: rclcpp throws
+        ({"point_subsample": "one"}, "sensors.parameter-type", "error"),
+        ({"max_update_rate": None}, "sensors.missing-parameter", "error"),
+    ],
+)
+def test_sensor_rules_on_moveit2(tmp_path, change, rule, severity):
+    sensor = {k: v for k, v in {**POINTCLOUD, **change}.items() if v is not None}
+    found = rules(ros2_package(tmp_path / "bot_moveit_config", sensor=sensor))
+    assert list(found) == [rule], found
+    assert found[rule][0].startswith(severity)
+
+
+def test_a_users_own_updater_plugin_is_not_judged(tmp_path):
+    sensor = {"sensor_plugin": "my_pkg/LidarUpdater", "topic": "/scan"}
+    assert rules(ros2_package(tmp_path / "bot_moveit_config", sensor=sensor)) == {}
+
+
+def test_moveit1_servo_and_sensors(tmp_path):
+    """MoveIt 1: the virtual joint's parent is a frame servo takes; readXmlParam takes an integer
+    for a double (no finding) but no string; JointTrajectoryController listens on <name>/command."""
+    sensor = {**POINTCLOUD, "max_range": 5, "padding_scale": "big"}
+    del sensor["filtered_cloud_topic"]  # MoveIt 1 does not need every parameter
+    pkg = ros1_package(tmp_path / "bot_moveit_config", "/arm_controller/command", sensor)
+    assert read_package(pkg).target == "ros1"
+    found = rules(pkg)
+    assert list(found) == ["sensors.parameter-type"], found
+    assert "padding_scale: expected a double, got 'big'" in found["sensors.parameter-type"][0]
+    other = ros1_package(tmp_path / "b" / "bot_moveit_config", "/arm_controller/joint_trajectory", POINTCLOUD)
+    assert list(rules(other)) == ["servo.no-controller"]
