@@ -117,7 +117,7 @@ LEFTOVERS: tuple[tuple[Callable[[str, str], bool], tuple[str, str, str, str]], .
         (
             "dropped",
             "sensors",
-            "3D perception settings: marm-setup writes none; copy them by hand",
+            "not read as move_group's 3D sensors (no launch file loads it): copy its settings by hand",
             "perception",
         ),
     ),

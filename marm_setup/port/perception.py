@@ -14,7 +14,7 @@ from marm_setup.package import Sensor as SourceSensor
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
 from marm_setup.robot import RobotModel
-from marm_setup.ros import Distro
+from marm_setup.ros import Distro, Target
 from marm_setup.setup import (
     SENSOR_TYPES,
     SERVO_POSITION,
@@ -63,6 +63,7 @@ def port_perception(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, lo
     servos: list[Servo] = []
     for config in pkg.servo:
         servo = _servo(config, log)
+        servo = _for_target(servo, model, config, log) if servo is not None else None
         if servo is not None and _accepted(
             lambda m: check_servos(m, robot, None),
             model,
@@ -113,6 +114,20 @@ def _or_default(servos: tuple[Servo, ...], model: SetupModel, robot: RobotModel)
             return servos
         bare.append(Servo(servo.group))
     return None if tuple(bare) == default else servos
+
+
+def _for_target(servo: Servo, model: SetupModel, config: ServoConfig, log: PortLog) -> Servo:
+    """A forward position output on ros1 becomes a trajectory one: the forward position
+    controller is a ros2_control one (setup.servo), the group's trajectory controller takes
+    servo's JointTrajectory on either target."""
+    if model.target != Target.ROS1 or servo.command_out != SERVO_POSITION:
+        return servo
+    detail = (
+        "position -> trajectory: a ros1 package has no forward position controller (ros2_control's); "
+        "servo publishes trajectory_msgs/JointTrajectory to the group's trajectory controller"
+    )
+    log.changed(f"servo[{servo.group}].command_out_type", config.where, detail, "perception")
+    return dataclasses.replace(servo, command_out=SERVO_TRAJECTORY, controller=None)
 
 
 def _accepted(
