@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from marm_setup.package.read import read_package
+from marm_setup.setup import SENSOR_TYPES
 from marm_setup.validate.runner import validate
 from tests.helpers import ARM, build_file_tree, urdf
 
@@ -52,16 +53,8 @@ SERVO = """
       command_out_type: {out_type}
       command_out_topic: {topic}
 """
-POINTCLOUD = {
-    "sensor_plugin": "occupancy_map_monitor/PointCloudOctomapUpdater",
-    "point_cloud_topic": "/camera/points",
-    "max_range": 5.0,
-    "padding_offset": 0.1,
-    "padding_scale": 1.0,
-    "point_subsample": 1,
-    "max_update_rate": 1.0,
-    "filtered_cloud_topic": "filtered_cloud",
-}
+KIND = SENSOR_TYPES["pointcloud"]  # MoveIt's updater and the Setup Assistant's values
+POINTCLOUD = {"sensor_plugin": KIND.plugin, "point_cloud_topic": "/camera/points", **dict(KIND.defaults)}
 
 
 def ros2_package(
