@@ -86,7 +86,7 @@ def _in_move_group_order(pkg: MoveItPackage) -> list[PlanningPipeline]:
     only_files = {  # MoveIt 1's Pilz: its launch file sets the plugin, no YAML
         m.group(1): PlanningPipeline(m.group(1), Where(rel), False)
         for rel in pkg.files
-        if (m := PIPELINE_FILE.match(rel)) and m.group(1) not in read and m.group(1) != "ompl-chomp"
+        if (m := PIPELINE_FILE.match(rel)) and m.group(1) not in read
     }
     found = [*pkg.pipelines, *only_files.values()]
     return sorted(found, key=lambda p: (rank.get(p.name, len(rank)), p.name != "ompl", p.name))
@@ -129,9 +129,10 @@ def _source_distro(pkg: MoveItPackage, pipeline: PlanningPipeline) -> Distro | N
     return Distro.JAZZY if pipeline.setting("planning_plugins") is not None else Distro.HUMBLE
 
 
-def _namespace(pipeline: PlanningPipeline) -> list[Param]:
-    """The settings of a pipeline's namespace, sub-namespaces flattened (`totg.path_tolerance`);
-    not its plugin, OMPL's planner configurations nor its groups' entries."""
+def _namespace(pipeline: PlanningPipeline, key: str, log: PortLog) -> list[Param]:
+    """The settings of a pipeline's namespace, sub-namespaces flattened (`totg.path_tolerance`,
+    a `stomp_moveit` block); not its plugin nor OMPL's planner configurations and group entries
+    (port.planners). Another pipeline's mapping (MoveIt 1 STOMP's `stomp/<group>`) is reported."""
     out = []
     for p in pipeline.settings:
         if isinstance(p.value, FrozenMapping):
@@ -139,10 +140,11 @@ def _namespace(pipeline: PlanningPipeline) -> list[Param]:
         elif p.key not in STRUCTURE:
             out.append(p)
     for entry in pipeline.groups:
-        for p in entry.params:
-            name = f"{entry.group}.{p.key}"
-            if name in RENAMED or entry.group == "stomp_moveit":
-                out.append(Param(name, p.value, p.where))
+        if entry.group == "stomp_moveit":
+            out += [Param(f"{entry.group}.{p.key}", p.value, p.where) for p in entry.params]
+        elif key != "ompl":
+            detail = f"{len(entry.params)} settings in a sub-namespace MoveIt 2's {key} does not read; set pipeline_parameters.{key} by hand"
+            log.dropped(f"{pipeline.name}.{entry.group}", entry.where, detail, AREA)
     return out
 
 
@@ -153,7 +155,7 @@ def _port_parameters(
     distro = model.distro
     defaults = dict(effective_parameters(key, distro, ())) if model.target == Target.ROS2 else {}
     out = []
-    for param in _namespace(pipeline):
+    for param in _namespace(pipeline, key, log):
         setting = f"{pipeline.name}.{param.key}"
         carried = _parameter(param, key, source, model, setting, log)
         if carried is None:
