@@ -68,7 +68,7 @@ class Run:
 
 def load(package_dir: Path, group: str):
     package = read_package(package_dir)
-    robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
+    robot = load_robot(package.description_file, dict(package.xacro_args), list(package.package_paths))
     scene = CollisionScene(robot)
     return robot, planning_problem(package, robot, scene, group)
 

@@ -27,9 +27,10 @@ MARM_MOVEIT_YAML = "config/moveit.yaml"
 
 @dataclass(frozen=True, slots=True)
 class Description:
-    """The robot description: its file, where that choice came from, its xacro args."""
+    """The robot description: its file (None when only the run time gives it: `origin` says
+    why), where that choice came from, its xacro args."""
 
-    urdf: Path
+    urdf: Path | None
     origin: str
     xacro_args: tuple[tuple[str, str], ...]
 
@@ -109,7 +110,8 @@ def find_description(
     builder: tuple[str | None, tuple[tuple[str, str], ...] | None, str],
     refused: Callable[[str, str, str], bool] = lambda _rel, _file, _element: False,
 ) -> Description:
-    """The robot description (see the module docstring); InputError when there is none.
+    """The robot description (see the module docstring); InputError when there is none, except
+    for a ROS 2 package whose Python launch files take it at run time (`RUNTIME_ONLY`).
     `given` is (--urdf, --xacro-arg pairs); `builder` the builder's (explicit file, mappings,
     where it was named); `refused` as for `choose_srdf` (a package's own description file
     leading outside it is not taken)."""
@@ -130,6 +132,8 @@ def find_description(
         return Description((named or xacros)[0], "config/<robot>.urdf.xacro", args or mappings or ())
     if sa is not None and sa.urdf_package and sa.urdf_path:
         return setup_assistant_description(sa, paths, shown, args or mappings or sa.urdf_xacro_args)
+    if _runtime_only(root, marm, sa):
+        return Description(None, RUNTIME_ONLY, args)
     raise InputError(
         f"cannot find the robot description of package '{name}' ({_why_no_urdf(root, marm, sa)})",
         path=shown,
@@ -164,6 +168,22 @@ def setup_assistant_description(
     return Description(pkg_dir / str(sa.urdf_path), ".setup_assistant", args)
 
 
+RUNTIME_ONLY = (
+    "no description file validate can read: no marm_setup.yaml, .setup_assistant or "
+    "config/<robot>.urdf.xacro, and the Python launch files name none (at run time it comes from "
+    "the /robot_description topic or another package's launch command)"
+)
+
+
+def _runtime_only(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> bool:
+    """A package with Python launch files and nothing else naming its robot description: MoveIt
+    2 takes it at run time (moveit/moveit2 moveit_configs_utils/moveit_configs_builder.py
+    l.213-242: a builder without `config/<robot>.urdf.xacro` or `.setup_assistant` leaves
+    robot_description unset, and move_group then reads the /robot_description topic)."""
+    absent = not (root / "marm_setup.yaml").exists() and not (root / ".setup_assistant").exists()
+    return absent and marm is None and sa is None and any(root.glob("launch/*.py"))
+
+
 def _why_no_urdf(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> str:
     """Why none of the robot description sources gave a URDF, naming the files that exist."""
     for rel, read in (("marm_setup.yaml", marm), (".setup_assistant", sa)):
@@ -173,14 +193,6 @@ def _why_no_urdf(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile 
         return ".setup_assistant gives no URDF package and relative_path"
     if (root / "marm_setup.yaml").is_file():
         return "marm_setup.yaml gives no robot.urdf"
-    if any(root.glob("launch/*.py")):
-        # moveit/moveit2 moveit_configs_utils/moveit_configs_builder.py l.213-242: a builder
-        # whose description file does not exist takes it from /robot_description at run time
-        return (
-            "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro, and its Python launch "
-            "files name no description file validate can read: at run time it comes from the "
-            "/robot_description topic or a launch command"
-        )
     return "no marm_setup.yaml, .setup_assistant or config/<robot>.urdf.xacro"
 
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.package.controllers_file import ControllersFile
 from marm_setup.package.driver_file import ArbotixFile, DriverFile, InitialPositions, Ros2ControlFile
@@ -46,8 +47,10 @@ class MoveItPackage:
     name: str  # package.xml <name>, or the folder name
     target: Target  # ros1 (catkin, MoveIt 1) | ros2 (ament, MoveIt 2)
     layout: str  # moveit1 | moveit2 | marm_ros2 (our single config/moveit.yaml)
-    urdf: Path  # the robot description (discovery fails, InputError, when there is none)
-    urdf_origin: str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro, ...
+    urdf: Path | None  # the robot description; None when only the run time gives it
+    urdf_origin: (
+        str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro, ... (or why None)
+    )
     xacro_args: tuple[tuple[str, str], ...] = ()
     package_paths: tuple[Path, ...] = ()  # for $(find): this package first, then the user's, ...
     package_xml: PackageXml | None = None
@@ -98,6 +101,19 @@ class MoveItPackage:
     def ros_distro(self) -> Distro | None:
         """The distro marm_setup.yaml names (`ros_distro`), else None."""
         return self.marm_setup.ros_distro if self.marm_setup is not None else None
+
+    @property
+    def description_file(self) -> Path:
+        """The robot description file; InputError (pass --urdf) when only the run time gives it
+        (planning and porting need the robot; validate runs what it can without it)."""
+        if self.urdf is None:
+            raise InputError(
+                f"cannot find the robot description of package '{self.name}' ({self.urdf_origin})",
+                path=self.shown,
+                element="robot description",
+                needs="--urdf",
+            )
+        return self.urdf
 
     def source(self, kind: str) -> Source | None:
         return next((s for s in self.sources if s.kind == kind), None)

@@ -41,7 +41,7 @@ def run_plan(request: PlanRequest) -> PlanResult:
     if request.seed < 0:
         raise InputError(f"must be >= 0, got {request.seed}", element="--seed")
     package = read_package(request.package, urdf=request.urdf, package_paths=request.package_paths)
-    robot = load_robot(package.urdf, dict(package.xacro_args), list(package.package_paths))
+    robot = load_robot(package.description_file, dict(package.xacro_args), list(package.package_paths))
     problem = planning_problem(package, robot, CollisionScene(robot), request.group)
     srdf_shown = package.user_path(package.srdf_path)
     q_start, q_goal = (pose(problem, name, srdf_shown) for name in (request.from_pose, request.to_pose))

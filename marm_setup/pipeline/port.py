@@ -136,6 +136,7 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
     pkg = read_package(
         request.package, urdf=request.urdf, package_paths=request.package_paths, xacro_args=args
     )
+    urdf = pkg.description_file
     if pkg.urdf_origin != "config/<robot>.urdf.xacro":
         return pkg, ()
     sa = pkg.setup_assistant
@@ -146,12 +147,12 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
     )
     if found is None:
         raise InputError(
-            f"the robot description is the package's own wrapper {pkg.urdf.name} (the new package writes its "
+            f"the robot description is the package's own wrapper {urdf.name} (the new package writes its "
             "own) and .setup_assistant names no other: give the robot's URDF (init URDF --from-package PKG)",
-            path=pkg.user_path(pkg.urdf.relative_to(pkg.root).as_posix()),
+            path=pkg.user_path(urdf.relative_to(pkg.root).as_posix()),
         )
     path, sa_args = found.urdf, sa.urdf_xacro_args if sa is not None else ()
-    wrapper = pkg.urdf.relative_to(pkg.root).as_posix()
+    wrapper = urdf.relative_to(pkg.root).as_posix()
     pkg = read_package(
         request.package, urdf=path, package_paths=request.package_paths, xacro_args=args or dict(sa_args)
     )

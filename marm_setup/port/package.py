@@ -26,7 +26,7 @@ def robot_source(pkg: MoveItPackage, out: Path, user_paths: tuple[Path, ...], lo
 
     paths = [*user_paths, *marm_package_paths(pkg.root, pkg.marm_setup)]
     urdf, rel_list = robot_reference(
-        Path(pkg.urdf), out, list(dict.fromkeys(_relative(p, out) for p in paths))
+        pkg.description_file, out, list(dict.fromkeys(_relative(p, out) for p in paths))
     )
     log.carried("robot.urdf", pkg.urdf_origin, f"{urdf} (relative to the new package)", "robot")
     for name, value in pkg.xacro_args:

@@ -23,7 +23,7 @@ API = {
         "Inference REFERENCE"
     ),
     "checks": "as_input_error check_setup distro_problem package_name_problem setup_warnings",
-    "rules": "check_semantics setup_element srdf_element",
+    "rules": "check_semantics check_semantics_without_robot setup_element srdf_element",
     "start_state": "demo_start_values model_start_values pose_configuration start_configuration start_pose",
     "domain": (
         "ARBOTIX_GRIPPER_ACTION_NS CHAIN_ONLY_PLUGINS DEFAULT_PLANNER DRIVER_ACTION_NS DRIVER_CONTROLLERS "
@@ -130,6 +130,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.poses import choose_start_poses as choose_start_poses
     from marm_setup.setup.poses import infer_poses as infer_poses
     from marm_setup.setup.rules import check_semantics as check_semantics
+    from marm_setup.setup.rules import check_semantics_without_robot as check_semantics_without_robot
     from marm_setup.setup.rules import setup_element as setup_element
     from marm_setup.setup.rules import srdf_element as srdf_element
     from marm_setup.setup.sensors import check_sensors as check_sensors

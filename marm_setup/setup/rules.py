@@ -67,11 +67,11 @@ def srdf_element(w: Where) -> str:
     return head
 
 
-class _Rules:
-    """Finding makers bound to one file, robot and style."""
+class _SrdfRules:
+    """Finding makers bound to one file and style (the rules that read only the SRDF)."""
 
-    def __init__(self, srdf: Srdf, robot: RobotModel, file: str, style: Style):
-        self.srdf, self.robot, self.file, self.style = srdf, robot, file, style
+    def __init__(self, srdf: Srdf, file: str, style: Style):
+        self.srdf, self.file, self.style = srdf, file, style
         self.groups = groups_by_name(srdf.groups)
 
     def error(
@@ -92,6 +92,17 @@ class _Rules:
         refers = ("group" if kind.endswith("group") else kind, name)
         return [self.error(rule, where, f"unknown {kind} '{name}'", did_you_mean(name, known), refers)]
 
+    def group(self, name: str, where: Where, rule: str, kind: str = "group") -> list[Finding]:
+        return self.unknown(rule, kind, name, self.groups, where)
+
+
+class _Rules(_SrdfRules):
+    """Finding makers bound to one file, robot and style."""
+
+    def __init__(self, srdf: Srdf, robot: RobotModel, file: str, style: Style):
+        super().__init__(srdf, file, style)
+        self.robot = robot
+
     def link(self, name: str, where: Where) -> list[Finding]:
         return self.unknown("srdf.unknown-link", "link", name, self.robot.link_map, where)
 
@@ -99,9 +110,6 @@ class _Rules:
         """srdfdom model.cpp `isValidJoint`: a URDF joint or one of the SRDF's virtual joints."""
         known = (*self.robot.joint_map, *(vj.name for vj in self.srdf.virtual_joints))
         return self.unknown(rule, "joint", name, known, where)
-
-    def group(self, name: str, where: Where, rule: str, kind: str = "group") -> list[Finding]:
-        return self.unknown(rule, kind, name, self.groups, where)
 
 
 def check_semantics(srdf: Srdf, robot: RobotModel, file: str, style: Style = srdf_element) -> list[Finding]:
@@ -119,6 +127,26 @@ def check_semantics(srdf: Srdf, robot: RobotModel, file: str, style: Style = srd
     return out
 
 
+def check_semantics_without_robot(srdf: Srdf, file: str, style: Style = srdf_element) -> list[Finding]:
+    """The rules that read only the SRDF (duplicate groups, subgroups and end effectors naming
+    groups, subgroup cycles, self pairs), for a package whose robot description only the run
+    time gives."""
+    r = _SrdfRules(srdf, file, style)
+    out = check_duplicate_groups(r)
+    for group in srdf.groups:
+        for i, sub in enumerate(group.subgroups):
+            out += r.group(sub, Where("group", group.name, ("subgroups", i)), "srdf.unknown-subgroup")
+    out += check_subgroup_cycles(r)
+    for ee in srdf.end_effectors:
+        out += r.group(ee.group, Where("end_effector", ee.name, ("group",)), "srdf.ee-unknown-group")
+        if ee.parent_group is not None:
+            at = Where("end_effector", ee.name, ("parent_group",))
+            out += r.group(ee.parent_group, at, "srdf.ee-unknown-parent-group", "parent group")
+    return out + [
+        _self_pair(r, f"{p.link1} {p.link2}", i) for i, p in enumerate(srdf.disabled) if p.link1 == p.link2
+    ]
+
+
 def check_robot_name(r: _Rules) -> list[Finding]:
     if r.srdf.robot_name == r.robot.name:
         return []
@@ -126,7 +154,7 @@ def check_robot_name(r: _Rules) -> list[Finding]:
     return [r.error("srdf.robot-name", Where("robot"), msg)]
 
 
-def check_duplicate_groups(r: _Rules) -> list[Finding]:
+def check_duplicate_groups(r: _SrdfRules) -> list[Finding]:
     counts = Counter(g.name for g in r.srdf.groups)
     return [
         r.error("srdf.duplicate-group", Where("group", name), f"group '{name}' defined {n} times")
@@ -212,7 +240,7 @@ def _check_group(r: _Rules, group: Group) -> list[Finding]:
     return out
 
 
-def check_subgroup_cycles(r: _Rules) -> list[Finding]:
+def check_subgroup_cycles(r: _SrdfRules) -> list[Finding]:
     """A group that (through subgroups) contains itself: one finding per group on a cycle."""
     edges = {g.name: tuple(g.subgroups) for g in r.srdf.groups}
     out = []
@@ -335,7 +363,7 @@ def check_disabled_links(r: _Rules) -> list[Finding]:
     return out
 
 
-def _self_pair(r: _Rules, name: str, index: int) -> Finding:
+def _self_pair(r: _SrdfRules, name: str, index: int) -> Finding:
     """A `disable_collisions` of a link with itself (xacro macros emit them): srdfdom keeps it
     (model.cpp `loadCollisionPairs` checks only that both links exist) and MoveIt's allowed
     collision matrix gets an entry no check ever asks for (a link is never checked against

@@ -38,7 +38,7 @@ from marm_setup.validate.rules.name_rules import check_controller_names, check_s
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.perception_rules import check_sensors, check_servos
 from marm_setup.validate.rules.pose_rules import check_initial_positions
-from marm_setup.validate.rules.srdf_rules import check_srdf
+from marm_setup.validate.rules.srdf_rules import check_srdf, check_srdf_without_robot
 from marm_setup.validate.rules.write_state_rules import check_pending_write
 
 if TYPE_CHECKING:
@@ -191,6 +191,8 @@ def validate_read(
             pkg, robot, plan=plan, matrix_trials=matrix_trials, progress=progress
         )
         findings += scene_findings
+    elif pkg.urdf is None and pkg.srdf is not None:
+        findings += without_skipped_group_cascade(check_without_robot(pkg), pkg)
     validation = _validation(pkg, robot, findings, planned, launched_by)
     return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
 
@@ -274,7 +276,11 @@ def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str,
         for f in pkg.problems
         if f.rule in ("srdf.parse", "srdf.unsupported")
     ]
-    if robot is None:
+    if robot is None and pkg.urdf is None:
+        out.append(
+            f"every rule needing the robot ({RUNTIME_ONLY_SKIPPED}: its description comes only at run time)"
+        )
+    elif robot is None:
         untrusted = any(s.startswith("xacro of") for s in skipped_code())
         why = "its xacro did not run: --untrusted" if untrusted else "its URDF did not load"
         out.append(f"every rule needing the robot ({why})")
@@ -291,6 +297,8 @@ def shown_path(pkg: MoveItPackage, file: Path) -> str:
 
 def user_urdf(pkg: MoveItPackage) -> str:
     """The robot description as the user would type it: as given to --urdf, else `DIR/...`."""
+    if pkg.urdf is None:
+        return "the run time's /robot_description"
     if pkg.urdf_origin == "--urdf":
         return str(pkg.urdf)
     return os.path.normpath(pkg.user_path(shown_path(pkg, pkg.urdf)))
@@ -300,6 +308,8 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
     """(RobotModel or None, findings): the URDF loads and its meshes resolve."""
     from marm_setup.robot import load_robot
 
+    if pkg.urdf is None:
+        return None, [runtime_only_description(pkg)]
     shown = shown_path(pkg, pkg.urdf) if pkg.urdf_origin != "--urdf" else str(pkg.urdf)
     if not pkg.urdf.is_file():  # named by marm_setup.yaml or .setup_assistant (--urdf is checked earlier)
         element = "robot.urdf" if pkg.urdf_origin == "marm_setup.yaml" else "URDF.relative_path"
@@ -315,6 +325,55 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
         rule = "urdf.mesh-missing" if isinstance(exc, MeshNotFound) else "urdf.load"
         message = f"{exc.message} (robot description from {pkg.urdf_origin})"
         return None, [error(rule, shown, exc.element or "", message, _package_hint(exc))]
+
+
+RUNTIME_ONLY_SKIPPED = (
+    "SRDF links and joints against the URDF, named pose values, KDL chains, joint limits against the "
+    "URDF, controller joints and coverage, ros2_control systems, collisions, the matrix and planning"
+)
+
+
+def runtime_only_description(pkg: MoveItPackage) -> Finding:
+    """A ROS 2 package whose robot description only the run time gives (package.description
+    `RUNTIME_ONLY`): MoveIt loads it then, so nothing is wrong; validate says what it could not
+    read and which checks it skipped (a warning, never an error: DESIGN §5)."""
+    launch = ", ".join(pkg.python_launch_files) or "launch/*.py"
+    msg = f"robot description not read ({pkg.urdf_origin}); skipped: {RUNTIME_ONLY_SKIPPED}"
+    hint = "pass --urdf FILE (and --xacro-arg NAME:=VALUE) to run them"
+    return warning("urdf.runtime-only", launch, "robot_description", msg, hint)
+
+
+def check_without_robot(pkg: MoveItPackage) -> list[Finding]:
+    """The static rules that read no robot: the SRDF's own structure and names, kinematics,
+    limits, OMPL, controller files and the distro's formats (`check_static` minus the robot)."""
+    assert pkg.srdf_file is not None and pkg.srdf is not None
+    srdf, file = pkg.srdf, pkg.srdf_file.path
+    out = guarded("srdf", check_srdf_without_robot, pkg.srdf_file)
+    out += guarded("names", check_srdf_names, srdf, file)
+    if pkg.kinematics is not None:
+        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, None)
+    if pkg.joint_limits is not None:
+        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, None, pkg.target)
+    if pkg.ompl is not None:
+        out += guarded("ompl", check_ompl, pkg.ompl, srdf)
+    out += guarded("controller", check_controller_files, pkg)
+    out += guarded("distro", check_package_runtime, pkg, None)
+    return out
+
+
+def check_controller_files(pkg: MoveItPackage) -> list[Finding]:
+    """MoveIt's controller files on their own (without the robot): listed, named, namespaced,
+    typed."""
+    out: list[Finding] = []
+    if pkg.fake_controllers is not None:
+        out += check_listed(pkg.fake_controllers)
+    moveit = pkg.moveit_controllers
+    if moveit is None or uses_ros_control_interface(moveit):
+        return out
+    out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
+    if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
+        out += check_ros2_namespace(moveit)
+    return out + check_moveit_controllers(moveit, None)
 
 
 def _package_hint(exc: InputError) -> str:

@@ -214,14 +214,42 @@ def test_a_package_building_several_robots_is_read_for_one():
     assert (chosen.robot_name, chosen.explicit("joint_limits").file) == ("omy", "config/omy/l.yaml")
 
 
-def test_a_description_only_the_run_time_gives_says_so(tmp_path):
-    source, paths = PACKAGES["python_launch"](tmp_path)
-    (source / ".setup_assistant").unlink()
+def test_a_description_only_the_run_time_gives_is_a_warning_and_the_rest_runs(tmp_path):
+    """No .setup_assistant, no config/<robot>.urdf.xacro, a builder naming no description (UR's
+    ur_moveit_config): move_group takes it from /robot_description at run time. A warning says
+    what was not read and what was skipped; the rules that need no robot still run (an unknown
+    OMPL planner config is still an error); planning and porting still need --urdf (exit 2)."""
     import pytest
 
     from marm_setup.errors import InputError
 
-    with pytest.raises(InputError, match="Python launch files name no description file"):
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / ".setup_assistant").unlink()
+    edit(source / "launch/move_group.launch.py", ".robot_description(mappings=mappings)\n", "")
+    result = validate(source, package_paths=paths, plan=False, matrix_trials=0)
+    found = list(result.findings)
+    assert errors(found) == []
+    [runtime] = [f for f in found if f.rule == "urdf.runtime-only"]
+    assert (str(runtime.severity), runtime.file) == ("warning", "launch/move_group.launch.py")
+    assert "/robot_description" in runtime.message and "collisions" in runtime.message
+    assert result.robot is None and any("comes only at run time" in s for s in result.skipped)
+    edit(
+        source / "config/ompl_planning.yaml",
+        "default_planner_config: RRTConnectkConfigDefault",
+        "default_planner_config: Nope",
+    )
+    edit(
+        source / "config/kinematics.yaml", "kinematics_solver_timeout: 0.05", "kinematics_solver_timeout: -1"
+    )
+    assert errors(findings(source, paths)) == [
+        ("kinematics.non-positive", "arm.kinematics_solver_timeout"),
+        ("ompl.unknown-default-planner", "arm.default_planner_config"),
+    ]
+    with pytest.raises(InputError, match="no description file validate can read"):
+        read_package(source, package_paths=paths).description_file
+    (source / "config/bot.srdf").unlink()  # not a config package's robot any more: still bad input
+    (source / "package.xml").unlink()
+    with pytest.raises(InputError, match="not a MoveIt config package"):
         read_package(source, package_paths=paths)
 
 

@@ -79,14 +79,15 @@ def check_ros2_namespace(controllers: ControllersFile) -> list[Finding]:
 
 
 def check_moveit_controllers(
-    controllers: ControllersFile, robot: RobotModel, real: bool = True
+    controllers: ControllersFile, robot: RobotModel | None, real: bool = True
 ) -> list[Finding]:
-    """Joints exist; for real (non-fake) controllers: known type, action_ns present and plausible."""
+    """Joints exist (when the robot is known); for real (non-fake) controllers: known type,
+    action_ns present and plausible."""
     out: list[Finding] = []
     file = controllers.where.file
     for c in controllers.controllers:
         for joint in c.joints:
-            if joint not in robot.joint_map:
+            if robot is not None and joint not in robot.joint_map:
                 out.append(error("controller.unknown-joint", file, c.element, f"unknown joint '{joint}'"))
         if real:
             out += _check_type(file, c)

@@ -182,14 +182,14 @@ def check_ros2_control_systems(
     return out
 
 
-def check_package_runtime(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
+def check_package_runtime(pkg: MoveItPackage, robot: RobotModel | None) -> list[Finding]:
     """The rules above on a config package: projection evaluators (both targets), then for ROS 2
     the distro's pipeline format (the distro marm_setup.yaml names), publishing flags and
-    ros2_control systems."""
+    ros2_control systems; those reading the robot only when it is known."""
     from marm_setup.robot import described_joints
 
     out: list[Finding] = []
-    if pkg.ompl is not None and pkg.srdf is not None:
+    if pkg.ompl is not None and pkg.srdf is not None and robot is not None:
         out += check_projection_evaluators(pkg.ompl, pkg.srdf, robot)
     if pkg.target != Target.ROS2:
         return out
@@ -202,8 +202,12 @@ def check_package_runtime(pkg: MoveItPackage, robot: RobotModel) -> list[Finding
             out += check_pipeline_parameters(pipeline, distro)
     if pkg.move_group is not None:
         out += check_publish_flags(pkg.move_group, MOVEIT_YAML, "/**.ros__parameters")
+    if robot is None:
+        return out
     out += check_expanded_systems(robot)
-    if not pkg.urdf.resolve().is_relative_to(pkg.root.resolve()):  # our layout: the user's description
+    if pkg.urdf is not None and not pkg.urdf.resolve().is_relative_to(
+        pkg.root.resolve()
+    ):  # our layout: the user's description
         out += check_ros2_control_systems(pkg.ros2_control_files, described_joints(robot))
     return out
 

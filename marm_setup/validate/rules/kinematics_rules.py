@@ -28,8 +28,9 @@ if TYPE_CHECKING:
 POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
 
 
-def check_kinematics(kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel) -> list[Finding]:
-    """Every rule on a kinematics file (`{group: {kinematics_solver: ..., ...}}`)."""
+def check_kinematics(kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel | None) -> list[Finding]:
+    """Every rule on a kinematics file (`{group: {kinematics_solver: ..., ...}}`); without the
+    robot (a description only the run time gives) whether a group is a chain is not checked."""
     file = kinematics.where.file
     if kinematics.groups is None:
         return [error("kinematics.malformed", file, kinematics.where.element, "expected a mapping of groups")]
@@ -56,7 +57,7 @@ def _check_entry(
     group: Group,
     by_name: Mapping[str, Group],
     srdf: Srdf,
-    robot: RobotModel,
+    robot: RobotModel | None,
 ) -> list[Finding]:
     out: list[Finding] = []
     where = entry.where.element
@@ -68,7 +69,11 @@ def _check_entry(
         out.append(
             warning("kinematics.unknown-solver", file, f"{where}.kinematics_solver", msg, _solver_hint())
         )
-    elif solver in CHAIN_ONLY_PLUGINS and not is_chain(group, by_name, robot, tuple(srdf.passive_joints)):
+    elif (
+        robot is not None
+        and solver in CHAIN_ONLY_PLUGINS
+        and not is_chain(group, by_name, robot, tuple(srdf.passive_joints))
+    ):
         msg = f"{solver.split('/')[-1]} needs a serial chain, but group '{group.name}' is not one"
         hint = "use a chain group, or a solver for general groups (pick_ik, bio_ik, TRAC-IK)"
         out.append(error("kinematics.kdl-needs-chain", file, f"{where}.kinematics_solver", msg, hint))

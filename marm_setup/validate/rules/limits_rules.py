@@ -50,9 +50,10 @@ def _below(value: float, limit: float) -> bool:
 
 
 def check_joint_limits(
-    limits: JointLimitsFile, srdf: Srdf, robot: RobotModel, target: Target
+    limits: JointLimitsFile, srdf: Srdf, robot: RobotModel | None, target: Target
 ) -> list[Finding]:
-    """Every rule on a `robot_description_planning`-style file (`{joint_limits: {...}}`)."""
+    """Every rule on a `robot_description_planning`-style file (`{joint_limits: {...}}`); without
+    the robot (a description only the run time gives) the rules that compare with it are skipped."""
     file = limits.where.file
     if limits.joints is None:
         return [
@@ -63,10 +64,13 @@ def check_joint_limits(
                 "no joint_limits mapping",
             )
         ]
-    out = _check_coverage(limits, srdf, robot)
+    out = _check_coverage(limits, srdf, robot) if robot is not None else []
     for entry in sorted(limits.joints, key=lambda e: e.joint):
         where = entry.where.element
-        if entry.joint not in robot.joint_map:
+        if robot is None:
+            if entry.params is None:
+                out.append(error("limits.malformed", file, where, "expected a mapping"))
+        elif entry.joint not in robot.joint_map:
             msg = f"unknown joint '{entry.joint}' (MoveIt ignores it)"
             out.append(warning("limits.unknown-joint", file, where, msg))
         elif entry.params is None:

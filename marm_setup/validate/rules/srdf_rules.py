@@ -6,7 +6,7 @@ from __future__ import annotations
 from marm_setup.findings import Finding, error, warning
 from marm_setup.package import SrdfFile
 from marm_setup.robot import RobotModel
-from marm_setup.setup import check_semantics, srdf_element
+from marm_setup.setup import check_semantics, check_semantics_without_robot, srdf_element
 
 
 def check_srdf(srdf_file: SrdfFile, robot: RobotModel) -> list[Finding]:
@@ -17,6 +17,14 @@ def check_srdf(srdf_file: SrdfFile, robot: RobotModel) -> list[Finding]:
     out += _duplicate_pairs(srdf_file)
     out += _nested_passive_joints(srdf_file, robot)
     return out
+
+
+def check_srdf_without_robot(srdf_file: SrdfFile) -> list[Finding]:
+    """The SRDF rules that need no robot (for a description only the run time gives)."""
+    assert srdf_file.srdf is not None
+    return check_semantics_without_robot(srdf_file.srdf, srdf_file.path, srdf_element) + _duplicate_pairs(
+        srdf_file
+    )
 
 
 def _nested_passive_joints(srdf_file: SrdfFile, robot: RobotModel) -> list[Finding]:
