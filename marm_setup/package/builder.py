@@ -59,6 +59,10 @@ class BuilderFiles:
     def mappings(self, method: str) -> tuple[tuple[str, str], ...] | None:
         return next((m for c in self.calls if (m := c.mapping(method)) is not None), None)
 
+    def unread_args(self, method: str) -> tuple[str, ...]:
+        """The args of `method`'s mappings (the same call as `mappings`) whose value is unknown."""
+        return next((c.unread_args(method) for c in self.calls if c.mapping(method) is not None), ())
+
     @property
     def pipelines(self) -> tuple[str, ...] | None:
         return next((c.pipelines for c in self.calls if c.pipelines is not None), None)

@@ -5,11 +5,14 @@ chain and the files its methods name (`.robot_description(file_path, mappings)`,
 `.robot_description_semantic(file_path, mappings)`, `.robot_description_kinematics(file_path)`,
 `.joint_limits(file_path)`, `.trajectory_execution(file_path)`, `.planning_pipelines(pipelines,
 default_planning_pipeline)`, `.sensors_3d(file_path)`, `.pilz_cartesian_limits(file_path)`),
-and the parameter files handed to a `ros2_control_node` (`Node(package="controller_manager",
-executable="ros2_control_node", parameters=[...])`). An argument counts only when its value is
+the parameter files handed to a `ros2_control_node` (`Node(package="controller_manager",
+executable="ros2_control_node", parameters=[...])`), and the descriptions a launch file builds
+itself: `{"robot_description": Command([FindExecutable(name="xacro"), " ", <file>, " arg:=",
+value, ...])}` (also through a name, `ParameterValue(...)`, and for `robot_description_semantic`). An argument counts only when its value is
 known without running anything: literals, names bound to literals, `+`, f-strings, `Path(...) /
-...`, `os.path.join`, `get_package_share_directory("pkg")` and a `LaunchConfiguration` whose
-`DeclareLaunchArgument` has a literal default. The builder's conventions for what it loads
+...`, `os.path.join`, `get_package_share_directory("pkg")`, `FindPackageShare("pkg")`,
+`PathJoinSubstitution([...])` and a `LaunchConfiguration` whose `DeclareLaunchArgument` has a
+literal default; a xacro argument whose value is not known is listed as such (`unread_args`). The builder's conventions for what it loads
 when a method is not called are in `package.builder`.
 """
 
@@ -17,6 +20,7 @@ from __future__ import annotations
 
 import ast
 import os
+import shlex
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -49,6 +53,7 @@ class BuilderCall:
     robot_description: str = "robot_description"
     files: tuple[tuple[str, str], ...] = ()  # (method, file_path as written)
     mappings: tuple[tuple[str, tuple[tuple[str, str], ...]], ...] = ()  # (method, known xacro args)
+    unread: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (method, xacro args of unknown value)
     pipelines: tuple[str, ...] | None = None
     default_pipeline: str | None = None
 
@@ -58,11 +63,31 @@ class BuilderCall:
     def mapping(self, method: str) -> tuple[tuple[str, str], ...] | None:
         return dict(self.mappings).get(method)
 
+    def unread_args(self, method: str) -> tuple[str, ...]:
+        return dict(self.unread).get(method, ())
+
+
+@dataclass(frozen=True, slots=True)
+class XacroCommand:
+    """`{parameter: Command(["xacro", " ", file, " name:=", value, ...])}` in a launch file: the
+    file (None when not known statically) and the args, those whose value is not known apart."""
+
+    launch: str
+    parameter: str  # robot_description | robot_description_semantic
+    file: str | None
+    args: tuple[tuple[str, str], ...] = ()
+    unread_args: tuple[str, ...] = ()
+
 
 @dataclass(frozen=True)
 class PythonLaunch:
     builders: tuple[BuilderCall, ...] = ()
     control_files: tuple[tuple[str, str], ...] = ()  # (parameter file path, launch file)
+    commands: tuple[XacroCommand, ...] = ()
+
+    def command(self, parameter: str) -> XacroCommand | None:
+        """The first launch file's xacro command for `parameter` (launch files sorted)."""
+        return next((c for c in self.commands if c.parameter == parameter), None)
 
 
 @dataclass
@@ -79,6 +104,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
 
     builders: list[BuilderCall] = []
     control: list[tuple[str, str]] = []
+    commands: list[XacroCommand] = []
     for rel in files:
         try:
             tree = ast.parse(read_text(root / rel, XML_BYTES, shown=rel), rel)
@@ -87,11 +113,13 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
         env = _environment(tree, find)
         builders += [_builder(call, rel, env) for call in _builder_chains(tree)]
         control += [(path, rel) for path in _control_files(tree, env)]
-    return PythonLaunch(tuple(builders), tuple(control))
+        commands += xacro_commands(tree, rel, env)
+    return PythonLaunch(tuple(builders), tuple(control), tuple(commands))
 
 
 def _environment(tree: ast.AST, find: Callable[[str], str | None]) -> _Env:
     env = _Env(find=find)
+    _bind(tree, env)  # names first: `DeclareLaunchArgument(ip_name, ...)` names its argument by one
     for node in ast.walk(tree):
         if isinstance(node, ast.Call) and _name(node.func) == "DeclareLaunchArgument" and node.args:
             try:
@@ -101,13 +129,17 @@ def _environment(tree: ast.AST, find: Callable[[str], str | None]) -> _Env:
                     env.defaults[name] = str(static(default, env))
             except Unknown:
                 continue
+    _bind(tree, env)  # again, now with the launch arguments' defaults
+    return env
+
+
+def _bind(tree: ast.AST, env: _Env) -> None:
     for node in ast.walk(tree):  # simple `name = value` bindings, in source order
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
             try:
                 env.values[node.targets[0].id] = static(node.value, env)
             except Unknown:
                 env.values.pop(node.targets[0].id, None)
-    return env
 
 
 def static(node: ast.AST | None, env: _Env) -> Any:
@@ -207,7 +239,7 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
     robot = _try(ctor.args[0] if ctor.args else _keyword(ctor, "robot_name"), env)
     description = _try(ctor.args[1] if len(ctor.args) > 1 else _keyword(ctor, "robot_description"), env)
     package = _try(ctor.args[2] if len(ctor.args) > 2 else _keyword(ctor, "package_name"), env)
-    files, mappings, pipelines, default = [], [], None, None
+    files, mappings, unread, pipelines, default = [], [], [], None, None
     for call in chain[1:]:
         method = _name(call.func)
         if method in FILE_METHODS:
@@ -216,7 +248,8 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
                 files.append((method, path))
             known = _mappings(call, env)
             if known is not None:
-                mappings.append((method, known))
+                mappings.append((method, known[0]))
+                unread.append((method, known[1]))
         elif method == "planning_pipelines":
             found = _try(_keyword(call, "pipelines") or (call.args[1] if len(call.args) > 1 else None), env)
             pipelines = tuple(map(str, found)) if isinstance(found, list) else None
@@ -231,16 +264,19 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
         description if isinstance(description, str) else "robot_description",
         tuple(files),
         tuple(mappings),
+        tuple(unread),
         pipelines,
         default,
     )
 
 
-def _mappings(call: ast.Call, env: _Env) -> tuple[tuple[str, str], ...] | None:
+def _mappings(call: ast.Call, env: _Env) -> tuple[tuple[tuple[str, str], ...], tuple[str, ...]] | None:
+    """(the mappings whose value is known, the names of those whose value is not)."""
     found = _try(_keyword(call, "mappings") or (call.args[1] if len(call.args) > 1 else None), env)
     if not isinstance(found, dict):
         return None
-    return tuple(sorted((str(k), _text(v)) for k, v in found.items() if v is not Unknown and k is not None))
+    known = tuple(sorted((str(k), _text(v)) for k, v in found.items() if v is not Unknown and k is not None))
+    return known, tuple(sorted(str(k) for k, v in found.items() if v is Unknown and k is not None))
 
 
 def _text(value: Any) -> str:
@@ -270,3 +306,75 @@ def _control_files(tree: ast.AST, env: _Env) -> Iterator[str]:
             value = _try(item, env)
             if isinstance(value, str) and value.endswith((".yaml", ".yml")):
                 yield value
+
+
+DESCRIPTION_PARAMETERS = ("robot_description", "robot_description_semantic")
+_UNREAD = "\x00"  # stands for a part of a command only the run time gives
+
+
+def xacro_commands(tree: ast.AST, rel: str, env: _Env) -> list[XacroCommand]:
+    """`{"robot_description": <xacro Command>}` dicts of a module (the value directly, through a
+    name bound to it, or wrapped in `ParameterValue(..., value_type=str)`)."""
+    bound: dict[str, ast.AST] = {
+        n.targets[0].id: n.value
+        for n in ast.walk(tree)
+        if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name)
+    }
+    out = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Dict):
+            continue
+        for key, value in zip(node.keys, node.values, strict=True):
+            parameter = _try(key, env)
+            if parameter in DESCRIPTION_PARAMETERS:
+                command = _command_call(value, bound)
+                if command is not None and (found := _xacro_command(command, rel, parameter, env)):
+                    out.append(found)
+    return out
+
+
+def _command_call(node: ast.AST, bound: dict[str, ast.AST]) -> ast.Call | None:
+    for _ in range(8):  # a name, a ParameterValue, a name again...
+        if isinstance(node, ast.Name) and node.id in bound:
+            node = bound[node.id]
+        elif isinstance(node, ast.Call) and _name(node.func) == "ParameterValue" and node.args:
+            node = node.args[0]
+        else:
+            break
+    return node if isinstance(node, ast.Call) and _name(node.func) == "Command" else None
+
+
+def _xacro_command(call: ast.Call, rel: str, parameter: str, env: _Env) -> XacroCommand | None:
+    """launch's Command joins its parts and splits the text like a shell (launch/substitutions/
+    command.py `perform`: shlex.split); a part only the run time gives is `_UNREAD`."""
+    given = call.args[0] if call.args else _keyword(call, "command")
+    parts = given.elts if isinstance(given, ast.List | ast.Tuple) else [given]
+    try:
+        words = shlex.split("".join(_command_part(p, env) for p in parts if p is not None))
+    except ValueError:
+        return None
+    if not words or os.path.basename(words[0]) not in ("xacro", "xacro.py"):
+        return None
+    files = [w for w in words[1:] if ":=" not in w and not w.startswith("-")]
+    pairs = [w.split(":=", 1) for w in words[1:] if ":=" in w and _UNREAD not in w.split(":=", 1)[0]]
+    # a relative file is relative to where the user starts the launch: not known statically
+    file = files[0] if files and _UNREAD not in files[0] and os.path.isabs(files[0]) else None
+    args = tuple(sorted((k, v) for k, v in pairs if _UNREAD not in v))
+    return XacroCommand(rel, parameter, file, args, tuple(sorted(k for k, v in pairs if _UNREAD in v)))
+
+
+def _command_part(node: ast.AST, env: _Env) -> str:
+    if isinstance(node, ast.Call) and _name(node.func) == "FindExecutable":
+        name = _try(_keyword(node, "name") or (node.args[0] if node.args else None), env)
+        return str(name) if isinstance(name, str) else _UNREAD
+    value = _try(node, env)
+    return _text(value) if isinstance(value, str | int | float | bool) else _UNREAD
+
+
+def undefined_unread_arg(message: str, unread: tuple[str, ...]) -> str | None:
+    """The xacro arg a failed expansion names as undefined (robot/xacro_expand.py) when it is
+    one whose value only the launch file's run time gives, else None."""
+    import re
+
+    found = re.search(r"undefined xacro arg '([^']+)'", message)
+    return found.group(1) if found and found.group(1) in unread else None

@@ -52,6 +52,7 @@ class MoveItPackage:
         str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro, ... (or why None)
     )
     xacro_args: tuple[tuple[str, str], ...] = ()
+    unread_xacro_args: tuple[str, ...] = ()  # the launch files pass these with run-time values
     package_paths: tuple[Path, ...] = ()  # for $(find): this package first, then the user's, ...
     package_xml: PackageXml | None = None
     setup_assistant: SetupAssistantFile | None = None

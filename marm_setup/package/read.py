@@ -27,7 +27,7 @@ from marm_setup.package.description import (
 )
 from marm_setup.package.driver_file import Ros2ControlFile, read_ros2_control
 from marm_setup.package.files import FileProblem, PackageFiles
-from marm_setup.package.launch_python import read_python_launch
+from marm_setup.package.launch_python import XacroCommand, read_python_launch
 from marm_setup.package.launch_ros1 import Ros1Launch, SemanticLoad, YamlLoad, evaluate_ros1
 from marm_setup.package.launch_ros2 import evaluate_ros2_xml
 from marm_setup.package.launch_xml import LaunchXml, launch_file_names, parse_launch, python_launch_names
@@ -54,6 +54,16 @@ class _Launched:
     semantic: SemanticLoad | None = None
     builder: BuilderFiles | None = None
     control_files: tuple[str, ...] = ()
+    commands: tuple[XacroCommand, ...] = ()  # descriptions a Python launch file builds with xacro
+
+    def command(self, parameter: str) -> XacroCommand | None:
+        return next((c for c in self.commands if c.parameter == parameter), None)
+
+    def unread_args(self, parameter: str) -> tuple[str, ...]:
+        """Xacro args the launch files pass `parameter`'s file with values only the run time gives."""
+        command = self.command(parameter)
+        own = self.builder.unread_args(parameter) if self.builder is not None else ()
+        return tuple(sorted({*own, *(command.unread_args if command is not None else ())}))
 
 
 @dataclass(frozen=True)
@@ -92,7 +102,8 @@ def read_package(
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
     description = _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
     kinds = _kinds(files, found.target, launched, problems)
-    srdf_file = _srdf(root, srdf_rel, srdf_args, xacro_args, found.paths, problems)
+    unread = launched.unread_args("robot_description_semantic")
+    srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems)
     return MoveItPackage(
         root=root,
         shown=shown,
@@ -102,6 +113,7 @@ def read_package(
         urdf=description.urdf,
         urdf_origin=description.origin,
         xacro_args=description.xacro_args,
+        unread_xacro_args=launched.unread_args("robot_description") if urdf is None else (),
         package_paths=found.paths,
         package_xml=found.package_xml,
         setup_assistant=found.sa,
@@ -214,7 +226,7 @@ def _launched(
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
-    return _Launched(xml.loads, xml.semantic, builder, control)
+    return _Launched(xml.loads, xml.semantic, builder, control, python.commands)
 
 
 def _relative(path: str, root: Path) -> str | None:
@@ -248,6 +260,10 @@ def _srdf_choice(
         else None
     )
     semantic = (launched.semantic.file, launched.semantic.xacro_args) if launched.semantic else None
+    command = launched.command("robot_description_semantic")
+    rel = _relative(command.file, root) if command is not None and command.file else None
+    if semantic is None and command is not None and rel is not None:
+        semantic = (rel, command.args)
     default = f"config/{builder.robot_name}.srdf" if builder is not None else None
     return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, files.refused)
 
@@ -269,8 +285,15 @@ def _description(
     how = explicit.how if explicit is not None else ""
     robots = (builder.robot_name if builder and builder.calls else None, srdf_robot_name(root, srdf_rel))
     given = (Path(urdf) if urdf is not None else None, tuple(sorted((xacro_args or {}).items())))
-    builder_source = (rel, mappings, how)
-    return find_description(
+    command = launched.command("robot_description")
+    if urdf is None and command is not None and command.file and not (rel and (root / rel).is_file()):
+        # the description the launch file builds itself: its file, its args (--xacro-arg on top)
+        if not Path(command.file).is_file():
+            msg = f"the xacro command's file {command.file} does not exist"
+            raise InputError(msg, path=str(Path(shown) / command.launch), element="robot_description")
+        rel, how = command.file, f"xacro command in {command.launch}"
+        mappings, given = tuple(sorted({**dict(command.args), **dict(given[1])}.items())), (None, ())
+    found_description = find_description(
         root,
         shown,
         found.name,
@@ -279,9 +302,17 @@ def _description(
         found.sa,
         found.paths,
         robots,
-        builder_source,
+        (rel, mappings, how),
         files.refused,
     )
+    if found_description.urdf is None and command is not None:
+        why = (
+            f"{command.launch} builds it with xacro from {command.file}, outside the package and the folders named"
+            if command.file
+            else f"{command.launch} builds it with a xacro command whose file validate cannot read statically"
+        )
+        return Description(None, why, ())
+    return found_description
 
 
 def _kinds(files: PackageFiles, target: Target, launched: _Launched, problems: list[Finding]) -> Kinds:
@@ -341,14 +372,17 @@ def _node_params(value: Any) -> bool:
 def _srdf(
     root: Path,
     rel: str | None,
-    args: tuple[tuple[str, str], ...],
+    args: tuple[tuple[tuple[str, str], ...], tuple[str, ...]],
     user_args: Mapping[str, str] | None,
     paths: tuple[Path, ...],
     problems: list[Finding],
 ) -> SrdfFile | None:
+    """The SRDF at `rel`, expanded with (the launch files' args, those whose value is unknown)
+    and the user's --xacro-arg."""
     if rel is None:
         return None
-    return read_srdf_file(root, rel, paths, problems, {**dict(args), **dict(user_args or {})})
+    known, unread = args
+    return read_srdf_file(root, rel, paths, problems, {**dict(known), **dict(user_args or {})}, unread)
 
 
 def _srdf_source(srdf: SrdfFile | None, launched: _Launched) -> tuple[Source, ...]:

@@ -44,10 +44,16 @@ class SrdfFile:
 
 
 def read_srdf_file(
-    root: Path, rel: str, paths: tuple[Path, ...], problems: list[Finding], args: dict[str, str]
+    root: Path,
+    rel: str,
+    paths: tuple[Path, ...],
+    problems: list[Finding],
+    args: dict[str, str],
+    unread: tuple[str, ...] = (),
 ) -> SrdfFile:
     """The SRDF at `rel`; what cannot be read becomes findings in `problems` (`srdf.parse`,
-    `srdf.unsupported`)."""
+    `srdf.unsupported`; `srdf.runtime-arg` when its xacro needs one of the `unread` args, whose
+    value only the launch file's run time gives)."""
     from marm_setup.setup import parse_srdf_document
 
     xacro_args = tuple(sorted(args.items()))
@@ -58,7 +64,7 @@ def read_srdf_file(
     except CodeNotRun:  # --untrusted: its xacro did not run (the summary says so)
         return SrdfFile(rel, xacro_args)
     except MarmError as exc:
-        problems.append(error("srdf.parse", rel, exc.element or "", exc.message, remedy(exc.needs)))
+        problems.append(_unreadable(rel, exc, unread))
         return SrdfFile(rel, xacro_args)
     problems += [_skipped_element(rel, exc) for exc in skipped]
     gone = frozenset(_group_name(exc.element or "") for exc in skipped) - {None}
@@ -71,6 +77,22 @@ def read_srdf_file(
         _nested_passive_joints(xml),
         gone,  # type: ignore[arg-type]
         declared,
+    )
+
+
+def _unreadable(rel: str, exc: MarmError, unread: tuple[str, ...]) -> Finding:
+    """An SRDF that does not expand: an error, unless what it lacks is an arg the launch file
+    passes a value validate cannot read (then the run time has it: a warning)."""
+    from marm_setup.package.launch_python import undefined_unread_arg
+
+    arg = undefined_unread_arg(exc.message, unread)
+    if arg is None:
+        return error("srdf.parse", rel, exc.element or "", exc.message, remedy(exc.needs))
+    msg = (
+        f"not read: its xacro needs {arg}:=, which the launch file sets from a value only the run time gives"
+    )
+    return warning(
+        "srdf.runtime-arg", rel, exc.element or "", msg, f"pass --xacro-arg {arg}:=VALUE to read it"
     )
 
 

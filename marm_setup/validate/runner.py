@@ -17,7 +17,13 @@ from typing import TYPE_CHECKING, Any
 
 from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound, remedy
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
-from marm_setup.package import MoveItPackage, launch_nodes, package_start_values, read_package
+from marm_setup.package import (
+    MoveItPackage,
+    launch_nodes,
+    package_start_values,
+    read_package,
+    undefined_unread_arg,
+)
 from marm_setup.ros import Target
 from marm_setup.untrusted import CodeNotRun, no_package_code, skipped_code, skips_code
 from marm_setup.validate.rules.controller_rules import (
@@ -191,7 +197,7 @@ def validate_read(
             pkg, robot, plan=plan, matrix_trials=matrix_trials, progress=progress
         )
         findings += scene_findings
-    elif pkg.urdf is None and pkg.srdf is not None:
+    elif robot is None and pkg.srdf is not None and any(f.rule in RUNTIME_RULES for f in problems):
         findings += without_skipped_group_cascade(check_without_robot(pkg), pkg)
     validation = _validation(pkg, robot, findings, planned, launched_by)
     return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
@@ -322,11 +328,14 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
     except CodeNotRun:  # --untrusted: a xacro description is not expanded (the summary says so)
         return None, []
     except InputError as exc:
+        if (arg := undefined_unread_arg(exc.message, pkg.unread_xacro_args)) is not None:
+            return None, [runtime_arg_description(pkg, shown, arg)]
         rule = "urdf.mesh-missing" if isinstance(exc, MeshNotFound) else "urdf.load"
         message = f"{exc.message} (robot description from {pkg.urdf_origin})"
         return None, [error(rule, shown, exc.element or "", message, _package_hint(exc))]
 
 
+RUNTIME_RULES = ("urdf.runtime-only", "urdf.runtime-arg")
 RUNTIME_ONLY_SKIPPED = (
     "SRDF links and joints against the URDF, named pose values, KDL chains, joint limits against the "
     "URDF, controller joints and coverage, ros2_control systems, collisions, the matrix and planning"
@@ -341,6 +350,16 @@ def runtime_only_description(pkg: MoveItPackage) -> Finding:
     msg = f"robot description not read ({pkg.urdf_origin}); skipped: {RUNTIME_ONLY_SKIPPED}"
     hint = "pass --urdf FILE (and --xacro-arg NAME:=VALUE) to run them"
     return warning("urdf.runtime-only", launch, "robot_description", msg, hint)
+
+
+def runtime_arg_description(pkg: MoveItPackage, shown: str, arg: str) -> Finding:
+    """A description whose xacro needs an arg the launch files pass a value only the run time
+    gives (a launch argument without default): MoveIt has it then, validate does not."""
+    msg = (
+        f"not expanded: its xacro needs {arg}:=, which {pkg.urdf_origin} sets from a value only the "
+        f"run time gives; skipped: {RUNTIME_ONLY_SKIPPED}"
+    )
+    return warning("urdf.runtime-arg", shown, "xacro", msg, f"pass --xacro-arg {arg}:=VALUE to run them")
 
 
 def check_without_robot(pkg: MoveItPackage) -> list[Finding]:

@@ -246,7 +246,7 @@ def test_a_description_only_the_run_time_gives_is_a_warning_and_the_rest_runs(tm
         ("ompl.unknown-default-planner", "arm.default_planner_config"),
     ]
     with pytest.raises(InputError, match="no description file validate can read"):
-        read_package(source, package_paths=paths).description_file
+        _ = read_package(source, package_paths=paths).description_file
     (source / "config/bot.srdf").unlink()  # not a config package's robot any more: still bad input
     (source / "package.xml").unlink()
     with pytest.raises(InputError, match="not a MoveIt config package"):
@@ -291,3 +291,74 @@ def test_a_link_disabled_against_itself_is_a_warning(tmp_path):
     found = findings(source, paths)
     assert of_rule(found, "srdf.self-pair") == [("warning", "disable_collisions[link2 link2]")]
     assert errors(found) == []
+
+
+COMMAND_LAUNCH = """from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import Command, FindExecutable, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    hw_name = "hw"
+    description = Command(
+        [FindExecutable(name="xacro"), " ",
+         PathJoinSubstitution([FindPackageShare("bot_description"), "urdf", "bot.urdf.xacro"]),
+         " hw:=", LaunchConfiguration(hw_name), " robot_ip:=", LaunchConfiguration("robot_ip")]
+    )
+    return LaunchDescription([
+        DeclareLaunchArgument(hw_name, default_value="mock"),
+        DeclareLaunchArgument("robot_ip"),
+        Node(package="moveit_ros_move_group", executable="move_group",
+             parameters=[{"robot_description": description}]),
+    ])
+"""
+
+
+def test_a_description_a_python_launch_file_builds_with_xacro_is_read(tmp_path):
+    """franka_ros2's form: `{"robot_description": Command([FindExecutable(name="xacro"), " ",
+    PathJoinSubstitution([FindPackageShare(...), ...]), " hw:=", LaunchConfiguration(...)])}`.
+    Read statically: the file, the args whose value is known (launch argument defaults); an arg
+    only the run time gives that the xacro needs, or a file it cannot find, is a warning (the
+    rules needing no robot still run); a file its package lacks is bad input (exit 2)."""
+    import pytest
+
+    from marm_setup.errors import InputError
+
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / ".setup_assistant").unlink()
+    (source / "launch/move_group.launch.py").write_text(COMMAND_LAUNCH)
+    xacro = tmp_path / "bot_description/urdf/bot.urdf.xacro"
+    edit(
+        xacro,
+        '<xacro:arg name="use_sim"',
+        '<xacro:if value="${\'$(arg hw)\' == \'mock\'}"/>\n  <xacro:arg name="use_sim"',
+    )
+    result = validate(source, package_paths=paths, plan=False, matrix_trials=0)
+    assert (result.robot, result.urdf_origin) == ("bot", "xacro command in launch/move_group.launch.py")
+    assert errors(list(result.findings)) == []
+    edit(source / "launch/move_group.launch.py", 'hw_name, default_value="mock"', "hw_name")
+    found = findings(source, paths)
+    assert errors(found) == []
+    assert of_rule(found, "urdf.runtime-arg") == [("warning", "xacro")]
+    edit(
+        source / "config/kinematics.yaml", "kinematics_solver_timeout: 0.05", "kinematics_solver_timeout: -1"
+    )
+    assert errors(findings(source, paths)) == [("kinematics.non-positive", "arm.kinematics_solver_timeout")]
+    edit(
+        source / "launch/move_group.launch.py",
+        'FindPackageShare("bot_description")',
+        'FindPackageShare("elsewhere")',
+    )
+    found = findings(source, paths)
+    [runtime] = [f for f in found if f.rule == "urdf.runtime-only"]
+    assert "cannot read statically" in runtime.message and str(runtime.severity) == "warning"
+    edit(
+        source / "launch/move_group.launch.py",
+        'FindPackageShare("elsewhere")',
+        'FindPackageShare("bot_description")',
+    )
+    edit(source / "launch/move_group.launch.py", '"bot.urdf.xacro"', '"gone.urdf.xacro"')
+    with pytest.raises(InputError, match="gone.urdf.xacro does not exist"):
+        read_package(source, package_paths=paths)
