@@ -197,7 +197,7 @@ def validate_read(
             pkg, robot, plan=plan, matrix_trials=matrix_trials, progress=progress
         )
         findings += scene_findings
-    elif robot is None and pkg.srdf is not None and any(f.rule in RUNTIME_RULES for f in problems):
+    elif robot is None and any(f.rule in RUNTIME_RULES for f in problems):
         findings += without_skipped_group_cascade(check_without_robot(pkg), pkg)
     validation = _validation(pkg, robot, findings, planned, launched_by)
     return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
@@ -280,7 +280,7 @@ def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str,
     out += [
         f"{f.element} of {f.file} ({f.message})"
         for f in pkg.problems
-        if f.rule in ("srdf.parse", "srdf.unsupported")
+        if f.rule in ("srdf.parse", "srdf.unsupported", "srdf.runtime-arg")
     ]
     if robot is None and pkg.urdf is None:
         out.append(
@@ -364,10 +364,14 @@ def runtime_arg_description(pkg: MoveItPackage, shown: str, arg: str) -> Finding
 
 def check_without_robot(pkg: MoveItPackage) -> list[Finding]:
     """The static rules that read no robot: the SRDF's own structure and names, kinematics,
-    limits, OMPL, controller files and the distro's formats (`check_static` minus the robot)."""
-    assert pkg.srdf_file is not None and pkg.srdf is not None
+    limits, OMPL (those with the SRDF, when it was read), controller files and the distro's
+    formats (`check_static` minus the robot)."""
+    out = guarded("controller", check_controller_files, pkg)
+    out += guarded("distro", check_package_runtime, pkg, None)
+    if pkg.srdf_file is None or pkg.srdf is None:
+        return out
     srdf, file = pkg.srdf, pkg.srdf_file.path
-    out = guarded("srdf", check_srdf_without_robot, pkg.srdf_file)
+    out += guarded("srdf", check_srdf_without_robot, pkg.srdf_file)
     out += guarded("names", check_srdf_names, srdf, file)
     if pkg.kinematics is not None:
         out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, None)
@@ -375,8 +379,6 @@ def check_without_robot(pkg: MoveItPackage) -> list[Finding]:
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, None, pkg.target)
     if pkg.ompl is not None:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf)
-    out += guarded("controller", check_controller_files, pkg)
-    out += guarded("distro", check_package_runtime, pkg, None)
     return out
 
 

@@ -333,7 +333,7 @@ def test_a_description_a_python_launch_file_builds_with_xacro_is_read(tmp_path):
     edit(
         xacro,
         '<xacro:arg name="use_sim"',
-        '<xacro:if value="${\'$(arg hw)\' == \'mock\'}"/>\n  <xacro:arg name="use_sim"',
+        "<xacro:if value=\"${'$(arg hw)' == 'mock'}\"/>\n  <xacro:arg name=\"use_sim\"",
     )
     result = validate(source, package_paths=paths, plan=False, matrix_trials=0)
     assert (result.robot, result.urdf_origin) == ("bot", "xacro command in launch/move_group.launch.py")
@@ -362,3 +362,32 @@ def test_a_description_a_python_launch_file_builds_with_xacro_is_read(tmp_path):
     edit(source / "launch/move_group.launch.py", '"bot.urdf.xacro"', '"gone.urdf.xacro"')
     with pytest.raises(InputError, match="gone.urdf.xacro does not exist"):
         read_package(source, package_paths=paths)
+
+
+def test_an_srdf_xacro_arg_only_the_run_time_gives_is_a_warning(tmp_path):
+    """UR's ur_moveit_config: `.robot_description_semantic(Path("srdf") / "ur.srdf.xacro",
+    {"name": ur_type})`, `ur_type` a launch argument without default, the xacro's robot name
+    `$(arg name)`. MoveIt has the value at run time; validate says what it could not read, and
+    the controller rules (which need neither robot nor SRDF) still run."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / ".setup_assistant").unlink()
+    srdf = (source / "config/bot.srdf").read_text().replace('name="bot"', 'name="$(arg name)"', 1)
+    (source / "config/bot.srdf.xacro").write_text(
+        srdf.replace("<robot ", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" ', 1)
+    )
+    (source / "config/bot.srdf").unlink()
+    edit(
+        source / "launch/move_group.launch.py",
+        ".robot_description(mappings=mappings)",
+        '.robot_description_semantic("config/bot.srdf.xacro", {"name": LaunchConfiguration("robot_ip")})',
+    )
+    found = findings(source, paths)
+    assert errors(found) == []
+    assert {f.rule for f in found if str(f.severity) == "warning"} >= {
+        "urdf.runtime-only",
+        "srdf.runtime-arg",
+    }
+    edit(source / "config/bot_controllers.yaml", "    action_ns: gripper_cmd\n", "")
+    assert errors(findings(source, paths)) == [
+        ("controller.missing-action-ns", "moveit_simple_controller_manager.bot_hand_controller")
+    ]
