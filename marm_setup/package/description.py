@@ -178,8 +178,9 @@ RUNTIME_ONLY = (
 def _runtime_only(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> bool:
     """A package with Python launch files and nothing else naming its robot description: MoveIt
     2 takes it at run time (moveit/moveit2 moveit_configs_utils/moveit_configs_builder.py
-    l.213-242: a builder without `config/<robot>.urdf.xacro` or `.setup_assistant` leaves
-    robot_description unset, and move_group then reads the /robot_description topic)."""
+    `robot_description`, l.213-243: a file that does not exist leaves robot_description unset,
+    "The robot description will be loaded from /robot_description topic"), or the launch file
+    builds it from another package."""
     absent = not (root / "marm_setup.yaml").exists() and not (root / ".setup_assistant").exists()
     return absent and marm is None and sa is None and any(root.glob("launch/*.py"))
 

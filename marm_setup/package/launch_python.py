@@ -345,8 +345,9 @@ def _command_call(node: ast.AST, bound: dict[str, ast.AST]) -> ast.Call | None:
 
 
 def _xacro_command(call: ast.Call, rel: str, parameter: str, env: _Env) -> XacroCommand | None:
-    """launch's Command joins its parts and splits the text like a shell (launch/substitutions/
-    command.py `perform`: shlex.split); a part only the run time gives is `_UNREAD`."""
+    """launch's Command joins its parts and splits the text like a shell (ros2/launch
+    launch/launch/substitutions/command.py `perform` l.92-98: shlex.split); a part only the run
+    time gives is `_UNREAD`."""
     given = call.args[0] if call.args else _keyword(call, "command")
     parts = given.elts if isinstance(given, ast.List | ast.Tuple) else [given]
     try:
