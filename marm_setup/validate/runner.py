@@ -370,13 +370,19 @@ def check_without_robot(pkg: MoveItPackage) -> list[Finding]:
     out += guarded("distro", check_package_runtime, pkg, None)
     if pkg.srdf_file is None or pkg.srdf is None:
         return out
+    return out + guarded("srdf", check_srdf_without_robot, pkg.srdf_file) + check_srdf_files(pkg, None)
+
+
+def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Finding]:
+    """The SRDF's names, and kinematics, limits and OMPL against its groups (and the robot, when
+    it is known), each family on its own."""
+    assert pkg.srdf_file is not None and pkg.srdf is not None
     srdf, file = pkg.srdf, pkg.srdf_file.path
-    out += guarded("srdf", check_srdf_without_robot, pkg.srdf_file)
-    out += guarded("names", check_srdf_names, srdf, file)
+    out = guarded("names", check_srdf_names, srdf, file)
     if pkg.kinematics is not None:
-        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, None)
+        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot)
     if pkg.joint_limits is not None:
-        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, None, pkg.target)
+        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
     if pkg.ompl is not None:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf)
     return out
@@ -410,17 +416,9 @@ def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     """SRDF, poses, kinematics, limits, OMPL, controller, servo and sensor rules (no collision checking), each
     family on its own: one that fails leaves the others running."""
     assert pkg.srdf_file is not None and pkg.srdf is not None
-    srdf, file = pkg.srdf, pkg.srdf_file.path
-    out = guarded("srdf", check_srdf, pkg.srdf_file, robot)
-    out += guarded("names", check_srdf_names, srdf, file)
+    out = guarded("srdf", check_srdf, pkg.srdf_file, robot) + check_srdf_files(pkg, robot)
     if pkg.initial_positions is not None:
         out += guarded("pose", check_initial_positions, pkg.initial_positions, robot)
-    if pkg.kinematics is not None:
-        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot)
-    if pkg.joint_limits is not None:
-        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
-    if pkg.ompl is not None:
-        out += guarded("ompl", check_ompl, pkg.ompl, srdf)
     out += guarded("controller", check_controllers, pkg, robot)
     out += guarded("distro", check_package_runtime, pkg, robot)
     out += guarded("servo", check_servos, pkg, robot)
