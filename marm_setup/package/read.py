@@ -286,13 +286,10 @@ def _description(
     robots = (builder.robot_name if builder and builder.calls else None, srdf_robot_name(root, srdf_rel))
     given = (Path(urdf) if urdf is not None else None, tuple(sorted((xacro_args or {}).items())))
     command = launched.command("robot_description")
-    if urdf is None and command is not None and command.file and not (rel and (root / rel).is_file()):
-        # the description the launch file builds itself: its file, its args (--xacro-arg on top)
-        if not Path(command.file).is_file():
-            msg = f"the xacro command's file {command.file} does not exist"
-            raise InputError(msg, path=str(Path(shown) / command.launch), element="robot_description")
-        rel, how = command.file, f"xacro command in {command.launch}"
-        mappings, given = tuple(sorted({**dict(command.args), **dict(given[1])}.items())), (None, ())
+    if urdf is None and not (found.marm and found.marm.urdf) and not (rel and (root / rel).is_file()):
+        from_command = _command_description(command, shown, given[1], found.paths)
+        if from_command is not None:
+            return from_command
     found_description = find_description(
         root,
         shown,
@@ -313,6 +310,24 @@ def _description(
         )
         return Description(None, why, ())
     return found_description
+
+
+def _command_description(
+    command: XacroCommand | None, shown: str, args: tuple[tuple[str, str], ...], paths: tuple[Path, ...]
+) -> Description | None:
+    """The description a Python launch file builds itself with xacro: its file, its args with
+    --xacro-arg on top. Its file is taken only inside the packages the package paths hold (where
+    FindPackageShare looked), as `.setup_assistant`'s package is; one that does not exist there is
+    bad input (InputError)."""
+    from marm_setup.untrusted import inside
+
+    if command is None or not command.file or not inside(Path(command.file), paths):
+        return None
+    if not Path(command.file).is_file():
+        msg = f"the xacro command's file {command.file} does not exist"
+        raise InputError(msg, path=str(Path(shown) / command.launch), element="robot_description")
+    merged = tuple(sorted({**dict(command.args), **dict(args)}.items()))
+    return Description(Path(command.file), f"xacro command in {command.launch}", merged)
 
 
 def _kinds(files: PackageFiles, target: Target, launched: _Launched, problems: list[Finding]) -> Kinds:

@@ -174,7 +174,8 @@ def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> Robo
     robot, problems = load_package_robot(pkg)
     if robot is None and not problems:  # --untrusted: its xacro did not run
         message = "not run: its xacro is package code (--untrusted); give a plain .urdf as the URDF argument"
-        raise InputError(f"xacro of {pkg.urdf.name}: {message}", path=str(pkg.urdf), element="xacro")
+        urdf = pkg.description_file
+        raise InputError(f"xacro of {urdf.name}: {message}", path=str(urdf), element="xacro")
     if robot is None:
         from marm_setup.setup import as_input_error
 

@@ -362,6 +362,18 @@ def test_a_description_a_python_launch_file_builds_with_xacro_is_read(tmp_path):
     edit(source / "launch/move_group.launch.py", '"bot.urdf.xacro"', '"gone.urdf.xacro"')
     with pytest.raises(InputError, match="gone.urdf.xacro does not exist"):
         read_package(source, package_paths=paths)
+    outside = tmp_path.parent / f"{tmp_path.name}_outside.urdf.xacro"  # no package path holds it
+    outside.write_text(xacro.read_text())
+    launch = source / "launch/move_group.launch.py"
+    launch.write_text(
+        launch.read_text().replace(
+            'PathJoinSubstitution([FindPackageShare("bot_description"), "urdf", "gone.urdf.xacro"])',
+            repr(str(outside)),
+        )
+    )
+    [runtime] = [f for f in findings(source, paths) if f.rule == "urdf.runtime-only"]
+    assert "outside the package and the folders named" in runtime.message
+    outside.unlink()
 
 
 def test_an_srdf_xacro_arg_only_the_run_time_gives_is_a_warning(tmp_path):
