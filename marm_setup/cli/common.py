@@ -42,6 +42,24 @@ class OutputFormat(str, enum.Enum):
     json = "json"
 
 
+class ProveMode(str, enum.Enum):
+    """How hard to prove the Never pairs (collision/proof.py): off is MoveIt's sampling alone."""
+
+    off = "off"
+    on = "on"
+    exhaustive = "exhaustive"
+
+
+ProveOption = Annotated[
+    ProveMode,
+    typer.Option(
+        "--prove",
+        help="Prove Never pairs collision-free over their whole joint range (off: MoveIt's sampling "
+        "alone; exhaustive: a far larger budget). A pair a proof finds in contact stays enabled.",
+    ),
+]
+
+
 def load_robot_from_cli(
     urdf: Path, xacro_args: list[str] | None, package_paths: list[Path] | None, *, check_args: bool = True
 ) -> RobotModel:

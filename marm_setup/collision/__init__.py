@@ -9,7 +9,8 @@ from typing import TYPE_CHECKING
 from marm_setup.exports import lazy_api
 
 API = {
-    "pairs": "DisabledPair DisabledReason link_pair",
+    "pairs": "DisabledPair DisabledReason link_pair PROVE_MODES UnprovedPair",
+    "proof_report": "unproved_notes unproved_pairs",
     "scene": "CollisionScene",
     "matrix": "CollisionMatrix compute_collision_matrix Progress ROUND trial_samples",
     "srdf_update": "load_srdf_text read_srdf_entries render_minimal_srdf update_srdf",
@@ -23,9 +24,13 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.matrix import Progress as Progress
     from marm_setup.collision.matrix import compute_collision_matrix as compute_collision_matrix
     from marm_setup.collision.matrix import trial_samples as trial_samples
+    from marm_setup.collision.pairs import PROVE_MODES as PROVE_MODES
     from marm_setup.collision.pairs import DisabledPair as DisabledPair
     from marm_setup.collision.pairs import DisabledReason as DisabledReason
+    from marm_setup.collision.pairs import UnprovedPair as UnprovedPair
     from marm_setup.collision.pairs import link_pair as link_pair
+    from marm_setup.collision.proof_report import unproved_notes as unproved_notes
+    from marm_setup.collision.proof_report import unproved_pairs as unproved_pairs
     from marm_setup.collision.report import describe_matrix as describe_matrix
     from marm_setup.collision.report import format_summary as format_summary
     from marm_setup.collision.report import render_matrix_html as render_matrix_html

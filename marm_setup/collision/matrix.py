@@ -5,6 +5,14 @@ collision at the default state), Always (in collision in >= `min_collision_fract
 round of 200 samples; rounds repeat until one adds nothing), Never (not seen in collision in
 `trials` random states). Pairs seen in collision in any sample stay enabled.
 
+Proved Never (`prove` "on" or "exhaustive", beyond MoveIt): before the trials, every pair
+still a candidate is screened by a cheap proof over its joint box (`collision/proof.py`):
+`proved` pairs are Never without a trial (no state could show them in collision), `collides`
+pairs stay enabled (their witness is a state in contact); the others go through the trials
+as MoveIt's rule says. Those the trials never saw in collision are then settled by a longer
+proof and a witness search: `collides` enables them, else they are Never, `proved` or
+`unproved`. "off" is MoveIt's sampling alone, byte for byte.
+
 Randomness: the Always rounds draw from `SeedSequence(seed, spawn_key=(0,))`; the trials come
 in fixed chunks (`collision/trials.py`), streamed, the same whoever checks them (`--jobs`).
 
@@ -21,6 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED, PairProof
 from marm_setup.collision.trials import CHUNK, Work, trial_samples
 from marm_setup.collision.workers import Workers
 from marm_setup.robot import RobotModel, default_configuration, sample_configurations
@@ -37,8 +46,9 @@ WORTH_A_PROCESS = 0.3  # [s] estimated Never-phase work below which extra proces
 @dataclass(frozen=True, slots=True)
 class PairStats:
     """One candidate pair: its reason (None: enabled), hits in the fully counted Always-round
-    samples (`hits` of `samples`), whether any sample showed it in collision, and for Never
-    pairs the smallest distance [m] measured over its closest-looking trial states."""
+    samples (`hits` of `samples`), whether any sample showed it in collision, for Never
+    pairs the smallest distance [m] measured over its closest-looking trial states, and its
+    proof (None: not proved, the pair being decided before the Never phase or `prove` off)."""
 
     link1: str
     link2: str
@@ -47,6 +57,7 @@ class PairStats:
     samples: int = 0
     seen_colliding: bool = False
     min_distance: float | None = None
+    proof: PairProof | None = None
 
     @property
     def pair(self) -> Pair:
@@ -65,6 +76,7 @@ class CollisionMatrix:
     min_collision_fraction: float
     padding: float
     work: Work = field(default=Work(), compare=False)
+    prove: str = "off"
 
     @property
     def narrow_calls(self) -> int:
@@ -89,6 +101,7 @@ def compute_collision_matrix(
     progress: Progress | None = None,
     shortcuts: bool = True,
     distances: bool = True,
+    prove: str = "off",
 ) -> CollisionMatrix:
     """MoveIt's matrix for `robot` (scene: a CollisionScene, built when None).
 
@@ -96,6 +109,7 @@ def compute_collision_matrix(
     test, no certificates): the reference the shortcuts must match byte for byte.
     `distances=False` leaves each Never pair's `min_distance` None (only the json and report
     outputs show it; measuring it costs a distance query per pair and closest state).
+    `prove`: "off" (MoveIt's rule), "on" or "exhaustive" (the proof budget; see the module doc).
     """
     if scene is None:
         from marm_setup.collision.scene import CollisionScene
@@ -112,25 +126,55 @@ def compute_collision_matrix(
     counts = always.counts if always else {}
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
-    trial_pairs = tuple(p for p in remaining if p not in seen)
+    proofs = _prove(scene, tuple(p for p in remaining if p not in seen), prove, "screen", seed, jobs)
+    proofs = {p: proof for p, proof in proofs.items() if proof.outcome != UNPROVED}
+    proved = tuple(p for p in remaining if p in proofs and proofs[p].outcome == PROVED)
+    trial_pairs = tuple(p for p in remaining if p not in seen and p not in proofs)
     costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
-    shards = plan_shards(trial_pairs, costs, jobs)
+    shards = _with_tracked(plan_shards(trial_pairs, costs, jobs), proved if distances else ())
     closest, work = _never_phase(scene, shards, seen, seed, trials, shortcuts, distances, progress)
-    reasons.update(dict.fromkeys((p for p in remaining if p not in seen), DisabledReason.NEVER))
+    proofs.update(_prove(scene, tuple(p for p in trial_pairs if p not in seen), prove, "settle", seed, jobs))
+    enabled = seen | {p for p, proof in proofs.items() if proof.outcome == COLLIDES}
+    reasons.update(dict.fromkeys((p for p in remaining if p not in enabled), DisabledReason.NEVER))
     stats = tuple(
-        PairStats(p[0], p[1], reasons.get(p), *counts.get(p, (0, 0)), p in seen, closest.get(p))
+        PairStats(
+            p[0], p[1], reasons.get(p), *counts.get(p, (0, 0)), p in seen, closest.get(p), proofs.get(p)
+        )
         for p in scene.candidate_pairs
     )
+    units = sum(proof.units for proof in proofs.values())
     return CollisionMatrix(
         disabled=tuple(sorted(DisabledPair.of(*p, r) for p, r in reasons.items())),
-        enabled=tuple(p for p in remaining if p in seen),
+        enabled=tuple(p for p in remaining if p in enabled),
         stats=stats,
         trials=trials,
         seed=seed,
         min_collision_fraction=min_collision_fraction,
         padding=scene.padding,
-        work=Work.of(scene) - before + work,
+        work=Work.of(scene) - before + work + Work(proof_units=units),
+        prove=prove,
     )
+
+
+def _prove(
+    scene, pairs: tuple[Pair, ...], prove: str, stage: str, seed: int, jobs: int
+) -> dict[Pair, PairProof]:
+    """The proofs of `pairs` at `stage` ("screen" or "settle"); none when `prove` is "off"."""
+    if prove == "off":
+        return {}
+    from marm_setup.collision.proving import screen_pairs, settle_pairs
+
+    run = screen_pairs if stage == "screen" else settle_pairs
+    return run(scene, pairs, prove, seed, jobs)
+
+
+def _with_tracked(shards: list[tuple[Pair, ...]], tracked: tuple[Pair, ...]) -> list:
+    """(checked pairs, tracked pairs) per shard: the proved pairs, dealt round the shards, are
+    not checked, only followed to their closest trial states (for their Never distance)."""
+    out = [(pairs, list[Pair]()) for pairs in shards] or ([((), [])] if tracked else [])
+    for k, pair in enumerate(tracked):
+        out[k % len(out)][1].append(pair)
+    return [(pairs, tuple(extra)) for pairs, extra in out]
 
 
 def _never_phase(

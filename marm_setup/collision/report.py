@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 from marm_setup.collision.matrix import ROUND, CollisionMatrix, PairStats
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.collision.proof import COLLIDES, PROVED
 
 ENABLED = "Enabled"
 COLORS = {
@@ -32,6 +33,8 @@ LETTERS = {
     DisabledReason.USER: "U",
 }
 HEAT_LOW, HEAT_HIGH = (254, 230, 206), (230, 85, 13)  # enabled: 0 % -> 100 % hit rate
+PROVED_FILL = "#238b45"  # Never, proved collision-free over the whole joint range
+WITNESS_FILL = "#a50f15"  # enabled: a proof found the pair in contact
 CELL, CHAR, PAD = 22, 7.0, 12
 HIT_COUNTS = (
     "hits/samples count the Always-round samples only (every pair checked in each); the Never "
@@ -49,9 +52,11 @@ def describe_matrix(
     matrix: CollisionMatrix, robot_name: str, disabled: Sequence[DisabledPair] | None = None
 ) -> dict:
     """Everything about the matrix as plain data (for `--format json`), pairs sorted."""
+    from marm_setup.collision.proof_report import outcome_counts
+
     reasons = final_reasons(matrix, disabled)
     counts = reason_counts(reasons)
-    pairs = [_pair_dict(s, reasons.get(s.pair)) for s in matrix.stats]
+    pairs = [_pair_dict(s, reasons.get(s.pair), matrix.trials) for s in matrix.stats]
     pairs += [
         {
             "link1": a,
@@ -61,6 +66,10 @@ def describe_matrix(
             "samples": None,
             "seen_colliding": None,
             "min_distance": None,
+            "proof": None,
+            "proved_fraction": None,
+            "witness": None,
+            "hit_bound": None,
         }
         for (a, b), r in sorted(reasons.items())
         if (a, b) not in {s.pair for s in matrix.stats}
@@ -75,6 +84,8 @@ def describe_matrix(
         "never_bound_95": never_bound(matrix.trials),
         "hit_counts": HIT_COUNTS,
         "counts": counts,
+        "prove": matrix.prove,
+        "proofs": outcome_counts(matrix.stats),
         "pairs": sorted(pairs, key=lambda p: (p["link1"], p["link2"])),
     }
 
@@ -89,7 +100,9 @@ def never_bound(trials: int) -> float | None:
     return 3.0 / trials if trials else None
 
 
-def _pair_dict(stats: PairStats, reason: DisabledReason | None) -> dict:
+def _pair_dict(stats: PairStats, reason: DisabledReason | None, trials: int) -> dict:
+    from marm_setup.collision.proof_report import proof_fields
+
     distance = None if stats.min_distance is None else round(stats.min_distance, 6)
     sampled = stats.samples > 0 or stats.reason in (None, DisabledReason.NEVER)  # else never checked
     return {
@@ -100,6 +113,7 @@ def _pair_dict(stats: PairStats, reason: DisabledReason | None) -> dict:
         "samples": stats.samples,
         "seen_colliding": stats.seen_colliding if sampled else None,
         "min_distance": distance if reason is DisabledReason.NEVER else None,
+        **proof_fields(stats, reason, trials),
     }
 
 
@@ -125,7 +139,8 @@ def render_matrix_svg(
     reasons = final_reasons(matrix, disabled)
     stats = {s.pair: s for s in matrix.stats}
     label_w = PAD + CHAR * max((len(n) for n in links), default=4)
-    top = 76 + 0.8 * label_w  # summary lines, then the rotated column labels
+    summary = _summary(matrix, reasons)
+    top = 28 + 16 * len(summary) + 0.8 * label_w  # summary lines, then the rotated column labels
     cells = [
         _cell(a, b, i, j, label_w, top, reasons, stats)
         for i, a in enumerate(links)
@@ -134,17 +149,18 @@ def render_matrix_svg(
     ]
     size = CELL * len(links)
     legend_y = top + size + 28
+    legend = _legend(label_w, legend_y, matrix.prove != "off")
     return render_template(
         "report/collision_matrix.svg.j2",
         robot_name=robot_name,
-        summary=_summary(matrix, reasons),
+        summary=summary,
         links=list(links),
         cells=cells,
         cell=CELL,
         left=label_w,
         top=top,
-        legend=_legend(label_w, legend_y),
-        width=max(label_w + size + 30, label_w + 730),
+        legend=legend,
+        width=max(label_w + size + 30, label_w + 100 * len(legend) + 130),
         height=legend_y + 50,
     )
 
@@ -163,6 +179,9 @@ def _cell(a, b, i, j, left, top, reasons, stats) -> Cell:
     st = stats.get(pair)
     rate = st.hits / st.samples if st is not None and st.samples else None
     x, y = left + j * CELL, top + i * CELL
+    proven = _proof_cell(x, y, pair, reason, st, rate)
+    if proven is not None:
+        return proven
     if reason is None:
         share = rate or 0.0
         fill = _mix(HEAT_LOW, HEAT_HIGH, share)
@@ -171,11 +190,45 @@ def _cell(a, b, i, j, left, top, reasons, stats) -> Cell:
     return Cell(x, y, COLORS[reason], LETTERS[reason], "#333", _title(pair, reason, st, rate))
 
 
+def _proof_cell(x, y, pair, reason, st, rate) -> Cell | None:
+    """The cell of a pair a proof decided: Never proved or unproved, or enabled by a witness."""
+    proof = st.proof if st is not None else None
+    if proof is None or (reason is not None and reason is not DisabledReason.NEVER):
+        return None
+    title = _title(pair, reason, st, rate)
+    if reason is None:
+        if proof.outcome != COLLIDES:
+            return None
+        from marm_setup.collision.proof_report import witness_text
+
+        return Cell(
+            x,
+            y,
+            WITNESS_FILL,
+            "W",
+            "#fff",
+            f"{title}, in contact at {witness_text(st, 99)} (found by a proof)",
+        )
+    if proof.outcome == PROVED:
+        return Cell(
+            x, y, PROVED_FILL, "N", "#fff", f"{title}, proved collision-free over its whole joint range"
+        )
+    share = int(1000 * proof.proved_fraction) / 10
+    return Cell(
+        x,
+        y,
+        COLORS[reason],
+        "N?",
+        "#333",
+        f"{title}, unproved: proved collision-free over {share:.1f} % of its range",
+    )
+
+
 def _title(pair, reason, st, rate) -> str:
     text = f"{pair[0]} / {pair[1]}: {ENABLED if reason is None else reason.value}"
     if rate is not None:
         text += f", in collision in {st.hits} of {st.samples} Always-round samples ({100 * rate:.1f} %)"
-    if reason is None and st is not None and not st.hits:
+    if reason is None and st is not None and not st.hits and st.seen_colliding:
         text += ", seen colliding in the trials"
     if reason is DisabledReason.NEVER and st is not None and st.min_distance is not None:
         text += f", closest {1000 * st.min_distance:.1f} mm"
@@ -188,9 +241,16 @@ def _mix(lo, hi, share: float) -> str:
 
 
 def _summary(matrix: CollisionMatrix, reasons) -> list[str]:
+    from marm_setup.collision.proof_report import proof_lines
+
     counts = ", ".join(f"{reason} {n}" for reason, n in reason_counts(reasons).items())
     enabled = sum(1 for s in matrix.stats if reasons.get(s.pair) is None)
     bound = never_bound(matrix.trials)
+    proofs = [line for line in proof_lines(matrix, reasons) if not line.startswith(" ")][:2]
+    return [*proofs, *_base_summary(matrix, counts, enabled, bound)]
+
+
+def _base_summary(matrix: CollisionMatrix, counts: str, enabled: int, bound: float | None) -> list[str]:
     return [
         f"{len(matrix.stats)} candidate pairs; disabled: {counts}; enabled (sometimes colliding): {enabled}",
         f"{matrix.trials} trials, seed {matrix.seed}, Always at >= {matrix.min_collision_fraction:g}"
@@ -199,8 +259,14 @@ def _summary(matrix: CollisionMatrix, reasons) -> list[str]:
     ]
 
 
-def _legend(x: float, y: float) -> list[dict]:
+def _legend(x: float, y: float, proofs: bool = False) -> list[dict]:
     items = [(COLORS[r], f"{LETTERS[r]} {r.value}") for r in DisabledReason]
+    if proofs:
+        items[list(DisabledReason).index(DisabledReason.NEVER)] = (
+            COLORS[DisabledReason.NEVER],
+            "N? unproved",
+        )
+        items += [(PROVED_FILL, "N Never, proved"), (WITNESS_FILL, "W witness")]
     items.append((_mix(HEAT_LOW, HEAT_HIGH, 0.5), "% enabled: Always-round hit rate"))
     return [{"x": x + k * 100, "y": y, "fill": f, "text": t} for k, (f, t) in enumerate(items)]
 
@@ -224,8 +290,9 @@ def format_summary(
     ]
     for s in enabled:
         hits = f"{s.hits}/{s.samples}" if s.samples else ""
-        seen = "seen in trials" if not s.hits else ""
-        lines.append(f"  {s.link1} / {s.link2}  ({', '.join(x for x in (hits, seen) if x)})")
+        seen = "seen in trials" if not s.hits and s.seen_colliding else ""
+        found = "found by a proof" if not s.hits and not s.seen_colliding else ""
+        lines.append(f"  {s.link1} / {s.link2}  ({', '.join(x for x in (hits, seen, found) if x)})")
     lines.append(
         f"{matrix.trials} trials, seed {matrix.seed}, Always at >= {matrix.min_collision_fraction:g} "
         f"of a {ROUND}-sample round, padding {matrix.padding:g} m, {seconds:.2f} s"
@@ -235,6 +302,9 @@ def format_summary(
             f"Never is statistical: with {matrix.trials} trials and no hit, a pair's collision "
             f"probability is below 3/N = {never_bound(matrix.trials):.2g} (95 % confidence)"
         )
+    from marm_setup.collision.proof_report import proof_lines
+
+    lines += proof_lines(matrix, reasons)
     if denser_seconds is not None:
         lines.append(
             f"a 10x denser run (--trials {_count_text(10 * matrix.trials)}, bound "

@@ -19,6 +19,7 @@ import itertools
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -35,6 +36,9 @@ from marm_setup.robot import (
     load_mesh,
     origin_matrix,
 )
+
+if TYPE_CHECKING:
+    from marm_setup.collision.pair_chain import LeverPoints
 
 Pair = tuple[str, str]
 _EPS = 1e-9
@@ -91,6 +95,7 @@ class CollisionScene:
         self._tf = (coal.Transform3s(), coal.Transform3s())
         self._solvers: dict[tuple[int, int, int, int], object] = {}
         self._ids_cache: dict[tuple[Pair, ...], np.ndarray] = {}
+        self._levers: dict[str, LeverPoints] = {}
         self.narrow_calls = 0  # exact coal checks of the real geometry
         self.hull_checks = 0
         self.hull_rejections = 0  # hull checks that proved a pair apart
@@ -318,6 +323,75 @@ class CollisionScene:
         """Smallest distance [m] between the pair's shapes (0 or less when touching)."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
         return self._min_distance(self._shapes[a], self._shapes[b], poses[a], poses[b])
+
+    def shape_distance(
+        self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
+    ) -> float:
+        """Smallest distance [m] between the pair's shapes with its links at `pose_a`, `pose_b`
+        (any common frame); `hulls`: of the meshes' convex hulls (a lower bound)."""
+        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        if hulls:
+            shapes_a, shapes_b = (
+                self._hull_shapes(a) or self._shapes[a],
+                self._hull_shapes(b) or self._shapes[b],
+            )
+            return self._min_distance(shapes_a, shapes_b, pose_a, pose_b)
+        return self._min_distance(self._shapes[a], self._shapes[b], pose_a, pose_b)
+
+    def nearest_points(
+        self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
+    ) -> tuple[float, np.ndarray, np.ndarray]:
+        """The pair's distance [m] at `pose_a`, `pose_b` and its nearest points on each link
+        (in the poses' frame); `hulls`: of the meshes' convex hulls."""
+        coal = self._coal
+        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+        shapes_a, shapes_b = self._shapes[a], self._shapes[b]
+        if hulls:
+            shapes_a, shapes_b = self._hull_shapes(a) or shapes_a, self._hull_shapes(b) or shapes_b
+        best = (np.inf, np.zeros(3), np.zeros(3))
+        for (ga, la), (gb, lb) in itertools.product(shapes_a, shapes_b):
+            tf_a, tf_b = coal.Transform3s(), coal.Transform3s()
+            _set(tf_a, pose_a, la)
+            _set(tf_b, pose_b, lb)
+            result = coal.DistanceResult()
+            coal.distance(ga, tf_a, gb, tf_b, coal.DistanceRequest(), result)
+            if result.min_distance < best[0]:
+                best = (float(result.min_distance), np.array(result.getNearestPoint1()),
+                        np.array(result.getNearestPoint2()))  # fmt: skip
+        return best
+
+    def lever_points(self, link: str) -> LeverPoints:
+        """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes:
+        hull vertices of meshes, box corners, a sphere's centre, a cylinder's end-cap centres."""
+        from marm_setup.collision.pair_chain import merged_levers
+
+        if link in self._levers:
+            return self._levers[link]
+        row = self.links.index(link)
+        points, radii = [], []
+        for geom, local in self._shapes[row]:
+            p, r = self._shape_levers(geom)
+            if local is not None:
+                p = p @ local[:3, :3].T + local[:3, 3]
+            points.append(p)
+            radii.append(r)
+        self._levers[link] = merged_levers(np.concatenate(points), np.concatenate(radii))
+        return self._levers[link]
+
+    def _shape_levers(self, geom) -> tuple[np.ndarray, np.ndarray]:
+        coal = self._coal
+        if isinstance(geom, coal.Sphere):
+            return np.zeros((1, 3)), np.array([geom.radius])
+        if isinstance(geom, coal.Cylinder):
+            half = geom.halfLength
+            return np.array([[0.0, 0.0, -half], [0.0, 0.0, half]]), np.full(2, geom.radius)
+        if isinstance(geom, coal.Box):
+            corners = _corners(np.asarray(geom.halfSide, dtype=float))
+            return corners, np.zeros(len(corners))
+        hull = self._hull(geom)
+        source = hull if hull is not geom else geom
+        vertices = np.asarray(source.points() if hull is not geom else geom.vertices(), dtype=float)
+        return vertices, np.zeros(len(vertices))
 
     def _min_distance(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
         coal = self._coal

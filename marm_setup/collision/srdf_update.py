@@ -3,13 +3,14 @@
 An update edits the text, not a re-serialised tree: every byte outside the replaced
 `<disable_collisions>` lines stays as it was (comments, groups, attribute order, indentation).
 Entries whose reason is `User` (or not one we compute) are kept where they are; with `keep`,
-every existing entry is kept and only new pairs are added.
+every existing entry is kept and only new pairs are added. A Never pair whose proof did not
+finish gets a note (an XML comment on the line before it); a replaced entry's note goes with it.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from html import escape, unescape
 from pathlib import Path
@@ -17,7 +18,7 @@ from pathlib import Path
 from lxml import etree
 
 from marm_setup import bounded_read
-from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.collision.pairs import UNPROVED_MARK, DisabledPair, DisabledReason
 from marm_setup.errors import InputError
 from marm_setup.robot import xml_syntax_message
 
@@ -53,12 +54,18 @@ class SrdfEntry:
         return DisabledPair.of(self.link1, self.link2, reason)
 
 
-def render_minimal_srdf(robot_name: str, disabled: Iterable[DisabledPair]) -> str:
-    """`<robot name>` with the sorted `disable_collisions` entries."""
+Notes = Mapping[tuple[str, str], str]
+
+
+def render_minimal_srdf(robot_name: str, disabled: Iterable[DisabledPair], notes: Notes | None = None) -> str:
+    """`<robot name>` with the sorted `disable_collisions` entries (`notes`: pair -> comment)."""
     from marm_setup.templating import render_template
 
     return render_template(
-        "collision/disable_collisions.srdf.j2", robot_name=robot_name, disabled=sorted(disabled)
+        "collision/disable_collisions.srdf.j2",
+        robot_name=robot_name,
+        disabled=sorted(disabled),
+        notes=dict(notes or {}),
     )
 
 
@@ -96,14 +103,16 @@ def read_srdf_entries(text: str, *, shown: str) -> list[SrdfEntry]:
 
 
 def update_srdf(
-    text: str, disabled: Sequence[DisabledPair], *, keep: bool = False, shown: str
+    text: str, disabled: Sequence[DisabledPair], *, keep: bool = False, shown: str, notes: Notes | None = None
 ) -> tuple[str, tuple[DisabledPair, ...]]:
     """SRDF `text` with its computed entries replaced by `disabled`; also the final disabled set.
 
     Kept entries (`User`, unknown reasons, or all with `keep`) stay byte for byte; a kept pair
     wins over a computed one. New entries go, sorted, where the first removed entry was (else
-    before `</robot>`), one per line with that entry's indentation.
+    before `</robot>`), one per line with that entry's indentation, each after its note if
+    `notes` (pair -> comment text) has one; a removed entry's note is removed with it.
     """
+    notes = notes or {}
     entries = read_srdf_entries(text, shown=shown)
     kept = [e for e in entries if keep or e.pair.reason not in COMPUTED]
     kept_pairs = {e.pair.pair for e in kept}
@@ -113,11 +122,12 @@ def update_srdf(
     newline = "\r\n" if "\r\n" in text else "\n"
     anchor, indent = _anchor(text, removed, entries, shown)
     block = "".join(
-        f'{indent}<disable_collisions link1="{escape(d.link1)}" link2="{escape(d.link2)}" '
+        (f"{indent}<!-- {notes[d.pair]} -->{newline}" if d.pair in notes else "")
+        + f'{indent}<disable_collisions link1="{escape(d.link1)}" link2="{escape(d.link2)}" '
         f'reason="{d.reason.value}"/>{newline}'
         for d in new
     )
-    edits = [(*_line_span(text, e), "") for e in removed]
+    edits = [(*_with_note(text, *_line_span(text, e)), "") for e in removed]
     if edits and edits[0][0] == anchor:
         edits[0] = (edits[0][0], edits[0][1], block)
     else:
@@ -181,10 +191,21 @@ def _line_span(text: str, entry: SrdfEntry) -> tuple[int, int]:
     return line_start, line_end
 
 
+def _with_note(text: str, start: int, end: int) -> tuple[int, int]:
+    """The span of an entry's line, widened to the line before when that line is our note."""
+    if start == 0 or text[start - 1] != "\n":
+        return start, end
+    before = text.rfind("\n", 0, start - 1) + 1
+    line = text[before:start].strip()
+    if line.startswith(f"<!-- {UNPROVED_MARK}") and line.endswith("-->") and line.count("-->") == 1:
+        return before, end
+    return start, end
+
+
 def _anchor(text: str, removed: list[SrdfEntry], entries: list[SrdfEntry], shown: str) -> tuple[int, str]:
     """Where new entries go (a line start) and their indentation."""
     if removed:
-        start = _line_span(text, removed[0])[0]
+        start = _with_note(text, *_line_span(text, removed[0]))[0]
         return start, _indent_at(text, removed[0].start)
     close = masked(text).rfind("</robot")  # the root's end tag, not one in a comment after it
     if close < 0:

@@ -30,6 +30,7 @@ class Work:
     hull_rejections: int = 0  # hull checks that proved a pair apart (no exact check needed)
     certificate_queries: int = 0  # coal distance queries made for certificates
     certified: int = 0  # (state, pair) checks a certificate answered
+    proof_units: int = 0  # work of the proofs, in hull-distance queries (collision/proof.py)
 
     @classmethod
     def of(cls, scene) -> Work:
@@ -58,15 +59,25 @@ class PairShard:
     """One process's share of the Never phase: a fixed set of pairs, checked over every trial
     chunk in order. A pair leaves at its first collision; with `shortcuts` a PairProver's
     certificates build up over all the chunks; with `closest` each unseen pair keeps its
-    CLOSEST states (for `distances`: a Python step per pair and chunk, skipped when unwanted)."""
+    CLOSEST states (for `distances`: a Python step per pair and chunk, skipped when unwanted),
+    and so does each `tracked` pair (proved: never checked, only followed for its distance)."""
 
     def __init__(
-        self, scene, seed: int, trials: int, shortcuts: bool, pairs: tuple[Pair, ...], closest: bool = True
+        self,
+        scene,
+        seed: int,
+        trials: int,
+        shortcuts: bool,
+        pairs: tuple[Pair, ...],
+        tracked: tuple[Pair, ...] = (),
+        closest: bool = True,
     ) -> None:
         self.scene, self.seed, self.trials, self.shortcuts = scene, seed, trials, shortcuts
-        self.unseen = pairs
+        self.unseen, self.tracked = pairs, tracked if closest else ()
         self.keep_closest = closest
-        self.closest: dict[Pair, list[tuple[float, int]]] = {p: [] for p in pairs} if closest else {}
+        self.closest: dict[Pair, list[tuple[float, int]]] = (
+            {p: [] for p in (*pairs, *self.tracked)} if closest else {}
+        )
         self.prover = None
         if shortcuts:
             from marm_setup.collision.prover import PairProver
@@ -81,7 +92,9 @@ class PairShard:
         """Check chunk `index` (chunks go in order); the pairs first seen colliding in it."""
         q = trial_chunk(self.scene.robot, self.seed, index, self.trials)
         horizon = self.chunks - index
-        seen, closest = check_chunk(self.scene, q, self.unseen, self.prover, horizon, self.keep_closest)
+        seen, closest = check_chunk(
+            self.scene, q, self.unseen, self.prover, horizon, self.keep_closest, self.tracked
+        )
         self.unseen = tuple(p for p in self.unseen if p not in seen)
         start = index * CHUNK
         for pair, items in closest.items():
@@ -91,7 +104,8 @@ class PairShard:
 
     def distances(self) -> dict[Pair, float]:
         """Smallest exact distance [m] of each never-seen pair over its closest trial states."""
-        items = [(p, [i for _, i in self.closest[p]]) for p in self.unseen if self.closest.get(p)]
+        every = (*self.unseen, *self.tracked)
+        items = [(p, [i for _, i in self.closest[p]]) for p in every if self.closest.get(p)]
         rows = sorted({i for _, pair_rows in items for i in pair_rows})
         if not rows:
             return {}
@@ -125,39 +139,56 @@ def _smallest_distance(scene, poses: list[np.ndarray], pair_id: int) -> float:
 
 
 def check_chunk(
-    scene, q: np.ndarray, pairs: tuple[Pair, ...], prover=None, horizon: float = 1.0, closest: bool = True
+    scene,
+    q: np.ndarray,
+    pairs: tuple[Pair, ...],
+    prover=None,
+    horizon: float = 1.0,
+    closest: bool = True,
+    tracked: tuple[Pair, ...] = (),
 ):
     """Pairs of `pairs` seen colliding in states `q`, and (when `closest`) each unseen pair's
-    CLOSEST smallest-gap states.
+    CLOSEST smallest-gap states (those of `tracked` pairs too, which are not checked).
 
     A pair stops being checked at its first collision; its candidate states are tried in order of
     deepest bounding-sphere overlap, so sometimes-colliding pairs are found in a few calls.
     `prover` (a PairProver): the same answer with fewer exact checks (`horizon`: the chunks
     this process has still to check, this one included).
     """
-    if not pairs or not len(q):
+    if not (pairs or tracked) or not len(q):
         return set(), {}
-    ids = scene.pair_ids(pairs)
     poses = scene.link_poses(q)
     centers = scene.link_centers(poses)
+    every = (*pairs, *tracked)
+    ids = scene.pair_ids(every)
     seen: set[Pair] = set()
     nearest: dict[Pair, list[tuple[float, int]]] = {}
-    for part in scene.pair_batches(len(q), len(pairs)):  # bounded memory for any number of pairs
+    for part in scene.pair_batches(len(q), len(every)):  # bounded memory for any number of pairs
         gaps = scene.sphere_gaps(poses, ids[part], centers)
-        maybe = scene.maybe_colliding(poses, ids[part], gaps)
-        for k in np.flatnonzero(maybe.any(axis=0)):  # a pair no state may touch is not seen
-            candidates = np.flatnonzero(maybe[:, k])
-            rows = candidates[np.argsort(gaps[candidates, k], kind="stable")]
-            pair_id = int(ids[part][k])
-            if prover is not None:
-                hit = prover.any_collision(q, poses, pair_id, rows, horizon)
-            else:
-                hit = any(scene.collide(poses[n], pair_id) for n in rows)
-            if hit:
-                seen.add(pairs[part][k])
+        checked = slice(part.start, min(part.stop, len(pairs)))  # the batch's pairs not tracked
+        if checked.start < checked.stop:
+            width = checked.stop - checked.start
+            seen |= _seen(scene, q, poses, pairs[checked], ids[checked], gaps[:, :width], prover, horizon)
         if closest:
-            nearest.update(_closest(gaps, pairs[part], seen))
+            nearest.update(_closest(gaps, every[part], seen))
     return seen, nearest
+
+
+def _seen(scene, q, poses, pairs, ids: np.ndarray, gaps: np.ndarray, prover, horizon: float) -> set[Pair]:
+    """The pairs of `pairs` (ids `ids`, sphere gaps `gaps`) in collision in some state of `q`."""
+    maybe = scene.maybe_colliding(poses, ids, gaps)
+    seen = set()
+    for k in np.flatnonzero(maybe.any(axis=0)):  # a pair no state may touch is not seen
+        candidates = np.flatnonzero(maybe[:, k])
+        rows = candidates[np.argsort(gaps[candidates, k], kind="stable")]
+        pair_id = int(ids[k])
+        if prover is not None:
+            hit = prover.any_collision(q, poses, pair_id, rows, horizon)
+        else:
+            hit = any(scene.collide(poses[n], pair_id) for n in rows)
+        if hit:
+            seen.add(pairs[k])
+    return seen
 
 
 def _closest(gaps: np.ndarray, pairs, seen) -> dict[Pair, list[tuple[float, int]]]:

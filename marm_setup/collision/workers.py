@@ -36,11 +36,13 @@ class Workers:
         seed: int,
         trials: int,
         shortcuts: bool,
-        shards: list[tuple[Pair, ...]],
+        shards: list[tuple[tuple[Pair, ...], tuple[Pair, ...]]],
         distances: bool = True,
     ):
         self.distances_wanted = distances  # each shard's Never distances, after its chunks
-        self.shards = [PairShard(scene, seed, trials, shortcuts, pairs, distances) for pairs in shards]
+        self.shards = [
+            PairShard(scene, seed, trials, shortcuts, pairs, tracked, distances) for pairs, tracked in shards
+        ]
         self._procs: list[tuple[Any, Any]] = []  # (process, parent end of its pipe)
 
     @property
@@ -116,14 +118,14 @@ class _ShardSpec:
     """What a spawned worker needs to build its shard again (the scene is not picklable)."""
 
     def __init__(
-        self, robot, padding: float, seed: int, trials: int, shortcuts: bool, pairs, closest
+        self, robot, padding: float, seed: int, trials: int, shortcuts: bool, pairs, tracked, closest
     ) -> None:
-        self.args = (robot, padding, seed, trials, shortcuts, pairs, closest)
+        self.args = (robot, padding, seed, trials, shortcuts, pairs, tracked, closest)
 
     @classmethod
     def of(cls, shard: PairShard) -> _ShardSpec:
         scene = shard.scene
-        args = (shard.seed, shard.trials, shard.shortcuts, shard.unseen, shard.keep_closest)
+        args = (shard.seed, shard.trials, shard.shortcuts, shard.unseen, shard.tracked, shard.keep_closest)
         return cls(scene.robot, scene.padding, *args)
 
     def build(self) -> PairShard:

@@ -39,6 +39,7 @@ class CollisionsRequest:
     report: Path | None = None  # .svg or .html
     distances: bool = False  # the closest distance of each Never pair (json, report)
     verbose: bool = False  # list each pair the SRDF update adds and removes
+    prove: str = "on"  # how the Never pairs are proved (collision/proof.py): off, on, exhaustive
 
 
 @dataclass(frozen=True)
@@ -80,6 +81,7 @@ def run_collisions(
         jobs=request.jobs,
         progress=progress,
         distances=request.distances,
+        prove=request.prove,
     )
     messages: list[str] = []
     disabled = _write_srdf(robot.name, matrix, request, srdf_text, messages)
@@ -123,15 +125,17 @@ def _write_srdf(
     srdf, output = request.srdf, request.output
     if srdf is None and output is None:
         return matrix.disabled  # nothing to write: no Jinja, no writer imported
-    from marm_setup.collision import render_minimal_srdf, update_srdf
+    from marm_setup.collision import render_minimal_srdf, unproved_notes, update_srdf
     from marm_setup.render import write_text_atomic
 
+    notes = unproved_notes(matrix)
     if srdf is None or srdf_text is None:  # the text is read whenever --srdf is given
         if output is not None:
-            write_text_atomic(output, render_minimal_srdf(robot_name, matrix.disabled), shown=str(output))
+            text = render_minimal_srdf(robot_name, matrix.disabled, notes)
+            write_text_atomic(output, text, shown=str(output))
             messages.append(f"wrote {output}")
         return matrix.disabled
-    text, disabled = update_srdf(srdf_text, matrix.disabled, keep=request.keep, shown=str(srdf))
+    text, disabled = update_srdf(srdf_text, matrix.disabled, keep=request.keep, shown=str(srdf), notes=notes)
     target = output or srdf
     write_text_atomic(target, text, shown=str(target))
     messages.append(f"wrote {target}")
@@ -216,6 +220,7 @@ def run_package_collisions(
     fraction: float,
     jobs: int,
     *,
+    prove: str = "on",
     force: bool,
     progress: Progress | None = None,
 ) -> PackageCollisionsResult:
@@ -224,8 +229,8 @@ def run_package_collisions(
     hand-edited file is overwritten (kept as `.orig`, as render does)."""
     from marm_setup.collision import DisabledReason, compute_collision_matrix
     from marm_setup.pipeline.render import load_package_setup
+    from marm_setup.pipeline.write import collision_settings
     from marm_setup.render import apply_writes, format_change, plan_writes, render_package
-    from marm_setup.setup import CollisionSettings
 
     model, robot = load_package_setup(pkg)
     matrix = compute_collision_matrix(
@@ -236,12 +241,12 @@ def run_package_collisions(
         jobs=jobs,
         progress=progress,
         distances=False,
+        prove=prove,
     )
     computed = {p.pair for p in matrix.disabled}
     user = [p for p in model.collision.disabled if p.reason is DisabledReason.USER and p.pair not in computed]
     disabled = tuple(sorted((*matrix.disabled, *user)))
-    settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
-    new = dataclasses.replace(model, collision=settings)
+    new = dataclasses.replace(model, collision=collision_settings(matrix, disabled))
     changes = plan_writes(render_package(new, robot), pkg)
     apply_writes(changes, pkg, force=force)
     lines = tuple(

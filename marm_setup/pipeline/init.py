@@ -35,7 +35,14 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     seed = model.collision.seed if request.seed is None else request.seed
     scene = CollisionScene(robot)
     model = with_collision_matrix(
-        model, robot, trials=trials, seed=seed, jobs=request.jobs, progress=progress, scene=scene
+        model,
+        robot,
+        trials=trials,
+        seed=seed,
+        jobs=request.jobs,
+        progress=progress,
+        scene=scene,
+        prove=request.prove,
     )
     model = _with_user_pairs(model, user)
     notes = built.notes

@@ -12,7 +12,7 @@ from marm_setup.ros import Target
 from marm_setup.setup import CollisionSettings, SetupModel
 
 if TYPE_CHECKING:
-    from marm_setup.collision import CollisionScene, DisabledPair, Progress
+    from marm_setup.collision import CollisionMatrix, CollisionScene, DisabledPair, Progress
     from marm_setup.render import FileChange
     from marm_setup.templating import RenderedFile
 
@@ -26,41 +26,41 @@ def with_collision_matrix(
     jobs: int = 1,
     progress: Progress | None = None,
     scene: CollisionScene | None = None,
+    prove: str = "on",
 ) -> SetupModel:
     """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
-    if model.collision.disabled:
-        return model
-    fraction = model.collision.min_collision_fraction
-    disabled = _disabled_pairs(
-        robot, trials=trials, seed=seed, fraction=fraction, jobs=jobs, progress=progress, scene=scene
-    )
-    settings = CollisionSettings(seed=seed, trials=trials, min_collision_fraction=fraction, disabled=disabled)
-    return dataclasses.replace(model, collision=settings)
-
-
-def _disabled_pairs(
-    robot: RobotModel,
-    *,
-    trials: int,
-    seed: int,
-    fraction: float,
-    jobs: int,
-    progress: Progress | None,
-    scene: CollisionScene | None = None,
-) -> tuple[DisabledPair, ...]:
     from marm_setup.collision import compute_collision_matrix
 
+    if model.collision.disabled:
+        return model
     matrix = compute_collision_matrix(
         robot,
         scene,
         trials=trials,
         seed=seed,
-        min_collision_fraction=fraction,
+        min_collision_fraction=model.collision.min_collision_fraction,
         jobs=jobs,
         progress=progress,
         distances=False,  # a setup keeps the pairs only
+        prove=prove,
     )
-    return matrix.disabled
+    return dataclasses.replace(model, collision=collision_settings(matrix, matrix.disabled))
+
+
+def collision_settings(matrix: CollisionMatrix, disabled: tuple[DisabledPair, ...]) -> CollisionSettings:
+    """The setup's collision section for a computed `matrix` whose final pairs are `disabled`
+    (its unproved Never pairs among them keep their note)."""
+    from marm_setup.collision import unproved_pairs
+
+    kept = {p.pair for p in disabled}
+    return CollisionSettings(
+        seed=matrix.seed,
+        trials=matrix.trials,
+        min_collision_fraction=matrix.min_collision_fraction,
+        disabled=disabled,
+        prove=matrix.prove,
+        unproved=tuple(u for u in unproved_pairs(matrix) if u.pair in kept),
+    )
 
 
 def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
@@ -79,6 +79,13 @@ def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
     lines.append(
         f"collision matrix: {len(model.collision.disabled)} disabled pairs ({summary or 'none'}); {source}"
     )
+    never = counts[DisabledReason.NEVER]
+    if not matrix_given and model.collision.prove not in (None, "off") and never:
+        proved = never - len(model.collision.unproved)
+        lines.append(
+            f"proved collision-free over their whole joint range: {proved} of {never} Never pairs "
+            f"(--prove {model.collision.prove}; the SRDF notes the others)"
+        )
     return lines
 
 

@@ -303,6 +303,12 @@ def _check_ranges(c: _Checker) -> None:
     """Numbers MoveIt / the drivers need positive, and fractions in (0, 1]; a seed >= 0."""
     if c.model.collision.seed < 0:
         raise c.fail(f"must be >= 0, got {c.model.collision.seed}", "collision.seed")
+    for i, unproved in enumerate(c.model.collision.unproved):
+        if not 0.0 <= unproved.proved_fraction <= 1.0:
+            raise c.fail(
+                f"must be in [0, 1], got {unproved.proved_fraction:g}",
+                f"collision.unproved[{i}].proved_fraction",
+            )
     for where, value, upper in _ranged_values(c.model):
         if value is not None and not 0 < value <= upper:
             bound = "> 0" if upper == math.inf else f"in (0, {upper:g}]"

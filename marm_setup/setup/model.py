@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from marm_setup.collision import DisabledPair
+from marm_setup.collision import DisabledPair, DisabledReason, UnprovedPair
 from marm_setup.ros import ROS_DISTROS, Distro, Target
 from marm_setup.setup.domain import (
     DEFAULT_PIPELINES,
@@ -99,12 +99,23 @@ class EndEffector:
 
 @dataclass(frozen=True, slots=True)
 class CollisionSettings:
-    """How the self-collision matrix was computed, and its disabled pairs (sorted)."""
+    """How the self-collision matrix was computed, and its disabled pairs (sorted). `prove`:
+    how its Never pairs were proved (off, on, exhaustive; None: not recorded); `unproved`: the
+    Never pairs whose proof did not finish (each one's SRDF entry carries a note)."""
 
     seed: int = 0
     trials: int = 10000
     min_collision_fraction: float = 0.95
     disabled: tuple[DisabledPair, ...] = ()
+    prove: str | None = None
+    unproved: tuple[UnprovedPair, ...] = ()
+
+    def note(self, pair: DisabledPair) -> str | None:
+        """The SRDF note of a disabled pair: for an unproved Never pair, else None."""
+        if pair.reason is not DisabledReason.NEVER:
+            return None
+        found = next((u for u in self.unproved if u.pair == pair.pair), None)
+        return None if found is None else found.note(self.trials)
 
 
 # A solver option's value: MoveIt hands each to the plugin as the typed parameter it is.

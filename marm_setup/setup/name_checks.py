@@ -49,6 +49,8 @@ def setup_names(m: SetupModel) -> Iterator[tuple[str, str, str]]:
     yield from _listed("joint", m.passive_joints, "passive_joints")
     for i, pair in enumerate(m.collision.disabled):
         yield from _listed("link", (pair.link1, pair.link2), f"collision.disabled[{i}]")
+    for i, unproved in enumerate(m.collision.unproved):
+        yield from _listed("link", unproved.pair, f"collision.unproved[{i}]")
     for k in m.kinematics:
         yield from (
             ("group", k.group, f"kinematics[{k.group}]"),

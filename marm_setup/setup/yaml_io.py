@@ -19,7 +19,7 @@ from os import PathLike
 import yaml
 
 from marm_setup import bounded_read
-from marm_setup.collision import DisabledPair
+from marm_setup.collision import PROVE_MODES, DisabledPair, UnprovedPair, link_pair
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.safe_yaml import UniqueKeyLoader, load_yaml
@@ -32,7 +32,15 @@ from marm_setup.setup.domain import (
     SERVO_OUTPUTS,
     VIRTUAL_JOINT_TYPES,
 )
-from marm_setup.setup.model import Controller, PlannerDefaults, Sensor, Servo, SetupModel, VirtualJoint
+from marm_setup.setup.model import (
+    CollisionSettings,
+    Controller,
+    PlannerDefaults,
+    Sensor,
+    Servo,
+    SetupModel,
+    VirtualJoint,
+)
 
 HEADER = "# marm-setup: this robot's MoveIt setup. Edit it, then run `marm-setup render DIR`.\n"
 
@@ -45,6 +53,7 @@ CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (Servo, "command_out"): SERVO_OUTPUTS,
     (Servo, "command_in_type"): SERVO_COMMAND_IN_TYPES,
     (Sensor, "type"): tuple(SENSOR_TYPES),
+    (CollisionSettings, "prove"): PROVE_MODES,
 }
 # Keys that name a list item in key paths (`groups[arm]`), tried in order.
 ITEM_KEYS = ("name", "group", "joint", "link")
@@ -206,6 +215,8 @@ def _load_dataclass(cls, data, ctx: _Ctx, where: str):
             raise ctx.fail(f"missing key '{f.name}'", where)
     if cls is DisabledPair:
         return DisabledPair.of(kwargs["link1"], kwargs["link2"], kwargs["reason"])
+    if cls is UnprovedPair:
+        return UnprovedPair(*link_pair(kwargs["link1"], kwargs["link2"]), kwargs["proved_fraction"])
     return cls(**kwargs)
 
 

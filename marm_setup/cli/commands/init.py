@@ -12,6 +12,8 @@ from marm_setup.cli.common import (
     JobsOption,
     OutputFormat,
     PackagePaths,
+    ProveMode,
+    ProveOption,
     UntrustedOption,
     XacroArgs,
     YesOption,
@@ -104,6 +106,7 @@ def init(
     ] = OutputFormat.text,
     yes: YesOption = False,
     untrusted: UntrustedOption = False,
+    prove: ProveOption = ProveMode.on,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package;
     or, with --from-package, port an existing config package and report every setting.
@@ -164,6 +167,7 @@ def init(
         keep_matrix=keep_matrix,
         xacro_args=tuple(xacro_arg or ()),
         package_paths=tuple(package_path or ()),
+        prove=prove.value,
     )
     check_output_dir(out, force=force, shown=str(out))
     robot = load_robot_from_cli(urdf, xacro_arg, package_path, check_args=False)  # run_init checks them

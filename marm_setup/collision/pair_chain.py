@@ -1,0 +1,362 @@
+"""PairChain: the kinematics of one link pair over boxes of its joints' values.
+
+Links `a` and `b` have lowest common ancestor `c`. In `c`'s frame the pose of `a` depends only
+on the joints on the chain c -> a, that of `b` only on c -> b (joints above `c` move both
+rigidly and never change their distance). The pair's *box* is the product of the bounds of the
+variables (active joints; a mimic joint counts as its leader) that drive those joints.
+
+For a batch of boxes `evaluate` gives, at each box's centre, the poses of `a` and `b` in `c`'s
+frame and two sound bounds over the whole box (the proof in `collision/proof.py` uses both):
+
+- **displacement**: an upper bound on how far any point of `a` (`b`) moves, in `c`'s frame,
+  between the centre and any state of the box. Move from the centre to a state one joint at a
+  time, the joint nearest the link first. Turning revolute joint i by at most h moves a point
+  at distance rho from its axis along an arc whose chord is 2 rho sin(h/2) (2 rho for h >= pi);
+  a prismatic joint moves it by h (unit axis). While joint i turns, the joints above it sit at
+  the centre, so its axis is where the centre puts it; the joints below have moved, but each
+  point is within the displacement E of those joints of where the centre puts it, so rho is
+  at most (largest distance of the link's hull points at the centre from the axis) + E. The
+  displacements add up along the way (triangle inequality). A mimic joint moves by
+  |multiplier| times its leader's half-width.
+- **balls**: a ball (centre, radius) in `c`'s frame holding every point of `a` (`b`) at every
+  state of the box. It starts as a ball round the link's hull points and is carried up the
+  chain: a revolute joint sweeping it over an arc of half-angle h <= pi/2 moves its centre to
+  the chord's midpoint and adds rho sin h to its radius (every point of the arc is within
+  rho sin h of that midpoint); over a wider arc the centre goes onto the axis and the radius
+  grows by rho; a prismatic joint adds h.
+
+So distance(q) >= distance(centre) - E_a - E_b for every q of the box, and the balls' gap is a
+lower bound too. Geometry enters as *lever points* with radii: each link's shapes lie in the
+union of balls (point, radius) -- mesh hull vertices and box corners with radius 0, a sphere's
+centre with its radius, a cylinder's end-cap centres with its radius (a capsule holds it) --
+whose convex hull holds the link. The largest distance from a line over such a set is at one
+of its points (distance from a line is convex), plus that point's radius.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from marm_setup.robot import Joint, RobotModel, origin_matrix
+
+MOVING = ("revolute", "continuous", "prismatic")
+
+
+@dataclass(frozen=True, eq=False)
+class LeverPoints:
+    """Points (n, 3) in a link's frame and radii (n,): the link lies in their balls' hull."""
+
+    points: np.ndarray
+    radii: np.ndarray
+
+
+def merged_levers(points: np.ndarray, radii: np.ndarray, most: int = 32) -> LeverPoints:
+    """At most `most` balls holding the given ones: the set is halved at the median of its
+    widest axis until each part is small enough, and each part becomes one ball round it
+    (fewer points make every bound cheaper, and looser only by each part's size)."""
+    if len(points) <= most:
+        return LeverPoints(points, radii)
+    parts = [np.arange(len(points))]
+    while len(parts) < most:
+        widest = max(range(len(parts)), key=lambda i: (len(parts[i]), -i))
+        if len(parts[widest]) < 2:
+            break
+        rows = parts.pop(widest)
+        span = np.ptp(points[rows], axis=0)
+        order = rows[np.argsort(points[rows, int(np.argmax(span))], kind="stable")]
+        parts[widest:widest] = [order[: len(order) // 2], order[len(order) // 2 :]]
+    centers, out_radii = [], []
+    for rows in parts:
+        lo, hi = points[rows].min(axis=0), points[rows].max(axis=0)
+        center = (lo + hi) / 2.0
+        centers.append(center)
+        out_radii.append(float(np.max(np.linalg.norm(points[rows] - center, axis=1) + radii[rows])))
+    return LeverPoints(np.array(centers), np.array(out_radii))
+
+
+@dataclass(frozen=True, eq=False)
+class _Step:
+    """One joint from the common ancestor towards a link."""
+
+    origin: np.ndarray  # 4x4
+    kind: str  # "revolute" (also continuous), "prismatic" or "fixed"
+    axis: np.ndarray  # unit
+    column: int  # index into the pair's box columns (-1: fixed)
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True, eq=False)
+class Frames:
+    """One chain at K states: the link's pose in the common ancestor's frame (K, 4, 4) and its
+    moving joints' axis lines there (through `origins` (K, J, 3) along unit `axes` (K, J, 3)),
+    with the box column driving each, its multiplier, and whether it turns (else it slides)."""
+
+    pose: np.ndarray
+    origins: np.ndarray
+    axes: np.ndarray
+    columns: np.ndarray  # (J,)
+    multipliers: np.ndarray  # (J,)
+    turning: np.ndarray  # (J,) bool
+    _spread: np.ndarray  # (J, m)
+
+    def velocities(self, rows: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """(R, m, 3): how fast each point (R, 3), fixed to the link, moves per unit of each box
+        column at the states `rows` (R,) (the columns' Jacobian at those points)."""
+        axes = self.axes[rows]
+        arm = points[:, None, :] - self.origins[rows]
+        moved = np.where(self.turning[None, :, None], _cross(axes, arm), axes)
+        return np.einsum("jm,rji->rmi", self._spread, moved)
+
+
+@dataclass(frozen=True, eq=False)
+class BoxBounds:
+    """Bounds of a pair over K boxes: both links' frames at the centres (in the common
+    ancestor's frame), the displacement bound [m] of the best pivot and its share per box
+    column (where to split), and the best pivot's gap between the swept balls [m]."""
+
+    frames: tuple[Frames, Frames]
+    motion: np.ndarray  # (K,)
+    shares: np.ndarray  # (K, m)
+    ball_gap: np.ndarray  # (K,)
+
+
+@dataclass(frozen=True, eq=False)
+class PairChain:
+    """The chains of a pair and its box: `columns` index the robot's active joints."""
+
+    pair: tuple[str, str]
+    columns: np.ndarray  # (m,) sorted active-joint columns
+    lower: np.ndarray  # (m,)
+    upper: np.ndarray  # (m,)
+    steps: tuple[tuple[_Step, ...], tuple[_Step, ...]]
+    levers: tuple[LeverPoints, LeverPoints]
+
+    @property
+    def dims(self) -> int:
+        return len(self.columns)
+
+    def frames(self, q: np.ndarray) -> tuple[Frames, Frames]:
+        """Both links' frames at the states `q` (K, m) of the box's variables."""
+        return _frames(self.steps[0], q), _frames(self.steps[1], q)
+
+    def evaluate(self, centers: np.ndarray, halves: np.ndarray) -> BoxBounds:
+        """Bounds of the pair over the boxes `centers` +- `halves` (K, m)."""
+        frames = self.frames(centers)
+        path = _path(frames)
+        half = np.abs(path.multipliers) * halves[:, path.columns]  # (K, n) per path joint
+        moved_a, balls_a = _sweep(path, self.levers[0], frames[0].pose, half, forward=True)
+        moved_b, balls_b = _sweep(path, self.levers[1], frames[1].pose, half, forward=False)
+        # pivot k: the path's first k joints move a, the others move b
+        before_a = np.concatenate([np.zeros((len(centers), 1)), np.cumsum(moved_a, axis=1)], axis=1)
+        after_b = np.concatenate(
+            [np.cumsum(moved_b[:, ::-1], axis=1)[:, ::-1], np.zeros((len(centers), 1))], axis=1
+        )
+        totals = before_a + after_b  # (K, n + 1)
+        best = np.argmin(totals, axis=1)
+        on_a = np.arange(path.count)[None, :] < best[:, None]
+        per_joint = np.where(on_a, moved_a, moved_b)
+        shares = np.zeros(halves.shape)
+        for i, column in enumerate(path.columns):  # a column may drive several joints (mimic)
+            shares[:, column] += per_joint[:, i]
+        gaps = np.linalg.norm(balls_a[0] - balls_b[0], axis=2) - balls_a[1] - balls_b[1]
+        return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, gaps.max(axis=1))
+
+
+def pair_chain(robot: RobotModel, pair: tuple[str, str], levers: Mapping[str, LeverPoints]) -> PairChain:
+    """The PairChain of `pair` (both links need lever points)."""
+    a, b = pair
+    common = _common_ancestor(robot, a, b)
+    chains = (robot.chain(common, a) or (), robot.chain(common, b) or ())
+    active = {name: i for i, name in enumerate(robot.active_joint_names)}
+    leaders = sorted({active[_leader(j)[0]] for chain in chains for j in chain if j.type in MOVING})
+    position = {col: k for k, col in enumerate(leaders)}
+    joints = robot.active_joints
+    lower = np.array([joints[c].bounds[0] for c in leaders], dtype=float)
+    upper = np.array([joints[c].bounds[1] for c in leaders], dtype=float)
+    steps = tuple(tuple(_step(j, active, position) for j in chain) for chain in chains)
+    upper = np.minimum(upper, lower + _periods(steps, len(leaders)))
+    return PairChain(
+        pair, np.array(leaders, dtype=np.intp), lower, upper, (steps[0], steps[1]), (levers[a], levers[b])
+    )
+
+
+def _periods(steps: tuple[tuple[_Step, ...], ...], count: int) -> np.ndarray:
+    """Per box column, 2 pi when every joint it drives turns (multiplier +-1), else inf: a
+    turning joint's poses repeat every 2 pi, so a wider range holds no pose a 2 pi window lacks."""
+    periodic = np.ones(count, dtype=bool)  # (the proved fraction is that of the window)
+    for step in (s for side in steps for s in side if s.column >= 0):
+        periodic[step.column] &= step.kind == "revolute" and abs(step.multiplier) == 1.0
+    return np.where(periodic, 2.0 * np.pi, np.inf)
+
+
+def _step(joint: Joint, active: Mapping[str, int], position: Mapping[int, int]) -> _Step:
+    origin = origin_matrix(joint.origin)
+    if joint.type not in MOVING:
+        return _Step(origin, "fixed", np.zeros(3), -1)
+    leader, multiplier, offset = _leader(joint)
+    axis = np.asarray(joint.axis, dtype=float)
+    norm = np.linalg.norm(axis)
+    axis = axis / norm if norm > 0 else np.array([1.0, 0.0, 0.0])  # as kinematics._unit
+    kind = "prismatic" if joint.type == "prismatic" else "revolute"
+    return _Step(origin, kind, axis, position[active[leader]], multiplier, offset)
+
+
+def _leader(joint: Joint) -> tuple[str, float, float]:
+    if joint.mimic is None:
+        return joint.name, 1.0, 0.0
+    return joint.mimic.joint, joint.mimic.multiplier, joint.mimic.offset
+
+
+def _common_ancestor(robot: RobotModel, a: str, b: str) -> str:
+    above_b = {b, *(j.parent for j in robot.path_to_root(b))}
+    return next(x for x in (a, *(j.parent for j in robot.path_to_root(a))) if x in above_b)
+
+
+def _frames(steps: tuple[_Step, ...], q: np.ndarray) -> Frames:
+    """FK of one chain at the states `q` (K, m), in the common ancestor's frame."""
+    count = len(q)
+    pose = np.broadcast_to(np.eye(4), (count, 4, 4)).copy()
+    origins, axes, moving = [], [], []
+    for step in steps:
+        pose = pose @ step.origin
+        if step.column < 0:
+            continue
+        value = q[:, step.column] * step.multiplier + step.offset
+        axis = pose[:, :3, :3] @ step.axis
+        origins.append(pose[:, :3, 3].copy())
+        axes.append(axis)
+        moving.append(step)
+        if step.kind == "revolute":
+            pose[:, :3, :3] = pose[:, :3, :3] @ _rotations(step.axis, value)
+        else:
+            pose[:, :3, 3] += axis * value[:, None]
+    empty = np.zeros((count, 0, 3))
+    columns = np.array([s.column for s in moving], dtype=np.intp)
+    multipliers = np.array([s.multiplier for s in moving], dtype=float)
+    spread = np.zeros((len(moving), q.shape[1]))
+    spread[np.arange(len(moving)), columns] = multipliers
+    return Frames(
+        pose,
+        np.stack(origins, axis=1) if origins else empty,
+        np.stack(axes, axis=1) if axes else empty,
+        columns,
+        multipliers,
+        np.array([s.kind == "revolute" for s in moving], dtype=bool),
+        spread,
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class _Path:
+    """The moving joints on the path from `a` to `b` (a's chain upwards, then b's chain
+    downwards) at K states: axis lines in the common ancestor's frame, columns, multipliers."""
+
+    origins: np.ndarray  # (K, n, 3)
+    axes: np.ndarray  # (K, n, 3)
+    columns: np.ndarray  # (n,)
+    multipliers: np.ndarray  # (n,)
+    turning: np.ndarray  # (n,)
+
+    @property
+    def count(self) -> int:
+        return len(self.columns)
+
+
+def _path(frames: tuple[Frames, Frames]) -> _Path:
+    up, down = frames[0], frames[1]
+    return _Path(
+        np.concatenate([up.origins[:, ::-1], down.origins], axis=1),
+        np.concatenate([up.axes[:, ::-1], down.axes], axis=1),
+        np.concatenate([up.columns[::-1], down.columns]),
+        np.concatenate([up.multipliers[::-1], down.multipliers]),
+        np.concatenate([up.turning[::-1], down.turning]),
+    )
+
+
+def _sweep(
+    path: _Path, levers: LeverPoints, pose: np.ndarray, half: np.ndarray, forward: bool
+) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
+    """One link (a: `forward`, b: backward) moved by the path's joints, nearest it first (see
+    the module doc): each joint's displacement bound (K, n), and its ball swept by the joints on
+    its side of each pivot k (k = how many path joints move a), as centres (K, n + 1, 3) and
+    radii (K, n + 1)."""
+    count, n = len(pose), path.count
+    reach = _reach(pose, levers, path)  # (K, n): farthest point from each axis
+    center, radius = _ball(levers)
+    ball_center = pose[:, :3, :3] @ center + pose[:, :3, 3]
+    ball_radius = np.full(count, radius)
+    chord = 2.0 * np.sin(np.minimum(half, np.pi) / 2.0)  # per unit of distance from the axis
+    order = range(n) if forward else range(n - 1, -1, -1)
+    centers, radii = np.zeros((count, n + 1, 3)), np.zeros((count, n + 1))
+    slot = 0 if forward else n
+    centers[:, slot], radii[:, slot] = ball_center, ball_radius
+    moved = np.zeros((count, n))
+    total = np.zeros(count)
+    for i in order:
+        if path.turning[i]:
+            moved[:, i] = (reach[:, i] + total) * chord[:, i]
+            ball_center, ball_radius = _swept(
+                ball_center, ball_radius, path.origins[:, i], path.axes[:, i], half[:, i]
+            )
+        else:
+            moved[:, i] = half[:, i]
+            ball_radius = ball_radius + half[:, i]
+        total = total + moved[:, i]
+        slot = i + 1 if forward else i
+        centers[:, slot], radii[:, slot] = ball_center, ball_radius
+    return moved, (centers, radii)
+
+
+def _reach(pose: np.ndarray, levers: LeverPoints, path: _Path) -> np.ndarray:
+    """(K, n): the largest distance of the link's lever balls from each path joint's axis,
+    worked out in the link's frame (the axes moved there: two matrix products)."""
+    rotation, translation = pose[:, :3, :3], pose[:, :3, 3]
+    origins = np.einsum("kji,knj->kni", rotation, path.origins - translation[:, None, :])
+    axes = np.einsum("kji,knj->kni", rotation, path.axes)
+    points = levers.points
+    along = axes @ points.T - np.sum(origins * axes, axis=2)[..., None]  # (K, n, P)
+    squared = (
+        np.sum(points**2, axis=1) - 2.0 * (origins @ points.T) + np.sum(origins**2, axis=2)[..., None]
+    ) - along**2
+    return np.max(np.sqrt(np.maximum(squared, 0.0)) + levers.radii, axis=2)
+
+
+def _swept(center, radius, origin, axis, half):
+    """Ball (center, radius) swept round the axis line over +- half (see the module doc)."""
+    foot = origin + np.sum((center - origin) * axis, axis=1)[:, None] * axis
+    rho = np.linalg.norm(center - foot, axis=1)
+    narrow = half <= np.pi / 2.0
+    new_center = np.where(narrow[:, None], foot + (center - foot) * np.cos(half)[:, None], foot)
+    return new_center, radius + np.where(narrow, rho * np.sin(np.minimum(half, np.pi / 2.0)), rho)
+
+
+def _ball(levers: LeverPoints) -> tuple[np.ndarray, float]:
+    """A ball round the lever points' balls (centred on their bounding box)."""
+    lo = np.min(levers.points - levers.radii[:, None], axis=0)
+    hi = np.max(levers.points + levers.radii[:, None], axis=0)
+    center = (lo + hi) / 2.0
+    return center, float(np.max(np.linalg.norm(levers.points - center, axis=1) + levers.radii))
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Cross product over the last axis (np.cross costs more in its axis handling)."""
+    return np.stack(
+        [
+            u[..., 1] * v[..., 2] - u[..., 2] * v[..., 1],
+            u[..., 2] * v[..., 0] - u[..., 0] * v[..., 2],
+            u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0],
+        ],
+        axis=-1,
+    )
+
+
+def _rotations(axis: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Rotation matrices (K, 3, 3) about unit `axis` (Rodrigues)."""
+    x, y, z = axis
+    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    s, c = np.sin(angles)[:, None, None], np.cos(angles)[:, None, None]
+    return np.eye(3) + s * k + (1.0 - c) * (k @ k)

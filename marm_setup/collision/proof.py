@@ -1,0 +1,228 @@
+"""Proved Never: branch and bound over a pair's joint box, with coal distances.
+
+A pair's box is the product of the bounds of the variables that move its two links relative
+to each other (`collision/pair_chain.py`). At a box, coal measures the distance d at its centre
+(the meshes' convex hulls first: a lower bound of the surface distance, cheap; the real
+meshes and primitives, the surfaces the matrix checks, when the hulls are not enough); the
+pair's geometry moves at most E between the centre and any state of the box, and its two
+swept balls bound it too. The box is collision-free under the padding when the balls' gap, or
+d - E, exceeds padding + a margin for coal's distance tolerance. Otherwise it is split in two
+on the variable whose share of E is largest. Boxes are taken lowest lower bound first. A
+centre within the padding is checked with the matrix's own exact collide (same padding, same
+predicate, at the centre rounded to 1e-6): in contact, it is the witness.
+
+When the budget runs out first, `collision/witness.py` looks for a witness by descending the
+distance from the closest centres measured and from seeded random states.
+
+Outcomes: `proved` (every box certified), `collides` (a witness state, checked exactly),
+`unproved` (budget spent; `proved_fraction` is the share of the box's volume certified).
+Budgets count coal queries (an exact mesh query counts EXACT_UNITS hull queries), never time:
+the outcome depends on the pair, the seed and the budget only (not --jobs nor the machine).
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from marm_setup.collision.certificates import CERT_MARGIN
+from marm_setup.collision.pair_chain import PairChain
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+
+PROVED, COLLIDES, UNPROVED = "proved", "collides", "unproved"
+BATCH = 64  # boxes split per round (their children are evaluated in one numpy batch)
+RELATIVE_MARGIN = 1e-5  # coal's GJK stops within a relative 1e-6 of the distance (VDB criterion)
+WITNESS_DECIMALS = 6  # a witness is rounded to 1e-6 [rad, m], then checked at those values
+TINY = 1e-9  # [m] a box whose whole displacement bound is below this is not split further
+EXACT_UNITS = 10  # an exact mesh distance costs about 10 to 40 hull distances
+PROBE = 8  # exact queries beyond the hulls tried before their use is judged by what they certify
+
+
+@dataclass(frozen=True, slots=True)
+class Budget:
+    """Work units (hull distance queries) for the branch and bound and for the witness search."""
+
+    boxes: int
+    descent: int
+
+    def scaled(self, factor: float) -> Budget:
+        return Budget(max(1, int(self.boxes * factor)), int(self.descent * factor))
+
+
+# Per prove mode: the screen before the trials (branch and bound only, cheap: it takes the
+# easy pairs out of the trials), then the settling of the pairs the trials never saw in
+# collision (branch and bound again with more, then the witness search), and the units the
+# settling shares out (each of its pairs gets at most SETTLE's budget; None: no cap).
+SCREEN = {"on": Budget(150, 0), "exhaustive": Budget(5_000, 0)}
+SETTLE = {"on": Budget(400, 400), "exhaustive": Budget(150_000, 30_000)}
+SETTLE_POOL = {"on": 240_000, "exhaustive": None}
+
+
+@dataclass(frozen=True, slots=True)
+class PairProof:
+    """What the proof of one pair found; `witness`: (joint, value) in contact (collides only)."""
+
+    outcome: str
+    proved_fraction: float
+    witness: tuple[tuple[str, float], ...] = ()
+    units: int = 0  # work done, in hull-query units
+
+
+class Meter:
+    """Coal distance queries of one pair, in work units, and whether exact queries beyond the
+    hulls still pay (they are tried while at least 1 in PROBE certifies what the hull did not)."""
+
+    def __init__(self, scene: CollisionScene, pair_id: int) -> None:
+        self.scene, self.pair_id = scene, pair_id
+        self.hulls = scene.has_hulls(pair_id)
+        self.units = 0
+        self.extra_tries = 0
+        self.extra_wins = 0
+
+    def hull(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
+        self.units += 1
+        return self.scene.shape_distance(self.pair_id, pose_a, pose_b, hulls=True)
+
+    def exact(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
+        self.units += EXACT_UNITS if self.hulls else 1
+        return self.scene.shape_distance(self.pair_id, pose_a, pose_b)
+
+    def nearest(
+        self, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool
+    ) -> tuple[float, np.ndarray, np.ndarray]:
+        self.units += 1 if hulls or not self.hulls else EXACT_UNITS
+        return self.scene.nearest_points(self.pair_id, pose_a, pose_b, hulls=hulls)
+
+    def extra_pays(self) -> bool:
+        return self.extra_tries < PROBE or self.extra_wins * PROBE >= self.extra_tries
+
+
+class PairSearch:
+    """The branch and bound of one pair in one scene (see the module doc)."""
+
+    def __init__(self, scene: CollisionScene, chain: PairChain, budget: Budget) -> None:
+        self.scene, self.chain, self.budget = scene, chain, budget
+        self.pair_id = int(scene.pair_ids((chain.pair,))[0])
+        self.meter = Meter(scene, self.pair_id)
+        self.threshold = scene.padding + CERT_MARGIN
+        self.width = np.where(chain.upper > chain.lower, chain.upper - chain.lower, 1.0)
+        self.certified = 0.0  # volume share of the certified boxes
+        self.witness: tuple[tuple[str, float], ...] = ()
+        self.measured: list[tuple[float, int, np.ndarray]] = []  # (distance, order, centre)
+        self._heap: list = []
+        self._sequence = itertools.count()
+
+    def run(self, seed: int = 0) -> PairProof:
+        chain = self.chain
+        self._evaluate(chain.lower[None], chain.upper[None])
+        stuck = False  # a box too small to split is still undecided
+        while self._heap and not self.witness and self.meter.units < self.budget.boxes:
+            batch = [heapq.heappop(self._heap) for _ in range(min(BATCH, len(self._heap)))]
+            halves = [_split(item) for item in batch]
+            stuck = stuck or any(not h for h in halves)
+            children = [child for h in halves for child in h]
+            if children:
+                self._evaluate(np.array([c[0] for c in children]), np.array([c[1] for c in children]))
+        if not self.witness and not self._heap and not stuck:
+            return self._result(PROVED)
+        if not self.witness and self.budget.descent > 0:
+            from marm_setup.collision.witness import search_witness
+
+            starts = [c for _, _, c in sorted(self.measured, key=lambda m: m[:2])]
+            limit = self.meter.units + self.budget.descent
+            self.witness = search_witness(self, starts, seed, limit)
+        return self._result(COLLIDES if self.witness else UNPROVED)
+
+    def _result(self, outcome: str) -> PairProof:
+        fraction = 1.0 if outcome == PROVED else min(1.0, self.certified)
+        return PairProof(outcome, fraction, self.witness, self.meter.units)
+
+    def _evaluate(self, lo: np.ndarray, hi: np.ndarray) -> None:
+        """Decide each box of the batch or put it on the heap with its lower bound."""
+        centers, halves = (lo + hi) / 2.0, (hi - lo) / 2.0
+        bounds = self.chain.evaluate(centers, halves)
+        gaps, motion, shares = bounds.ball_gap, bounds.motion, bounds.shares
+        poses = (bounds.frames[0].pose, bounds.frames[1].pose)
+        volumes = np.prod((hi - lo) / self.width, axis=1)
+        for k in range(len(lo)):
+            if gaps[k] > self.threshold:
+                self.certified += volumes[k]
+                continue
+            bound = self._distance_bound(poses[0][k], poses[1][k], motion[k], centers[k])
+            if self.witness:
+                return
+            if bound is None:
+                self.certified += volumes[k]
+            else:
+                heapq.heappush(self._heap, (bound, next(self._sequence), lo[k], hi[k], shares[k]))
+
+    def _distance_bound(
+        self, pose_a: np.ndarray, pose_b: np.ndarray, motion: float, center: np.ndarray
+    ) -> float | None:
+        """None when the box is certified; else a lower bound of its distance (the distance at
+        the centre, less coal's tolerance and the motion). A centre within the padding is tried
+        as a witness."""
+        meter = self.meter
+        hull = None
+        if meter.hulls:
+            hull = meter.hull(pose_a, pose_b)
+            if _kept(hull) - motion > self.threshold:
+                return None
+            if hull > self.threshold and not meter.extra_pays():
+                self._measured(hull, center)
+                return _kept(hull) - motion
+        distance = meter.exact(pose_a, pose_b)
+        self._measured(distance, center)
+        if distance <= self.threshold:
+            self.witness = self.check_witness(center)
+        bound = _kept(distance) - motion
+        certified = bound > self.threshold
+        if hull is not None and hull > self.threshold:
+            meter.extra_tries += 1
+            meter.extra_wins += certified
+        return None if certified else bound
+
+    def _measured(self, distance: float, center: np.ndarray) -> None:
+        self.measured.append((distance, len(self.measured), center))
+
+    def check_witness(self, values: np.ndarray) -> tuple[tuple[str, float], ...]:
+        """The matrix's own exact check at `values` (box columns, rounded; other joints at
+        their default): the witness, or () when not in contact."""
+        from marm_setup.robot import default_configuration
+
+        chain, scene = self.chain, self.scene
+        values = np.clip(np.round(values, WITNESS_DECIMALS), chain.lower, chain.upper) + 0.0
+        q = default_configuration(scene.robot)
+        q[chain.columns] = values
+        if not scene.collide(scene.link_poses(q[None])[0], self.pair_id):
+            return ()
+        names = scene.robot.active_joint_names
+        return tuple((names[c], float(v)) for c, v in zip(chain.columns, values, strict=True))
+
+
+def _kept(distance: float) -> float:
+    """A coal distance less its tolerance: a sure lower bound of the distance."""
+    return distance - CERT_MARGIN - RELATIVE_MARGIN * abs(distance)
+
+
+def _split(item: tuple) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The two halves of a box along its largest share of the displacement bound."""
+    _, _, lo, hi, shares = item
+    if not len(lo) or shares.max(initial=0.0) < TINY:
+        return []
+    k = int(np.argmax(shares))
+    mid = (lo[k] + hi[k]) / 2.0
+    left_hi, right_lo = hi.copy(), lo.copy()
+    left_hi[k], right_lo[k] = mid, mid
+    return [(lo, left_hi), (right_lo, hi)]
+
+
+def prove_pair(scene: CollisionScene, chain: PairChain, budget: Budget, seed: int = 0) -> PairProof:
+    """The proof of one pair (see the module doc)."""
+    return PairSearch(scene, chain, budget).run(seed)
