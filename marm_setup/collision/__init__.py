@@ -10,7 +10,7 @@ from marm_setup.exports import lazy_api
 
 API = {
     "pairs": "DisabledPair DisabledReason link_pair PROVE_MODES UnprovedPair",
-    "proof_report": "unproved_notes unproved_pairs",
+    "proof_report": "proof_key unproved_notes unproved_pairs",
     "scene": "CollisionScene",
     "matrix": "CollisionMatrix compute_collision_matrix Progress ROUND trial_samples",
     "srdf_update": "load_srdf_text read_srdf_entries render_minimal_srdf update_srdf",
@@ -29,6 +29,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.pairs import DisabledReason as DisabledReason
     from marm_setup.collision.pairs import UnprovedPair as UnprovedPair
     from marm_setup.collision.pairs import link_pair as link_pair
+    from marm_setup.collision.proof_report import proof_key as proof_key
     from marm_setup.collision.proof_report import unproved_notes as unproved_notes
     from marm_setup.collision.proof_report import unproved_pairs as unproved_pairs
     from marm_setup.collision.report import describe_matrix as describe_matrix

@@ -120,7 +120,7 @@ class PairSearch:
 
     def run(self, seed: int = 0) -> PairProof:
         chain = self.chain
-        self._evaluate(chain.lower[None], chain.upper[None])
+        self._evaluate(chain.lower[None], chain.upper[None], np.array([np.inf]), np.array([-np.inf]))
         stuck = False  # a box too small to split is still undecided
         while self._heap and not self.witness and self.meter.units < self.budget.boxes:
             batch = [heapq.heappop(self._heap) for _ in range(min(BATCH, len(self._heap)))]
@@ -128,7 +128,8 @@ class PairSearch:
             stuck = stuck or any(not h for h in halves)
             children = [child for h in halves for child in h]
             if children:
-                self._evaluate(np.array([c[0] for c in children]), np.array([c[1] for c in children]))
+                lo, hi, reach, floor = (np.array([c[i] for c in children]) for i in range(4))
+                self._evaluate(lo, hi, reach, floor)
         if not self.witness and not self._heap and not stuck:
             return self._result(PROVED)
         if not self.witness and self.budget.descent > 0:
@@ -140,43 +141,53 @@ class PairSearch:
         return self._result(COLLIDES if self.witness else UNPROVED)
 
     def _result(self, outcome: str) -> PairProof:
-        fraction = 1.0 if outcome == PROVED else min(1.0, self.certified)
-        return PairProof(outcome, fraction, self.witness, self.meter.units)
+        fraction = 1.0 if outcome == PROVED else min(1.0, float(self.certified))
+        return PairProof(outcome, fraction, self.witness, int(self.meter.units))
 
-    def _evaluate(self, lo: np.ndarray, hi: np.ndarray) -> None:
-        """Decide each box of the batch or put it on the heap with its lower bound."""
+    def _evaluate(self, lo: np.ndarray, hi: np.ndarray, reach: np.ndarray, floor: np.ndarray) -> None:
+        """Decide each box of the batch or put it on the heap with its lower bound. `reach`:
+        per box, the most its certifying distance can be at the centre (from an ancestor's);
+        a box whose motion exceeds it cannot be certified, so it is split without a query
+        (its lower bound stays `floor`, its parent's)."""
         centers, halves = (lo + hi) / 2.0, (hi - lo) / 2.0
         bounds = self.chain.evaluate(centers, halves)
         gaps, motion, shares = bounds.ball_gap, bounds.motion, bounds.shares
         poses = (bounds.frames[0].pose, bounds.frames[1].pose)
         volumes = np.prod((hi - lo) / self.width, axis=1)
+        self.meter.units += len(lo)  # a box's kinematics and bounds cost about a hull query
         for k in range(len(lo)):
             if gaps[k] > self.threshold:
                 self.certified += volumes[k]
                 continue
-            bound = self._distance_bound(poses[0][k], poses[1][k], motion[k], centers[k])
+            if reach[k] - motion[k] <= self.threshold:
+                self._push(floor[k], lo[k], hi[k], shares[k], reach[k])
+                continue
+            bound, measured = self._distance_bound(poses[0][k], poses[1][k], motion[k], centers[k])
             if self.witness:
                 return
             if bound is None:
                 self.certified += volumes[k]
             else:
-                heapq.heappush(self._heap, (bound, next(self._sequence), lo[k], hi[k], shares[k]))
+                self._push(bound, lo[k], hi[k], shares[k], measured)
+
+    def _push(self, bound: float, lo: np.ndarray, hi: np.ndarray, shares: np.ndarray, reach: float) -> None:
+        heapq.heappush(self._heap, (bound, next(self._sequence), lo, hi, shares, reach))
 
     def _distance_bound(
         self, pose_a: np.ndarray, pose_b: np.ndarray, motion: float, center: np.ndarray
-    ) -> float | None:
-        """None when the box is certified; else a lower bound of its distance (the distance at
-        the centre, less coal's tolerance and the motion). A centre within the padding is tried
-        as a witness."""
+    ) -> tuple[float | None, float]:
+        """(None when the box is certified, else a lower bound of its distance: the distance at
+        the centre less coal's tolerance and the motion; the most the certifying distance can
+        be at the centre). A centre within the padding is tried as a witness."""
         meter = self.meter
         hull = None
         if meter.hulls:
             hull = meter.hull(pose_a, pose_b)
             if _kept(hull) - motion > self.threshold:
-                return None
-            if hull > self.threshold and not meter.extra_pays():
+                return None, np.inf
+            if hull > self.threshold and not meter.extra_pays():  # the hulls alone decide
                 self._measured(hull, center)
-                return _kept(hull) - motion
+                return _kept(hull) - motion, _most(hull)
         distance = meter.exact(pose_a, pose_b)
         self._measured(distance, center)
         if distance <= self.threshold:
@@ -186,7 +197,7 @@ class PairSearch:
         if hull is not None and hull > self.threshold:
             meter.extra_tries += 1
             meter.extra_wins += certified
-        return None if certified else bound
+        return (None if certified else bound), _most(distance)
 
     def _measured(self, distance: float, center: np.ndarray) -> None:
         self.measured.append((distance, len(self.measured), center))
@@ -211,16 +222,24 @@ def _kept(distance: float) -> float:
     return distance - CERT_MARGIN - RELATIVE_MARGIN * abs(distance)
 
 
-def _split(item: tuple) -> list[tuple[np.ndarray, np.ndarray]]:
-    """The two halves of a box along its largest share of the displacement bound."""
-    _, _, lo, hi, shares = item
+def _most(distance: float) -> float:
+    """A coal distance plus its tolerance: a sure upper bound of what coal measures there."""
+    return distance + CERT_MARGIN + RELATIVE_MARGIN * abs(distance)
+
+
+def _split(item: tuple) -> list[tuple[np.ndarray, np.ndarray, float, float]]:
+    """The two halves of a box along its largest share of the displacement bound, each with
+    the most its centre's distance can be (the box's, plus that share: moving one variable by
+    half its half-width moves the geometry by at most its share) and the box's lower bound."""
+    bound, _, lo, hi, shares, reach = item
     if not len(lo) or shares.max(initial=0.0) < TINY:
         return []
     k = int(np.argmax(shares))
     mid = (lo[k] + hi[k]) / 2.0
     left_hi, right_lo = hi.copy(), lo.copy()
     left_hi[k], right_lo[k] = mid, mid
-    return [(lo, left_hi), (right_lo, hi)]
+    child_reach = reach + shares[k]
+    return [(lo, left_hi, child_reach, bound), (right_lo, hi, child_reach, bound)]
 
 
 def prove_pair(scene: CollisionScene, chain: PairChain, budget: Budget, seed: int = 0) -> PairProof:

@@ -13,6 +13,7 @@ JSON, per candidate pair (`collisions --format json`):
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Iterable, Mapping
 
 from marm_setup.collision.matrix import CollisionMatrix, PairStats
@@ -27,11 +28,21 @@ def unproved_pairs(matrix: CollisionMatrix) -> tuple[UnprovedPair, ...]:
     """The Never pairs whose proof did not finish, sorted."""
     return tuple(
         sorted(
-            UnprovedPair(s.link1, s.link2, round(s.proof.proved_fraction, 4))
+            UnprovedPair(s.link1, s.link2, round(float(s.proof.proved_fraction), 4))
             for s in matrix.stats
             if s.reason is DisabledReason.NEVER and s.proof is not None and s.proof.outcome == UNPROVED
         )
     )
+
+
+def proof_key(
+    fingerprint: str, prove: str, never: Iterable[tuple[str, str]], unproved: Iterable[tuple[str, str]]
+) -> str:
+    """16 hex digits tying a matrix's proofs to the robot they were made for (its
+    `robot_fingerprint`), the prove mode and the Never and unproved pairs: validate trusts the
+    proved pairs of a setup file only while its key matches the robot it reads."""
+    text = repr((fingerprint, prove, sorted(never), sorted(unproved)))
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
 def unproved_notes(matrix: CollisionMatrix) -> dict[tuple[str, str], str]:

@@ -24,6 +24,7 @@ API = {
     "planning_file": "GroupPlanning PlanningPipeline",
     "launch_xml": "LaunchXml",
     "srdf_file": "SrdfFile",
+    "setup_files": "RecordedProofs",
     "launch_ros1": "launch_nodes",
     "launch_python": "undefined_unread_arg",
 }
@@ -58,6 +59,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.planning_file import GroupPlanning as GroupPlanning
     from marm_setup.package.planning_file import PlanningPipeline as PlanningPipeline
     from marm_setup.package.read import read_package as read_package
+    from marm_setup.package.setup_files import RecordedProofs as RecordedProofs
     from marm_setup.package.srdf_file import SrdfFile as SrdfFile
     from marm_setup.package.start import package_start_values as package_start_values
     from marm_setup.package.where import FrozenMapping as FrozenMapping

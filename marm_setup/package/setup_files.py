@@ -98,6 +98,61 @@ class MarmSetupFile:
     kept_keys: tuple[str, ...] = ()  # which of KEPT_KEYS the file has
     kept: SetupModel | None = None  # those keys, read strictly (setup.yaml_io)
     kept_error: InputError | None = None  # why they could not be read
+    proofs: RecordedProofs | None = None  # what `collision` records of its matrix's proofs
+
+
+Pair = tuple[str, str]
+
+
+@dataclass(frozen=True, slots=True)
+class RecordedProofs:
+    """What a marm_setup.yaml records of its matrix's proofs (`collision.prove` on or
+    exhaustive): its Never pairs and its unproved ones (with the share of the joint range
+    proved) as written, and the proof key that ties them to one robot (validate checks it)."""
+
+    prove: str
+    never: tuple[Pair, ...]
+    unproved: tuple[tuple[Pair, float], ...]
+    key: str | None
+
+
+def read_proofs(collision: dict) -> RecordedProofs | None:
+    """The proofs a `collision` mapping records; None when it records none or a list is
+    malformed (then nothing is trusted)."""
+    prove = collision.get("prove")
+    if prove not in ("on", "exhaustive"):
+        return None
+    disabled = _items(collision.get("disabled"))
+    unproved = _items(collision.get("unproved"))
+    if disabled is None or unproved is None:
+        return None
+    never = [_pair(i) for i in disabled if i.get("reason") == "Never"]
+    shares = [(_pair(i), _share(i.get("proved_fraction"))) for i in unproved]
+    if any(p is None for p in never) or any(p is None for p, _ in shares):
+        return None
+    key = collision.get("proof_key")
+    return RecordedProofs(
+        str(prove),
+        tuple(p for p in never if p is not None),
+        tuple((p, s) for p, s in shares if p is not None),
+        key if isinstance(key, str) else None,
+    )
+
+
+def _items(value: Any) -> list[dict] | None:
+    """A list of mappings ([] when absent); None when it is something else."""
+    if value is None:
+        return []
+    return value if isinstance(value, list) and all(isinstance(i, dict) for i in value) else None
+
+
+def _pair(item: dict) -> Pair | None:
+    a, b = item.get("link1"), item.get("link2")
+    return (a, b) if isinstance(a, str) and isinstance(b, str) else None
+
+
+def _share(value: Any) -> float:
+    return float(value) if isinstance(value, int | float) and not isinstance(value, bool) else 0.0
 
 
 def read_marm_setup(doc: Located | None, shown: str = "marm_setup.yaml") -> MarmSetupFile:
@@ -124,6 +179,7 @@ def read_marm_setup(doc: Located | None, shown: str = "marm_setup.yaml") -> Marm
         kept_keys,
         kept,
         kept_error,
+        read_proofs(collision),
     )
 
 

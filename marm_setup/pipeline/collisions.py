@@ -246,7 +246,7 @@ def run_package_collisions(
     computed = {p.pair for p in matrix.disabled}
     user = [p for p in model.collision.disabled if p.reason is DisabledReason.USER and p.pair not in computed]
     disabled = tuple(sorted((*matrix.disabled, *user)))
-    new = dataclasses.replace(model, collision=collision_settings(matrix, disabled))
+    new = dataclasses.replace(model, collision=collision_settings(matrix, disabled, robot))
     changes = plan_writes(render_package(new, robot), pkg)
     apply_writes(changes, pkg, force=force)
     lines = tuple(

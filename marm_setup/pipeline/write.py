@@ -44,22 +44,32 @@ def with_collision_matrix(
         distances=False,  # a setup keeps the pairs only
         prove=prove,
     )
-    return dataclasses.replace(model, collision=collision_settings(matrix, matrix.disabled))
+    return dataclasses.replace(model, collision=collision_settings(matrix, matrix.disabled, robot))
 
 
-def collision_settings(matrix: CollisionMatrix, disabled: tuple[DisabledPair, ...]) -> CollisionSettings:
+def collision_settings(
+    matrix: CollisionMatrix, disabled: tuple[DisabledPair, ...], robot: RobotModel
+) -> CollisionSettings:
     """The setup's collision section for a computed `matrix` whose final pairs are `disabled`
-    (its unproved Never pairs among them keep their note)."""
-    from marm_setup.collision import unproved_pairs
+    (its unproved Never pairs among them keep their note; the proof key ties the proofs to
+    `robot`, so validate trusts them only for it)."""
+    from marm_setup.collision import DisabledReason, proof_key, unproved_pairs
+    from marm_setup.robot import robot_fingerprint
 
     kept = {p.pair for p in disabled}
+    unproved = tuple(u for u in unproved_pairs(matrix) if u.pair in kept)
+    key = None
+    if matrix.prove != "off":
+        never = [p.pair for p in disabled if p.reason is DisabledReason.NEVER]
+        key = proof_key(robot_fingerprint(robot), matrix.prove, never, [u.pair for u in unproved])
     return CollisionSettings(
         seed=matrix.seed,
         trials=matrix.trials,
         min_collision_fraction=matrix.min_collision_fraction,
         disabled=disabled,
         prove=matrix.prove,
-        unproved=tuple(u for u in unproved_pairs(matrix) if u.pair in kept),
+        unproved=unproved,
+        proof_key=key,
     )
 
 

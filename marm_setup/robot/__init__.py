@@ -24,6 +24,7 @@ API = {
         "description_file find_package find_packages package_name PackageIndex PackageMap resolve_uri"
     ),
     "describe": "describe_robot format_tree",
+    "fingerprint": "robot_fingerprint",
     "ros2_control": (
         "ANY_MOCK HardwareArg MOCK_PLUGIN MOCK_PLUGINS on_mock_hardware Ros2ControlSystem systems_in_urdf"
     ),
@@ -35,6 +36,7 @@ __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.describe import describe_robot as describe_robot
     from marm_setup.robot.describe import format_tree as format_tree
+    from marm_setup.robot.fingerprint import robot_fingerprint as robot_fingerprint
     from marm_setup.robot.kinematics import bounds as bounds
     from marm_setup.robot.kinematics import default_configuration as default_configuration
     from marm_setup.robot.kinematics import forward_kinematics as forward_kinematics

@@ -101,7 +101,8 @@ class EndEffector:
 class CollisionSettings:
     """How the self-collision matrix was computed, and its disabled pairs (sorted). `prove`:
     how its Never pairs were proved (off, on, exhaustive; None: not recorded); `unproved`: the
-    Never pairs whose proof did not finish (each one's SRDF entry carries a note)."""
+    Never pairs whose proof did not finish (each one's SRDF entry carries a note); `proof_key`:
+    ties the proofs to the robot they were made for (collision/proof_report.py proof_key)."""
 
     seed: int = 0
     trials: int = 10000
@@ -109,6 +110,7 @@ class CollisionSettings:
     disabled: tuple[DisabledPair, ...] = ()
     prove: str | None = None
     unproved: tuple[UnprovedPair, ...] = ()
+    proof_key: str | None = None
 
     def note(self, pair: DisabledPair) -> str | None:
         """The SRDF note of a disabled pair: for an unproved Never pair, else None."""

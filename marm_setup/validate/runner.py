@@ -473,7 +473,7 @@ def check_with_scene(
     """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
     with the pose pairs the runtime checks planned (None when they did not run)."""
     from marm_setup.collision import CollisionScene
-    from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing
+    from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing, proved_pairs
     from marm_setup.validate.rules.pose_rules import check_pose_collisions, check_start_state
 
     try:
@@ -489,8 +489,21 @@ def check_with_scene(
         out += guarded("pose", check_start_state, pkg.srdf, robot, scene, file, start)
     seed, computed = matrix_settings(pkg)
     trials = matrix_trials if computed is None else min(matrix_trials, computed)
-    for check in (check_matrix_missing, check_matrix_fresh):
-        out += guarded("matrix", check, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed)
+    out += guarded(
+        "matrix", check_matrix_missing, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed
+    )
+    proved = proved_pairs(pkg.marm_setup.proofs if pkg.marm_setup is not None else None, robot)
+    out += guarded(
+        "matrix",
+        check_matrix_fresh,
+        pkg.srdf,
+        robot,
+        scene,
+        pkg.srdf_path,
+        trials=trials,
+        seed=seed,
+        proved=proved,
+    )
     if not plan:
         return out, None
     planned: list[PlannedPair] = []

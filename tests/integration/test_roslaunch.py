@@ -25,7 +25,6 @@ from tests.render_helpers import inferred_marm
 needs_roslaunch = pytest.mark.skipif(shutil.which("roslaunch") is None, reason="roslaunch not on PATH")
 
 
-
 def write_package(tmp_path: Path, target: str) -> Path:
     out = tmp_path / "marm_moveit_config"
     model, robot = inferred_marm(target, out)

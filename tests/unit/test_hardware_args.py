@@ -59,7 +59,10 @@ def test_no_systems_no_hardware_args(tmp_path):
 def test_the_launch_args_and_the_command_that_passes_them():
     real = (Ros2ControlSystem("arm", "vendor_driver/ArmHardware", ("j1",)),)
     hw = DescriptionHardware("switch", real, "use_fake_hardware")
-    hardware = (HardwareArg("robot_ip", "192.168.1.10", "arm", "robot_ip"), HardwareArg("bad", "a b", "arm", "x"))
+    hardware = (
+        HardwareArg("robot_ip", "192.168.1.10", "arm", "robot_ip"),
+        HardwareArg("bad", "a b", "arm", "x"),
+    )
     args = description_launch_args(hw, (("dof", "7"), ("use_sim_time", "x")), hardware)
     assert [(a.name, a.default) for a in args] == [
         ("dof", "7"),

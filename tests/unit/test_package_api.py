@@ -9,7 +9,18 @@ import sys
 
 import pytest
 
-PACKAGES = ("robot", "collision", "setup", "render", "package", "plan", "validate", "port", "report", "pipeline")
+PACKAGES = (
+    "robot",
+    "collision",
+    "setup",
+    "render",
+    "package",
+    "plan",
+    "validate",
+    "port",
+    "report",
+    "pipeline",
+)
 
 
 @pytest.mark.parametrize("package", PACKAGES)

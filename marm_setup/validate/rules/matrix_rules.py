@@ -5,7 +5,11 @@ Assistant's Always, compute_default_collisions.cpp, `min_collision_fraction` 0.9
 SRDF written for a URDF whose links were renamed since) is an ERROR: MoveIt checks it, finds
 the whole robot in collision almost everywhere, and no plan of any group can start or end.
 
-Stale: a pair the SRDF marks Never should not collide in the resample.
+Stale: a pair the SRDF marks Never should not collide in the resample. Pairs a setup file
+(marm_setup.yaml) records as proved collision-free over their whole joint range are not
+resampled while its proof key matches this very robot (`proved_pairs`; any change to the
+robot's joints or collision geometry, or to the file's pairs, breaks the key): no state could
+show them in collision, so the findings are the resample's, found with less work.
 
 A hit is a WARNING with its evidence (hit rate, one colliding configuration, the command that
 recomputes the matrix), never an error: MoveIt never checks a disabled pair whatever its reason
@@ -33,6 +37,7 @@ from marm_setup.robot import RobotModel
 
 if TYPE_CHECKING:
     from marm_setup.collision import CollisionScene
+    from marm_setup.package import RecordedProofs
     from marm_setup.setup import Srdf
 
 DEFAULT_TRIALS = 1000
@@ -84,15 +89,20 @@ def check_matrix_fresh(
     *,
     trials: int = DEFAULT_TRIALS,
     seed: int = DEFAULT_SEED,
+    proved: frozenset[tuple[str, str]] = frozenset(),
 ) -> list[Finding]:
-    """Resample `trials` random states; every Never pair seen colliding means a stale matrix."""
+    """Resample `trials` random states; every Never pair seen colliding means a stale matrix
+    (`proved`: pairs proved collision-free for this robot, not resampled)."""
     from marm_setup.collision import trial_samples
 
     geometry = set(scene.links)
     never = [
         p.pair
         for p in srdf.disabled
-        if p.reason is DisabledReason.NEVER and p.pair[0] != p.pair[1] and set(p.pair) <= geometry
+        if p.reason is DisabledReason.NEVER
+        and p.pair[0] != p.pair[1]
+        and set(p.pair) <= geometry
+        and p.pair not in proved
     ]  # a self-pair (link1 == link2) is accepted by srdfdom and means nothing to check
     if not never or trials <= 0:
         return []
@@ -103,6 +113,20 @@ def check_matrix_fresh(
         if n:
             out.append(_stale(pair, int(n), q, robot, scene, file, trials))
     return out
+
+
+def proved_pairs(recorded: RecordedProofs | None, robot: RobotModel) -> frozenset[tuple[str, str]]:
+    """The Never pairs a setup file records as proved, when its proof key matches `robot`;
+    else none."""
+    from marm_setup.collision import link_pair, proof_key
+    from marm_setup.robot import robot_fingerprint
+
+    if recorded is None:
+        return frozenset()
+    unproved = [pair for pair, _ in recorded.unproved]
+    if recorded.key != proof_key(robot_fingerprint(robot), recorded.prove, recorded.never, unproved):
+        return frozenset()
+    return frozenset(link_pair(*p) for p in recorded.never) - {link_pair(*p) for p in unproved}
 
 
 def _stale(

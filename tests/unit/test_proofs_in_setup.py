@@ -1,0 +1,97 @@
+"""Proofs in a setup: marm_setup.yaml keeps the prove mode, the unproved pairs and the proof key;
+the package SRDF notes the unproved pairs; validate trusts the proved pairs only for the robot
+(and pairs) the key was made for."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+import yaml
+
+from marm_setup.collision.pairs import DisabledPair, DisabledReason, UnprovedPair
+from marm_setup.errors import InputError
+from marm_setup.package.setup_files import read_proofs
+from marm_setup.pipeline import with_collision_matrix
+from marm_setup.render.package import render_package
+from marm_setup.setup.infer import infer
+from marm_setup.setup.model import RobotSource
+from marm_setup.setup.yaml_io import dump_setup, setup_from_dict
+from marm_setup.validate.rules import matrix_rules
+
+N = DisabledReason.NEVER
+
+
+@pytest.fixture(scope="module")
+def proved_setup(marm):
+    source = RobotSource("../urdf/marm.urdf.xacro", (), ("../..",))
+    model = infer(marm, package_name="marm_moveit_config", source=source).model
+    return with_collision_matrix(model, marm, trials=300, seed=0, prove="on")
+
+
+def test_the_setup_file_keeps_the_proofs_and_loads_them_back(proved_setup):
+    collision = proved_setup.collision
+    assert collision.prove == "on" and collision.unproved and collision.proof_key
+    assert all(u.pair in {p.pair for p in collision.disabled if p.reason is N} for u in collision.unproved)
+    text = dump_setup(proved_setup)
+    assert "  prove: 'on'\n" in text  # quoted: YAML 1.1 would read a bare on as true
+    assert setup_from_dict(yaml.safe_load(text)) == proved_setup
+
+
+@pytest.mark.parametrize(
+    ("change", "element"),
+    [
+        ({"prove": "maybe"}, "collision.prove"),
+        (
+            {"unproved": [{"link1": "link1", "link2": "link4", "proved_fraction": 1.5}]},
+            "collision.unproved[0].proved_fraction",
+        ),
+    ],
+)
+def test_bad_proof_settings_name_their_key(proved_setup, marm, change, element):
+    from marm_setup.setup.checks import check_setup
+
+    data = yaml.safe_load(dump_setup(proved_setup))
+    data["collision"].update(change)
+    with pytest.raises(InputError) as caught:
+        check_setup(setup_from_dict(data, "marm_setup.yaml"), marm, "marm_setup.yaml")
+    assert caught.value.element == element
+
+
+def test_the_package_srdf_notes_each_unproved_pair(proved_setup, marm):
+    files = {f.path: f.content for f in render_package(proved_setup, marm)}
+    srdf = next(text for rel, text in files.items() if rel.endswith(".srdf"))
+    lines = srdf.splitlines()
+    for unproved in proved_setup.collision.unproved:
+        entry = f'    <disable_collisions link1="{unproved.link1}" link2="{unproved.link2}" reason="Never"/>'
+        assert lines[lines.index(entry) - 1] == f"    <!-- {unproved.note(proved_setup.collision.trials)} -->"
+    assert srdf.count("unproved Never:") == len(proved_setup.collision.unproved)
+
+
+def proved_pairs(section, robot):
+    """What validate skips for a `collision` section as the package model reads it."""
+    return matrix_rules.proved_pairs(read_proofs(section) if isinstance(section, dict) else None, robot)
+
+
+def test_validate_trusts_the_proved_pairs_only_for_their_robot(proved_setup, marm):
+    section = yaml.safe_load(dump_setup(proved_setup))["collision"]
+    collision = proved_setup.collision
+    never = {p.pair for p in collision.disabled if p.reason is N}
+    assert proved_pairs(section, marm) == never - {u.pair for u in collision.unproved}
+    joint = next(j for j in marm.joints if j.type == "revolute")
+    wider = dataclasses.replace(joint, upper=joint.upper + 0.5)
+    changed = dataclasses.replace(marm, joints=tuple(wider if j is joint else j for j in marm.joints))
+    assert proved_pairs(section, changed) == frozenset()  # another robot: resample everything
+    edited = dict(section, unproved=section["unproved"][1:])
+    assert proved_pairs(edited, marm) == frozenset()  # pairs edited by hand: the key no longer fits
+    assert proved_pairs(dict(section, prove="off"), marm) == frozenset()
+    assert (
+        proved_pairs(None, marm) == frozenset()
+        and proved_pairs({"prove": "on", "disabled": 3}, marm) == frozenset()
+    )
+
+
+def test_notes_round_down_so_a_nearly_proved_pair_never_reads_100():
+    note = UnprovedPair("a", "b", 0.99996).note(10000)
+    assert "99.9 %" in note and "10000 states" in note and "--" not in note
+    assert DisabledPair.of("b", "a", N).pair == UnprovedPair("a", "b", 0.5).pair
