@@ -90,6 +90,9 @@ class CollisionScene:
         self._hull_request.security_margin = self.padding + HULL_MARGIN
         self._hull_request.break_distance = 0.0
         self._result = coal.CollisionResult()
+        self._distance_request = coal.DistanceRequest()
+        self._distance_result = coal.DistanceResult()
+        self._distance_solvers: dict[tuple[int, int], object] = {}  # keyed by the geometries' ids
         self._hulls: dict[int, tuple | None] = {}  # link row -> hull shapes (None: no mesh)
         self._hull_cache: dict = {}  # one hull per mesh BVH
         self._tf = (coal.Transform3s(), coal.Transform3s())
@@ -343,22 +346,11 @@ class CollisionScene:
     ) -> tuple[float, np.ndarray, np.ndarray]:
         """The pair's distance [m] at `pose_a`, `pose_b` and its nearest points on each link
         (in the poses' frame); `hulls`: of the meshes' convex hulls."""
-        coal = self._coal
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
         shapes_a, shapes_b = self._shapes[a], self._shapes[b]
         if hulls:
             shapes_a, shapes_b = self._hull_shapes(a) or shapes_a, self._hull_shapes(b) or shapes_b
-        best = (np.inf, np.zeros(3), np.zeros(3))
-        for (ga, la), (gb, lb) in itertools.product(shapes_a, shapes_b):
-            tf_a, tf_b = coal.Transform3s(), coal.Transform3s()
-            _set(tf_a, pose_a, la)
-            _set(tf_b, pose_b, lb)
-            result = coal.DistanceResult()
-            coal.distance(ga, tf_a, gb, tf_b, coal.DistanceRequest(), result)
-            if result.min_distance < best[0]:
-                best = (float(result.min_distance), np.array(result.getNearestPoint1()),
-                        np.array(result.getNearestPoint2()))  # fmt: skip
-        return best
+        return self._closest(shapes_a, shapes_b, pose_a, pose_b, points=True)
 
     def lever_points(self, link: str) -> LeverPoints:
         """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes:
@@ -394,16 +386,35 @@ class CollisionScene:
         return vertices, np.zeros(len(vertices))
 
     def _min_distance(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
-        coal = self._coal
-        best = np.inf
+        return self._closest(shapes_a, shapes_b, pose_a, pose_b)[0]
+
+    def _closest(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray, points: bool = False):
+        """(distance, nearest point on a, on b) of the closest pair of shapes; the points are
+        read only when `points` (else zeros). One coal distance functor per pair of geometries."""
+        tf_a, tf_b = self._tf
+        result, request = self._distance_result, self._distance_request
+        best = (np.inf, np.zeros(3), np.zeros(3))
         for (ga, la), (gb, lb) in itertools.product(shapes_a, shapes_b):
-            tf_a, tf_b = coal.Transform3s(), coal.Transform3s()
             _set(tf_a, pose_a, la)
             _set(tf_b, pose_b, lb)
-            result = coal.DistanceResult()
-            coal.distance(ga, tf_a, gb, tf_b, coal.DistanceRequest(), result)
-            best = min(best, float(result.min_distance))
+            result.clear()
+            self._distance_solver(ga, gb)(tf_a, tf_b, request, result)
+            distance = float(result.min_distance)
+            if distance < best[0]:
+                near = (
+                    (np.array(result.getNearestPoint1()), np.array(result.getNearestPoint2()))
+                    if points
+                    else best[1:]
+                )
+                best = (distance, *near)
         return best
+
+    def _distance_solver(self, geom_a, geom_b):
+        key = (id(geom_a), id(geom_b))
+        solver = self._distance_solvers.get(key)
+        if solver is None:
+            solver = self._distance_solvers[key] = self._coal.ComputeDistance(geom_a, geom_b)
+        return solver
 
     def _solver(self, a: int, ia: int, b: int, ib: int):
         key = (a, ia, b, ib)
