@@ -126,14 +126,15 @@ def compute_collision_matrix(
     counts = always.counts if always else {}
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
-    proofs = _prove(scene, tuple(p for p in remaining if p not in seen), prove, "screen", seed, jobs)
-    proofs = {p: proof for p, proof in proofs.items() if proof.outcome != UNPROVED}
+    screened = _screen(scene, tuple(p for p in remaining if p not in seen), prove, seed, jobs)
+    proofs = {p: proof for p, proof in screened.items() if proof.outcome != UNPROVED}
     proved = tuple(p for p in remaining if p in proofs and proofs[p].outcome == PROVED)
     trial_pairs = tuple(p for p in remaining if p not in seen and p not in proofs)
     costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
     shards = _with_tracked(plan_shards(trial_pairs, costs, jobs), proved if distances else ())
     closest, work = _never_phase(scene, shards, seen, seed, trials, shortcuts, distances, progress)
-    proofs.update(_prove(scene, tuple(p for p in trial_pairs if p not in seen), prove, "settle", seed, jobs))
+    unseen = {p: screened[p] for p in trial_pairs if p not in seen and p in screened}
+    proofs.update(_settle(scene, unseen, prove, seed, jobs))
     enabled = seen | {p for p, proof in proofs.items() if proof.outcome == COLLIDES}
     reasons.update(dict.fromkeys((p for p in remaining if p not in enabled), DisabledReason.NEVER))
     stats = tuple(
@@ -156,16 +157,22 @@ def compute_collision_matrix(
     )
 
 
-def _prove(
-    scene, pairs: tuple[Pair, ...], prove: str, stage: str, seed: int, jobs: int
-) -> dict[Pair, PairProof]:
-    """The proofs of `pairs` at `stage` ("screen" or "settle"); none when `prove` is "off"."""
+def _screen(scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int) -> dict[Pair, PairProof]:
+    """The branch and bound of `pairs` before the trials; none when `prove` is "off"."""
     if prove == "off":
         return {}
-    from marm_setup.collision.proving import screen_pairs, settle_pairs
+    from marm_setup.collision.proving import screen_pairs
 
-    run = screen_pairs if stage == "screen" else settle_pairs
-    return run(scene, pairs, prove, seed, jobs)
+    return screen_pairs(scene, pairs, prove, seed, jobs)
+
+
+def _settle(scene, priors: dict[Pair, PairProof], prove: str, seed: int, jobs: int) -> dict[Pair, PairProof]:
+    """The witness search of the unproved pairs the trials never saw in collision."""
+    if prove == "off":
+        return {}
+    from marm_setup.collision.proving import settle_pairs
+
+    return settle_pairs(scene, priors, prove, seed, jobs)
 
 
 def _with_tracked(shards: list[tuple[Pair, ...]], tracked: tuple[Pair, ...]) -> list:

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import heapq
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -37,6 +37,8 @@ if TYPE_CHECKING:
 
 PROVED, COLLIDES, UNPROVED = "proved", "collides", "unproved"
 BATCH = 64  # boxes split per round (their children are evaluated in one numpy batch)
+MIN_CHILDREN = 48  # a round cuts its few boxes in more parts, up to 2**MAX_LEVELS each: a numpy
+MAX_LEVELS = 5  # batch costs about 1 ms however small, a box in it about 15 us
 RELATIVE_MARGIN = 1e-5  # coal's GJK stops within a relative 1e-6 of the distance (VDB criterion)
 WITNESS_DECIMALS = 6  # a witness is rounded to 1e-6 [rad, m], then checked at those values
 TINY = 1e-9  # [m] a box whose whole displacement bound is below this is not split further
@@ -46,22 +48,22 @@ PROBE = 8  # exact queries beyond the hulls tried before their use is judged by 
 
 @dataclass(frozen=True, slots=True)
 class Budget:
-    """Work units (hull distance queries) for the branch and bound and for the witness search."""
+    """Work units for the branch and bound (a box evaluated or a hull distance: 1; an exact
+    mesh distance: EXACT_UNITS) and for the witness search."""
 
     boxes: int
     descent: int
 
-    def scaled(self, factor: float) -> Budget:
-        return Budget(max(1, int(self.boxes * factor)), int(self.descent * factor))
 
-
-# Per prove mode: the screen before the trials (branch and bound only, cheap: it takes the
-# easy pairs out of the trials), then the settling of the pairs the trials never saw in
-# collision (branch and bound again with more, then the witness search), and the units the
-# settling shares out (each of its pairs gets at most SETTLE's budget; None: no cap).
-SCREEN = {"on": Budget(150, 0), "exhaustive": Budget(5_000, 0)}
-SETTLE = {"on": Budget(400, 400), "exhaustive": Budget(150_000, 30_000)}
-SETTLE_POOL = {"on": 240_000, "exhaustive": None}
+# Per prove mode, units per pair: the screen before the trials (the branch and bound: at least,
+# at most, a pool the candidates share, and at most again for a second try of the pairs left
+# open with what the pool has left), then the settling of the pairs the trials never saw in
+# collision (the witness search: per pair, and a pool they share). None: no pool. A robot with
+# few candidates gives each more (the panda: 600 of 30; the UR5e's two hard pairs get the rest);
+# one with many, less (the PR2: 150 of 1300, where most pairs are far apart: a handful each).
+SCREEN = {"on": (150, 600, 20_000, 10_000), "exhaustive": (50_000, 50_000, None, 0)}
+SETTLE = {"on": (300, 60_000), "exhaustive": (30_000, None)}
+CLOSEST = 8  # closest box centres a proof keeps for the witness search
 
 
 @dataclass(frozen=True, slots=True)
@@ -72,6 +74,7 @@ class PairProof:
     proved_fraction: float
     witness: tuple[tuple[str, float], ...] = ()
     units: int = 0  # work done, in hull-query units
+    closest: tuple[tuple[float, ...], ...] = field(default=(), compare=False, repr=False)  # centres
 
 
 class Meter:
@@ -118,31 +121,53 @@ class PairSearch:
         self._heap: list = []
         self._sequence = itertools.count()
 
-    def run(self, seed: int = 0) -> PairProof:
+    def run(self) -> PairProof:
+        """The branch and bound, within the budget's boxes."""
         chain = self.chain
         self._evaluate(chain.lower[None], chain.upper[None], np.array([np.inf]), np.array([-np.inf]))
         stuck = False  # a box too small to split is still undecided
-        while self._heap and not self.witness and self.meter.units < self.budget.boxes:
+        while self._heap and not self.witness and self._can_finish():
             batch = [heapq.heappop(self._heap) for _ in range(min(BATCH, len(self._heap)))]
-            halves = [_split(item) for item in batch]
+            levels = max(1, min(MAX_LEVELS, int(np.ceil(np.log2(MIN_CHILDREN / len(batch))))))
+            halves = [_split(item, levels) for item in batch]
             stuck = stuck or any(not h for h in halves)
             children = [child for h in halves for child in h]
             if children:
                 lo, hi, reach, floor = (np.array([c[i] for c in children]) for i in range(4))
                 self._evaluate(lo, hi, reach, floor)
-        if not self.witness and not self._heap and not stuck:
-            return self._result(PROVED)
-        if not self.witness and self.budget.descent > 0:
-            from marm_setup.collision.witness import search_witness
+        if self.witness:
+            return self._result(COLLIDES)
+        return self._result(PROVED if not self._heap and not stuck else UNPROVED)
 
-            starts = [c for _, _, c in sorted(self.measured, key=lambda m: m[:2])]
-            limit = self.meter.units + self.budget.descent
-            self.witness = search_witness(self, starts, seed, limit)
+    def _can_finish(self) -> bool:
+        """Whether the budget (and the one round it may overrun by) could still certify every
+        open box: each needs splitting, so two more boxes (units) apiece at least; when it
+        cannot, going on proves nothing."""
+        left = self.budget.boxes - self.meter.units
+        return left > 0 and 2 * len(self._heap) <= left + 2 * BATCH
+
+    def settle(self, prior: PairProof, seed: int) -> PairProof:
+        """The witness search of an unproved pair, from its closest centres, within the
+        budget's descent units."""
+        from marm_setup.collision.witness import search_witness
+
+        self.certified = prior.proved_fraction
+        self.meter.units = prior.units
+        starts = [np.array(c) for c in prior.closest]
+        self.witness = search_witness(self, starts, seed, prior.units + self.budget.descent)
         return self._result(COLLIDES if self.witness else UNPROVED)
 
     def _result(self, outcome: str) -> PairProof:
         fraction = 1.0 if outcome == PROVED else min(1.0, float(self.certified))
-        return PairProof(outcome, fraction, self.witness, int(self.meter.units))
+        closest = (
+            ()
+            if outcome != UNPROVED
+            else tuple(
+                tuple(float(v) for v in centre)
+                for _, _, centre in sorted(self.measured, key=lambda m: m[:2])[:CLOSEST]
+            )
+        )
+        return PairProof(outcome, fraction, self.witness, int(self.meter.units), closest)
 
     def _evaluate(self, lo: np.ndarray, hi: np.ndarray, reach: np.ndarray, floor: np.ndarray) -> None:
         """Decide each box of the batch or put it on the heap with its lower bound. `reach`:
@@ -227,21 +252,34 @@ def _most(distance: float) -> float:
     return distance + CERT_MARGIN + RELATIVE_MARGIN * abs(distance)
 
 
-def _split(item: tuple) -> list[tuple[np.ndarray, np.ndarray, float, float]]:
-    """The two halves of a box along its largest share of the displacement bound, each with
-    the most its centre's distance can be (the box's, plus that share: moving one variable by
-    half its half-width moves the geometry by at most its share) and the box's lower bound."""
+def _split(item: tuple, levels: int = 1) -> list[tuple[np.ndarray, np.ndarray, float, float]]:
+    """The box cut in 2**levels, each cut halving its largest share of the displacement bound
+    (a halved share counts as half), each part with the most its centre's distance can be (the
+    box's plus the shares its centre moved by: moving one variable by up to its half-width moves
+    the geometry by at most its share) and the box's lower bound."""
     bound, _, lo, hi, shares, reach = item
     if not len(lo) or shares.max(initial=0.0) < TINY:
         return []
-    k = int(np.argmax(shares))
-    mid = (lo[k] + hi[k]) / 2.0
-    left_hi, right_lo = hi.copy(), lo.copy()
-    left_hi[k], right_lo[k] = mid, mid
-    child_reach = reach + shares[k]
-    return [(lo, left_hi, child_reach, bound), (right_lo, hi, child_reach, bound)]
+    parts = [(lo, hi, shares.copy(), reach)]
+    for _ in range(levels):
+        cut = []
+        for part_lo, part_hi, part_shares, part_reach in parts:
+            k = int(np.argmax(part_shares))
+            mid = (part_lo[k] + part_hi[k]) / 2.0
+            left_hi, right_lo = part_hi.copy(), part_lo.copy()
+            left_hi[k], right_lo[k] = mid, mid
+            halved = part_shares.copy()
+            halved[k] /= 2.0
+            moved = part_reach + part_shares[k]
+            cut += [(part_lo, left_hi, halved, moved), (right_lo, part_hi, halved, moved)]
+        parts = cut
+    return [(part_lo, part_hi, part_reach, bound) for part_lo, part_hi, _, part_reach in parts]
 
 
-def prove_pair(scene: CollisionScene, chain: PairChain, budget: Budget, seed: int = 0) -> PairProof:
-    """The proof of one pair (see the module doc)."""
-    return PairSearch(scene, chain, budget).run(seed)
+def prove_pair(
+    scene: CollisionScene, chain: PairChain, budget: Budget, seed: int = 0, prior: PairProof | None = None
+) -> PairProof:
+    """The proof of one pair (see the module doc): the branch and bound, or with `prior` (an
+    unproved pair's earlier proof) the witness search."""
+    search = PairSearch(scene, chain, budget)
+    return search.run() if prior is None else search.settle(prior, seed)

@@ -1,19 +1,20 @@
 """The proofs of many link pairs (`collision/proof.py`), in this process or in a pool of
 `jobs` processes: `screen_pairs` before the trials, `settle_pairs` after them.
 
-Each pair's proof depends on the pair, the seed and its budget alone (the settling's budget on
-how many pairs share its pool too), so which process proves it, and how many there are, never
-changes a result. Pairs go out longest first (by how many variables move them), one at a time,
+Each pair's proof depends on the pair, the seed and its budget alone (and a budget on how many
+pairs share its pool), so which process proves it, and how many there are, never changes a
+result. Pairs go out longest first (by how many variables move them), one at a time,
 to whichever process is free.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 from marm_setup.collision.pairs import PROVE_MODES
-from marm_setup.collision.proof import SCREEN, SETTLE, SETTLE_POOL, Budget, PairProof, prove_pair
+from marm_setup.collision.proof import SCREEN, SETTLE, UNPROVED, Budget, PairProof, prove_pair
 
 if TYPE_CHECKING:
     from marm_setup.collision.pair_chain import PairChain
@@ -23,39 +24,55 @@ if TYPE_CHECKING:
 Pair = tuple[str, str]
 WORTH_A_POOL = 12  # pairs below which the proofs run in this process
 
-_STATE: dict[str, Any] = {}  # in a pool process: its scene, chains, budget and seed
+_STATE: dict[str, Any] = {}  # in a pool process: its scene, chains and task
 
 
 def screen_pairs(
     scene: CollisionScene, pairs: Sequence[Pair], mode: str, seed: int = 0, jobs: int = 1
 ) -> dict[Pair, PairProof]:
-    """Pair -> its proof within the screen's budget (branch and bound only)."""
-    return prove_pairs(scene, pairs, SCREEN[_checked(mode)], seed, jobs)
+    """Pair -> its branch and bound, within the screen's units (see proof.SCREEN): a first try
+    of every pair, then, when the pool has enough left, a longer one of the pairs left open."""
+    least, most, pool, again = SCREEN[_checked(mode)]
+    boxes = most if pool is None else int(min(most, max(least, pool // max(1, len(pairs)))))
+    proofs = prove_pairs(scene, pairs, Budget(boxes, 0), seed, jobs)
+    left_open = sorted(p for p, proof in proofs.items() if proof.outcome == UNPROVED)
+    if pool is None or not left_open:
+        return proofs
+    share = min(again, (pool - sum(p.units for p in proofs.values())) // len(left_open))
+    if share < 2 * boxes:  # not worth starting them again
+        return proofs
+    for pair, proof in prove_pairs(scene, left_open, Budget(share, 0), seed, jobs).items():
+        proofs[pair] = dataclasses.replace(proof, units=proof.units + proofs[pair].units)
+    return proofs
 
 
 def settle_pairs(
-    scene: CollisionScene, pairs: Sequence[Pair], mode: str, seed: int = 0, jobs: int = 1
+    scene: CollisionScene, priors: dict[Pair, PairProof], mode: str, seed: int = 0, jobs: int = 1
 ) -> dict[Pair, PairProof]:
-    """Pair -> its proof within the settling's budget (its share of the pool)."""
-    budget = SETTLE[_checked(mode)]
-    pool = SETTLE_POOL[mode]
-    whole = len(pairs) * (budget.boxes + budget.descent)
-    if pool is not None and whole > pool:
-        budget = budget.scaled(pool / whole)
-    return prove_pairs(scene, pairs, budget, seed, jobs)
+    """Pair -> its witness search after its unproved screen `priors[pair]` (see proof.SETTLE)."""
+    descent, pool = SETTLE[_checked(mode)]
+    if pool is not None:
+        descent = min(descent, pool // max(1, len(priors)))
+    return prove_pairs(scene, sorted(priors), Budget(0, descent), seed, jobs, priors)
 
 
 def prove_pairs(
-    scene: CollisionScene, pairs: Sequence[Pair], budget: Budget, seed: int = 0, jobs: int = 1
+    scene: CollisionScene,
+    pairs: Sequence[Pair],
+    budget: Budget,
+    seed: int = 0,
+    jobs: int = 1,
+    priors: dict[Pair, PairProof] | None = None,
 ) -> dict[Pair, PairProof]:
-    """Pair -> its proof within `budget`, for every pair of `pairs`."""
+    """Pair -> its proof within `budget` (with `priors`: each pair's witness search after it)."""
     if not pairs:
         return {}
+    priors = priors or {}
     chains = _chains(scene, pairs)
     order = sorted(pairs, key=lambda p: (-chains[p].dims, p))
     if jobs <= 1 or len(pairs) < WORTH_A_POOL:
-        return {p: prove_pair(scene, chains[p], budget, seed) for p in order}
-    return dict(_pooled(scene, chains, order, budget, seed, jobs))
+        return {p: prove_pair(scene, chains[p], budget, seed, priors.get(p)) for p in order}
+    return dict(_pooled(scene, chains, order, (budget, seed, priors), jobs))
 
 
 def _checked(mode: str) -> str:
@@ -72,22 +89,18 @@ def _chains(scene: CollisionScene, pairs: Sequence[Pair]) -> dict[Pair, PairChai
 
 
 def _pooled(
-    scene: CollisionScene,
-    chains: dict[Pair, PairChain],
-    order: list[Pair],
-    budget: Budget,
-    seed: int,
-    jobs: int,
+    scene: CollisionScene, chains: dict[Pair, PairChain], order: list[Pair], task: tuple, jobs: int
 ) -> Iterator[tuple[Pair, PairProof]]:
+    """The proofs in a pool; `task`: (budget, seed, priors)."""
     import multiprocessing
 
     fork = "fork" in multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("fork" if fork else "spawn")
     initargs: tuple = ()
     if fork:  # the children inherit the built scene and chains
-        _STATE.update(scene=scene, chains=chains, budget=budget, seed=seed)
+        _STATE.update(scene=scene, chains=chains, task=task)
     else:
-        initargs = (scene.robot, scene.padding, order, budget, seed)
+        initargs = (scene.robot, scene.padding, order, task)
     try:
         with context.Pool(min(jobs, len(order)), None if fork else _rebuild, initargs) as pool:
             yield from pool.imap(_prove_one, order, chunksize=1)
@@ -95,14 +108,14 @@ def _pooled(
         _STATE.clear()
 
 
-def _rebuild(robot: RobotModel, padding: float, pairs: list[Pair], budget: Budget, seed: int) -> None:
+def _rebuild(robot: RobotModel, padding: float, pairs: list[Pair], task: tuple) -> None:
     """A spawned pool process: build the scene and chains again (coal objects do not pickle)."""
     from marm_setup.collision.scene import CollisionScene
 
     scene = CollisionScene(robot, padding)
-    _STATE.update(scene=scene, chains=_chains(scene, pairs), budget=budget, seed=seed)
+    _STATE.update(scene=scene, chains=_chains(scene, pairs), task=task)
 
 
 def _prove_one(pair: Pair) -> tuple[Pair, PairProof]:
-    state = _STATE
-    return pair, prove_pair(state["scene"], state["chains"][pair], state["budget"], state["seed"])
+    budget, seed, priors = _STATE["task"]
+    return pair, prove_pair(_STATE["scene"], _STATE["chains"][pair], budget, seed, priors.get(pair))
