@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from marm_setup.collision.matrix import compute_collision_matrix
 from marm_setup.collision.pair_chain import pair_chain
 from marm_setup.collision.pairs import DisabledReason
-from marm_setup.collision.proof import COLLIDES, PROVED, Budget, prove_pair
+from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED, Budget, prove_pair
 from marm_setup.collision.scene import CollisionScene
 from marm_setup.robot.kinematics import bounds, default_configuration
 from marm_setup.robot.load import load_robot
@@ -96,11 +96,13 @@ def test_a_witness_comes_from_the_descent_when_the_boxes_run_out(rare):
     chain = pair_chain(
         robot, ("nub", "pointer"), {link: scene.lever_points(link) for link in ("nub", "pointer")}
     )
-    proof = prove_pair(scene, chain, Budget(boxes=1, descent=2000), seed=3)
+    screened = prove_pair(scene, chain, Budget(boxes=1, descent=0))
+    assert screened.outcome == UNPROVED and screened.closest  # the root box only
+    proof = prove_pair(scene, chain, Budget(boxes=0, descent=2000), seed=3, prior=screened)
     assert proof.outcome == COLLIDES and _witness_in_contact(scene, ("nub", "pointer"), proof.witness)
     assert all(round(v, 6) == v for _, v in proof.witness)  # checked at the values it reports
-    again = prove_pair(scene, chain, Budget(boxes=1, descent=2000), seed=3)
-    assert again == proof
+    assert proof.units > screened.units and proof.proved_fraction == screened.proved_fraction
+    assert prove_pair(scene, chain, Budget(boxes=0, descent=2000), seed=3, prior=screened) == proof
 
 
 @settings(max_examples=int(os.environ.get("PROOF_EXAMPLES", "25")), deadline=None)
