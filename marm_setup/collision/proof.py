@@ -62,7 +62,7 @@ class Budget:
 # few candidates gives each more (the panda: 600 of 30; the UR5e's two hard pairs get the rest);
 # one with many, less (the PR2: 150 of 1300, where most pairs are far apart: a handful each).
 SCREEN = {"on": (150, 600, 20_000, 10_000), "exhaustive": (50_000, 50_000, None, 0)}
-SETTLE = {"on": (300, 60_000), "exhaustive": (30_000, None)}
+SETTLE = {"on": (600, 60_000), "exhaustive": (30_000, None)}
 CLOSEST = 8  # closest box centres a proof keeps for the witness search
 
 
