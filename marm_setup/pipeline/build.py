@@ -34,7 +34,7 @@ class InitRequest:
     jobs: int = 1  # worker processes of the collision matrix (the result does not depend on it)
     force: bool = False
     keep_matrix: bool = False  # take a SPEC's collision.disabled as it is (else recompute, User pairs kept)
-    prove: str = "on"  # how the Never pairs are proved (collision/proof.py): off, on, exhaustive
+    prove: str | None = None  # None: the SPEC's collision.prove, else on (collision/proof.py)
     xacro_args: tuple[str, ...] = ()
     package_paths: tuple[Path, ...] = ()
 

@@ -42,7 +42,7 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
         jobs=request.jobs,
         progress=progress,
         scene=scene,
-        prove=request.prove,
+        prove=request.prove or model.collision.prove or "on",
     )
     model = _with_user_pairs(model, user)
     notes = built.notes

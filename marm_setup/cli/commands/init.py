@@ -13,7 +13,6 @@ from marm_setup.cli.common import (
     OutputFormat,
     PackagePaths,
     ProveMode,
-    ProveOption,
     UntrustedOption,
     XacroArgs,
     YesOption,
@@ -106,7 +105,14 @@ def init(
     ] = OutputFormat.text,
     yes: YesOption = False,
     untrusted: UntrustedOption = False,
-    prove: ProveOption = ProveMode.on,
+    prove: Annotated[
+        ProveMode | None,
+        typer.Option(
+            "--prove",
+            help="Prove Never pairs collision-free over their whole joint range (off: MoveIt's sampling "
+            "alone; exhaustive: a far larger budget) [default: SPEC's, else on].",
+        ),
+    ] = None,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package;
     or, with --from-package, port an existing config package and report every setting.
@@ -167,7 +173,7 @@ def init(
         keep_matrix=keep_matrix,
         xacro_args=tuple(xacro_arg or ()),
         package_paths=tuple(package_path or ()),
-        prove=prove.value,
+        prove=prove.value if prove else None,
     )
     check_output_dir(out, force=force, shown=str(out))
     robot = load_robot_from_cli(urdf, xacro_arg, package_path, check_args=False)  # run_init checks them
