@@ -32,10 +32,13 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci
 
 # The reliability suite at length: a random-seeded fuzzer (FUZZ_EXAMPLES per input kind) and
-# RELIABILITY_KILLS SIGKILLs per writing command; prints its counts.
+# RELIABILITY_KILLS SIGKILLs per writing command; prints its counts. Then the proofs' property
+# tests on PROOF_EXAMPLES random robots, each proved pair checked in PROOF_STATES random states.
 fuzz: $(STAMP)
 	FUZZ_EXAMPLES=$${FUZZ_EXAMPLES:-300} RELIABILITY_KILLS=$${RELIABILITY_KILLS:-50} \
 		$(BIN)/python -m pytest -q -s -p no:cacheprovider --hypothesis-profile=dev tests/reliability
+	PROOF_STATES=$${PROOF_STATES:-1000000} PROOF_EXAMPLES=$${PROOF_EXAMPLES:-100} \
+		$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=dev tests/unit/test_proof.py
 
 lint: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
