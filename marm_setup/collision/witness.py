@@ -95,10 +95,13 @@ def _step(search: PairSearch, state: _Descents, limit: int) -> None:
     """One gradient step of every active descent (its candidates' kinematics in one batch)."""
     chain = search.chain
     rows = np.flatnonzero(state.active)
-    norm2 = np.sum(state.gradient[rows] ** 2, axis=1)
+    q, gradient = state.q[rows], state.gradient[rows].copy()
+    # projected: a variable at a bound that the step would push past it stays there
+    gradient[((q <= chain.lower) & (gradient > 0)) | ((q >= chain.upper) & (gradient < 0))] = 0.0
+    norm2 = np.maximum(np.sum(gradient**2, axis=1), 1e-12)
     scale = (state.value[rows] - search.scene.padding + AIM) / norm2
     factors = scale[:, None] * 0.5 ** np.arange(HALVINGS)  # (R, H)
-    moves = state.q[rows, None, :] - factors[:, :, None] * state.gradient[rows, None, :]
+    moves = q[:, None, :] - factors[:, :, None] * gradient[:, None, :]
     moves = np.clip(moves, chain.lower, chain.upper).reshape(-1, chain.dims)
     frames = chain.frames(moves)
     accepted: list[tuple[int, int]] = []
