@@ -40,41 +40,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from marm_setup.collision.levers import LeverPoints
 from marm_setup.robot import Joint, RobotModel, origin_matrix
 
 MOVING = ("revolute", "continuous", "prismatic")
-
-
-@dataclass(frozen=True, eq=False)
-class LeverPoints:
-    """Points (n, 3) in a link's frame and radii (n,): the link lies in their balls' hull."""
-
-    points: np.ndarray
-    radii: np.ndarray
-
-
-def merged_levers(points: np.ndarray, radii: np.ndarray, most: int = 32) -> LeverPoints:
-    """At most `most` balls holding the given ones: the set is halved at the median of its
-    widest axis until each part is small enough, and each part becomes one ball round it
-    (fewer points make every bound cheaper, and looser only by each part's size)."""
-    if len(points) <= most:
-        return LeverPoints(points, radii)
-    parts = [np.arange(len(points))]
-    while len(parts) < most:
-        widest = max(range(len(parts)), key=lambda i: (len(parts[i]), -i))
-        if len(parts[widest]) < 2:
-            break
-        rows = parts.pop(widest)
-        span = np.ptp(points[rows], axis=0)
-        order = rows[np.argsort(points[rows, int(np.argmax(span))], kind="stable")]
-        parts[widest:widest] = [order[: len(order) // 2], order[len(order) // 2 :]]
-    centers, out_radii = [], []
-    for rows in parts:
-        lo, hi = points[rows].min(axis=0), points[rows].max(axis=0)
-        center = (lo + hi) / 2.0
-        centers.append(center)
-        out_radii.append(float(np.max(np.linalg.norm(points[rows] - center, axis=1) + radii[rows])))
-    return LeverPoints(np.array(centers), np.array(out_radii))
 
 
 @dataclass(frozen=True, eq=False)

@@ -38,7 +38,7 @@ from marm_setup.robot import (
 )
 
 if TYPE_CHECKING:
-    from marm_setup.collision.pair_chain import LeverPoints
+    from marm_setup.collision.levers import LeverPoints
 
 Pair = tuple[str, str]
 _EPS = 1e-9
@@ -353,37 +353,18 @@ class CollisionScene:
         return self._closest(shapes_a, shapes_b, pose_a, pose_b, points=True)
 
     def lever_points(self, link: str) -> LeverPoints:
-        """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes:
-        hull vertices of meshes, box corners, a sphere's centre, a cylinder's end-cap centres."""
-        from marm_setup.collision.pair_chain import merged_levers
+        """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes
+        (`collision/levers.py`), computed once per link."""
+        from marm_setup.collision.levers import merged_levers, shape_levers
 
-        if link in self._levers:
-            return self._levers[link]
-        row = self.links.index(link)
-        points, radii = [], []
-        for geom, local in self._shapes[row]:
-            p, r = self._shape_levers(geom)
-            if local is not None:
-                p = p @ local[:3, :3].T + local[:3, 3]
-            points.append(p)
-            radii.append(r)
-        self._levers[link] = merged_levers(np.concatenate(points), np.concatenate(radii))
+        if link not in self._levers:
+            points, radii = [], []
+            for geom, local in self._shapes[self.links.index(link)]:
+                p, r = shape_levers(geom, self._coal, self._hull(geom))
+                points.append(p if local is None else p @ local[:3, :3].T + local[:3, 3])
+                radii.append(r)
+            self._levers[link] = merged_levers(np.concatenate(points), np.concatenate(radii))
         return self._levers[link]
-
-    def _shape_levers(self, geom) -> tuple[np.ndarray, np.ndarray]:
-        coal = self._coal
-        if isinstance(geom, coal.Sphere):
-            return np.zeros((1, 3)), np.array([geom.radius])
-        if isinstance(geom, coal.Cylinder):
-            half = geom.halfLength
-            return np.array([[0.0, 0.0, -half], [0.0, 0.0, half]]), np.full(2, geom.radius)
-        if isinstance(geom, coal.Box):
-            corners = _corners(np.asarray(geom.halfSide, dtype=float))
-            return corners, np.zeros(len(corners))
-        hull = self._hull(geom)
-        source = hull if hull is not geom else geom
-        vertices = np.asarray(source.points() if hull is not geom else geom.vertices(), dtype=float)
-        return vertices, np.zeros(len(vertices))
 
     def _min_distance(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
         return self._closest(shapes_a, shapes_b, pose_a, pose_b)[0]
