@@ -399,3 +399,18 @@ def test_summary_and_report_show_the_proofs(tmp_path):
     svg = report.read_text(encoding="utf-8")
     etree.fromstring(svg.encode())
     assert "proved collision-free over its whole joint range" in svg and "N Never, proved" in svg
+
+
+def test_exhaustive_proves_what_on_leaves_open_on_a_small_robot(tmp_path):
+    from tests.proof_robots import rare_urdf, write_meshes
+
+    meshes = write_meshes(tmp_path)
+    path = tmp_path / "rare.urdf"
+    path.write_text(rare_urdf(meshes["big_cube"]), encoding="utf-8")
+    result = _run(str(path), "--trials", "50", "--prove", "exhaustive", "--format", "json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    pairs = {(p["link1"], p["link2"]): p for p in data["pairs"]}
+    assert data["prove"] == "exhaustive" and data["proofs"]["unproved"] == 0
+    assert pairs[("nub", "pointer")]["proof"] == "collides" and pairs[("nub", "pointer")]["reason"] is None
+    assert set(pairs[("follower", "stop")]["witness"]) == {"slide"}

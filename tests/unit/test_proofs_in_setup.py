@@ -95,3 +95,14 @@ def test_notes_round_down_so_a_nearly_proved_pair_never_reads_100():
     note = UnprovedPair("a", "b", 0.99996).note(10000)
     assert "99.9 %" in note and "10000 states" in note and "--" not in note
     assert DisabledPair.of("b", "a", N).pair == UnprovedPair("a", "b", 0.5).pair
+
+
+def test_prove_off_records_no_proofs(marm):
+    source = RobotSource("../urdf/marm.urdf.xacro", (), ("../..",))
+    model = infer(marm, package_name="marm_moveit_config", source=source).model
+    off = with_collision_matrix(model, marm, trials=300, seed=0, prove="off").collision
+    assert off.prove == "off" and off.unproved == () and off.proof_key is None
+    assert (
+        proved_pairs(yaml.safe_load(dump_setup(dataclasses.replace(model, collision=off)))["collision"], marm)
+        == frozenset()
+    )
