@@ -60,9 +60,9 @@ class Budget:
 # open with what the pool has left), then the settling of the pairs the trials never saw in
 # collision (the witness search: per pair, and a pool they share). None: no pool. A robot with
 # few candidates gives each more (the panda: 600 of 30; the UR5e's two hard pairs get the rest);
-# one with many, less (the PR2: 100 of 1300, where most pairs are far apart: a handful each).
-SCREEN = {"on": (100, 600, 20_000, 10_000), "exhaustive": (50_000, 50_000, None, 0)}
-SETTLE = {"on": (600, 45_000), "exhaustive": (30_000, None)}
+# one with many, less (the PR2: 60 of 1300, where most pairs are far apart: a handful each).
+SCREEN = {"on": (60, 600, 20_000, 10_000), "exhaustive": (50_000, 50_000, None, 0)}
+SETTLE = {"on": (600, 25_000), "exhaustive": (30_000, None)}
 CLOSEST = 8  # closest box centres a proof keeps for the witness search
 
 

@@ -347,13 +347,11 @@ GOLDEN_OFF = {  # the SRDF `collisions URDF --output` wrote before proofs existe
 
 
 @pytest.mark.parametrize("name", ["marm", "panda", "pr2"])
-def test_prove_off_writes_the_sampled_matrix_byte_for_byte(tmp_path, name):
-    from tests.conftest import GOLDENS
-
+def test_prove_off_writes_the_sampled_matrix_byte_for_byte(tmp_path, name, assert_golden):
     out = tmp_path / "off.srdf"
     result = _run(str(GOLDEN_OFF[name]()), "--prove", "off", "--output", str(out), "--jobs", "2")
     assert result.exit_code == 0, result.output
-    assert out.read_bytes() == (GOLDENS / "collisions" / f"{name}.prove-off.srdf").read_bytes()
+    assert_golden(f"collisions/{name}.prove-off.srdf", out.read_text(encoding="utf-8"))
     assert "proof (--prove" not in result.stdout
 
 
