@@ -46,7 +46,9 @@ def wall(argv: list[str]) -> float:
     return time.perf_counter() - started
 
 
-def whole_process(path: Path, trials: int, jobs: int | None, runs: int, prove: str) -> tuple[float, float, float]:
+def whole_process(
+    path: Path, trials: int, jobs: int | None, runs: int, prove: str
+) -> tuple[float, float, float]:
     """Median wall time [s] of the collisions process (--prove `prove`, then off) and of the
     floor, runs interleaved."""
     command = [sys.executable, "-m", "marm_setup", "collisions", str(path), "--trials", str(trials)]
@@ -63,7 +65,9 @@ def whole_process(path: Path, trials: int, jobs: int | None, runs: int, prove: s
 def matrix_phase(robot, trials: int, jobs: int, shortcuts: bool, prove: str = "off"):
     scene = CollisionScene(robot)
     started = time.perf_counter()
-    matrix = compute_collision_matrix(robot, scene, trials=trials, jobs=jobs, shortcuts=shortcuts, prove=prove)
+    matrix = compute_collision_matrix(
+        robot, scene, trials=trials, jobs=jobs, shortcuts=shortcuts, prove=prove
+    )
     return matrix, time.perf_counter() - started
 
 
@@ -73,15 +77,23 @@ def bench(name: str, path: Path, args) -> None:
     robot = load_robot(path)
     matrix, seconds = matrix_phase(robot, args.trials, jobs, shortcuts=True, prove=args.prove)
     work = matrix.work
-    print(f"{name}: {len(matrix.stats)} candidate pairs, {args.trials} trials, jobs {jobs}, --prove {args.prove}")
+    print(
+        f"{name}: {len(matrix.stats)} candidate pairs, {args.trials} trials, jobs {jobs}, --prove {args.prove}"
+    )
     print(
         f"  whole process {process:6.2f} s   --prove off {sampled:6.2f} s (ratio {process / sampled:4.2f})"
         f"   import floor {floor:5.2f} s   (medians of {args.runs})"
     )
     never = [s for s in matrix.stats if s.reason is not None and s.reason.value == "Never"]
     proved = sum(1 for s in never if s.proof is not None and s.proof.outcome == "proved")
-    found = sum(1 for s in matrix.stats if s.proof is not None and s.proof.outcome == "collides" and not s.seen_colliding)
-    print(f"  matrix phase  {seconds:6.2f} s   Never {len(never)}, proved {proved}, enabled by a proof {found}")
+    found = sum(
+        1
+        for s in matrix.stats
+        if s.proof is not None and s.proof.outcome == "collides" and not s.seen_colliding
+    )
+    print(
+        f"  matrix phase  {seconds:6.2f} s   Never {len(never)}, proved {proved}, enabled by a proof {found}"
+    )
     print(
         f"  exact checks {work.exact_checks:,}   certificate queries {work.certificate_queries:,}"
         f"   proven by certificates {work.certified:,}"
