@@ -295,18 +295,20 @@ def test_no_break_distance_gives_coals_default_verdicts(robot_path):
         assert expected.sum() > 0
 
 
-@pytest.mark.parametrize("batch", [1, 7, 200 * 5])
-def test_filtering_in_pair_batches_gives_the_same_matrix(marm, monkeypatch, batch):
+@pytest.mark.parametrize(("batch", "prove"), [(1, "off"), (7, "off"), (200 * 5, "off"), (7, "on")])
+def test_filtering_in_pair_batches_gives_the_same_matrix(marm, monkeypatch, batch, prove):
     """The pairs are filtered in batches of at most PAIR_BATCH (state, pair) entries: any batch
-    size gives the same matrix, distances included, and the same first collisions."""
+    size gives the same matrix, distances included (proved pairs are only tracked for theirs,
+    and batches mix them with checked pairs), and the same first collisions."""
     from marm_setup.collision import scene as scene_module
 
-    whole = compute_collision_matrix(marm, CollisionScene(marm), trials=2000)
+    whole = compute_collision_matrix(marm, CollisionScene(marm), trials=2000, prove=prove)
+    assert prove == "off" or any(s.proof and s.min_distance is not None for s in whole.stats)
     q = sample_configurations(marm, np.random.default_rng(3), 50)
     pairs = CollisionScene(marm).candidate_pairs
     first = CollisionScene(marm).first_collisions(q, pairs)
     monkeypatch.setattr(scene_module, "PAIR_BATCH", batch)
     scene = CollisionScene(marm)
     assert len(scene.pair_batches(200, len(pairs))) > 1
-    _same_bytes(whole, compute_collision_matrix(marm, scene, trials=2000))
+    _same_bytes(whole, compute_collision_matrix(marm, scene, trials=2000, prove=prove))
     assert scene.first_collisions(q, pairs) == first
