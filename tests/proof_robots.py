@@ -115,13 +115,16 @@ def geometries(draw, meshes: dict[str, str]) -> str:
 
 @st.composite
 def random_robots(draw, meshes: dict[str, str]) -> str:
-    """A random tree of 3 to 6 links (see the module doc); joints' origins keep links close."""
+    """A random tree of 3 to 6 links (see the module doc); joints' origins keep links close.
+    Half of them are planar: every turning axis parallel to z, sliding axes across it (the
+    separating-direction bound proves their pairs in few boxes)."""
     count = draw(st.integers(3, 6))
+    planar = draw(st.booleans())
     parts = [_link("l0", draw(geometries(meshes)))]
     movers: list[tuple[str, str]] = []  # (joint, type) of joints a mimic may follow
     for i in range(1, count):
         parts.append(_shaped_link(draw, f"l{i}", meshes))
-        parts.append(_random_joint(draw, i, movers))
+        parts.append(_random_joint(draw, i, movers, planar))
     return urdf("\n".join(parts), name="random")
 
 
@@ -131,15 +134,18 @@ def _shaped_link(draw, name: str, meshes: dict[str, str]) -> str:
     return _link(name, draw(geometries(meshes)), xyz, rpy)
 
 
-def _random_joint(draw, i: int, movers: list[tuple[str, str]]) -> str:
+def _random_joint(draw, i: int, movers: list[tuple[str, str]], planar: bool = False) -> str:
     parent = f"l{draw(st.integers(0, i - 1))}"
     kind = draw(st.sampled_from(("revolute", "revolute", "continuous", "prismatic", "fixed")))
     xyz = "{:.3f} {:.3f} {:.3f}".format(*draw(_numbers(-0.2, 0.2, 3)))
-    rpy = "{:.3f} {:.3f} {:.3f}".format(*draw(_numbers(-np.pi, np.pi, 3)))
+    rpy = "0 0 {:.3f}".format(*draw(_numbers(-np.pi, np.pi, 1)))
+    if not planar:
+        rpy = "{:.3f} {:.3f} {:.3f}".format(*draw(_numbers(-np.pi, np.pi, 3)))
     head = f'<joint name="j{i}" type="{kind}"><parent link="{parent}"/><child link="l{i}"/><origin xyz="{xyz}" rpy="{rpy}"/>'
     if kind == "fixed":
         return head + "</joint>"
-    head += f'<axis xyz="{draw(st.sampled_from(AXES))}"/>'
+    axes = AXES if not planar else ("1 0 0", "0.6 0.8 0") if kind == "prismatic" else ("0 0 1", "0 0 -1")
+    head += f'<axis xyz="{draw(st.sampled_from(axes))}"/>'
     if kind == "revolute":
         low, high = draw(st.floats(-3.1, 0.0)), draw(st.floats(0.0, 3.1))
     else:
@@ -160,3 +166,24 @@ def _random_joint(draw, i: int, movers: list[tuple[str, str]]) -> str:
     else:
         movers.append((f"j{i}", kind))
     return head + limit + mimic + "</joint>"
+
+
+def tilting_bar_urdf() -> str:
+    """A plate (root `plate`) under a bar that pans about z and tilts about y: the plate's
+    normal is the pan axis, so the pair's separating-direction bound works along z, less what
+    the tilt moves the bar along it (see test_proof)."""
+    return urdf(
+        "\n".join(
+            [
+                _link("plate", '<box size="1 1 0.01"/>'),
+                _link("turret", '<sphere radius="0.01"/>', "0 0 0.5"),
+                '<joint name="pan" type="revolute"><parent link="plate"/><child link="turret"/>'
+                '<axis xyz="0 0 1"/><limit lower="-3" upper="3" velocity="1" effort="1"/></joint>',
+                _link("bar", '<box size="0.4 0.05 0.02"/>', "0.2 0 0"),
+                '<joint name="tilt" type="revolute"><parent link="turret"/><child link="bar"/>'
+                '<origin xyz="0 0 0.2"/><axis xyz="0 1 0"/><limit lower="-0.4" upper="0.4" velocity="1" effort="1"/>'
+                "</joint>",
+            ]
+        ),
+        name="tilting_bar",
+    )

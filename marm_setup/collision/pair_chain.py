@@ -31,6 +31,14 @@ union of balls (point, radius) -- mesh hull vertices and box corners with radius
 centre with its radius, a cylinder's end-cap centres with its radius (a capsule holds it) --
 whose convex hull holds the link. The largest distance from a line over such a set is at one
 of its points (distance from a line is convex), plus that point's radius.
+
+- **separating direction**: a turning joint moves a point perpendicular to its axis, so along a
+  direction u it moves it by at most its displacement bound times |sin| of the angle between u
+  and the axis (a sliding joint: times |cos|). So the gap between the two links' projections on
+  u, less those shares, is a lower bound of the distance over the box. With u a turning axis of
+  the path, joints parallel to it cost nothing: two links of a planar chain (a UR arm's
+  shoulder, elbow and wrist joints) whose projections on the common axis are apart are proved
+  in one box, however far they swing in the plane.
 """
 
 from __future__ import annotations
@@ -85,12 +93,15 @@ class Frames:
 class BoxBounds:
     """Bounds of a pair over K boxes: both links' frames at the centres (in the common
     ancestor's frame), the displacement bound [m] of the best pivot and its share per box
-    column (where to split), and the best pivot's gap between the swept balls [m]."""
+    column (where to split), the best pivot's gap between the swept balls [m], and the best
+    gap between the links' projections on a turning axis of the path, less what the box can
+    move them along it [m]: each a lower bound of the distance over the box."""
 
     frames: tuple[Frames, Frames]
     motion: np.ndarray  # (K,)
     shares: np.ndarray  # (K, m)
     ball_gap: np.ndarray  # (K,)
+    axis_gap: np.ndarray  # (K,) the separating-direction bound (see `_axis_gap`)
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,7 +143,8 @@ class PairChain:
         for i, column in enumerate(path.columns):  # a column may drive several joints (mimic)
             shares[:, column] += per_joint[:, i]
         gaps = np.linalg.norm(balls_a[0] - balls_b[0], axis=2) - balls_a[1] - balls_b[1]
-        return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, gaps.max(axis=1))
+        axis_gap = _axis_gap(path, frames, self.levers, moved_a, moved_b)
+        return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, gaps.max(axis=1), axis_gap)
 
 
 def pair_chain(robot: RobotModel, pair: tuple[str, str], levers: Mapping[str, LeverPoints]) -> PairChain:
@@ -292,6 +304,40 @@ def _reach(pose: np.ndarray, levers: LeverPoints, path: _Path) -> np.ndarray:
         np.sum(points**2, axis=1) - 2.0 * (origins @ points.T) + np.sum(origins**2, axis=2)[..., None]
     ) - along**2
     return np.max(np.sqrt(np.maximum(squared, 0.0)) + levers.radii, axis=2)
+
+
+def _axis_gap(
+    path: _Path, frames: tuple[Frames, Frames], levers: tuple[LeverPoints, LeverPoints], moved_a, moved_b
+) -> np.ndarray:
+    """(K,): the separating-direction bound (see the module doc) over the turning axes' directions
+    u at the centre: the gap between the links' projections on u, less what each joint can move
+    a point along u (its displacement bound times |sin| of its axis' angle to u when it turns,
+    times |cos| when it slides), for the best pivot; -inf when no joint turns."""
+    turning = path.turning
+    if not turning.any():
+        return np.full(len(frames[0].pose), -np.inf)
+    directions = path.axes[:, turning]  # (K, D, 3)
+    low_a, high_a = _projection(frames[0].pose, levers[0], directions)
+    low_b, high_b = _projection(frames[1].pose, levers[1], directions)
+    gap = np.maximum(low_b - high_a, low_a - high_b)  # (K, D)
+    cosine = np.einsum("kni,kdi->knd", path.axes, directions)
+    along = np.where(turning[None, :, None], np.sqrt(np.maximum(0.0, 1.0 - cosine**2)), np.abs(cosine))
+    shrink_a, shrink_b = moved_a[..., None] * along, moved_b[..., None] * along  # (K, n, D)
+    zeros = np.zeros((len(gap), 1, gap.shape[1]))
+    before_a = np.concatenate([zeros, np.cumsum(shrink_a, axis=1)], axis=1)
+    after_b = np.concatenate([np.cumsum(shrink_b[:, ::-1], axis=1)[:, ::-1], zeros], axis=1)
+    return np.max(gap - np.min(before_a + after_b, axis=1), axis=1)
+
+
+def _projection(
+    pose: np.ndarray, levers: LeverPoints, directions: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """(K, D) lowest and highest projections of the link's support balls on `directions`."""
+    local = np.einsum("kji,kdj->kdi", pose[:, :3, :3], directions)
+    offset = np.einsum("kdi,ki->kd", directions, pose[:, :3, 3])[..., None]
+    along = np.einsum("kdi,pi->kdp", local, levers.support_points) + offset
+    radii = levers.support_radii
+    return np.min(along - radii, axis=2), np.max(along + radii, axis=2)
 
 
 def _swept(center, radius, origin, axis, half):

@@ -176,7 +176,7 @@ class PairSearch:
         (its lower bound stays `floor`, its parent's)."""
         centers, halves = (lo + hi) / 2.0, (hi - lo) / 2.0
         bounds = self.chain.evaluate(centers, halves)
-        gaps, motion, shares = bounds.ball_gap, bounds.motion, bounds.shares
+        gaps, motion, shares = np.maximum(bounds.ball_gap, bounds.axis_gap), bounds.motion, bounds.shares
         poses = (bounds.frames[0].pose, bounds.frames[1].pose)
         volumes = np.prod((hi - lo) / self.width, axis=1)
         self.meter.units += len(lo)  # a box's kinematics and bounds cost about a hull query

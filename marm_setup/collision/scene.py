@@ -355,7 +355,7 @@ class CollisionScene:
     def lever_points(self, link: str) -> LeverPoints:
         """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes
         (`collision/levers.py`), computed once per link."""
-        from marm_setup.collision.levers import merged_levers, shape_levers
+        from marm_setup.collision.levers import link_levers, shape_levers
 
         if link not in self._levers:
             points, radii = [], []
@@ -363,7 +363,7 @@ class CollisionScene:
                 p, r = shape_levers(geom, self._coal, self._hull(geom))
                 points.append(p if local is None else p @ local[:3, :3].T + local[:3, 3])
                 radii.append(r)
-            self._levers[link] = merged_levers(np.concatenate(points), np.concatenate(radii))
+            self._levers[link] = link_levers(np.concatenate(points), np.concatenate(radii))
         return self._levers[link]
 
     def _min_distance(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
