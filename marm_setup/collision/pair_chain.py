@@ -43,6 +43,7 @@ of its points (distance from a line is convex), plus that point's radius.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -64,6 +65,12 @@ class _Step:
     column: int  # index into the pair's box columns (-1: fixed)
     multiplier: float = 1.0
     offset: float = 0.0
+
+    @property
+    def cross(self) -> np.ndarray:
+        """The axis' cross-product matrix (Rodrigues' K)."""
+        x, y, z = self.axis
+        return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
 
 
 @dataclass(frozen=True, eq=False)
@@ -158,7 +165,7 @@ def pair_chain(robot: RobotModel, pair: tuple[str, str], levers: Mapping[str, Le
     joints = robot.active_joints
     lower = np.array([joints[c].bounds[0] for c in leaders], dtype=float)
     upper = np.array([joints[c].bounds[1] for c in leaders], dtype=float)
-    steps = tuple(tuple(_step(j, active, position) for j in chain) for chain in chains)
+    steps = tuple(_folded([_step(j, active, position) for j in chain]) for chain in chains)
     upper = np.minimum(upper, lower + _periods(steps, len(leaders)))
     return PairChain(
         pair, np.array(leaders, dtype=np.intp), lower, upper, (steps[0], steps[1]), (levers[a], levers[b])
@@ -184,6 +191,20 @@ def _step(joint: Joint, active: Mapping[str, int], position: Mapping[int, int]) 
     axis = axis / norm if norm > 0 else np.array([1.0, 0.0, 0.0])  # as kinematics._unit
     kind = "prismatic" if joint.type == "prismatic" else "revolute"
     return _Step(origin, kind, axis, position[active[leader]], multiplier, offset)
+
+
+def _folded(steps: list[_Step]) -> tuple[_Step, ...]:
+    """The same chain with each fixed joint's origin folded into the next joint's (fixed joints
+    at the end become one): fewer matrix products per state, the same poses."""
+    out, carried = [], np.eye(4)
+    for step in steps:
+        carried = carried @ step.origin
+        if step.column >= 0:
+            out.append(dataclasses.replace(step, origin=carried))
+            carried = np.eye(4)
+    if not np.array_equal(carried, np.eye(4)):
+        out.append(_Step(carried, "fixed", np.zeros(3), -1))
+    return tuple(out)
 
 
 def _leader(joint: Joint) -> tuple[str, float, float]:
@@ -212,7 +233,7 @@ def _frames(steps: tuple[_Step, ...], q: np.ndarray) -> Frames:
         axes.append(axis)
         moving.append(step)
         if step.kind == "revolute":
-            pose[:, :3, :3] = pose[:, :3, :3] @ _rotations(step.axis, value)
+            pose[:, :3, :3] = pose[:, :3, :3] @ _rotations(step.cross, value)
         else:
             pose[:, :3, 3] += axis * value[:, None]
     empty = np.zeros((count, 0, 3))
@@ -296,8 +317,8 @@ def _reach(pose: np.ndarray, levers: LeverPoints, path: _Path) -> np.ndarray:
     """(K, n): the largest distance of the link's lever balls from each path joint's axis,
     worked out in the link's frame (the axes moved there: two matrix products)."""
     rotation, translation = pose[:, :3, :3], pose[:, :3, 3]
-    origins = np.einsum("kji,knj->kni", rotation, path.origins - translation[:, None, :])
-    axes = np.einsum("kji,knj->kni", rotation, path.axes)
+    origins = (path.origins - translation[:, None, :]) @ rotation  # rows: R^T v
+    axes = path.axes @ rotation
     points = levers.points
     along = axes @ points.T - np.sum(origins * axes, axis=2)[..., None]  # (K, n, P)
     squared = (
@@ -320,7 +341,7 @@ def _axis_gap(
     low_a, high_a = _projection(frames[0].pose, levers[0], directions)
     low_b, high_b = _projection(frames[1].pose, levers[1], directions)
     gap = np.maximum(low_b - high_a, low_a - high_b)  # (K, D)
-    cosine = np.einsum("kni,kdi->knd", path.axes, directions)
+    cosine = path.axes @ directions.transpose(0, 2, 1)  # (K, n, D)
     along = np.where(turning[None, :, None], np.sqrt(np.maximum(0.0, 1.0 - cosine**2)), np.abs(cosine))
     shrink_a, shrink_b = moved_a[..., None] * along, moved_b[..., None] * along  # (K, n, D)
     zeros = np.zeros((len(gap), 1, gap.shape[1]))
@@ -333,9 +354,9 @@ def _projection(
     pose: np.ndarray, levers: LeverPoints, directions: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """(K, D) lowest and highest projections of the link's support balls on `directions`."""
-    local = np.einsum("kji,kdj->kdi", pose[:, :3, :3], directions)
-    offset = np.einsum("kdi,ki->kd", directions, pose[:, :3, 3])[..., None]
-    along = np.einsum("kdi,pi->kdp", local, levers.support_points) + offset
+    local = directions @ pose[:, :3, :3]  # rows: R^T u
+    offset = np.sum(directions * pose[:, None, :3, 3], axis=2)[..., None]
+    along = local @ levers.support_points.T + offset
     radii = levers.support_radii
     return np.min(along - radii, axis=2), np.max(along + radii, axis=2)
 
@@ -369,9 +390,13 @@ def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     )
 
 
-def _rotations(axis: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """Rotation matrices (K, 3, 3) about unit `axis` (Rodrigues)."""
-    x, y, z = axis
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    s, c = np.sin(angles)[:, None, None], np.cos(angles)[:, None, None]
-    return np.eye(3) + s * k + (1.0 - c) * (k @ k)
+def _rotations(cross: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Rotation matrices (K, 3, 3) about the unit axis whose cross-product matrix is `cross`
+    (Rodrigues: I + sin a K + (1 - cos a) K^2)."""
+    rotation = np.multiply.outer(np.sin(angles), cross) + np.multiply.outer(
+        1.0 - np.cos(angles), cross @ cross
+    )
+    rotation[:, 0, 0] += 1.0
+    rotation[:, 1, 1] += 1.0
+    rotation[:, 2, 2] += 1.0
+    return rotation
