@@ -134,7 +134,7 @@ def compute_collision_matrix(
     shards = _with_tracked(plan_shards(trial_pairs, costs, jobs), proved if distances else ())
     closest, work = _never_phase(scene, shards, seen, seed, trials, shortcuts, distances, progress)
     unseen = {p: screened[p] for p in trial_pairs if p not in seen and p in screened}
-    proofs.update(_settle(scene, unseen, prove, seed, jobs))
+    proofs.update(_settle(scene, unseen, prove, seed, jobs, sum(p.units for p in screened.values())))
     enabled = seen | {p for p, proof in proofs.items() if proof.outcome == COLLIDES}
     reasons.update(dict.fromkeys((p for p in remaining if p not in enabled), DisabledReason.NEVER))
     stats = tuple(
@@ -166,13 +166,16 @@ def _screen(scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int) ->
     return screen_pairs(scene, pairs, prove, seed, jobs)
 
 
-def _settle(scene, priors: dict[Pair, PairProof], prove: str, seed: int, jobs: int) -> dict[Pair, PairProof]:
-    """The witness search of the unproved pairs the trials never saw in collision."""
+def _settle(
+    scene, priors: dict[Pair, PairProof], prove: str, seed: int, jobs: int, spent: int
+) -> dict[Pair, PairProof]:
+    """The rest of the proof of the unproved pairs the trials never saw in collision (`spent`:
+    the screen's units)."""
     if prove == "off":
         return {}
     from marm_setup.collision.proving import settle_pairs
 
-    return settle_pairs(scene, priors, prove, seed, jobs)
+    return settle_pairs(scene, priors, prove, seed, jobs, spent)
 
 
 def _with_tracked(shards: list[tuple[Pair, ...]], tracked: tuple[Pair, ...]) -> list:

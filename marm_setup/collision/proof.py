@@ -23,7 +23,6 @@ the outcome depends on the pair, the seed and the budget only (not --jobs nor th
 from __future__ import annotations
 
 import heapq
-import itertools
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -36,9 +35,10 @@ if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
 
 PROVED, COLLIDES, UNPROVED = "proved", "collides", "unproved"
-BATCH = 64  # boxes split per round (their children are evaluated in one numpy batch)
-MIN_CHILDREN = 48  # a round cuts its few boxes in more parts, up to 2**MAX_LEVELS each: a numpy
-MAX_LEVELS = 5  # batch costs about 1 ms however small, a box in it about 15 us
+BATCH = 256  # boxes split per round (their children are evaluated in one numpy batch: a batch
+MIN_CHILDREN = 128  # costs about 1 ms however small, a box in it about 15 us); a round cuts its
+MAX_LEVELS = 5  # few boxes in more parts, up to 2**MAX_LEVELS each (a proof's boxes are the same
+SLACK = 64  # in any order); SLACK: open boxes beyond what the budget left can split
 RELATIVE_MARGIN = 1e-5  # coal's GJK stops within a relative 1e-6 of the distance (VDB criterion)
 WITNESS_DECIMALS = 6  # a witness is rounded to 1e-6 [rad, m], then checked at those values
 TINY = 1e-9  # [m] a box whose whole displacement bound is below this is not split further
@@ -55,26 +55,44 @@ class Budget:
     descent: int
 
 
-# Per prove mode, units per pair: the screen before the trials (the branch and bound: at least,
-# at most, a pool the candidates share, and at most again for a second try of the pairs left
-# open with what the pool has left), then the settling of the pairs the trials never saw in
-# collision (the witness search: per pair, and a pool they share). None: no pool. A robot with
-# few candidates gives each more (the panda: 600 of 30; the UR5e's two hard pairs get the rest);
-# one with many, less (the PR2: 60 of 1300, where most pairs are far apart: a handful each).
-SCREEN = {"on": (60, 600, 20_000, 10_000), "exhaustive": (50_000, 50_000, None, 0)}
-SETTLE = {"on": (600, 25_000), "exhaustive": (30_000, None)}
+# Per prove mode, units per pair. SCREEN, the branch and bound before the trials: at least, at
+# most, and a pool the candidates share (None: no pool). SETTLE, for the pairs the trials never
+# saw in collision: the branch and bound goes on, at most `again` units a pair, with what the
+# screen's pool has left; then the witness search, `descent` a pair at most, from a pool they
+# share. A robot with few candidates gives each more (the panda: 500 of 40), one with many,
+# less (the PR2: 60 of 1300, where most pairs are far apart: a handful of units each).
+SCREEN = {"on": (60, 600, 20_000), "exhaustive": (50_000, 50_000, None)}
+SETTLE = {"on": (10_000, 1000, 60_000), "exhaustive": (0, 30_000, None)}
 CLOSEST = 8  # closest box centres a proof keeps for the witness search
+
+
+@dataclass(frozen=True, eq=False)
+class SearchState:
+    """Where an unfinished branch and bound stopped, to go on from there (plain data: it goes
+    to and from pool processes): its open boxes (heap items), the certified share, the closest
+    centres measured, the meter's counts, the next sequence number, whether a box was too small
+    to split."""
+
+    heap: list
+    certified: float
+    measured: list
+    units: int
+    extra: tuple[int, int]
+    sequence: int
+    stuck: bool
 
 
 @dataclass(frozen=True, slots=True)
 class PairProof:
-    """What the proof of one pair found; `witness`: (joint, value) in contact (collides only)."""
+    """What the proof of one pair found; `witness`: (joint, value) in contact (collides only);
+    `state`: an unproved branch and bound's, to go on with more units."""
 
     outcome: str
     proved_fraction: float
     witness: tuple[tuple[str, float], ...] = ()
     units: int = 0  # work done, in hull-query units
     closest: tuple[tuple[float, ...], ...] = field(default=(), compare=False, repr=False)  # centres
+    state: SearchState | None = field(default=None, compare=False, repr=False)
 
 
 class Meter:
@@ -107,9 +125,12 @@ class Meter:
 
 
 class PairSearch:
-    """The branch and bound of one pair in one scene (see the module doc)."""
+    """The branch and bound of one pair in one scene (see the module doc), new or going on
+    from an earlier one's `state`; `budget.boxes` counts from the start of the first."""
 
-    def __init__(self, scene: CollisionScene, chain: PairChain, budget: Budget) -> None:
+    def __init__(
+        self, scene: CollisionScene, chain: PairChain, budget: Budget, state: SearchState | None = None
+    ) -> None:
         self.scene, self.chain, self.budget = scene, chain, budget
         self.pair_id = int(scene.pair_ids((chain.pair,))[0])
         self.meter = Meter(scene, self.pair_id)
@@ -119,55 +140,69 @@ class PairSearch:
         self.witness: tuple[tuple[str, float], ...] = ()
         self.measured: list[tuple[float, int, np.ndarray]] = []  # (distance, order, centre)
         self._heap: list = []
-        self._sequence = itertools.count()
+        self._sequence = 0
+        self._stuck = False  # a box too small to split is still undecided
+        self._started = state is not None
+        if state is not None:
+            self._heap, self.certified, self.measured = (
+                list(state.heap),
+                state.certified,
+                list(state.measured),
+            )
+            self.meter.units, (self.meter.extra_tries, self.meter.extra_wins) = state.units, state.extra
+            self._sequence, self._stuck = state.sequence, state.stuck
 
     def run(self) -> PairProof:
-        """The branch and bound, within the budget's boxes."""
-        chain = self.chain
-        self._evaluate(chain.lower[None], chain.upper[None], np.array([np.inf]), np.array([-np.inf]))
-        stuck = False  # a box too small to split is still undecided
+        """The branch and bound, until its boxes are decided or the budget's boxes are spent."""
+        if not self._started:
+            chain = self.chain
+            self._evaluate(chain.lower[None], chain.upper[None], np.array([np.inf]), np.array([-np.inf]))
+            self._started = True
         while self._heap and not self.witness and self._can_finish():
             batch = [heapq.heappop(self._heap) for _ in range(min(BATCH, len(self._heap)))]
             levels = max(1, min(MAX_LEVELS, int(np.ceil(np.log2(MIN_CHILDREN / len(batch))))))
-            halves = [_split(item, levels) for item in batch]
-            stuck = stuck or any(not h for h in halves)
-            children = [child for h in halves for child in h]
-            if children:
-                lo, hi, reach, floor = (np.array([c[i] for c in children]) for i in range(4))
-                self._evaluate(lo, hi, reach, floor)
+            splittable = [item for item in batch if len(item[2]) and item[4].max(initial=0.0) >= TINY]
+            self._stuck = self._stuck or len(splittable) < len(batch)
+            if splittable:
+                self._evaluate(*_split(splittable, levels))
         if self.witness:
             return self._result(COLLIDES)
-        return self._result(PROVED if not self._heap and not stuck else UNPROVED)
+        return self._result(PROVED if not self._heap and not self._stuck else UNPROVED)
 
     def _can_finish(self) -> bool:
         """Whether the budget (and the one round it may overrun by) could still certify every
         open box: each needs splitting, so two more boxes (units) apiece at least; when it
         cannot, going on proves nothing."""
         left = self.budget.boxes - self.meter.units
-        return left > 0 and 2 * len(self._heap) <= left + 2 * BATCH
+        return left > 0 and 2 * len(self._heap) <= left + 2 * SLACK
 
-    def settle(self, prior: PairProof, seed: int) -> PairProof:
-        """The witness search of an unproved pair, from its closest centres, within the
+    def settle(self, seed: int) -> PairProof:
+        """The witness search of this unproved pair, from its closest centres, within the
         budget's descent units."""
         from marm_setup.collision.witness import search_witness
 
-        self.certified = prior.proved_fraction
-        self.meter.units = prior.units
-        starts = [np.array(c) for c in prior.closest]
-        self.witness = search_witness(self, starts, seed, prior.units + self.budget.descent)
-        return self._result(COLLIDES if self.witness else UNPROVED)
+        starts = [np.array(centre) for centre in self._closest()]
+        self.witness = search_witness(self, starts, seed, self.meter.units + self.budget.descent)
+        return self._result(COLLIDES if self.witness else UNPROVED, keep=False)
 
-    def _result(self, outcome: str) -> PairProof:
+    def _closest(self) -> list[np.ndarray]:
+        return [centre for _, _, centre in heapq.nsmallest(CLOSEST, self.measured, key=lambda m: m[:2])]
+
+    def _result(self, outcome: str, keep: bool = True) -> PairProof:
         fraction = 1.0 if outcome == PROVED else min(1.0, float(self.certified))
-        closest = (
-            ()
-            if outcome != UNPROVED
-            else tuple(
-                tuple(float(v) for v in centre)
-                for _, _, centre in sorted(self.measured, key=lambda m: m[:2])[:CLOSEST]
+        if outcome != UNPROVED:
+            return PairProof(outcome, fraction, self.witness, int(self.meter.units))
+        closest = self._closest()
+        state = None
+        if keep:
+            kept = heapq.nsmallest(CLOSEST, self.measured, key=lambda m: m[:2])
+            meter = self.meter
+            extra = (meter.extra_tries, meter.extra_wins)
+            state = SearchState(
+                list(self._heap), self.certified, kept, meter.units, extra, self._sequence, self._stuck
             )
-        )
-        return PairProof(outcome, fraction, self.witness, int(self.meter.units), closest)
+        centres = tuple(tuple(float(v) for v in centre) for centre in closest)
+        return PairProof(outcome, fraction, self.witness, int(self.meter.units), centres, state)
 
     def _evaluate(self, lo: np.ndarray, hi: np.ndarray, reach: np.ndarray, floor: np.ndarray) -> None:
         """Decide each box of the batch or put it on the heap with its lower bound. `reach`:
@@ -196,7 +231,8 @@ class PairSearch:
                 self._push(bound, lo[k], hi[k], shares[k], measured)
 
     def _push(self, bound: float, lo: np.ndarray, hi: np.ndarray, shares: np.ndarray, reach: float) -> None:
-        heapq.heappush(self._heap, (bound, next(self._sequence), lo, hi, shares, reach))
+        heapq.heappush(self._heap, (bound, self._sequence, lo, hi, shares, reach))
+        self._sequence += 1
 
     def _distance_bound(
         self, pose_a: np.ndarray, pose_b: np.ndarray, motion: float, center: np.ndarray
@@ -252,34 +288,41 @@ def _most(distance: float) -> float:
     return distance + CERT_MARGIN + RELATIVE_MARGIN * abs(distance)
 
 
-def _split(item: tuple, levels: int = 1) -> list[tuple[np.ndarray, np.ndarray, float, float]]:
-    """The box cut in 2**levels, each cut halving its largest share of the displacement bound
-    (a halved share counts as half), each part with the most its centre's distance can be (the
-    box's plus the shares its centre moved by: moving one variable by up to its half-width moves
-    the geometry by at most its share) and the box's lower bound."""
-    bound, _, lo, hi, shares, reach = item
-    if not len(lo) or shares.max(initial=0.0) < TINY:
-        return []
-    parts = [(lo, hi, shares.copy(), reach)]
+def _split(items: list[tuple], levels: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Heap items' boxes each cut in 2**levels (lo, hi, reach, floor per part, each box's parts
+    together), each cut halving the part's largest share of the displacement bound (a halved
+    share counts as half); a part's reach is the most its centre's distance can be (the box's
+    plus the shares its centre moved by: moving one variable by up to its half-width moves the
+    geometry by at most its share), its floor the box's lower bound."""
+    floor = np.array([item[0] for item in items])
+    lo, hi, shares = (np.array([item[i] for item in items]) for i in (2, 3, 4))
+    reach = np.array([item[5] for item in items])
     for _ in range(levels):
-        cut = []
-        for part_lo, part_hi, part_shares, part_reach in parts:
-            k = int(np.argmax(part_shares))
-            mid = (part_lo[k] + part_hi[k]) / 2.0
-            left_hi, right_lo = part_hi.copy(), part_lo.copy()
-            left_hi[k], right_lo[k] = mid, mid
-            halved = part_shares.copy()
-            halved[k] /= 2.0
-            moved = part_reach + part_shares[k]
-            cut += [(part_lo, left_hi, halved, moved), (right_lo, part_hi, halved, moved)]
-        parts = cut
-    return [(part_lo, part_hi, part_reach, bound) for part_lo, part_hi, _, part_reach in parts]
+        rows = np.arange(len(lo))
+        k = np.argmax(shares, axis=1)
+        mid = (lo[rows, k] + hi[rows, k]) / 2.0
+        left_hi, right_lo = hi.copy(), lo.copy()
+        left_hi[rows, k], right_lo[rows, k] = mid, mid
+        reach = np.repeat(reach + shares[rows, k], 2)
+        shares = shares.copy()
+        shares[rows, k] /= 2.0
+        lo = np.stack([lo, right_lo], axis=1).reshape(-1, lo.shape[1])
+        hi = np.stack([left_hi, hi], axis=1).reshape(-1, hi.shape[1])
+        shares, floor = np.repeat(shares, 2, axis=0), np.repeat(floor, 2)
+    return lo, hi, reach, floor
 
 
 def prove_pair(
     scene: CollisionScene, chain: PairChain, budget: Budget, seed: int = 0, prior: PairProof | None = None
 ) -> PairProof:
-    """The proof of one pair (see the module doc): the branch and bound, or with `prior` (an
-    unproved pair's earlier proof) the witness search."""
-    search = PairSearch(scene, chain, budget)
-    return search.run() if prior is None else search.settle(prior, seed)
+    """The proof of one pair (see the module doc): the branch and bound within `budget.boxes`;
+    with `prior` (an unproved pair's earlier proof) its branch and bound goes on for
+    `budget.boxes` more units, then, still unproved, the witness search gets `budget.descent`."""
+    if prior is None:
+        return PairSearch(scene, chain, budget).run()
+    limit = Budget(prior.units + budget.boxes, budget.descent)
+    search = PairSearch(scene, chain, limit, prior.state)
+    proof = search.run() if prior.state is not None and budget.boxes > 0 else prior
+    if proof.outcome != UNPROVED or budget.descent <= 0:
+        return proof
+    return search.settle(seed)

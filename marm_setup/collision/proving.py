@@ -14,7 +14,7 @@ from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 from marm_setup.collision.pairs import PROVE_MODES
-from marm_setup.collision.proof import SCREEN, SETTLE, UNPROVED, Budget, PairProof, prove_pair
+from marm_setup.collision.proof import SCREEN, SETTLE, Budget, PairProof, prove_pair
 
 if TYPE_CHECKING:
     from marm_setup.collision.pair_chain import PairChain
@@ -22,7 +22,8 @@ if TYPE_CHECKING:
     from marm_setup.robot import RobotModel
 
 Pair = tuple[str, str]
-WORTH_A_POOL = 12  # pairs below which the proofs run in this process
+WORTH_A_POOL = 40_000  # units of work below which the proofs run in this process (a pool of
+# forked processes costs about 0.1 s of CPU; 40,000 units take about 0.5 s)
 
 _STATE: dict[str, Any] = {}  # in a pool process: its scene, chains and task
 
@@ -30,30 +31,32 @@ _STATE: dict[str, Any] = {}  # in a pool process: its scene, chains and task
 def screen_pairs(
     scene: CollisionScene, pairs: Sequence[Pair], mode: str, seed: int = 0, jobs: int = 1
 ) -> dict[Pair, PairProof]:
-    """Pair -> its branch and bound, within the screen's units (see proof.SCREEN): a first try
-    of every pair, then, when the pool has enough left, a longer one of the pairs left open."""
-    least, most, pool, again = SCREEN[_checked(mode)]
+    """Pair -> its branch and bound, within the screen's units (see proof.SCREEN); an
+    unproved one keeps its state, for `settle_pairs` to go on from."""
+    least, most, pool = SCREEN[_checked(mode)]
     boxes = most if pool is None else int(min(most, max(least, pool // max(1, len(pairs)))))
-    proofs = prove_pairs(scene, pairs, Budget(boxes, 0), seed, jobs)
-    left_open = sorted(p for p, proof in proofs.items() if proof.outcome == UNPROVED)
-    if pool is None or not left_open:
-        return proofs
-    share = min(again, (pool - sum(p.units for p in proofs.values())) // len(left_open))
-    if share < 2 * boxes:  # not worth starting them again
-        return proofs
-    for pair, proof in prove_pairs(scene, left_open, Budget(share, 0), seed, jobs).items():
-        proofs[pair] = dataclasses.replace(proof, units=proof.units + proofs[pair].units)
-    return proofs
+    return prove_pairs(scene, pairs, Budget(boxes, 0), seed, jobs)
 
 
 def settle_pairs(
-    scene: CollisionScene, priors: dict[Pair, PairProof], mode: str, seed: int = 0, jobs: int = 1
+    scene: CollisionScene,
+    priors: dict[Pair, PairProof],
+    mode: str,
+    seed: int = 0,
+    jobs: int = 1,
+    spent: int = 0,
 ) -> dict[Pair, PairProof]:
-    """Pair -> its witness search after its unproved screen `priors[pair]` (see proof.SETTLE)."""
-    descent, pool = SETTLE[_checked(mode)]
+    """Pair -> its proof after its unproved screen `priors[pair]` (see proof.SETTLE): the branch
+    and bound goes on with what the screen's pool has left after `spent` units (shared, up to
+    a most a pair), then the witness search."""
+    again, descent, pool = SETTLE[_checked(mode)]
+    screen_pool = SCREEN[mode][2]
+    count = max(1, len(priors))
+    boxes = again if screen_pool is None else min(again, max(0, screen_pool - spent) // count)
     if pool is not None:
-        descent = min(descent, pool // max(1, len(priors)))
-    return prove_pairs(scene, sorted(priors), Budget(0, descent), seed, jobs, priors)
+        descent = min(descent, pool // count)
+    proofs = prove_pairs(scene, sorted(priors), Budget(boxes, descent), seed, jobs, priors)
+    return {pair: dataclasses.replace(proof, state=None) for pair, proof in proofs.items()}
 
 
 def prove_pairs(
@@ -70,7 +73,7 @@ def prove_pairs(
     priors = priors or {}
     chains = _chains(scene, pairs)
     order = sorted(pairs, key=lambda p: (-chains[p].dims, p))
-    if jobs <= 1 or len(pairs) < WORTH_A_POOL:
+    if jobs <= 1 or len(pairs) < 2 or len(pairs) * (budget.boxes + budget.descent) < WORTH_A_POOL:
         return {p: prove_pair(scene, chains[p], budget, seed, priors.get(p)) for p in order}
     return dict(_pooled(scene, chains, order, (budget, seed, priors), jobs))
 

@@ -1,8 +1,9 @@
 """The witness search of a pair the branch and bound could not settle: descend its distance.
 
-From start states (the closest box centres the branch and bound measured, then random states
-seeded by the run's seed and the pair's names), step down the distance's gradient in the box's
-variables until the pair is in contact. The gradient comes from coal's nearest points: a point
+From start states (the nearest-looking of DENSE random states of the pair's box, ranked by the
+kinematics of its two chains alone, then the closest box centres the branch and bound
+measured, then random states; seeded by the run's seed and the pair's names), step down the
+distance's gradient in the box's variables until the pair is in contact. The gradient comes from coal's nearest points: a point
 fixed to a link moves at axis x (point - axis origin) per radian of a turning joint, along the
 axis per metre of a sliding one, a mimic joint's by its multiplier. While the meshes' convex
 hulls are more than SWITCH apart the hulls' distance is descended (far cheaper, and the
@@ -30,7 +31,11 @@ if TYPE_CHECKING:
     from marm_setup.collision.pair_chain import Frames, PairChain
     from marm_setup.collision.proof import PairSearch
 
-CLOSEST = 8  # descents from the closest box centres measured, before the random ones
+DENSE = 2048  # descents from the DENSE_STARTS nearest-looking of DENSE random states of the
+CLOSEST = 8  # pair's box, then from the CLOSEST box centres measured, then from random states
+DENSE_STARTS = 24
+FIRST_CUT = 128
+STATES_PER_UNIT = 16  # the kinematics of a pair's two chains and the ranking, per state
 BATCH = 16  # descents run together
 STEPS = 10  # gradient steps per descent at most
 HALVINGS = 7
@@ -46,7 +51,7 @@ def search_witness(search: PairSearch, closest: list[np.ndarray], seed: int, lim
     chain = search.chain
     if not chain.dims:  # nothing moves: the branch and bound measured the one state there is
         return ()
-    starts = _starts(chain, closest, seed)
+    starts = _starts(search, closest, seed)
     while search.meter.units < limit:
         witness, _ = descend(search, np.array([next(starts) for _ in range(BATCH)]), limit)
         if witness:
@@ -54,11 +59,56 @@ def search_witness(search: PairSearch, closest: list[np.ndarray], seed: int, lim
     return ()
 
 
-def _starts(chain: PairChain, closest: list[np.ndarray], seed: int) -> Iterator[np.ndarray]:
-    yield from closest[:CLOSEST]
+def _starts(search: PairSearch, closest: list[np.ndarray], seed: int) -> Iterator[np.ndarray]:
+    """The nearest-looking of DENSE random states, the closest box centres measured, then
+    random states (seeded by the run's seed and the pair's names). Starting from the dense
+    states first found the dual panda's rare contacts (one arm's hand against the other's
+    base) in 50 of 60 tries at 1000 units a pair, from the box centres first in 46."""
+    chain = search.chain
     rng = np.random.default_rng([seed, zlib.crc32("\0".join(chain.pair).encode())])
+    dense = nearest_looking(
+        chain, chain.lower + rng.random((DENSE, chain.dims)) * (chain.upper - chain.lower)
+    )
+    search.meter.units += DENSE // STATES_PER_UNIT
+    yield from dense
+    yield from closest[:CLOSEST]
     while True:
         yield chain.lower + rng.random(chain.dims) * (chain.upper - chain.lower)
+
+
+def nearest_looking(chain: PairChain, q: np.ndarray) -> np.ndarray:
+    """The DENSE_STARTS states of `q` whose links look nearest, nearest first: by the gap of
+    balls round the links' lever balls, then, for the nearest FIRST_CUT, by the smallest gap
+    between lever balls (not a bound: the balls hold a link's hull points, not its surface;
+    a ranking, for the descents to start from). Kinematics of the pair's chains only."""
+    frames = chain.frames(q)
+    rough = _ball_gaps(chain, frames)
+    rows = np.argsort(rough, kind="stable")[:FIRST_CUT]
+    fine = _lever_gaps(chain, frames, rows)
+    return q[rows[np.argsort(fine, kind="stable")[:DENSE_STARTS]]]
+
+
+def _ball_gaps(chain: PairChain, frames: tuple[Frames, Frames]) -> np.ndarray:
+    centres = []
+    for levers, frame in zip(chain.levers, frames, strict=True):
+        low, high = levers.points.min(axis=0), levers.points.max(axis=0)
+        middle = (low + high) / 2.0
+        radius = float(np.max(np.linalg.norm(levers.points - middle, axis=1) + levers.radii))
+        centres.append((frame.pose[:, :3, :3] @ middle + frame.pose[:, :3, 3], radius))
+    return np.linalg.norm(centres[0][0] - centres[1][0], axis=1) - centres[0][1] - centres[1][1]
+
+
+def _lever_gaps(chain: PairChain, frames: tuple[Frames, Frames], rows: np.ndarray) -> np.ndarray:
+    a, b = (
+        (frame.pose[rows, :3, :3] @ levers.points.T).transpose(0, 2, 1) + frame.pose[rows, None, :3, 3]
+        for levers, frame in zip(chain.levers, frames, strict=True)
+    )
+    squared = (
+        np.sum(a**2, axis=2)[:, :, None] + np.sum(b**2, axis=2)[:, None, :] - 2.0 * (a @ b.transpose(0, 2, 1))
+    )
+    gaps = np.sqrt(np.maximum(squared, 0.0))
+    gaps -= chain.levers[0].radii[None, :, None] + chain.levers[1].radii[None, None, :]
+    return gaps.reshape(len(rows), -1).min(axis=1)
 
 
 class _Descents:
