@@ -132,9 +132,13 @@ def compute_collision_matrix(
     trial_pairs = tuple(p for p in remaining if p not in seen and p not in proofs)
     costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
     shards = _with_tracked(plan_shards(trial_pairs, costs, jobs), proved if distances else ())
-    closest, work = _never_phase(scene, shards, seen, seed, trials, shortcuts, distances, progress)
+    nearest = prove != "off"
+    closest, rows, work = _never_phase(
+        scene, shards, seen, (seed, trials), shortcuts, (distances, nearest), progress
+    )
     unseen = {p: screened[p] for p in trial_pairs if p not in seen and p in screened}
-    proofs.update(_settle(scene, unseen, prove, seed, jobs, sum(p.units for p in screened.values())))
+    spent = sum(p.units for p in screened.values())
+    proofs.update(_settle(scene, unseen, prove, (seed, trials), jobs, spent, rows))
     enabled = seen | {p for p, proof in proofs.items() if proof.outcome == COLLIDES}
     reasons.update(dict.fromkeys((p for p in remaining if p not in enabled), DisabledReason.NEVER))
     stats = tuple(
@@ -167,15 +171,19 @@ def _screen(scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int) ->
 
 
 def _settle(
-    scene, priors: dict[Pair, PairProof], prove: str, seed: int, jobs: int, spent: int
+    scene, priors: dict[Pair, PairProof], prove: str, draw: tuple[int, int], jobs: int, spent: int, rows
 ) -> dict[Pair, PairProof]:
     """The rest of the proof of the unproved pairs the trials never saw in collision (`spent`:
-    the screen's units)."""
-    if prove == "off":
+    the screen's units; `rows`: each pair's closest trial states, of `draw` (seed, trials))."""
+    if prove == "off" or not priors:
         return {}
     from marm_setup.collision.proving import settle_pairs
+    from marm_setup.collision.trials import trial_states
 
-    return settle_pairs(scene, priors, prove, seed, jobs, spent)
+    wanted = sorted({i for p in priors for i in rows.get(p, ())})
+    states = dict(zip(wanted, trial_states(scene.robot, *draw, wanted), strict=True))
+    starts = {p: np.array([states[i] for i in rows.get(p, ())]) for p in priors}
+    return settle_pairs(scene, priors, prove, draw[0], jobs, spent, starts)
 
 
 def _with_tracked(shards: list[tuple[Pair, ...]], tracked: tuple[Pair, ...]) -> list:
@@ -188,15 +196,23 @@ def _with_tracked(shards: list[tuple[Pair, ...]], tracked: tuple[Pair, ...]) -> 
 
 
 def _never_phase(
-    scene, shards, seen: set[Pair], seed: int, trials: int, shortcuts: bool, distances: bool, progress
-) -> tuple[dict[Pair, float], Work]:
-    """The trials over `shards` of pairs (one process each when several): adds the pairs seen
-    colliding to `seen`; returns each never-seen pair's smallest distance (when `distances`) and
-    the work of worker processes."""
-    with Workers(scene, seed, trials, shortcuts, shards, distances) as workers:
+    scene,
+    shards,
+    seen: set[Pair],
+    draw: tuple[int, int],
+    shortcuts: bool,
+    wanted: tuple[bool, bool],
+    progress,
+) -> tuple[dict[Pair, float], dict[Pair, tuple[int, ...]], Work]:
+    """The trials (`draw`: seed, count) over `shards` of pairs (one process each when several):
+    adds the pairs seen colliding to `seen`; returns each never-seen pair's smallest distance
+    (when `wanted[0]`), its closest trial states' indices (when `wanted[1]`) and the work of
+    worker processes."""
+    seed, trials = draw
+    with Workers(scene, seed, trials, shortcuts, shards, *wanted) as workers:
         work = _run_trials(workers, seen, trials, progress)
-        closest, distance_work = workers.distances() if distances else ({}, Work())
-    return closest, work + distance_work
+        closest, rows, closest_work = workers.closest() if any(wanted) else ({}, {}, Work())
+    return closest, rows, work + closest_work
 
 
 def _disable_default(scene, q0: np.ndarray, reasons: dict[Pair, DisabledReason], hulls: bool) -> None:

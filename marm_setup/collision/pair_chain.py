@@ -126,6 +126,12 @@ class PairChain:
     def dims(self) -> int:
         return len(self.columns)
 
+    def box_values(self, q: np.ndarray) -> np.ndarray:
+        """The box's variables (K, m) at robot states `q` (K, active joints): a turning joint's
+        value beyond the box (its range was folded to one turn) taken a whole turn back."""
+        values = q[:, self.columns]
+        return np.where(values > self.upper, self.lower + np.mod(values - self.lower, 2.0 * np.pi), values)
+
     def frames(self, q: np.ndarray) -> tuple[Frames, Frames]:
         """Both links' frames at the states `q` (K, m) of the box's variables."""
         return _frames(self.steps[0], q), _frames(self.steps[1], q)
@@ -288,7 +294,7 @@ def _sweep(
     radii (K, n + 1)."""
     count, n = len(pose), path.count
     reach = _reach(pose, levers, path)  # (K, n): farthest point from each axis
-    center, radius = _ball(levers)
+    center, radius = ball_round(levers)
     ball_center = pose[:, :3, :3] @ center + pose[:, :3, 3]
     ball_radius = np.full(count, radius)
     chord = 2.0 * np.sin(np.minimum(half, np.pi) / 2.0)  # per unit of distance from the axis
@@ -361,6 +367,21 @@ def _projection(
     return np.min(along - radii, axis=2), np.max(along + radii, axis=2)
 
 
+def swept_ball(center: np.ndarray, radius: float, origin: np.ndarray, axis: np.ndarray, half: float):
+    """One ball (centre (3,), radius) swept round the axis line over +- half."""
+    new_center, new_radius = _swept(
+        center[None], np.array([radius]), origin[None], axis[None], np.array([half])
+    )
+    return new_center[0], float(new_radius[0])
+
+
+def rotation_about(axis: np.ndarray, angle: float) -> np.ndarray:
+    """The rotation (3, 3) by `angle` about unit `axis`."""
+    x, y, z = axis
+    cross = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return _rotations(cross, np.array([angle]))[0]
+
+
 def _swept(center, radius, origin, axis, half):
     """Ball (center, radius) swept round the axis line over +- half (see the module doc)."""
     foot = origin + np.sum((center - origin) * axis, axis=1)[:, None] * axis
@@ -370,7 +391,7 @@ def _swept(center, radius, origin, axis, half):
     return new_center, radius + np.where(narrow, rho * np.sin(np.minimum(half, np.pi / 2.0)), rho)
 
 
-def _ball(levers: LeverPoints) -> tuple[np.ndarray, float]:
+def ball_round(levers: LeverPoints) -> tuple[np.ndarray, float]:
     """A ball round the lever points' balls (centred on their bounding box)."""
     lo = np.min(levers.points - levers.radii[:, None], axis=0)
     hi = np.max(levers.points + levers.radii[:, None], axis=0)

@@ -55,14 +55,36 @@ class Budget:
     descent: int
 
 
-# Per prove mode, units per pair. SCREEN, the branch and bound before the trials: at least, at
-# most, and a pool the candidates share (None: no pool). SETTLE, for the pairs the trials never
-# saw in collision: the branch and bound goes on, at most `again` units a pair, with what the
-# screen's pool has left; then the witness search, `descent` a pair at most, from a pool they
-# share. A robot with few candidates gives each more (the panda: 500 of 40), one with many,
-# less (the PR2: 60 of 1300, where most pairs are far apart: a handful of units each).
-SCREEN = {"on": (60, 600, 20_000), "exhaustive": (50_000, 50_000, None)}
-SETTLE = {"on": (10_000, 1000, 60_000), "exhaustive": (0, 30_000, None)}
+# Per prove mode, units per pair. SCREEN, the branch and bound before the trials: at least (a
+# pair offered less waits for the settling), at most, and a pool the candidates share (None: no
+# pool). A robot with few candidates gives each more (the panda: 500 of 40); on one with many
+# (the PR2: 1300) only the reach balls screen, and the trials go first.
+SCREEN = {"on": (64, 600, 20_000), "exhaustive": (50_000, 50_000, None)}
+
+
+@dataclass(frozen=True, slots=True)
+class Settle:
+    """The settling of the pairs the trials never saw in collision: the branch and bound goes
+    on, at most `again` units a pair, with what the screen's pool has left; then the witness
+    search, `descent` units a pair at most from a `pool` they share; the pairs whose search
+    ended within `close` [m] of contact get a second round, at most `second` units a pair from
+    a `second_pool` (on the PR2 the 26 pairs a 1M-trial run sees colliding that a first round
+    of 150 units a pair missed all ended within 3.1 mm; of the 318 that never collide, 10 %
+    within 5.8 mm)."""
+
+    again: int
+    descent: int
+    pool: int | None
+    close: float
+    nearest: float  # the share of the pairs (nearest first) a second round gets at least
+    second: int
+    second_pool: int | None
+
+
+SETTLE = {
+    "on": Settle(10_000, 1_000, 80_000, 0.005, 0.25, 1_500, 80_000),
+    "exhaustive": Settle(0, 30_000, None, 0.0, 0.0, 0, None),
+}
 CLOSEST = 8  # closest box centres a proof keeps for the witness search
 
 
@@ -93,6 +115,12 @@ class PairProof:
     units: int = 0  # work done, in hull-query units
     closest: tuple[tuple[float, ...], ...] = field(default=(), compare=False, repr=False)  # centres
     state: SearchState | None = field(default=None, compare=False, repr=False)
+    near: tuple = field(default=(), compare=False, repr=False)  # witness search: (distance, order, state)
+
+    @property
+    def reached(self) -> float:
+        """The smallest distance [m] its witness search reached (inf: none ran)."""
+        return self.near[0][0] if self.near else np.inf
 
 
 class Meter:
@@ -143,6 +171,7 @@ class PairSearch:
         self._sequence = 0
         self._stuck = False  # a box too small to split is still undecided
         self._started = state is not None
+        self.near: list = []  # the witness search's nearest end states (see witness.py)
         if state is not None:
             self._heap, self.certified, self.measured = (
                 list(state.heap),
@@ -160,7 +189,8 @@ class PairSearch:
             self._started = True
         while self._heap and not self.witness and self._can_finish():
             batch = [heapq.heappop(self._heap) for _ in range(min(BATCH, len(self._heap)))]
-            levels = max(1, min(MAX_LEVELS, int(np.ceil(np.log2(MIN_CHILDREN / len(batch))))))
+            wanted = min(MIN_CHILDREN, self.budget.boxes - self.meter.units)  # no more than is left
+            levels = max(1, min(MAX_LEVELS, int(np.ceil(np.log2(max(1.0, wanted / len(batch)))))))
             splittable = [item for item in batch if len(item[2]) and item[4].max(initial=0.0) >= TINY]
             self._stuck = self._stuck or len(splittable) < len(batch)
             if splittable:
@@ -176,13 +206,15 @@ class PairSearch:
         left = self.budget.boxes - self.meter.units
         return left > 0 and 2 * len(self._heap) <= left + 2 * SLACK
 
-    def settle(self, seed: int) -> PairProof:
-        """The witness search of this unproved pair, from its closest centres, within the
-        budget's descent units."""
+    def settle(self, seed: int, starts: np.ndarray | None = None) -> PairProof:
+        """The witness search of this unproved pair within the budget's descent units, from
+        the robot states `starts` (the box's variables of each), then the nearest-looking
+        random states, then its closest centres (see `collision/witness.py`)."""
         from marm_setup.collision.witness import search_witness
 
-        starts = [np.array(centre) for centre in self._closest()]
-        self.witness = search_witness(self, starts, seed, self.meter.units + self.budget.descent)
+        first = [] if starts is None or not len(starts) else list(self.chain.box_values(starts))
+        closest = [np.array(centre) for centre in self._closest()]
+        self.witness = search_witness(self, first, closest, seed, self.meter.units + self.budget.descent)
         return self._result(COLLIDES if self.witness else UNPROVED, keep=False)
 
     def _closest(self) -> list[np.ndarray]:
@@ -202,7 +234,8 @@ class PairSearch:
                 list(self._heap), self.certified, kept, meter.units, extra, self._sequence, self._stuck
             )
         centres = tuple(tuple(float(v) for v in centre) for centre in closest)
-        return PairProof(outcome, fraction, self.witness, int(self.meter.units), centres, state)
+        near = tuple(self.near)
+        return PairProof(outcome, fraction, self.witness, int(self.meter.units), centres, state, near)
 
     def _evaluate(self, lo: np.ndarray, hi: np.ndarray, reach: np.ndarray, floor: np.ndarray) -> None:
         """Decide each box of the batch or put it on the heap with its lower bound. `reach`:
@@ -313,16 +346,23 @@ def _split(items: list[tuple], levels: int = 1) -> tuple[np.ndarray, np.ndarray,
 
 
 def prove_pair(
-    scene: CollisionScene, chain: PairChain, budget: Budget, seed: int = 0, prior: PairProof | None = None
+    scene: CollisionScene,
+    chain: PairChain,
+    budget: Budget,
+    seed: int = 0,
+    prior: PairProof | None = None,
+    starts: np.ndarray | None = None,
 ) -> PairProof:
     """The proof of one pair (see the module doc): the branch and bound within `budget.boxes`;
     with `prior` (an unproved pair's earlier proof) its branch and bound goes on for
-    `budget.boxes` more units, then, still unproved, the witness search gets `budget.descent`."""
+    `budget.boxes` more units, then, still unproved, the witness search gets `budget.descent`
+    (from the robot states `starts` first)."""
     if prior is None:
         return PairSearch(scene, chain, budget).run()
     limit = Budget(prior.units + budget.boxes, budget.descent)
     search = PairSearch(scene, chain, limit, prior.state)
-    proof = search.run() if prior.state is not None and budget.boxes > 0 else prior
+    search.near = list(prior.near)
+    proof = search.run() if budget.boxes > 0 else prior
     if proof.outcome != UNPROVED or budget.descent <= 0:
         return proof
-    return search.settle(seed)
+    return search.settle(seed, starts)

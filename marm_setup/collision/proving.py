@@ -13,8 +13,11 @@ import dataclasses
 from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
+from marm_setup.collision.certificates import CERT_MARGIN
 from marm_setup.collision.pairs import PROVE_MODES
-from marm_setup.collision.proof import SCREEN, SETTLE, Budget, PairProof, prove_pair
+from marm_setup.collision.proof import PROVED, SCREEN, SETTLE, UNPROVED, Budget, PairProof, prove_pair
 
 if TYPE_CHECKING:
     from marm_setup.collision.pair_chain import PairChain
@@ -31,11 +34,21 @@ _STATE: dict[str, Any] = {}  # in a pool process: its scene, chains and task
 def screen_pairs(
     scene: CollisionScene, pairs: Sequence[Pair], mode: str, seed: int = 0, jobs: int = 1
 ) -> dict[Pair, PairProof]:
-    """Pair -> its branch and bound, within the screen's units (see proof.SCREEN); an
-    unproved one keeps its state, for `settle_pairs` to go on from."""
+    """Pair -> its proof before the trials (see proof.SCREEN): pairs whose links' reach balls
+    are apart are proved at once (`collision/reach_balls.py`); the others get a branch and
+    bound of their own when the screen's pool gives each at least SCREEN_LEAST units, else they
+    wait for `settle_pairs` (an unproved proof keeps its state, to go on from)."""
+    from marm_setup.collision.reach_balls import far_apart
+
     least, most, pool = SCREEN[_checked(mode)]
-    boxes = most if pool is None else int(min(most, max(least, pool // max(1, len(pairs)))))
-    return prove_pairs(scene, pairs, Budget(boxes, 0), seed, jobs)
+    levers = {link: scene.lever_points(link) for pair in pairs for link in pair}
+    far = far_apart(scene.robot, pairs, levers, scene.padding + CERT_MARGIN)
+    proofs = {pair: PairProof(PROVED, 1.0, units=1) for pair in pairs if pair in far}
+    rest = [pair for pair in pairs if pair not in far]
+    boxes = most if pool is None else int(min(most, pool // max(1, len(rest))))
+    if boxes < least:
+        return proofs | {pair: PairProof(UNPROVED, 0.0) for pair in rest}
+    return proofs | prove_pairs(scene, rest, Budget(boxes, 0), seed, jobs)
 
 
 def settle_pairs(
@@ -45,18 +58,42 @@ def settle_pairs(
     seed: int = 0,
     jobs: int = 1,
     spent: int = 0,
+    starts: dict[Pair, np.ndarray] | None = None,
 ) -> dict[Pair, PairProof]:
-    """Pair -> its proof after its unproved screen `priors[pair]` (see proof.SETTLE): the branch
-    and bound goes on with what the screen's pool has left after `spent` units (shared, up to
-    a most a pair), then the witness search."""
-    again, descent, pool = SETTLE[_checked(mode)]
+    """Pair -> its proof after its unproved screen `priors[pair]` (see proof.Settle): the branch
+    and bound goes on with what the screen's pool has left after `spent` units, then the witness
+    search (first from `starts[pair]`, robot states: the pair's closest trial states), then a
+    second round of it for the pairs whose first ended close to contact."""
+    plan = SETTLE[_checked(mode)]
     screen_pool = SCREEN[mode][2]
     count = max(1, len(priors))
-    boxes = again if screen_pool is None else min(again, max(0, screen_pool - spent) // count)
-    if pool is not None:
-        descent = min(descent, pool // count)
-    proofs = prove_pairs(scene, sorted(priors), Budget(boxes, descent), seed, jobs, priors)
-    return {pair: dataclasses.replace(proof, state=None) for pair, proof in proofs.items()}
+    boxes = plan.again if screen_pool is None else min(plan.again, max(0, screen_pool - spent) // count)
+    proofs = prove_pairs(
+        scene,
+        sorted(priors),
+        Budget(boxes, _share(plan.descent, plan.pool, count)),
+        seed,
+        jobs,
+        priors,
+        starts,
+    )
+    close = _nearest(proofs, scene.padding + plan.close, plan.nearest)
+    if close and plan.second:
+        descent = _share(plan.second, plan.second_pool, len(close))
+        proofs.update(prove_pairs(scene, close, Budget(0, descent), seed + 1, jobs, proofs))
+    return {pair: dataclasses.replace(proof, state=None, near=()) for pair, proof in proofs.items()}
+
+
+def _nearest(proofs: dict[Pair, PairProof], close: float, share: float) -> list[Pair]:
+    """The unproved pairs whose witness search ended within `close` [m] of contact, and at
+    least the nearest `share` of them all, in pair order."""
+    open_pairs = sorted((proof.reached, pair) for pair, proof in proofs.items() if proof.outcome == UNPROVED)
+    least = int(np.ceil(share * len(open_pairs)))
+    return sorted(pair for k, (reached, pair) in enumerate(open_pairs) if reached <= close or k < least)
+
+
+def _share(most: int, pool: int | None, count: int) -> int:
+    return most if pool is None else min(most, pool // max(1, count))
 
 
 def prove_pairs(
@@ -66,16 +103,18 @@ def prove_pairs(
     seed: int = 0,
     jobs: int = 1,
     priors: dict[Pair, PairProof] | None = None,
+    starts: dict[Pair, np.ndarray] | None = None,
 ) -> dict[Pair, PairProof]:
-    """Pair -> its proof within `budget` (with `priors`: each pair's witness search after it)."""
+    """Pair -> its proof within `budget` (with `priors`: going on from each; `starts`: robot
+    states each pair's witness search starts from)."""
     if not pairs:
         return {}
-    priors = priors or {}
+    priors, starts = priors or {}, starts or {}
     chains = _chains(scene, pairs)
     order = sorted(pairs, key=lambda p: (-chains[p].dims, p))
     if jobs <= 1 or len(pairs) < 2 or len(pairs) * (budget.boxes + budget.descent) < WORTH_A_POOL:
-        return {p: prove_pair(scene, chains[p], budget, seed, priors.get(p)) for p in order}
-    return dict(_pooled(scene, chains, order, (budget, seed, priors), jobs))
+        return {p: prove_pair(scene, chains[p], budget, seed, priors.get(p), starts.get(p)) for p in order}
+    return dict(_pooled(scene, chains, order, (budget, seed, priors, starts), jobs))
 
 
 def _checked(mode: str) -> str:
@@ -94,7 +133,7 @@ def _chains(scene: CollisionScene, pairs: Sequence[Pair]) -> dict[Pair, PairChai
 def _pooled(
     scene: CollisionScene, chains: dict[Pair, PairChain], order: list[Pair], task: tuple, jobs: int
 ) -> Iterator[tuple[Pair, PairProof]]:
-    """The proofs in a pool; `task`: (budget, seed, priors)."""
+    """The proofs in a pool; `task`: (budget, seed, priors, starts)."""
     import multiprocessing
 
     fork = "fork" in multiprocessing.get_all_start_methods()
@@ -120,5 +159,6 @@ def _rebuild(robot: RobotModel, padding: float, pairs: list[Pair], task: tuple) 
 
 
 def _prove_one(pair: Pair) -> tuple[Pair, PairProof]:
-    budget, seed, priors = _STATE["task"]
-    return pair, prove_pair(_STATE["scene"], _STATE["chains"][pair], budget, seed, priors.get(pair))
+    budget, seed, priors, starts = _STATE["task"]
+    chain = _STATE["chains"][pair]
+    return pair, prove_pair(_STATE["scene"], chain, budget, seed, priors.get(pair), starts.get(pair))

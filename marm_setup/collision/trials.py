@@ -55,6 +55,12 @@ def trial_samples(robot: RobotModel, seed: int, trials: int) -> np.ndarray:
     return np.concatenate(parts) if parts else np.empty((0, len(robot.active_joints)))
 
 
+def trial_states(robot: RobotModel, seed: int, trials: int, rows: list[int]) -> np.ndarray:
+    """The trial states of indices `rows` (each from its chunk, drawn again)."""
+    chunks = {c: trial_chunk(robot, seed, c, trials) for c in {i // CHUNK for i in rows}}
+    return np.array([chunks[i // CHUNK][i % CHUNK] for i in rows]).reshape(len(rows), -1)
+
+
 class PairShard:
     """One process's share of the Never phase: a fixed set of pairs, checked over every trial
     chunk in order. A pair leaves at its first collision; with `shortcuts` a PairProver's
@@ -102,6 +108,10 @@ class PairShard:
             self.closest[pair] = sorted(merged)[:CLOSEST]
         return seen
 
+    def nearest_rows(self) -> dict[Pair, tuple[int, ...]]:
+        """Each never-seen pair's CLOSEST trial states (their indices), smallest gap first."""
+        return {p: tuple(i for _, i in self.closest[p]) for p in self.unseen if self.closest.get(p)}
+
     def distances(self) -> dict[Pair, float]:
         """Smallest exact distance [m] of each never-seen pair over its closest trial states."""
         every = (*self.unseen, *self.tracked)
@@ -109,9 +119,7 @@ class PairShard:
         rows = sorted({i for _, pair_rows in items for i in pair_rows})
         if not rows:
             return {}
-        robot = self.scene.robot
-        chunks = {c: trial_chunk(robot, self.seed, c, self.trials) for c in {i // CHUNK for i in rows}}
-        q = np.array([chunks[i // CHUNK][i % CHUNK] for i in rows])
+        q = trial_states(self.scene.robot, self.seed, self.trials, rows)
         poses = dict(zip(rows, self.scene.link_poses(q), strict=True))
         out = {}
         for pair, pair_rows in items:

@@ -1,26 +1,32 @@
 """The witness search of a pair the branch and bound could not settle: descend its distance.
 
-From start states (the nearest-looking of DENSE random states of the pair's box, ranked by the
-kinematics of its two chains alone, then the closest box centres the branch and bound
-measured, then random states; seeded by the run's seed and the pair's names), step down the
-distance's gradient in the box's variables until the pair is in contact. The gradient comes from coal's nearest points: a point
-fixed to a link moves at axis x (point - axis origin) per radian of a turning joint, along the
-axis per metre of a sliding one, a mimic joint's by its multiplier. While the meshes' convex
-hulls are more than SWITCH apart the hulls' distance is descended (far cheaper, and the
-meshes' own where a link is convex); closer, the real one. Each step is a Newton step on the
-distance aimed AIM beyond contact, halved until the distance shrinks; a descent ends when it
-no longer does, or after STEPS steps. Aiming far beyond contact overshoots the small dips
-that stop a cautious descent: on the hardest pairs measured (a Motoman base against its wrist,
-4-5 variables, in collision in about 1e-5 of the box) a witness costs 30 to 80 units instead of
-500 to 1000 with a 1 mm aim. A state within the padding goes through the matrix's own exact check, so a
+From start states (given ones first: the pair's closest states of the matrix's own trials, by
+bounding-sphere gap, free since the trials drew them anyway; then an earlier round's nearest
+end states and states scattered about them; with neither, the nearest-looking of DENSE random
+states of the pair's box, ranked by the kinematics of its two chains alone; then the closest
+box centres the branch and bound measured; then random states; seeded by the run's seed and
+the pair's names), step down the distance's gradient in the box's variables until the pair is
+in contact. The gradient comes from coal's nearest points: a point fixed to a link moves at
+axis x (point - axis origin) per radian of a turning joint, along the axis per metre of a
+sliding one, a mimic joint's by its multiplier. While the meshes' convex hulls are more than
+SWITCH apart the hulls' distance is descended (far cheaper, and the meshes' own where a link
+is convex); closer, the real one. Each step is a Newton step on the distance aimed AIM beyond
+contact, halved until the distance shrinks; a descent ends when it no longer does, or after
+STEPS steps. Aiming far beyond contact overshoots the small dips that stop a cautious
+descent: on the hardest pairs measured (a Motoman base against its wrist, 4-5 variables, in
+collision in about 1e-5 of the box) a witness costs 30 to 80 units instead of 500 to 1000
+with a 1 mm aim. A state within the padding goes through the matrix's own exact check, so a
 witness is always a state the matrix itself finds in contact.
 
 Descents run BATCH at a time, their forward kinematics and gradients in numpy batches; coal is
 asked in a fixed order and the budget counts its queries, so the search is deterministic.
+The NEAR states the descents ended nearest at are kept (`PairSearch.near`): a second round
+(`proving.settle_pairs`) goes on from them.
 """
 
 from __future__ import annotations
 
+import itertools
 import zlib
 from collections.abc import Iterator
 from typing import TYPE_CHECKING
@@ -36,6 +42,9 @@ CLOSEST = 8  # pair's box, then from the CLOSEST box centres measured, then from
 DENSE_STARTS = 24
 FIRST_CUT = 128
 STATES_PER_UNIT = 16  # the kinematics of a pair's two chains and the ranking, per state
+NEAR = 8  # end states a search keeps, nearest first, for a second round to go on from
+AROUND = 64  # states scattered about them a second round descends from next
+SPREAD = 0.02  # of each variable's range: the scatter's standard deviation
 BATCH = 16  # descents run together
 STEPS = 10  # gradient steps per descent at most
 HALVINGS = 7
@@ -46,31 +55,60 @@ Witness = tuple[tuple[str, float], ...]
 Measured = tuple[float, tuple[np.ndarray, np.ndarray], bool]  # distance, nearest points, exact
 
 
-def search_witness(search: PairSearch, closest: list[np.ndarray], seed: int, limit: int) -> Witness:
-    """A witness of `search` (a PairSearch) before its meter reaches `limit` units, or ()."""
+def search_witness(
+    search: PairSearch, first: list[np.ndarray], closest: list[np.ndarray], seed: int, limit: int
+) -> Witness:
+    """A witness of `search` (a PairSearch) before its meter reaches `limit` units, or ();
+    descents start from `first`, then as the module doc says (`closest`: box centres)."""
     chain = search.chain
     if not chain.dims:  # nothing moves: the branch and bound measured the one state there is
         return ()
-    starts = _starts(search, closest, seed)
+    dense = not first and not search.near  # no trial states, no earlier round: sample the box
+    starts = itertools.chain(first, _around(search, seed), _starts(search, closest, seed, dense))
     while search.meter.units < limit:
-        witness, _ = descend(search, np.array([next(starts) for _ in range(BATCH)]), limit)
+        q = np.array([next(starts) for _ in range(BATCH)])
+        witness, values = descend(search, q, limit)
         if witness:
             return witness
+        _keep_nearest(search, q, values)
     return ()
 
 
-def _starts(search: PairSearch, closest: list[np.ndarray], seed: int) -> Iterator[np.ndarray]:
-    """The nearest-looking of DENSE random states, the closest box centres measured, then
-    random states (seeded by the run's seed and the pair's names). Starting from the dense
-    states first found the dual panda's rare contacts (one arm's hand against the other's
-    base) in 50 of 60 tries at 1000 units a pair, from the box centres first in 46."""
+def _keep_nearest(search: PairSearch, q: np.ndarray, values: np.ndarray) -> None:
+    """Keep the NEAR states the descents ended nearest at, as (distance, order, state)."""
+    ended = [
+        (float(v), len(search.near) + k, row.copy()) for k, (v, row) in enumerate(zip(values, q, strict=True))
+    ]
+    search.near = sorted(search.near + ended, key=lambda item: item[:2])[:NEAR]
+
+
+def _around(search: PairSearch, seed: int) -> Iterator[np.ndarray]:
+    """An earlier round's nearest end states, then AROUND states scattered about them (a
+    normal spread of SPREAD of each variable's range, seeded)."""
+    near = [state for _, _, state in search.near]
+    if not near:
+        return
+    yield from near
+    chain = search.chain
+    rng = np.random.default_rng([seed, 1, zlib.crc32("\0".join(chain.pair).encode())])
+    for k in range(AROUND):
+        moved = near[k % len(near)] + rng.normal(0.0, SPREAD, chain.dims) * (chain.upper - chain.lower)
+        yield np.clip(moved, chain.lower, chain.upper)
+
+
+def _starts(search: PairSearch, closest: list[np.ndarray], seed: int, dense: bool) -> Iterator[np.ndarray]:
+    """With `dense`, the nearest-looking of DENSE random states; then the closest box centres
+    measured; then random states (seeded by the run's seed and the pair's names). Starting from
+    the dense states first found the dual panda's rare contacts (one arm's hand against the
+    other's base) in 50 of 60 tries at 1000 units a pair, from the box centres first in 46;
+    the trials' own closest states, where there are 10,000, do as well at no cost."""
     chain = search.chain
     rng = np.random.default_rng([seed, zlib.crc32("\0".join(chain.pair).encode())])
-    dense = nearest_looking(
-        chain, chain.lower + rng.random((DENSE, chain.dims)) * (chain.upper - chain.lower)
-    )
-    search.meter.units += DENSE // STATES_PER_UNIT
-    yield from dense
+    if dense:
+        box = chain.lower + rng.random((DENSE, chain.dims)) * (chain.upper - chain.lower)
+        dense_states = nearest_looking(chain, box)
+        search.meter.units += DENSE // STATES_PER_UNIT
+        yield from dense_states
     yield from closest[:CLOSEST]
     while True:
         yield chain.lower + rng.random(chain.dims) * (chain.upper - chain.lower)

@@ -38,10 +38,15 @@ class Workers:
         shortcuts: bool,
         shards: list[tuple[tuple[Pair, ...], tuple[Pair, ...]]],
         distances: bool = True,
+        nearest: bool = False,
     ):
         self.distances_wanted = distances  # each shard's Never distances, after its chunks
+        self.nearest_wanted = nearest  # each never-seen pair's closest trial states (indices)
         self.shards = [
-            PairShard(scene, seed, trials, shortcuts, pairs, tracked, distances) for pairs, tracked in shards
+            PairShard(
+                scene, seed, trials, shortcuts, pairs, tracked if distances else (), distances or nearest
+            )
+            for pairs, tracked in shards
         ]
         self._procs: list[tuple[Any, Any]] = []  # (process, parent end of its pipe)
 
@@ -58,7 +63,7 @@ class Workers:
             for shard in self.shards:
                 ours, theirs = context.Pipe(duplex=False)
                 spec = shard if fork else _ShardSpec.of(shard)
-                args = (spec, theirs, self.distances_wanted)
+                args = (spec, theirs, self.distances_wanted, self.nearest_wanted)
                 proc = context.Process(target=_work, args=args, daemon=True)  # type: ignore[attr-defined]
                 proc.start()
                 theirs.close()
@@ -86,18 +91,23 @@ class Workers:
                 work += shard_work
             yield seen, work
 
-    def distances(self) -> tuple[dict[Pair, float], Work]:
-        """Each shard's never-seen pairs' smallest distance over their closest states."""
-        out: dict[Pair, float] = {}
+    def closest(self) -> tuple[dict[Pair, float], dict[Pair, tuple[int, ...]], Work]:
+        """After the chunks: each shard's never-seen pairs' smallest distance over their
+        closest states (when distances are wanted), those states' indices (when nearest are),
+        and the work of worker processes."""
+        found: dict[Pair, float] = {}
+        rows: dict[Pair, tuple[int, ...]] = {}
         if not self._procs:
             for shard in self.shards:
-                out.update(shard.distances())
-            return out, Work()
+                found.update(shard.distances() if self.distances_wanted else {})
+                rows.update(shard.nearest_rows() if self.nearest_wanted else {})
+            return found, rows, Work()
         work = Work()
-        for part, part_work in self._receive():
-            out.update(part)
+        for (part, part_rows), part_work in self._receive():
+            found.update(part)
+            rows.update(part_rows)
             work += part_work
-        return out, work
+        return found, rows, work
 
     def _receive(self) -> list:
         """The next message of every worker, in shard order."""
@@ -135,18 +145,19 @@ class _ShardSpec:
         return PairShard(CollisionScene(robot, padding), *rest)
 
 
-def _work(spec: PairShard | _ShardSpec, conn, distances: bool) -> None:
-    """A worker process: every chunk in order, then (when wanted) the distances, one message
-    each; an exception is sent as (its last line, the traceback)."""
+def _work(spec: PairShard | _ShardSpec, conn, distances: bool, nearest: bool = False) -> None:
+    """A worker process: every chunk in order, then (when wanted) the distances and the
+    nearest states' indices, one message each; an exception is sent as (its last line, the
+    traceback)."""
     try:
         shard = spec.build() if isinstance(spec, _ShardSpec) else spec
         for index in range(shard.chunks):
             before = Work.of(shard.scene)
             seen = shard.check(index)
             conn.send(("ok", (seen, Work.of(shard.scene) - before)))
-        if distances:
+        if distances or nearest:
             before = Work.of(shard.scene)
-            found = shard.distances()
+            found = (shard.distances() if distances else {}, shard.nearest_rows() if nearest else {})
             conn.send(("ok", (found, Work.of(shard.scene) - before)))
     except BaseException as exc:  # report, then end: the parent raises WorkerFailed
         last = traceback.format_exception_only(exc)[-1].strip()
