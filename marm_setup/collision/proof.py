@@ -362,6 +362,8 @@ def prove_pair(
     limit = Budget(prior.units + budget.boxes, budget.descent)
     search = PairSearch(scene, chain, limit, prior.state)
     search.near = list(prior.near)
+    if prior.state is None:  # no boxes left to go on from (or none started): its counts stay
+        search.certified, search.meter.units = prior.proved_fraction, prior.units
     proof = search.run() if budget.boxes > 0 else prior
     if proof.outcome != UNPROVED or budget.descent <= 0:
         return proof
