@@ -3,7 +3,10 @@
 validate (through its public API) gives the findings, the package's SRDF and robot and the
 trajectories its runtime checks planned; the collision scene gives the contacts of each state;
 the collision matrix is recomputed (the package's seed and trials) for each pair's hits and
-closest distance, the reasons staying the SRDF's.
+closest distance, the reasons staying the SRDF's. Each pair's proof status is the one the
+package's marm_setup.yaml records where its proof key matches this robot (proved, unproved);
+else the matrix is proved as `collisions` proves it (--prove on), and a pair the SRDF disables
+that a proof finds in contact is drawn at its witness state, as a stale pair's finding is.
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ from marm_setup.report.content import Drawing, MatrixSection, drawn_links, page_
 from marm_setup.report.geometry import MAX_FACES, MeshArrays, RobotGeometry, robot_geometry
 
 if TYPE_CHECKING:
-    from marm_setup.collision import CollisionScene
+    from marm_setup.collision import CollisionMatrix, CollisionScene
     from marm_setup.robot import RobotModel
     from marm_setup.setup import Srdf
     from marm_setup.validate import ValidatedPackage
@@ -106,14 +109,16 @@ def _drawing(
     from marm_setup.collision import CollisionScene
     from marm_setup.package import package_start_values
     from marm_setup.report.motions import motions
-    from marm_setup.report.states import robot_states
+    from marm_setup.report.states import robot_states, witness_states
 
     scene = CollisionScene(robot)
     start = package_start_values(validated.package, robot)
     states = robot_states(srdf, robot, scene, start, validated.validation.findings)
-    matrix = _matrix_section(validated, robot, srdf, scene, trials, jobs, step("collision matrix"))
+    section = _matrix_section(validated, robot, srdf, scene, trials, jobs, step("collision matrix"))
+    if section is not None:
+        states += witness_states(section[1], srdf, robot)
     moves = motions(robot, validated.plans, drawn_links(robot, geometry, srdf))
-    return Drawing(robot, srdf, geometry, states, moves, matrix)
+    return Drawing(robot, srdf, geometry, states, moves, section[0] if section else None)
 
 
 def _matrix_section(
@@ -124,19 +129,39 @@ def _matrix_section(
     trials: int | None,
     jobs: int,
     progress: Callable[[int, int], None],
-) -> MatrixSection | None:
-    """The matrix picture and pairs: reasons from the SRDF, counts from a fresh computation."""
+) -> tuple[MatrixSection, CollisionMatrix] | None:
+    """The matrix picture and pairs (reasons from the SRDF, counts and proofs from a fresh
+    computation, or the proofs the package records; see the module doc), and the matrix."""
     from marm_setup.collision import compute_collision_matrix, describe_matrix, render_matrix_svg
-    from marm_setup.validate import matrix_settings
+    from marm_setup.validate import matrix_proofs, matrix_settings
 
     if not scene.candidate_pairs:
         return None
     seed, computed = matrix_settings(validated.package)
     count = trials or computed or DEFAULT_TRIALS
-    matrix = compute_collision_matrix(robot, scene, trials=count, seed=seed, jobs=jobs, progress=progress)
+    recorded = matrix_proofs(validated.package, robot)
+    prove = "on" if recorded is None else "off"
+    matrix = compute_collision_matrix(
+        robot, scene, trials=count, seed=seed, jobs=jobs, progress=progress, prove=prove
+    )
+    if recorded is not None:
+        matrix = _with_recorded(matrix, *recorded)
     links = [name for name in robot.links_in_tree_order if robot.link(name).has_geometry]
     svg = render_matrix_svg(matrix, robot.name, links, srdf.disabled)
-    return MatrixSection(svg, describe_matrix(matrix, robot.name, srdf.disabled))
+    return MatrixSection(svg, describe_matrix(matrix, robot.name, srdf.disabled)), matrix
+
+
+def _with_recorded(matrix: CollisionMatrix, mode: str, recorded: Mapping) -> CollisionMatrix:
+    """`matrix` with the proofs a setup file records (pair -> (outcome, proved share))."""
+    import dataclasses
+
+    from marm_setup.collision import PairProof
+
+    stats = tuple(
+        dataclasses.replace(s, proof=PairProof(*recorded[s.pair])) if s.pair in recorded else s
+        for s in matrix.stats
+    )
+    return dataclasses.replace(matrix, stats=stats, prove=mode)
 
 
 def _summary(validated: ValidatedPackage) -> dict:

@@ -173,5 +173,5 @@ def _finding(index: int, finding: Finding) -> dict:
 
 
 def _matrix(described: dict) -> dict:
-    keys = ("trials", "seed", "never_bound_95", "hit_counts", "counts", "pairs")
+    keys = ("trials", "seed", "never_bound_95", "hit_counts", "counts", "prove", "proofs", "pairs")
     return {key: described[key] for key in keys}

@@ -1,8 +1,8 @@
 """The robot states the page can show, each with the link pairs in contact there.
 
 States: MoveIt's default state, the demo's start state, every named pose (over the start state,
-as validate checks it), and the state each finding's evidence names (a pose in collision, a
-Never pair seen colliding). Contacts are the pairs MoveIt would check under the SRDF (a
+as validate checks it), the state each finding's evidence names (a pose in collision, a
+Never pair seen colliding), and each proof witness of a pair the SRDF disables. Contacts are the pairs MoveIt would check under the SRDF (a
 disabled pair touching is no contact), except for a finding's state, whose contact is the pair
 the finding is about (a stale Never pair is disabled, yet collides there).
 """
@@ -20,7 +20,7 @@ from marm_setup.robot import RobotModel
 from marm_setup.setup import Srdf, allowed_pairs, pose_configuration, start_configuration
 
 if TYPE_CHECKING:
-    from marm_setup.collision import CollisionScene
+    from marm_setup.collision import CollisionMatrix, CollisionScene
 
 Pair = tuple[str, str]
 
@@ -59,6 +59,23 @@ def robot_states(
     ]
     out = [_with_contacts(state, scene, checked) for state in out]
     out += [_evidence_state(k, f, robot) for k, f in enumerate(findings) if f.evidence is not None]
+    return tuple(out)
+
+
+def witness_states(matrix: CollisionMatrix, srdf: Srdf, robot: RobotModel) -> tuple[RobotState, ...]:
+    """Per pair the SRDF disables that a proof of `matrix` found in contact, its witness state
+    (other joints at their default), the pair as the contact."""
+    disabled = {d.pair for d in srdf.disabled}
+    out = []
+    for stats in matrix.stats:
+        proof = stats.proof
+        if proof is None or proof.outcome != "collides" or stats.pair not in disabled:
+            continue
+        values = dict(proof.witness)
+        q = np.array([values.get(j.name, j.default_position) for j in robot.active_joints])
+        title = f"{stats.link1} – {stats.link2} in contact"
+        note = "a proof found this pair, which the SRDF disables, in contact here"
+        out.append(RobotState(f"witness:{stats.link1}:{stats.link2}", title, None, q, (stats.pair,), note))
     return tuple(out)
 
 

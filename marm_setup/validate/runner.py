@@ -511,6 +511,17 @@ def check_with_scene(
     return out, planned
 
 
+def matrix_proofs(pkg: MoveItPackage, robot: RobotModel) -> tuple[str, dict] | None:
+    """(prove mode, Never pair -> (outcome, proved share)) as the package's marm_setup.yaml
+    records its matrix's proofs, when they were made for this very robot and matrix (its proof
+    key); else None."""
+    from marm_setup.validate.rules.matrix_rules import recorded_proofs
+
+    recorded = pkg.marm_setup.proofs if pkg.marm_setup is not None else None
+    found = recorded_proofs(recorded, robot)
+    return None if found is None or recorded is None else (recorded.prove, found)
+
+
 def matrix_settings(pkg: MoveItPackage) -> tuple[int, int | None]:
     """(seed, trials) the package's matrix was computed with (marm_setup.yaml `collision`), else
     (0, None). Resampling no more than those trials keeps an unchanged URDF's matrix fresh."""

@@ -319,10 +319,11 @@
       for (const s of poses) row.append(stateButton(s, s.title));
       box.append(row);
     }
-    const evidence = data.states.filter((s) => s.key.startsWith("finding:"));
-    if (evidence.length) {
-      box.append(el("h3", {}, "States the findings name"));
-      for (const s of evidence) {
+    for (const [prefix, heading] of [["finding:", "States the findings name"], ["witness:", "Disabled pairs a proof found in contact"]]) {
+      const shownStates = data.states.filter((s) => s.key.startsWith(prefix));
+      if (!shownStates.length) continue;
+      box.append(el("h3", {}, heading));
+      for (const s of shownStates) {
         const row = el("div", { class: "row" });
         row.append(stateButton(s, s.title));
         box.append(row);
@@ -391,16 +392,24 @@
     }
     box.append(table);
   }
+  function proofText(p) {
+    if (p.proof === "unproved") return `unproved (${(100 * p.proved_fraction).toFixed(1)} %)`;
+    return p.proof || "";
+  }
   function pairRow(p) {
     const row = el("tr", { class: "clickable" });
     const hits = p.samples ? `${p.hits}/${p.samples}` : "";
     const closest = p.min_distance === null ? "" : (1000 * p.min_distance).toFixed(1);
     const seen = p.seen_colliding === null ? "" : p.seen_colliding ? "yes" : "no";
     row.append(el("td", {}, p.link1), el("td", {}, p.link2), el("td", {}, p.reason || "enabled"),
-      el("td", { class: "num" }, hits), el("td", { class: "num" }, seen), el("td", { class: "num" }, closest));
+      el("td", { class: "num" }, hits), el("td", { class: "num" }, seen), el("td", { class: "num" }, closest),
+      el("td", {}, proofText(p)));
     row.dataset.reason = p.reason || "enabled";
+    row.dataset.proof = p.proof || "none";
     row.dataset.names = `${p.link1} ${p.link2}`.toLowerCase();
-    if (materials.has(p.link1) && materials.has(p.link2)) row.addEventListener("click", () => highlightPair(p.link1, p.link2));
+    const witness = `witness:${p.link1}:${p.link2}`;
+    if (states.has(witness)) { row.title = "show the state a proof found it in contact at"; row.addEventListener("click", () => showState(witness)); }
+    else if (materials.has(p.link1) && materials.has(p.link2)) row.addEventListener("click", () => highlightPair(p.link1, p.link2));
     return row;
   }
   function fillMatrix() {
@@ -417,15 +426,21 @@
     });
     box.append(picture);
     box.append(el("div", { class: "meta" }, `reasons from the SRDF; hits/samples, seen colliding and closest distance [mm] from ${m.trials} random states (seed ${m.seed}): ${m.hit_counts}`));
+    if (m.prove !== "off") {
+      const p = m.proofs;
+      box.append(el("div", { class: "meta" }, `proofs over each pair's whole joint range (--prove ${m.prove}): ${p.proved} proved collision-free, ${p.unproved} unproved (only sampled), ${p.collides} found in contact (a disabled one is drawn at its state)`));
+    }
     const filters = el("div", { class: "filters" });
     const reason = el("select");
     for (const r of ["all", "enabled", "Adjacent", "Default", "Always", "Never", "User"]) reason.append(el("option", { value: r }, r));
+    const proof = el("select");
+    for (const r of ["any proof", "proved", "unproved", "collides"]) proof.append(el("option", { value: r }, r));
     const text = el("input", { type: "search", placeholder: "link name" });
-    filters.append(reason, text);
+    filters.append(reason, proof, text);
     box.append(filters);
     const table = el("table");
     const top = el("tr");
-    top.append(...["link 1", "link 2", "reason", "hits", "seen", "closest mm"].map((h) => el("th", {}, h)));
+    top.append(...["link 1", "link 2", "reason", "hits", "seen", "closest mm", "proof"].map((h) => el("th", {}, h)));
     table.append(top);
     const rows = m.pairs.map(pairRow);
     table.append(...rows);
@@ -433,10 +448,14 @@
     scroll.append(table);
     box.append(scroll);
     const filter = () => {
-      const want = reason.value, needle = text.value.toLowerCase();
-      for (const row of rows) row.hidden = (want !== "all" && row.dataset.reason !== want) || !row.dataset.names.includes(needle);
+      const want = reason.value, proved = proof.value, needle = text.value.toLowerCase();
+      for (const row of rows) {
+        row.hidden = (want !== "all" && row.dataset.reason !== want) || (proved !== "any proof" && row.dataset.proof !== proved)
+          || !row.dataset.names.includes(needle);
+      }
     };
     reason.addEventListener("change", filter);
+    proof.addEventListener("change", filter);
     text.addEventListener("input", filter);
   }
 

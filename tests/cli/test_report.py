@@ -7,6 +7,7 @@ import json
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -97,3 +98,53 @@ def test_a_setup_assistant_package_with_package_paths(tmp_path):
     data = page_data(page)
     transport = next(s for s in data["states"] if s["key"] == "pose:panda_arm:transport")
     assert transport["contacts"] and data["matrix"]["trials"] == 1000
+
+
+def test_the_page_shows_the_proofs_the_package_records(root, tmp_path):
+    """init's marm_setup.yaml records which Never pairs are proved (its proof key matches the
+    robot): the page shows those, every Never pair proved or unproved, the unproved as listed."""
+    import yaml
+
+    pkg = marm_package(root)
+    page = tmp_path / "marm.html"
+    assert report(pkg, "-o", page, "--no-plan").exit_code == 0
+    matrix = page_data(page)["matrix"]
+    collision = yaml.safe_load((pkg / "marm_setup.yaml").read_text(encoding="utf-8"))["collision"]
+    assert matrix["prove"] == collision["prove"] == "on"
+    never = {(p["link1"], p["link2"]): p for p in matrix["pairs"] if p["reason"] == "Never"}
+    unproved = {(u["link1"], u["link2"]): u["proved_fraction"] for u in collision["unproved"]}
+    assert never and {pair for pair, p in never.items() if p["proof"] == "unproved"} == set(unproved)
+    assert all(p["proof"] == "proved" for pair, p in never.items() if pair not in unproved)
+    assert all(never[pair]["proved_fraction"] == share for pair, share in unproved.items())
+    assert matrix["proofs"]["proved"] == len(never) - len(unproved)
+
+
+def test_a_package_without_recorded_proofs_is_proved_and_its_disabled_contacts_drawn(tmp_path):
+    """The Setup Assistant's panda package records no proofs: the page proves the matrix as
+    `collisions` does; a pair its SRDF disables that a proof finds in contact (link 2 against
+    link 6, which 10,000 of the Setup Assistant's samples missed) is drawn at the witness state,
+    which really is in contact."""
+    from marm_setup.collision.scene import CollisionScene
+    from marm_setup.robot.load import load_robot
+
+    pkg = realworld("ros1", "panda_moveit_config")
+    page = tmp_path / "panda.html"
+    result = report(pkg, "--package-path", realworld("ros1"), "-o", page, "--trials", "1000", "--no-plan")
+    assert result.exit_code == 1, result.output
+    data = page_data(page)
+    matrix = data["matrix"]
+    assert matrix["prove"] == "on" and matrix["proofs"]["collides"] > 0
+    found = [p for p in matrix["pairs"] if p["proof"] == "collides" and p["reason"] is not None]
+    assert found, "no disabled pair found in contact"
+    states = {s["key"]: s for s in data["states"]}
+    robot = load_robot(
+        realworld("ros1", "panda_description", "urdf", "panda_arm_hand.urdf.xacro"), {}, [realworld("ros1")]
+    )
+    scene = CollisionScene(robot)
+    for p in found:
+        state = states[f"witness:{p['link1']}:{p['link2']}"]
+        assert state["contacts"] == [[p["link1"], p["link2"]]]
+        assert all(abs(state["joints"][joint] - value) < 1e-6 for joint, value in p["witness"].items())
+        q = np.array([state["joints"][name] for name in robot.active_joint_names])
+        pair_id = scene.pair_ids([(p["link1"], p["link2"])])[0]
+        assert scene.collide(scene.link_poses(q[None])[0], int(pair_id))

@@ -118,15 +118,29 @@ def check_matrix_fresh(
 def proved_pairs(recorded: RecordedProofs | None, robot: RobotModel) -> frozenset[tuple[str, str]]:
     """The Never pairs a setup file records as proved, when its proof key matches `robot`;
     else none."""
+    found = recorded_proofs(recorded, robot) or {}
+    return frozenset(pair for pair, (outcome, _) in found.items() if outcome == "proved")
+
+
+def recorded_proofs(
+    recorded: RecordedProofs | None, robot: RobotModel
+) -> dict[tuple[str, str], tuple[str, float]] | None:
+    """Never pair -> ("proved" or "unproved", the share of its joint range proved) as a setup
+    file records them (the package model's `RecordedProofs`), when its proof key matches
+    `robot`; None when it records no proofs or they were made for another robot or matrix."""
     from marm_setup.collision import link_pair, proof_key
     from marm_setup.robot import robot_fingerprint
 
     if recorded is None:
-        return frozenset()
+        return None
     unproved = [pair for pair, _ in recorded.unproved]
     if recorded.key != proof_key(robot_fingerprint(robot), recorded.prove, recorded.never, unproved):
-        return frozenset()
-    return frozenset(link_pair(*p) for p in recorded.never) - {link_pair(*p) for p in unproved}
+        return None
+    shares = {link_pair(*pair): share for pair, share in recorded.unproved}
+    return {
+        link_pair(*p): ("unproved", shares[link_pair(*p)]) if link_pair(*p) in shares else ("proved", 1.0)
+        for p in recorded.never
+    }
 
 
 def _stale(
