@@ -334,7 +334,11 @@ def _reach(pose: np.ndarray, levers: LeverPoints, path: _Path) -> np.ndarray:
 
 
 def _axis_gap(
-    path: _Path, frames: tuple[Frames, Frames], levers: tuple[LeverPoints, LeverPoints], moved_a, moved_b
+    path: _Path,
+    frames: tuple[Frames, Frames],
+    levers: tuple[LeverPoints, LeverPoints],
+    moved_a: np.ndarray,
+    moved_b: np.ndarray,
 ) -> np.ndarray:
     """(K,): the separating-direction bound (see the module doc) over the turning axes' directions
     u at the centre: the gap between the links' projections on u, less what each joint can move
@@ -367,7 +371,9 @@ def _projection(
     return np.min(along - radii, axis=2), np.max(along + radii, axis=2)
 
 
-def swept_ball(center: np.ndarray, radius: float, origin: np.ndarray, axis: np.ndarray, half: float):
+def swept_ball(
+    center: np.ndarray, radius: float, origin: np.ndarray, axis: np.ndarray, half: float
+) -> tuple[np.ndarray, float]:
     """One ball (centre (3,), radius) swept round the axis line over +- half."""
     new_center, new_radius = _swept(
         center[None], np.array([radius]), origin[None], axis[None], np.array([half])

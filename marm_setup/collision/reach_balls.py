@@ -14,14 +14,13 @@ coal's tolerance) never collide: the pair is proved over every state.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 
 import numpy as np
 
 from marm_setup.collision.levers import LeverPoints
 from marm_setup.collision.pair_chain import MOVING, ball_round, rotation_about, swept_ball
-from marm_setup.robot.kinematics import origin_matrix
-from marm_setup.robot.model import Joint, RobotModel
+from marm_setup.robot import Joint, RobotModel, origin_matrix
 
 
 def ancestor_balls(robot: RobotModel, link: str, levers: LeverPoints) -> dict[str, tuple[np.ndarray, float]]:
@@ -39,7 +38,9 @@ def ancestor_balls(robot: RobotModel, link: str, levers: LeverPoints) -> dict[st
     return out
 
 
-def _swept_over_range(joint: Joint, joints: Mapping[str, Joint], origin, centre, radius):
+def _swept_over_range(
+    joint: Joint, joints: Mapping[str, Joint], origin: np.ndarray, centre: np.ndarray, radius: float
+) -> tuple[np.ndarray, float]:
     low, high = _value_range(joint, joints)
     axis = np.asarray(joint.axis, dtype=float)
     norm = np.linalg.norm(axis)
@@ -67,7 +68,7 @@ def _value_range(joint: Joint, joints: Mapping[str, Joint]) -> tuple[float, floa
 
 
 def far_apart(
-    robot: RobotModel, pairs, levers: Mapping[str, LeverPoints], threshold: float
+    robot: RobotModel, pairs: Iterable[tuple[str, str]], levers: Mapping[str, LeverPoints], threshold: float
 ) -> set[tuple[str, str]]:
     """The pairs of `pairs` whose reach balls, in their links' common ancestor's frame, are
     more than `threshold` apart."""
