@@ -14,7 +14,7 @@ from marm_setup.errors import InputError
 from marm_setup.package.setup_files import read_proofs
 from marm_setup.pipeline import with_collision_matrix
 from marm_setup.render.package import render_package
-from marm_setup.setup.infer import infer
+from marm_setup.setup.infer import infer_setup as infer
 from marm_setup.setup.model import RobotSource
 from marm_setup.setup.yaml_io import dump_setup, setup_from_dict
 from marm_setup.validate.rules import matrix_rules
