@@ -187,3 +187,26 @@ def tilting_bar_urdf() -> str:
         ),
         name="tilting_bar",
     )
+
+
+def speck_urdf(mesh_path: str) -> str:
+    """A 1 mm cube (`speck`, on `arm`, which turns about z and slides out along its x over
+    [0, 2]) and a 1 m mesh cube (`shell`, a surface) centred 1.5 m out along x: the speck is in
+    contact only while it straddles the surface, a shell 1 mm thick (the PR2's gripper
+    accelerometer, a 1 mm box, against the other arm's wrist mesh)."""
+    return urdf(
+        "\n".join(
+            [
+                _link("base", '<sphere radius="0.01"/>', "0 0 -0.5"),
+                _link("turner", '<sphere radius="0.001"/>', "0 0 -0.2"),
+                '<joint name="turn" type="revolute"><parent link="base"/><child link="turner"/>'
+                '<axis xyz="0 0 1"/><limit lower="-0.6" upper="0.6" velocity="1" effort="1"/></joint>',
+                _link("speck", '<box size="0.001 0.001 0.001"/>'),
+                '<joint name="out" type="prismatic"><parent link="turner"/><child link="speck"/>'
+                '<axis xyz="1 0 0"/><limit lower="0" upper="2" velocity="1" effort="1"/></joint>',
+                _link("shell", f'<mesh filename="file://{mesh_path}"/>'),
+                _fixed("jshell", "base", "shell", "1.5 0 0"),
+            ]
+        ),
+        name="speck",
+    )

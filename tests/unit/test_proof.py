@@ -17,11 +17,12 @@ from hypothesis import strategies as st
 from marm_setup.collision.matrix import compute_collision_matrix
 from marm_setup.collision.pair_chain import pair_chain
 from marm_setup.collision.pairs import DisabledReason
-from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED, Budget, prove_pair
+from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED, Budget, PairSearch, prove_pair
 from marm_setup.collision.scene import CollisionScene
+from marm_setup.collision.witness import descend
 from marm_setup.robot.kinematics import bounds, default_configuration
 from marm_setup.robot.load import load_robot
-from tests.proof_robots import random_robots, rare_urdf, tilting_bar_urdf, write_meshes
+from tests.proof_robots import random_robots, rare_urdf, speck_urdf, tilting_bar_urdf, write_meshes
 
 STATES = int(os.environ.get("PROOF_STATES", "2000"))
 BLOCK = 20_000  # states checked at a time
@@ -103,6 +104,21 @@ def test_a_witness_comes_from_the_descent_when_the_boxes_run_out(rare):
     assert all(round(v, 6) == v for _, v in proof.witness)  # checked at the values it reports
     assert proof.units > screened.units and proof.proved_fraction == screened.proved_fraction
     assert prove_pair(scene, chain, Budget(boxes=0, descent=2000), seed=3, prior=screened) == proof
+
+
+def test_a_descent_lands_a_speck_on_a_surface(tmp_path_factory, meshes):
+    """A 1 mm cube touches a mesh surface only within a shell 1 mm thick: the descent's steps
+    aimed far beyond contact (AIM, halved) pass through it from either side, and only the
+    steps aimed just beyond contact (FINE) land in it."""
+    robot = _load(tmp_path_factory, speck_urdf(meshes["big_cube"]))
+    scene = CollisionScene(robot)
+    pair = ("shell", "speck")
+    chain = pair_chain(robot, pair, {link: scene.lever_points(link) for link in pair})
+    search = PairSearch(scene, chain, Budget(0, 0))
+    starts = np.array([[0.3, 0.2], [-0.5, 0.4], [0.1, 1.9], [0.05, 1.3]])  # (turn, out); the last inside
+    for start in starts:
+        witness, _ = descend(search, start[None].copy(), limit=search.meter.units + 500)
+        assert witness and _witness_in_contact(scene, pair, witness), start
 
 
 @settings(max_examples=int(os.environ.get("PROOF_EXAMPLES", "25")), deadline=None)
