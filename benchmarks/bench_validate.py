@@ -1,4 +1,6 @@
-"""`validate` timings: each stage, in one process, for the shared panda packages and marm (init).
+"""`validate` timings: each stage, in one process, for the shared panda packages, and marm and
+the panda as init writes them (their marm_setup.yaml records the matrix's proofs: the matrix
+check skips the proved Never pairs; the figure beside it resamples them all).
 
 Run: .venv/bin/python benchmarks/bench_validate.py
 (The command-line figure adds interpreter start-up and imports, about 0.5 s.)
@@ -11,7 +13,7 @@ import time
 from pathlib import Path
 
 from marm_setup.package.read import read_package
-from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing
+from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing, proved_pairs
 from marm_setup.validate.runner import check_static, load_package_robot, run_runtime_checks, validate
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -32,14 +34,18 @@ def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
     (robot, _), t_robot = timed(lambda: load_package_robot(pkg))
     _, t_static = timed(lambda: check_static(pkg, robot))
     scene, t_scene = timed(lambda: CollisionScene(robot))
-    _, t_matrix = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path))
+    proofs = pkg.marm_setup.proofs if pkg.marm_setup is not None else None
+    proved, t_key = timed(lambda: proved_pairs(proofs, robot))
+    _, t_every = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path))
+    _, t_matrix = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, proved=proved))
     _, t_missing = timed(lambda: check_matrix_missing(pkg.srdf, robot, scene, pkg.srdf_path))
     _, t_runtime = timed(lambda: run_runtime_checks(pkg, robot, scene, []))
     found, t_total = timed(lambda: validate(path, package_paths=package_paths).findings)
     _, t_noplan = timed(lambda: validate(path, package_paths=package_paths, plan=False))
     print(
         f"{path.parent.name}/{path.name}: discover+SRDF {t_discover:.2f} s, robot {t_robot:.2f} s, "
-        f"static rules {t_static:.3f} s, scene {t_scene:.2f} s, matrix (1000 states) {t_matrix:.2f} s, "
+        f"static rules {t_static:.3f} s, scene {t_scene:.2f} s, matrix (1000 states) {t_matrix:.2f} s "
+        f"({len(proved)} proved pairs skipped, proof key checked in {t_key:.3f} s; all resampled {t_every:.2f} s), "
         f"enabled pairs (200 states) {t_missing:.2f} s, "
         f"runtime {t_runtime:.2f} s | whole (warm) {t_total:.2f} s, --no-plan {t_noplan:.2f} s, "
         f"{len(found)} findings"
@@ -60,6 +66,13 @@ def main() -> None:
             out = Path(tmp) / target / "marm_moveit_config"
             CliRunner().invoke(app, ["init", str(MARM_URDF), "--out", str(out), "--target", target])
             stages(out, ())
+        description = REALWORLD / "ros1"
+        if description.exists():
+            out = Path(tmp) / "ros1" / "panda_moveit_config"
+            urdf = description / "panda_description" / "urdf" / "panda_arm_hand.urdf.xacro"
+            args = ["init", str(urdf), "--package-path", str(description), "--out", str(out)]
+            CliRunner().invoke(app, [*args, "--target", "ros1"])
+            stages(out, (description,))
 
 
 if __name__ == "__main__":
