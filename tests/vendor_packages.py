@@ -8,7 +8,9 @@ layouts published vendor packages use, none of them copied):
   (`.robot_description(mappings=...)`, `.joint_limits(file_path=...)`,
   `.planning_pipelines(pipelines=[...])`), MoveIt's controllers in `<robot>_controllers.yaml`
   next to `ros2_controllers.yaml`, TRAC-IK with its `solve_type`.
-- `position_only`: MoveIt 1; a 4-DOF arm that can only reach positions (`position_only_ik: True`).
+- `position_only`: MoveIt 1; a 4-DOF arm that can only reach positions (`position_only_ik: True`),
+  one joint's velocity within rounding of the URDF's (0.99995 next to 1.0, as a vendor writes
+  9.6 rad/s next to a URDF's radians(550) = 9.599311).
 
 Each returns (package folder, package paths to pass).
 """
@@ -255,7 +257,8 @@ def python_launch(root: Path) -> tuple[Path, list[Path]]:
 
 def position_only(root: Path) -> tuple[Path, list[Path]]:
     """`scara_moveit_config` (MoveIt 1 Setup Assistant layout, no launch files): a 4-DOF arm
-    whose IK must ignore orientation (`position_only_ik: True`)."""
+    whose IK must ignore orientation (`position_only_ik: True`); joint_4's 0.99995 rad/s is
+    within rounding of the URDF's 1.0 and must stay 0.99995."""
     config = "scara_moveit_config"
     build_file_tree(
         root,
@@ -274,7 +277,10 @@ def position_only(root: Path) -> tuple[Path, list[Path]]:
                 "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.005\n"
                 "  position_only_ik: True\n"
             ),
-            f"{config}/config/joint_limits.yaml": _limits(4, 0.9, 3.0, 0.25),
+            f"{config}/config/joint_limits.yaml": _limits(4, 0.9, 3.0, 0.25).replace(
+                "joint_4:\n    has_velocity_limits: true\n    max_velocity: 0.9",
+                "joint_4:\n    has_velocity_limits: true\n    max_velocity: 0.99995",
+            ),
             f"{config}/config/simple_moveit_controllers.yaml": (
                 "controller_list:\n  - name: scara_controller\n    action_ns: follow_joint_trajectory\n"
                 "    type: FollowJointTrajectory\n    default: true\n    joints: [joint_1, joint_2, joint_3, joint_4]\n"

@@ -9,7 +9,7 @@ from collections.abc import Iterable
 from marm_setup.package import JointLimitEntry, JointLimitsFile, LoadedLimit, Where, effective_limits
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
-from marm_setup.robot import RobotModel, limit_slack
+from marm_setup.robot import RobotModel
 from marm_setup.setup import JointLimitOverride
 
 # joint_limits' default scaling factors -> SetupModel field
@@ -102,8 +102,11 @@ def _report_settings(limits: JointLimitsFile, log: PortLog) -> None:
 
 
 def _same(a: float, b: float | None) -> bool:
-    """`a` is `b` up to the rounding of a limit written in a file (`limit_slack`)."""
-    return b is not None and abs(a - b) <= limit_slack(b)
+    """`a` is `b` exactly. MoveIt moves with the file's value, not the URDF's (moveit/moveit
+    robot_model_loader.cpp l.139-142 sets max_velocity from the parameter as given): 9.6 rad/s
+    next to a URDF's 9.599311 (radians(550)) is carried as an override, not replaced by the
+    URDF's within rounding (`limit_slack` serves validate's above-the-URDF rules)."""
+    return b is not None and a == b
 
 
 def _limit(
