@@ -44,7 +44,8 @@ def motion_settings(pkg: MoveItPackage, robot: RobotModel) -> dict[str, object]:
         param = getattr(pkg.joint_limits, f"{kind}_scaling", None)
         if param is not None and param.number is not None:
             out[f"scaling:default_{kind}_scaling"] = param.number
-    for c in pkg.moveit_controllers.controllers if pkg.moveit_controllers else ():
+    managed = pkg.managed_controllers
+    for c in managed.controllers if managed else ():
         out[f"controller:{c.name}"] = (frozenset(c.joints), c.type)
     for entry in pkg.kinematics.groups or () if pkg.kinematics else ():
         for param in entry.params or ():

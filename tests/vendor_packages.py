@@ -11,6 +11,10 @@ layouts published vendor packages use, none of them copied):
 - `position_only`: MoveIt 1; a 4-DOF arm that can only reach positions (`position_only_ik: True`),
   one joint's velocity within rounding of the URDF's (0.99995 next to 1.0, as a vendor writes
   9.6 rad/s next to a URDF's radians(550) = 9.599311).
+- `ros2_control_manager`: MoveIt 2; `moveit_controller_manager:
+  moveit_ros_control_interface/Ros2ControlManager` and no controller list: MoveIt's controllers
+  are the ros2_control ones (vendor names, a JointTrajectoryController and a
+  GripperActionController).
 
 Each returns (package folder, package paths to pass).
 """
@@ -290,4 +294,73 @@ def position_only(root: Path) -> tuple[Path, list[Path]]:
     return root / config, [root]
 
 
-PACKAGES = {"arg_selected": arg_selected, "python_launch": python_launch, "position_only": position_only}
+# -- MoveIt 2, controllers found through ros2_control -----------------------------------------------
+
+MANAGER_LAUNCH_PY = """from moveit_configs_utils import MoveItConfigsBuilder
+from moveit_configs_utils.launches import generate_move_group_launch
+
+
+def generate_launch_description():
+    moveit_config = (
+        MoveItConfigsBuilder("rc", package_name="rc_moveit_config")
+        .trajectory_execution(file_path="config/moveit_controllers.yaml")
+        .to_moveit_configs()
+    )
+    return generate_move_group_launch(moveit_config)
+"""
+RC_CONTROLLERS = """controller_manager:
+  ros__parameters:
+    update_rate: 100
+    rc_arm_jtc:
+      type: joint_trajectory_controller/JointTrajectoryController
+    rc_hand:
+      type: position_controllers/GripperActionController
+    joint_state_broadcaster:
+      type: joint_state_broadcaster/JointStateBroadcaster
+rc_arm_jtc:
+  ros__parameters:
+    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]
+    command_interfaces: [position]
+    state_interfaces: [position, velocity]
+rc_hand:
+  ros__parameters:
+    joint: gripper_finger_left_joint
+"""
+
+
+def ros2_control_manager(root: Path) -> tuple[Path, list[Path]]:
+    """`rc_moveit_config` (MoveIt 2): Ros2ControlManager, controllers only in ros2_controllers.yaml."""
+    config = "rc_moveit_config"
+    build_file_tree(
+        root,
+        {
+            "rc_description/package.xml": AMENT.format(name="rc_description"),
+            "rc_description/urdf/rc.urdf": _arm_urdf("rc", 6, gripper=True),
+            f"{config}/package.xml": AMENT.format(name=config),
+            f"{config}/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  urdf:\n    package: rc_description\n"
+                "    relative_path: urdf/rc.urdf\n  srdf:\n    relative_path: config/rc.srdf\n"
+            ),
+            f"{config}/config/rc.srdf": _srdf("rc", 6, gripper=True),
+            f"{config}/config/moveit_controllers.yaml": (
+                "trajectory_execution:\n  allowed_execution_duration_scaling: 1.2\n"
+                "moveit_controller_manager: moveit_ros_control_interface/Ros2ControlManager\n"
+            ),
+            f"{config}/config/ros2_controllers.yaml": RC_CONTROLLERS,
+            f"{config}/config/joint_limits.yaml": _limits(6, 0.7, 2.0, 0.3),
+            f"{config}/config/kinematics.yaml": (
+                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
+                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
+            ),
+            f"{config}/launch/move_group.launch.py": MANAGER_LAUNCH_PY,
+        },
+    )
+    return root / config, [root]
+
+
+PACKAGES = {
+    "arg_selected": arg_selected,
+    "python_launch": python_launch,
+    "position_only": position_only,
+    "ros2_control_manager": ros2_control_manager,
+}

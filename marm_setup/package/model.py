@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding
+from marm_setup.package.control_manager import managed_controllers
 from marm_setup.package.controllers_file import ControllersFile
 from marm_setup.package.driver_file import ArbotixFile, DriverFile, InitialPositions, Ros2ControlFile
 from marm_setup.package.joint_limits_file import JointLimitsFile
@@ -77,6 +78,14 @@ class MoveItPackage:
     files: tuple[str, ...] = ()  # every file of the package
     sources: tuple[Source, ...] = ()
     problems: tuple[Finding, ...] = field(default=())
+
+    @property
+    def managed_controllers(self) -> ControllersFile | None:
+        """MoveIt's controllers as its manager finds them: the file's list, or with MoveIt 2's
+        Ros2ControlManager the ros2_control controllers it has a handle for (`control_manager`)."""
+        if self.moveit_controllers is None or self.target != Target.ROS2:
+            return self.moveit_controllers
+        return managed_controllers(self.moveit_controllers, self.ros2_controllers)
 
     @property
     def srdf(self) -> Srdf | None:

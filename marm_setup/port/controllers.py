@@ -52,11 +52,18 @@ def port_controllers(
     pkg: MoveItPackage, model: SetupModel, robot: RobotModel, log: PortLog
 ) -> tuple[Controller, ...]:
     """MoveIt's controllers, fitted to the target's driver; every entry reported."""
-    moveit = pkg.moveit_controllers
+    moveit = pkg.managed_controllers
     if moveit is None:
         detail = "no MoveIt controller list: one controller per group is written, as init does"
         log.changed("controllers", "", detail, "controllers")
         return ()
+    if moveit is not pkg.moveit_controllers:
+        names = ", ".join(c.name for c in moveit.controllers) or "none"
+        detail = (
+            f"{moveit.manager} takes ros2_control's controllers ({names}): "
+            "the new package lists them for moveit_simple_controller_manager"
+        )
+        log.changed("controllers", moveit.where, detail, "controllers")
     out: list[Controller] = []
     merged = pkg.alt_moveit_controllers if pkg.target == Target.ROS2 else ()
     for i, listed in enumerate((moveit, *merged)):

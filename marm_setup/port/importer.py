@@ -260,8 +260,9 @@ def _with_controllers(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, 
     from marm_setup.setup import derive_group_settings
 
     derived = derive_group_settings(model, robot)
-    controllers = port_controllers(pkg, model, robot, log) or derived.controllers
-    if not pkg.moveit_controllers:
+    ported = port_controllers(pkg, model, robot, log)
+    controllers = ported or derived.controllers
+    if not ported:
         for c in controllers:
             detail = f"written for group {c.group} ({c.type}), as init infers it"
             log.changed(f"controllers[{c.name}]", "", detail, "controllers")

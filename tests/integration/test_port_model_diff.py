@@ -87,3 +87,22 @@ def test_position_only_ik_reaches_both_targets(tmp_path):
         assert "position_only_ik: true" in (tmp_path / target / file).read_text()
         kinematics = read_package(tmp_path / target).kinematics.group("arm")
         assert kinematics.param("position_only_ik").value is True
+
+
+def test_ros2_control_manager_controllers_keep_their_names(tmp_path):
+    """Ros2ControlManager: MoveIt's controllers are ros2_control's; the port lists them by name."""
+    source, paths = PACKAGES["ros2_control_manager"](tmp_path / "src")
+    pkg = read_package(source, package_paths=paths)
+    assert pkg.moveit_controllers.controllers == ()
+    managed = {c.name: (c.type, c.action_ns) for c in pkg.managed_controllers.controllers}
+    assert managed == {
+        "rc_arm_jtc": ("FollowJointTrajectory", "follow_joint_trajectory"),
+        "rc_hand": ("GripperCommand", "gripper_cmd"),
+    }
+    for target in ("ros1", "ros2"):
+        doc = port(source, paths, tmp_path / target, target)
+        setup = (tmp_path / target / "marm_setup.yaml").read_text()
+        assert "name: rc_arm_jtc" in setup and "name: rc_hand" in setup
+        assert not any(
+            i["setting"].startswith("driver.rc_") and i["status"] == "dropped" for i in doc["port"]["items"]
+        )
