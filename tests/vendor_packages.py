@@ -15,6 +15,10 @@ layouts published vendor packages use, none of them copied):
   moveit_ros_control_interface/Ros2ControlManager` and no controller list: MoveIt's controllers
   are the ros2_control ones (vendor names, a JointTrajectoryController and a
   GripperActionController).
+- `hand_loaded`: MoveIt 2 without MoveItConfigsBuilder; its Python launch loads MoveIt's
+  controller list by hand (`load_yaml(pkg, "config/hlarm_controllers.yaml")`) next to
+  `config/hlarm_ros_controllers.yaml` (two `*_controllers.yaml`, neither named after the package's
+  robot `hl`: no builder convention picks one).
 
 Each returns (package folder, package paths to pass).
 """
@@ -358,7 +362,73 @@ def ros2_control_manager(root: Path) -> tuple[Path, list[Path]]:
     return root / config, [root]
 
 
+HAND_LAUNCH_PY = """import os
+
+import yaml
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def load_yaml(package_name, file_path):
+    with open(os.path.join(get_package_share_directory(package_name), file_path)) as file:
+        return yaml.safe_load(file)
+
+
+def generate_launch_description():
+    controllers = {
+        "moveit_simple_controller_manager": load_yaml("hl_moveit_config", "config/hlarm_controllers.yaml"),
+        "moveit_controller_manager": "moveit_simple_controller_manager/MoveItSimpleControllerManager",
+    }
+    kinematics = load_yaml("hl_moveit_config", "config/kinematics.yaml")
+    move_group = Node(package="moveit_ros_move_group", executable="move_group",
+                      parameters=[controllers, {"robot_description_kinematics": kinematics}])
+    return LaunchDescription([move_group])
+"""
+HL_CONTROLLERS = """controller_names: [hl_arm_controller, hl_gripper]
+hl_arm_controller:
+  action_ns: follow_joint_trajectory
+  type: FollowJointTrajectory
+  default: true
+  joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]
+hl_gripper:
+  action_ns: gripper_action
+  type: GripperCommand
+  default: true
+  joints: [gripper_finger_left_joint]
+"""
+
+
+def hand_loaded(root: Path) -> tuple[Path, list[Path]]:
+    """`hl_moveit_config` (MoveIt 2): controllers loaded by hand in launch/moveit.launch.py."""
+    config = "hl_moveit_config"
+    driver = RC_CONTROLLERS.replace("rc_arm_jtc", "hl_arm_controller").replace("rc_hand", "hl_gripper")
+    build_file_tree(
+        root,
+        {
+            "hl_description/package.xml": AMENT.format(name="hl_description"),
+            "hl_description/urdf/hl.urdf": _arm_urdf("hl", 6, gripper=True),
+            f"{config}/package.xml": AMENT.format(name=config),
+            f"{config}/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  urdf:\n    package: hl_description\n"
+                "    relative_path: urdf/hl.urdf\n  srdf:\n    relative_path: config/hl.srdf\n"
+            ),
+            f"{config}/config/hl.srdf": _srdf("hl", 6, gripper=True),
+            f"{config}/config/hlarm_controllers.yaml": HL_CONTROLLERS,
+            f"{config}/config/hlarm_ros_controllers.yaml": driver,
+            f"{config}/config/joint_limits.yaml": _limits(6, 0.6, 1.5, 0.2),
+            f"{config}/config/kinematics.yaml": (
+                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
+                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
+            ),
+            f"{config}/launch/moveit.launch.py": HAND_LAUNCH_PY,
+        },
+    )
+    return root / config, [root]
+
+
 PACKAGES = {
+    "hand_loaded": hand_loaded,
     "arg_selected": arg_selected,
     "python_launch": python_launch,
     "position_only": position_only,

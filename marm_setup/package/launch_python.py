@@ -89,6 +89,8 @@ class PythonLaunch:
         """The first launch file's xacro command for `parameter` (launch files sorted)."""
         return next((c for c in self.commands if c.parameter == parameter), None)
 
+    named_yaml: tuple[tuple[str, str], ...] = ()  # (a YAML path written as a literal, launch file)
+
 
 @dataclass
 class _Env:
@@ -105,6 +107,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
     builders: list[BuilderCall] = []
     control: list[tuple[str, str]] = []
     commands: list[XacroCommand] = []
+    named: list[tuple[str, str]] = []
     for rel in files:
         try:
             tree = ast.parse(read_text(root / rel, XML_BYTES, shown=rel), rel)
@@ -114,7 +117,8 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
         builders += [_builder(call, rel, env) for call in _builder_chains(tree)]
         control += [(path, rel) for path in _control_files(tree, env)]
         commands += xacro_commands(tree, rel, env)
-    return PythonLaunch(tuple(builders), tuple(control), tuple(commands))
+        named += [(path, rel) for path in _named_yaml(tree)]
+    return PythonLaunch(tuple(builders), tuple(control), tuple(commands), tuple(named))
 
 
 def _environment(tree: ast.AST, find: Callable[[str], str | None]) -> _Env:
@@ -379,3 +383,12 @@ def undefined_unread_arg(message: str, unread: tuple[str, ...]) -> str | None:
 
     found = re.search(r"undefined xacro arg '([^']+)'", message)
     return found.group(1) if found and found.group(1) in unread else None
+
+
+def _named_yaml(tree: ast.AST) -> Iterator[str]:
+    """YAML paths a launch file writes as string literals: the files it loads by hand
+    (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder."""
+    for node in ast.walk(tree):
+        value = node.value if isinstance(node, ast.Constant) else None
+        if isinstance(value, str) and value.endswith((".yaml", ".yml")):
+            yield value

@@ -230,7 +230,11 @@ def _servo(files: PackageFiles, loaded: list[str]) -> tuple[ServoConfig, ...]:
 
 
 def read_ros2_kinds(
-    files: PackageFiles, loads: tuple[YamlLoad, ...], builder: BuilderFiles, control_files: tuple[str, ...]
+    files: PackageFiles,
+    loads: tuple[YamlLoad, ...],
+    builder: BuilderFiles,
+    control_files: tuple[str, ...],
+    named_yaml: tuple[tuple[str, str], ...] = (),
 ) -> Kinds:
     """What the builder loads, then the files XML launch files hand to nodes over it."""
     kinds = Kinds()
@@ -242,7 +246,7 @@ def read_ros2_kinds(
         chosen = chosen_file(builder, method, root)
         doc = _named(files, chosen.file) if chosen is not None else None
         kinds.put(kind, reader(doc) if doc is not None else None, doc, chosen.how if chosen else SA_NAME)
-    _ros2_controllers(files, builder, kinds)
+    _ros2_controllers(files, builder, kinds, named_yaml)
     _ros2_pipelines(files, builder, kinds)
     chosen = chosen_file(builder, "sensors_3d", root)
     doc = _named(files, chosen.file) if chosen is not None else None
@@ -278,8 +282,12 @@ def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
             return
 
 
-def _ros2_controllers(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) -> None:
-    chosen = controllers_file(builder, files.root)
+def _ros2_controllers(
+    files: PackageFiles, builder: BuilderFiles, kinds: Kinds, named_yaml: tuple[tuple[str, str], ...]
+) -> None:
+    """MoveIt's controllers: the builder's file; else the `config/*_controllers.yaml` with a
+    MoveIt controller list that a Python launch names (one that loads it by hand)."""
+    chosen = controllers_file(builder, files.root) or _named_controllers(files, named_yaml)
     doc = _named(files, chosen.file) if chosen is not None else None
     if doc is not None and chosen is not None:
         kinds.put("moveit_controllers", read_controllers(unwrap_parameters(doc)), doc, chosen.how)
@@ -289,6 +297,16 @@ def _ros2_controllers(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) 
         if other is not None and _is_moveit_controllers(unwrap_parameters(other)):
             alternatives.append(read_controllers(unwrap_parameters(other)))
     kinds.values["alt_moveit_controllers"] = tuple(alternatives)
+
+
+def _named_controllers(files: PackageFiles, named_yaml: tuple[tuple[str, str], ...]) -> Chosen | None:
+    for rel, launch in named_yaml:
+        doc = _named(files, rel)
+        if doc is not None and _is_moveit_controllers(unwrap_parameters(doc)):
+            return Chosen(
+                rel, f"loaded by hand (named in {launch}) as moveit_simple_controller_manager's list"
+            )
+    return None
 
 
 def _is_moveit_controllers(doc: Located) -> bool:

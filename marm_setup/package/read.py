@@ -55,6 +55,7 @@ class _Launched:
     builder: BuilderFiles | None = None
     control_files: tuple[str, ...] = ()
     commands: tuple[XacroCommand, ...] = ()  # descriptions a Python launch file builds with xacro
+    named_yaml: tuple[tuple[str, str], ...] = ()  # (package-relative YAML path, Python launch naming it)
 
     def command(self, parameter: str) -> XacroCommand | None:
         return next((c for c in self.commands if c.parameter == parameter), None)
@@ -226,7 +227,8 @@ def _launched(
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
-    return _Launched(xml.loads, xml.semantic, builder, control, python.commands)
+    named = tuple((rel, launch) for path, launch in python.named_yaml if (rel := _relative(path, files.root)))
+    return _Launched(xml.loads, xml.semantic, builder, control, python.commands, named)
 
 
 def _relative(path: str, root: Path) -> str | None:
@@ -334,7 +336,9 @@ def _kinds(files: PackageFiles, target: Target, launched: _Launched, problems: l
     if target == Target.ROS1:
         return read_ros1_kinds(files, launched.loads)
     assert launched.builder is not None
-    kinds = read_ros2_kinds(files, launched.loads, launched.builder, launched.control_files)
+    kinds = read_ros2_kinds(
+        files, launched.loads, launched.builder, launched.control_files, launched.named_yaml
+    )
     done = set()
     for load in sorted(launched.loads, key=lambda lo: lo.conditional):
         if load.file not in done and _holds_moveit_params(files, load.file):

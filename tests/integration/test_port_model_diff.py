@@ -106,3 +106,15 @@ def test_ros2_control_manager_controllers_keep_their_names(tmp_path):
         assert not any(
             i["setting"].startswith("driver.rc_") and i["status"] == "dropped" for i in doc["port"]["items"]
         )
+
+
+def test_controllers_a_python_launch_loads_by_hand(tmp_path):
+    """No MoveItConfigsBuilder: the controller list a launch file names is MoveIt's."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path / "src")
+    pkg = read_package(source, package_paths=paths)
+    assert pkg.moveit_controllers.where.file == "config/hlarm_controllers.yaml"
+    assert "launch/moveit.launch.py" in pkg.source("moveit_controllers").how
+    assert [c.name for c in pkg.moveit_controllers.controllers] == ["hl_arm_controller", "hl_gripper"]
+    port(source, paths, tmp_path / "out", "ros2")
+    setup = (tmp_path / "out" / "marm_setup.yaml").read_text()
+    assert "name: hl_arm_controller" in setup and "name: hl_gripper" in setup
