@@ -14,7 +14,7 @@ layouts published vendor packages use, none of them copied):
 - `ros2_control_manager`: MoveIt 2; `moveit_controller_manager:
   moveit_ros_control_interface/Ros2ControlManager` and no controller list: MoveIt's controllers
   are the ros2_control ones (vendor names, a JointTrajectoryController and a
-  GripperActionController).
+  GripperActionController); joint_6 has an acceleration limit only (the URDF's velocity stays).
 - `hand_loaded`: MoveIt 2 without MoveItConfigsBuilder; its Python launch loads MoveIt's
   controller list by hand (`load_yaml(pkg, "config/hlarm_controllers.yaml")`) next to
   `config/hlarm_ros_controllers.yaml` (two `*_controllers.yaml`, neither named after the package's
@@ -351,7 +351,9 @@ def ros2_control_manager(root: Path) -> tuple[Path, list[Path]]:
                 "moveit_controller_manager: moveit_ros_control_interface/Ros2ControlManager\n"
             ),
             f"{config}/config/ros2_controllers.yaml": RC_CONTROLLERS,
-            f"{config}/config/joint_limits.yaml": _limits(6, 0.7, 2.0, 0.3),
+            f"{config}/config/joint_limits.yaml": _limits(6, 0.7, 2.0, 0.3).replace(
+                "joint_6:\n    has_velocity_limits: true\n    max_velocity: 0.7\n", "joint_6:\n"
+            ),
             f"{config}/config/kinematics.yaml": (
                 "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
                 "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"

@@ -146,9 +146,14 @@ def _limit(
 
 def _velocity(name: str, src: Where, read: LoadedLimit, urdf: float | None, log: PortLog) -> float | None:
     velocity = read.max_velocity
-    if velocity is None:
-        why = "has_velocity_limits is false" if read.velocity_off else "no velocity limit given"
-        log.changed(f"{name}.max_velocity", src, f"{why}: the URDF's ({urdf}) applies", "limits")
+    if velocity is None and read.velocity_off:
+        detail = f"has_velocity_limits is false: the URDF's ({urdf}) applies"
+        log.changed(f"{name}.max_velocity", src, detail, "limits")
+        return None
+    if velocity is None:  # MoveIt keeps the URDF's, and so does the new package
+        log.carried(
+            f"{name}.max_velocity", src, f"the URDF's ({urdf}): no velocity limit MoveIt reads", "limits"
+        )
         return None
     if _same(velocity, urdf):
         log.carried(f"{name}.max_velocity", src, f"{velocity:g} (the URDF's)", "limits")

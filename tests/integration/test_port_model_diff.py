@@ -106,6 +106,8 @@ def test_ros2_control_manager_controllers_keep_their_names(tmp_path):
         assert not any(
             i["setting"].startswith("driver.rc_") and i["status"] == "dropped" for i in doc["port"]["items"]
         )
+        items = {i["setting"]: i["status"] for i in doc["port"]["items"]}
+        assert items["joint_limits[joint_6].max_velocity"] == "carried"  # none given: the URDF's stays
 
 
 def test_controllers_a_python_launch_loads_by_hand(tmp_path):
