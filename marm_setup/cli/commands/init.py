@@ -60,7 +60,11 @@ FromPackageOption = Annotated[
 OptionalUrdfArg = Annotated[
     Path | None,
     typer.Argument(
-        help="Robot description: .urdf, .xacro or .urdf.xacro (not with --from-package).", metavar="URDF"
+        help=(
+            "Robot description: .urdf, .xacro or .urdf.xacro (with --from-package: the robot, where the "
+            "package's launch files take it from another package)."
+        ),
+        metavar="URDF",
     ),
 ]
 
