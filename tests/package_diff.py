@@ -1,6 +1,6 @@
 """What changes how the robot moves, read from a package model: for diffing a package against
 its port (joint limits as MoveIt reads them, scaling factors, MoveIt's controllers, IK solvers
-and their options)."""
+and their options, each group's OMPL settings)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,14 @@ from marm_setup.setup.groups import planning_joints
 # kinematics keys MoveIt does not read (>= 1.0 reads no attempts)
 IGNORED_KINEMATICS_KEYS = ("kinematics_solver_attempts",)
 # a diff key's prefix -> the port report setting that must explain a difference
-REPORTED = {"limit": "joint_limits[{}]", "controller": "controllers[{}]", "kinematics": "kinematics[{}]"}
+REPORTED = {
+    "limit": "joint_limits[{}]",
+    "controller": "controllers[{}]",
+    "kinematics": "kinematics[{}]",
+    "planner": "planners[{}]",
+}
+# a group's OMPL keys the port rewrites by design: the planners offered (every one it writes)
+IGNORED_PLANNER_KEYS = ("planner_configs",)
 
 
 def motion_settings(pkg: MoveItPackage, robot: RobotModel) -> dict[str, object]:
@@ -51,6 +58,26 @@ def motion_settings(pkg: MoveItPackage, robot: RobotModel) -> dict[str, object]:
         for param in entry.params or ():
             if param.key not in IGNORED_KINEMATICS_KEYS:
                 out[f"kinematics:{entry.group}.{param.key}"] = param.value
+    out.update(_planner_settings(pkg, {g.name for g in srdf.groups}))
+    return out
+
+
+def _planner_settings(pkg: MoveItPackage, groups: set[str]) -> dict[str, object]:
+    """Each SRDF group's OMPL settings; its default planner by type (the port renames configs)."""
+    ompl, out = pkg.ompl, {}
+    if ompl is None:
+        return out
+    types = {c.name: c.type for c in ompl.planner_configs or ()}
+    for entry in ompl.groups:
+        for param in entry.params if entry.group in groups else ():
+            if param.key in IGNORED_PLANNER_KEYS:
+                continue
+            value = (
+                types.get(str(param.value), param.value)
+                if param.key == "default_planner_config"
+                else param.value
+            )
+            out[f"planner:{entry.group}.{param.key}"] = value
     return out
 
 
