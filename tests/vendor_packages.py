@@ -19,6 +19,9 @@ layouts published vendor packages use, none of them copied):
   controller list by hand (`load_yaml(pkg, "config/hlarm_controllers.yaml")`) next to
   `config/hlarm_ros_controllers.yaml` (two `*_controllers.yaml`, neither named after the package's
   robot `hl`: no builder convention picks one).
+- `own_wrapper`: MoveIt 2; the launch names the package's own ros2_control wrapper
+  (`.robot_description(file_path="config/wr.urdf.xacro")`, as moveit_resources' fanuc does) and
+  `.setup_assistant` the description it wraps.
 
 Each returns (package folder, package paths to pass).
 """
@@ -429,7 +432,61 @@ def hand_loaded(root: Path) -> tuple[Path, list[Path]]:
     return root / config, [root]
 
 
+WRAPPER_LAUNCH_PY = """from moveit_configs_utils import MoveItConfigsBuilder
+from moveit_configs_utils.launches import generate_demo_launch
+
+
+def generate_launch_description():
+    moveit_config = (
+        MoveItConfigsBuilder("wrapped_arm", package_name="wr_moveit_config")
+        .robot_description(file_path="config/wr.urdf.xacro")
+        .robot_description_semantic(file_path="config/wr.srdf")
+        .to_moveit_configs()
+    )
+    return generate_demo_launch(moveit_config)
+"""
+WRAPPER_XACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="wr">
+  <xacro:include filename="$(find wr_description)/urdf/wr.urdf"/>
+</robot>
+"""
+
+
+def own_wrapper(root: Path) -> tuple[Path, list[Path]]:
+    """`wr_moveit_config` (MoveIt 2): the builder loads config/wr.urdf.xacro, a wrapper of
+    wr_description's URDF that .setup_assistant names."""
+    config = "wr_moveit_config"
+    build_file_tree(
+        root,
+        {
+            "wr_description/package.xml": AMENT.format(name="wr_description"),
+            "wr_description/urdf/wr.urdf": _arm_urdf("wr", 6, gripper=False),
+            f"{config}/package.xml": AMENT.format(name=config),
+            f"{config}/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  URDF:\n    package: wr_description\n"
+                "    relative_path: urdf/wr.urdf\n  SRDF:\n    relative_path: config/wr.srdf\n"
+            ),
+            f"{config}/config/wr.urdf.xacro": WRAPPER_XACRO,
+            f"{config}/config/wr.srdf": _srdf("wr", 6, gripper=False),
+            f"{config}/config/moveit_controllers.yaml": (
+                "moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager\n"
+                "moveit_simple_controller_manager:\n  controller_names: [wr_arm]\n  wr_arm:\n"
+                "    type: FollowJointTrajectory\n    action_ns: follow_joint_trajectory\n    default: true\n"
+                "    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]\n"
+            ),
+            f"{config}/config/joint_limits.yaml": _limits(6, 0.5, 1.0, 0.1),
+            f"{config}/config/kinematics.yaml": (
+                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
+                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
+            ),
+            f"{config}/launch/demo.launch.py": WRAPPER_LAUNCH_PY,
+        },
+    )
+    return root / config, [root]
+
+
 PACKAGES = {
+    "own_wrapper": own_wrapper,
     "hand_loaded": hand_loaded,
     "arg_selected": arg_selected,
     "python_launch": python_launch,

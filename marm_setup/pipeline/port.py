@@ -137,9 +137,10 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
         request.package, urdf=request.urdf, package_paths=request.package_paths, xacro_args=args
     )
     urdf = pkg.description_file
-    if pkg.urdf_origin != "config/<robot>.urdf.xacro":
-        return pkg, ()
     sa = pkg.setup_assistant
+    convention = pkg.urdf_origin == "config/<robot>.urdf.xacro"
+    if not convention and not (_own_wrapper(pkg) and sa is not None and sa.urdf_package and sa.urdf_path):
+        return pkg, ()
     found = (
         setup_assistant_description(sa, pkg.package_paths, pkg.shown, ())
         if sa is not None and sa.urdf_package and sa.urdf_path
@@ -164,6 +165,15 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
         f"own wrapper): the description .setup_assistant names is used, {path}",
     )
     return pkg, (note,)
+
+
+def _own_wrapper(pkg: MoveItPackage) -> bool:
+    """The description is a `config/*.urdf.xacro` of the package itself that a launch file names
+    (`MoveItConfigsBuilder.robot_description(file_path="config/fanuc.urdf.xacro")`): the Setup
+    Assistant's ros2_control wrapper, which the new package, of the same name, writes anew."""
+    if pkg.urdf is None or pkg.urdf_origin == "--urdf" or not pkg.urdf.name.endswith(".urdf.xacro"):
+        return False
+    return pkg.urdf.resolve().parent == (pkg.root / "config").resolve()
 
 
 def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> RobotModel:
