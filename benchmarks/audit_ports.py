@@ -8,7 +8,7 @@ snapshots; never copied into the project). For each package below it runs `init 
 to ros1 and to ros2 (humble), diffs `motion_settings` of the source's package model against the
 port's (tests/package_diff.py) and prints, per package and target: the settings in the source,
 those carried, those the port report names (changed, dropped or todo), those silently lost,
-and the summary line's counts.
+the report's counts of what moves the robot, and the new package's validation errors.
 """
 
 from __future__ import annotations
@@ -121,9 +121,10 @@ def audit(name: str, root: Path, work: Path) -> list[str]:
         carried = sum(1 for k, v in before.items() if after.get(k) == v)
         named = len(before) - carried - len(lost)
         counts = doc["port"].get("motion_counts")
+        errors = doc["validation"]["errors"]
         rows.append(
             f"{name} | {layout} | {target} | {len(before)} | {carried} | {named} | {len(lost)} "
-            f"| {counts} | {sorted(lost.items())[:6]}"
+            f"| {counts} | {errors} | {sorted(lost.items())[:6]}"
         )
     return rows
 
