@@ -139,7 +139,9 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
     urdf = pkg.description_file
     sa = pkg.setup_assistant
     convention = pkg.urdf_origin == "config/<robot>.urdf.xacro"
-    if not convention and not (_own_wrapper(pkg) and sa is not None and sa.urdf_package and sa.urdf_path):
+    named = sa is not None and bool(sa.urdf_package and sa.urdf_path)
+    if not convention and not (_own_wrapper(pkg) and named):
+        _check_own_description(pkg, request.name)
         return pkg, ()
     found = (
         setup_assistant_description(sa, pkg.package_paths, pkg.shown, ())
@@ -165,6 +167,22 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
         f"own wrapper): the description .setup_assistant names is used, {path}",
     )
     return pkg, (note,)
+
+
+def _check_own_description(pkg: MoveItPackage, name: str | None) -> None:
+    """A description inside the package itself, reached as package://<its name>/...: a new
+    package of the same name, which writes its own files, would name itself (to ros2 its own
+    wrapper including itself). InputError: give the URDF, or another --name."""
+    if not _own_wrapper(pkg) or (name or pkg.name) != pkg.name:
+        return
+    rel = pkg.urdf.resolve().relative_to(pkg.root.resolve()).as_posix()
+    raise InputError(
+        f"the robot description {rel} is the package's own file and .setup_assistant names no other: "
+        f"a new package named {pkg.name} would name itself; give the robot's URDF "
+        "(init URDF --from-package PKG), or --name another package name to use this one's",
+        path=pkg.user_path(rel),
+        element="robot description",
+    )
 
 
 def _own_wrapper(pkg: MoveItPackage) -> bool:

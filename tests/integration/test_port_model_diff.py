@@ -120,3 +120,25 @@ def test_controllers_a_python_launch_loads_by_hand(tmp_path):
     port(source, paths, tmp_path / "out", "ros2")
     setup = (tmp_path / "out" / "marm_setup.yaml").read_text()
     assert "name: hl_arm_controller" in setup and "name: hl_gripper" in setup
+
+
+def test_a_description_inside_the_package_is_not_named_by_the_new_package(tmp_path):
+    """No .setup_assistant: the wrapper is the description. A new package of the same name would
+    name itself (to ros2, its own wrapper including itself): one error line; --name another
+    package name and the new package uses the source's."""
+    source, paths = PACKAGES["own_wrapper"](tmp_path / "src")
+    (source / ".setup_assistant").unlink()
+    args = [a for p in paths for a in ("--package-path", str(p))]
+    cmd = ["init", "--from-package", str(source), "--out", str(tmp_path / "same"), "--no-plan", *args]
+    result = runner.invoke(app, cmd)
+    assert result.exit_code == 2 and "would name itself" in result.stderr
+    assert not (tmp_path / "same").exists()
+    for target in ("ros1", "ros2"):
+        out = tmp_path / target
+        result = runner.invoke(
+            app, [*cmd[:3], "--out", str(out), "--name", "wr2_moveit_config", "--target", target, *cmd[5:]]
+        )
+        assert result.exit_code == 0, result.output
+        assert (
+            "urdf: package://wr_moveit_config/config/wr.urdf.xacro" in (out / "marm_setup.yaml").read_text()
+        )
