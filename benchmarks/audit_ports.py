@@ -90,6 +90,10 @@ URDFS = {
 }
 
 
+# other options a user gives: a package whose description is its own file needs another name
+OPTIONS = {"dual_arm_panda_ros2": ("--name", "dual_arm_panda_ported_moveit_config")}
+
+
 def port(source: Path, paths: list[Path], out: Path, target: str, urdf: list[str]) -> tuple[int, dict | str]:
     args = [a for p in paths for a in ("--package-path", str(p))]
     cmd = ["init", *urdf, "--from-package", str(source), "--out", str(out), "--target", target, "--no-plan"]
@@ -106,6 +110,7 @@ def audit(name: str, root: Path, work: Path) -> list[str]:
     given = dict(a.split(":=", 1) for a in xacro_args)
     src = read_package(source, urdf=urdf and root / urdf, package_paths=roots, xacro_args=given or None)
     cli = [a for x in xacro_args for a in ("--xacro-arg", x)] + ([str(root / urdf)] if urdf else [])
+    cli += OPTIONS.get(name, ())
     robot = load_robot(src.urdf, dict(src.xacro_args), src.package_paths)
     before = motion_settings(src, robot)
     rows = []
@@ -138,7 +143,8 @@ def main() -> None:
         print("MARM_AUDIT_PACKAGES is unset or absent: nothing audited")
         return
     print(
-        "package | layout | target | source settings | carried | named by report | lost | counts | lost keys"
+        "package | layout | target | source settings | carried | named by report | lost | motion counts "
+        "| new package's validation errors | lost keys"
     )
     with tempfile.TemporaryDirectory() as work:
         for name in options.only or sorted(PACKAGES):
