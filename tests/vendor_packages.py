@@ -301,6 +301,30 @@ def position_only(root: Path) -> tuple[Path, list[Path]]:
     return root / config, [root]
 
 
+KDL = (
+    "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
+    "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
+)
+
+
+def _moveit2_skeleton(robot: str, gripper: bool, limits: str) -> dict[str, str]:
+    """A MoveIt 2 `<robot>_moveit_config` and `<robot>_description` (URDF, .setup_assistant
+    naming it, SRDF, KDL, joint limits): each package adds its launch and controllers."""
+    config = f"{robot}_moveit_config"
+    return {
+        f"{robot}_description/package.xml": AMENT.format(name=f"{robot}_description"),
+        f"{robot}_description/urdf/{robot}.urdf": _arm_urdf(robot, 6, gripper=gripper),
+        f"{config}/package.xml": AMENT.format(name=config),
+        f"{config}/.setup_assistant": (
+            f"moveit_setup_assistant_config:\n  urdf:\n    package: {robot}_description\n"
+            f"    relative_path: urdf/{robot}.urdf\n  srdf:\n    relative_path: config/{robot}.srdf\n"
+        ),
+        f"{config}/config/{robot}.srdf": _srdf(robot, 6, gripper=gripper),
+        f"{config}/config/joint_limits.yaml": limits,
+        f"{config}/config/kinematics.yaml": KDL,
+    }
+
+
 # -- MoveIt 2, controllers found through ros2_control -----------------------------------------------
 
 MANAGER_LAUNCH_PY = """from moveit_configs_utils import MoveItConfigsBuilder
@@ -338,32 +362,17 @@ rc_hand:
 def ros2_control_manager(root: Path) -> tuple[Path, list[Path]]:
     """`rc_moveit_config` (MoveIt 2): Ros2ControlManager, controllers only in ros2_controllers.yaml."""
     config = "rc_moveit_config"
-    build_file_tree(
-        root,
-        {
-            "rc_description/package.xml": AMENT.format(name="rc_description"),
-            "rc_description/urdf/rc.urdf": _arm_urdf("rc", 6, gripper=True),
-            f"{config}/package.xml": AMENT.format(name=config),
-            f"{config}/.setup_assistant": (
-                "moveit_setup_assistant_config:\n  urdf:\n    package: rc_description\n"
-                "    relative_path: urdf/rc.urdf\n  srdf:\n    relative_path: config/rc.srdf\n"
-            ),
-            f"{config}/config/rc.srdf": _srdf("rc", 6, gripper=True),
-            f"{config}/config/moveit_controllers.yaml": (
-                "trajectory_execution:\n  allowed_execution_duration_scaling: 1.2\n"
-                "moveit_controller_manager: moveit_ros_control_interface/Ros2ControlManager\n"
-            ),
-            f"{config}/config/ros2_controllers.yaml": RC_CONTROLLERS,
-            f"{config}/config/joint_limits.yaml": _limits(6, 0.7, 2.0, 0.3).replace(
-                "joint_6:\n    has_velocity_limits: true\n    max_velocity: 0.7\n", "joint_6:\n"
-            ),
-            f"{config}/config/kinematics.yaml": (
-                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
-                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
-            ),
-            f"{config}/launch/move_group.launch.py": MANAGER_LAUNCH_PY,
-        },
+    limits = _limits(6, 0.7, 2.0, 0.3).replace(
+        "joint_6:\n    has_velocity_limits: true\n    max_velocity: 0.7\n", "joint_6:\n"
     )
+    files = _moveit2_skeleton("rc", gripper=True, limits=limits)
+    files[f"{config}/config/moveit_controllers.yaml"] = (
+        "trajectory_execution:\n  allowed_execution_duration_scaling: 1.2\n"
+        "moveit_controller_manager: moveit_ros_control_interface/Ros2ControlManager\n"
+    )
+    files[f"{config}/config/ros2_controllers.yaml"] = RC_CONTROLLERS
+    files[f"{config}/launch/move_group.launch.py"] = MANAGER_LAUNCH_PY
+    build_file_tree(root, files)
     return root / config, [root]
 
 
@@ -408,27 +417,11 @@ def hand_loaded(root: Path) -> tuple[Path, list[Path]]:
     """`hl_moveit_config` (MoveIt 2): controllers loaded by hand in launch/moveit.launch.py."""
     config = "hl_moveit_config"
     driver = RC_CONTROLLERS.replace("rc_arm_jtc", "hl_arm_controller").replace("rc_hand", "hl_gripper")
-    build_file_tree(
-        root,
-        {
-            "hl_description/package.xml": AMENT.format(name="hl_description"),
-            "hl_description/urdf/hl.urdf": _arm_urdf("hl", 6, gripper=True),
-            f"{config}/package.xml": AMENT.format(name=config),
-            f"{config}/.setup_assistant": (
-                "moveit_setup_assistant_config:\n  urdf:\n    package: hl_description\n"
-                "    relative_path: urdf/hl.urdf\n  srdf:\n    relative_path: config/hl.srdf\n"
-            ),
-            f"{config}/config/hl.srdf": _srdf("hl", 6, gripper=True),
-            f"{config}/config/hlarm_controllers.yaml": HL_CONTROLLERS,
-            f"{config}/config/hlarm_ros_controllers.yaml": driver,
-            f"{config}/config/joint_limits.yaml": _limits(6, 0.6, 1.5, 0.2),
-            f"{config}/config/kinematics.yaml": (
-                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
-                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
-            ),
-            f"{config}/launch/moveit.launch.py": HAND_LAUNCH_PY,
-        },
-    )
+    files = _moveit2_skeleton("hl", gripper=True, limits=_limits(6, 0.6, 1.5, 0.2))
+    files[f"{config}/config/hlarm_controllers.yaml"] = HL_CONTROLLERS
+    files[f"{config}/config/hlarm_ros_controllers.yaml"] = driver
+    files[f"{config}/launch/moveit.launch.py"] = HAND_LAUNCH_PY
+    build_file_tree(root, files)
     return root / config, [root]
 
 
@@ -456,32 +449,16 @@ def own_wrapper(root: Path) -> tuple[Path, list[Path]]:
     """`wr_moveit_config` (MoveIt 2): the builder loads config/wr.urdf.xacro, a wrapper of
     wr_description's URDF that .setup_assistant names."""
     config = "wr_moveit_config"
-    build_file_tree(
-        root,
-        {
-            "wr_description/package.xml": AMENT.format(name="wr_description"),
-            "wr_description/urdf/wr.urdf": _arm_urdf("wr", 6, gripper=False),
-            f"{config}/package.xml": AMENT.format(name=config),
-            f"{config}/.setup_assistant": (
-                "moveit_setup_assistant_config:\n  URDF:\n    package: wr_description\n"
-                "    relative_path: urdf/wr.urdf\n  SRDF:\n    relative_path: config/wr.srdf\n"
-            ),
-            f"{config}/config/wr.urdf.xacro": WRAPPER_XACRO,
-            f"{config}/config/wr.srdf": _srdf("wr", 6, gripper=False),
-            f"{config}/config/moveit_controllers.yaml": (
-                "moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager\n"
-                "moveit_simple_controller_manager:\n  controller_names: [wr_arm]\n  wr_arm:\n"
-                "    type: FollowJointTrajectory\n    action_ns: follow_joint_trajectory\n    default: true\n"
-                "    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]\n"
-            ),
-            f"{config}/config/joint_limits.yaml": _limits(6, 0.5, 1.0, 0.1),
-            f"{config}/config/kinematics.yaml": (
-                "arm:\n  kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin\n"
-                "  kinematics_solver_search_resolution: 0.005\n  kinematics_solver_timeout: 0.05\n"
-            ),
-            f"{config}/launch/demo.launch.py": WRAPPER_LAUNCH_PY,
-        },
+    files = _moveit2_skeleton("wr", gripper=False, limits=_limits(6, 0.5, 1.0, 0.1))
+    files[f"{config}/config/wr.urdf.xacro"] = WRAPPER_XACRO
+    files[f"{config}/config/moveit_controllers.yaml"] = (
+        "moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager\n"
+        "moveit_simple_controller_manager:\n  controller_names: [wr_arm]\n  wr_arm:\n"
+        "    type: FollowJointTrajectory\n    action_ns: follow_joint_trajectory\n    default: true\n"
+        "    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]\n"
     )
+    files[f"{config}/launch/demo.launch.py"] = WRAPPER_LAUNCH_PY
+    build_file_tree(root, files)
     return root / config, [root]
 
 
