@@ -17,6 +17,7 @@ API = {
     "where": "FrozenMapping Param Value Where",
     "description": "marm_package_paths setup_assistant_description",
     "controllers_file": "ControllersFile MoveItController SIMPLE_MANAGER SkippedController",
+    "control_manager": "ROS2_CONTROL_HANDLES",
     "driver_file": "ArbotixFile ArbotixServo DriverController DriverFile InitialPositions Ros2ControlFile",
     "kinematics_file": "GroupKinematics KinematicsFile",
     "joint_limits_file": "JointLimitEntry JointLimitsFile",
@@ -31,6 +32,7 @@ API = {
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.package.control_manager import ROS2_CONTROL_HANDLES as ROS2_CONTROL_HANDLES
     from marm_setup.package.controllers_file import SIMPLE_MANAGER as SIMPLE_MANAGER
     from marm_setup.package.controllers_file import ControllersFile as ControllersFile
     from marm_setup.package.controllers_file import MoveItController as MoveItController

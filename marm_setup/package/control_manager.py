@@ -26,7 +26,7 @@ ROS2_CONTROL_MANAGERS = frozenset(
     }
 )
 # ros2_control controller type -> (MoveIt handle type, action namespace)
-ALLOCATED = {
+ROS2_CONTROL_HANDLES = {
     "joint_trajectory_controller/JointTrajectoryController": (
         "FollowJointTrajectory",
         "follow_joint_trajectory",
@@ -43,8 +43,10 @@ def managed_controllers(listed: ControllersFile, driver: DriverFile | None) -> C
     if listed.manager not in ROS2_CONTROL_MANAGERS or listed.controllers or driver is None:
         return listed
     found = tuple(
-        MoveItController(c.name, ALLOCATED[c.type][0], ALLOCATED[c.type][1], False, c.joints, c.where)
+        MoveItController(
+            c.name, ROS2_CONTROL_HANDLES[c.type][0], ROS2_CONTROL_HANDLES[c.type][1], False, c.joints, c.where
+        )
         for c in driver.controllers
-        if c.type in ALLOCATED and c.joints
+        if c.type in ROS2_CONTROL_HANDLES and c.joints
     )
     return replace(listed, controllers=found)

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package import (
+    ROS2_CONTROL_HANDLES,
     SIMPLE_MANAGER,
     ControllersFile,
     DriverFile,
@@ -218,17 +219,10 @@ def _check_initial(fake: ControllersFile, srdf: Srdf) -> list[Finding]:
 # -- moveit_ros_control_interface: controllers found at run time ------------------------------------
 
 ROS_CONTROL_INTERFACE = "moveit_ros_control_interface/"
-# The controller types moveit_ros_control_interface has a handle for (moveit/moveit2
-# moveit_plugins/moveit_ros_control_interface/moveit_ros_control_interface_plugins.xml); the
+# The controller types moveit_ros_control_interface has a handle for (the package model's
+# table, package.control_manager, from moveit_ros_control_interface_plugins.xml); the
 # admittance controller's handle is empty (it executes nothing).
-EXECUTING_TYPES = frozenset(
-    {
-        "joint_trajectory_controller/JointTrajectoryController",
-        "position_controllers/GripperActionController",
-        "effort_controllers/GripperActionController",
-        "parallel_gripper_action_controller/GripperActionController",
-    }
-)
+EXECUTING_TYPES = frozenset(ROS2_CONTROL_HANDLES)
 
 
 def uses_ros_control_interface(controllers: ControllersFile) -> bool:
