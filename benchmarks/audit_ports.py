@@ -111,7 +111,7 @@ def audit(name: str, root: Path, work: Path) -> list[str]:
     src = read_package(source, urdf=urdf and root / urdf, package_paths=roots, xacro_args=given or None)
     cli = [a for x in xacro_args for a in ("--xacro-arg", x)] + ([str(root / urdf)] if urdf else [])
     cli += OPTIONS.get(name, ())
-    robot = load_robot(src.urdf, dict(src.xacro_args), src.package_paths)
+    robot = load_robot(src.description_file, dict(src.xacro_args), src.package_paths)
     before = motion_settings(src, robot)
     rows = []
     for target in ("ros1", "ros2"):

@@ -175,7 +175,7 @@ def _check_own_description(pkg: MoveItPackage, name: str | None) -> None:
     wrapper including itself). InputError: give the URDF, or another --name."""
     if not _own_wrapper(pkg) or (name or pkg.name) != pkg.name:
         return
-    rel = pkg.urdf.resolve().relative_to(pkg.root.resolve()).as_posix()
+    rel = pkg.description_file.resolve().relative_to(pkg.root.resolve()).as_posix()
     raise InputError(
         f"the robot description {rel} is the package's own file and .setup_assistant names no other: "
         f"a new package named {pkg.name} would name itself; give the robot's URDF "

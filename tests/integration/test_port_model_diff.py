@@ -30,7 +30,7 @@ def port(source, paths, out, target: str) -> dict:
 def diff(source, paths, out, doc) -> tuple[dict, dict, dict]:
     src = read_package(source, package_paths=paths)
     new = read_package(out)
-    robot = load_robot(src.urdf, dict(src.xacro_args), src.package_paths)
+    robot = load_robot(src.description_file, dict(src.xacro_args), src.package_paths)
     before, after = motion_settings(src, robot), motion_settings(new, robot)
     return before, after, unexplained(before, after, doc["port"]["items"])
 
