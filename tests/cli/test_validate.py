@@ -53,7 +53,9 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
 
 def test_errors_exit_1_text_grouped_by_file(tmp_path):
     pkg = copy_package(panda("ros1"), tmp_path)
-    replace_text(pkg, "config/kinematics.yaml", "kinematics_solver_timeout: 0.05", "kinematics_solver_timeout: -1")
+    replace_text(
+        pkg, "config/kinematics.yaml", "kinematics_solver_timeout: 0.05", "kinematics_solver_timeout: -1"
+    )
     args = ["validate", str(pkg), "--no-plan", "--package-path", str(panda("ros1").package_paths[0])]
     result = runner.invoke(app, args)
     assert result.exit_code == 1
