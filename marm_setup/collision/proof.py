@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from marm_setup.collision.certificates import CERT_MARGIN
+from marm_setup.collision.meter import Meter
 from marm_setup.collision.pair_chain import PairChain
 
 if TYPE_CHECKING:
@@ -42,8 +43,6 @@ SLACK = 64  # in any order); SLACK: open boxes beyond what the budget left can s
 RELATIVE_MARGIN = 1e-5  # coal's GJK stops within a relative 1e-6 of the distance (VDB criterion)
 WITNESS_DECIMALS = 6  # a witness is rounded to 1e-6 [rad, m], then checked at those values
 TINY = 1e-9  # [m] a box whose whole displacement bound is below this is not split further
-EXACT_UNITS = 10  # an exact mesh distance costs about 10 to 40 hull distances
-PROBE = 8  # exact queries beyond the hulls tried before their use is judged by what they certify
 
 
 @dataclass(frozen=True, slots=True)
@@ -121,35 +120,6 @@ class PairProof:
     def reached(self) -> float:
         """The smallest distance [m] its witness search reached (inf: none ran)."""
         return self.near[0][0] if self.near else np.inf
-
-
-class Meter:
-    """Coal distance queries of one pair, in work units, and whether exact queries beyond the
-    hulls still pay (they are tried while at least 1 in PROBE certifies what the hull did not)."""
-
-    def __init__(self, scene: CollisionScene, pair_id: int) -> None:
-        self.scene, self.pair_id = scene, pair_id
-        self.hulls = scene.has_hulls(pair_id)
-        self.units = 0
-        self.extra_tries = 0
-        self.extra_wins = 0
-
-    def hull(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
-        self.units += 1
-        return self.scene.shape_distance(self.pair_id, pose_a, pose_b, hulls=True)
-
-    def exact(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
-        self.units += EXACT_UNITS if self.hulls else 1
-        return self.scene.shape_distance(self.pair_id, pose_a, pose_b)
-
-    def nearest(
-        self, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool
-    ) -> tuple[float, np.ndarray, np.ndarray]:
-        self.units += 1 if hulls or not self.hulls else EXACT_UNITS
-        return self.scene.nearest_points(self.pair_id, pose_a, pose_b, hulls=hulls)
-
-    def extra_pays(self) -> bool:
-        return self.extra_tries < PROBE or self.extra_wins * PROBE >= self.extra_tries
 
 
 class PairSearch:

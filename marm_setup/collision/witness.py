@@ -34,13 +34,14 @@ from __future__ import annotations
 import itertools
 import zlib
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 if TYPE_CHECKING:
+    from marm_setup.collision.meter import Meter
     from marm_setup.collision.pair_chain import Frames, PairChain
-    from marm_setup.collision.proof import PairSearch
+    from marm_setup.collision.scene import CollisionScene
 
 DENSE = 2048  # descents from the DENSE_STARTS nearest-looking of DENSE random states of the
 CLOSEST = 8  # pair's box, then from the CLOSEST box centres measured, then from random states
@@ -59,6 +60,18 @@ SWITCH = 2e-3  # [m] hull distance beyond the padding below which the real dista
 
 Witness = tuple[tuple[str, float], ...]
 Measured = tuple[float, tuple[np.ndarray, np.ndarray], bool]  # distance, nearest points, exact
+
+
+class PairSearch(Protocol):
+    """What the witness search needs of a pair's proof (collision/proof.py PairSearch)."""
+
+    scene: CollisionScene
+    chain: PairChain
+    meter: Meter
+    threshold: float
+    near: list
+
+    def check_witness(self, values: np.ndarray) -> tuple[tuple[str, float], ...]: ...
 
 
 def search_witness(

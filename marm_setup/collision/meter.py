@@ -1,0 +1,42 @@
+"""A pair's coal distance queries counted in work units (a proof's budget is units, never time)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
+
+EXACT_UNITS = 10  # an exact mesh distance costs about 10 to 40 hull distances
+PROBE = 8  # exact queries beyond the hulls tried before their use is judged by what they certify
+
+
+class Meter:
+    """Coal distance queries of one pair, in work units, and whether exact queries beyond the
+    hulls still pay (they are tried while at least 1 in PROBE certifies what the hull did not)."""
+
+    def __init__(self, scene: CollisionScene, pair_id: int) -> None:
+        self.scene, self.pair_id = scene, pair_id
+        self.hulls = scene.has_hulls(pair_id)
+        self.units = 0
+        self.extra_tries = 0
+        self.extra_wins = 0
+
+    def hull(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
+        self.units += 1
+        return self.scene.shape_distance(self.pair_id, pose_a, pose_b, hulls=True)
+
+    def exact(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
+        self.units += EXACT_UNITS if self.hulls else 1
+        return self.scene.shape_distance(self.pair_id, pose_a, pose_b)
+
+    def nearest(
+        self, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool
+    ) -> tuple[float, np.ndarray, np.ndarray]:
+        self.units += 1 if hulls or not self.hulls else EXACT_UNITS
+        return self.scene.nearest_points(self.pair_id, pose_a, pose_b, hulls=hulls)
+
+    def extra_pays(self) -> bool:
+        return self.extra_tries < PROBE or self.extra_wins * PROBE >= self.extra_tries
