@@ -22,7 +22,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from marm_setup.package.launch_xml import LaunchXml, package_relative
+from marm_setup.package.launch_xml import LaunchXml, package_file, package_relative, substituted
 from marm_setup.package.substitution import Scope, SubstitutionError, substitute, truth
 
 if TYPE_CHECKING:
@@ -294,18 +294,11 @@ def _semantic(elem: etree._Element, ctx: _Context, root: Path) -> SemanticLoad |
 
 
 def _text(text: str | None, ctx: _Context) -> str | None:
-    if text is None:
-        return None
-    try:
-        return substitute(text, ctx.scope)
-    except SubstitutionError:
-        return None
+    return substituted(text, ctx.scope)
 
 
 def _package_file(attr: str | None, ctx: _Context, root: Path) -> str | None:
-    """The package-relative path an attribute names, or None (outside the package, unresolvable)."""
-    text = _text(attr, ctx) if attr else None
-    return package_relative(text, root) if text else None
+    return package_file(attr, ctx.scope, root)
 
 
 def _ns(ctx: _Context, ns: str | None) -> str:

@@ -16,8 +16,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.package.launch_ros1 import SemanticLoad, YamlLoad
-from marm_setup.package.launch_xml import LaunchXml, package_relative
-from marm_setup.package.substitution import Scope, SubstitutionError, substitute, truth
+from marm_setup.package.launch_xml import LaunchXml, package_file, package_relative, substituted
+from marm_setup.package.substitution import Scope, truth
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -169,14 +169,8 @@ def _semantic(value: str, ctx: _Context, root: Path) -> SemanticLoad | None:
 
 
 def _text(text: str | None, ctx: _Context) -> str | None:
-    if text is None:
-        return None
-    try:
-        return substitute(text, ctx.scope)
-    except SubstitutionError:
-        return None
+    return substituted(text, ctx.scope)
 
 
 def _file(attr: str | None, ctx: _Context, root: Path) -> str | None:
-    text = _text(attr, ctx) if attr else None
-    return package_relative(text, root) if text else None
+    return package_file(attr, ctx.scope, root)

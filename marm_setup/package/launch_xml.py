@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error
+from marm_setup.package.substitution import Scope, SubstitutionError, substitute
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -65,3 +66,19 @@ def package_relative(path: str, root: Path) -> str | None:
     """`path` (absolute, or relative to `root`) relative to the package, or None outside it."""
     rel = os.path.relpath(os.path.normpath(os.path.join(str(root), path)), root)
     return None if rel.startswith("..") else rel.replace(os.sep, "/")
+
+
+def substituted(text: str | None, scope: Scope) -> str | None:
+    """`text` with its `$(...)` evaluated in `scope`, or None (no text, or not evaluable)."""
+    if text is None:
+        return None
+    try:
+        return substitute(text, scope)
+    except SubstitutionError:
+        return None
+
+
+def package_file(attr: str | None, scope: Scope, root: Path) -> str | None:
+    """The package-relative path an attribute names, or None (outside the package, unresolvable)."""
+    text = substituted(attr, scope) if attr else None
+    return package_relative(text, root) if text else None
