@@ -22,7 +22,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from marm_setup.package.launch_xml import LaunchXml, package_file, package_relative, substituted
+from marm_setup.package.launch_xml import LaunchXml, condition, package_file, package_relative, substituted
 from marm_setup.package.substitution import Scope, SubstitutionError, substitute, truth
 
 if TYPE_CHECKING:
@@ -153,20 +153,7 @@ def _walk_children(
 
 
 def _condition(elem: etree._Element, ctx: _Context) -> bool | None:
-    """True / False from `if` / `unless`, None when it cannot be decided (an unknown arg)."""
-    for attr, wanted in (("if", True), ("unless", False)):
-        text = elem.get(attr)
-        if text is None:
-            continue
-        try:
-            value = truth(substitute(text, ctx.scope))
-        except SubstitutionError:
-            return None
-        if value is None:
-            return None
-        if value is not wanted:
-            return False
-    return True
+    return condition(elem, ctx.scope)
 
 
 def _arg(

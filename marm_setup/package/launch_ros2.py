@@ -16,8 +16,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.package.launch_ros1 import SemanticLoad, YamlLoad
-from marm_setup.package.launch_xml import LaunchXml, package_file, package_relative, substituted
-from marm_setup.package.substitution import Scope, truth
+from marm_setup.package.launch_xml import LaunchXml, condition, package_file, package_relative, substituted
+from marm_setup.package.substitution import Scope
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -106,16 +106,7 @@ def _walk_children(walk: _Walk, elem: etree._Element, ctx: _Context, passed: Map
 
 
 def _condition(elem: etree._Element, ctx: _Context) -> bool | None:
-    for attr, wanted in (("if", True), ("unless", False)):
-        text = elem.get(attr)
-        if text is None:
-            continue
-        value = truth(_text(text, ctx) or "")
-        if value is None:
-            return None
-        if value is not wanted:
-            return False
-    return True
+    return condition(elem, ctx.scope)
 
 
 def _arg(elem: etree._Element, ctx: _Context, passed: Mapping[str, str]) -> _Context:

@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error
-from marm_setup.package.substitution import Scope, SubstitutionError, substitute
+from marm_setup.package.substitution import Scope, SubstitutionError, substitute, truth
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -82,3 +82,18 @@ def package_file(attr: str | None, scope: Scope, root: Path) -> str | None:
     """The package-relative path an attribute names, or None (outside the package, unresolvable)."""
     text = substituted(attr, scope) if attr else None
     return package_relative(text, root) if text else None
+
+
+def condition(elem: etree._Element, scope: Scope) -> bool | None:
+    """True / False from an element's `if` / `unless` (roslaunch and launch_xml read them alike),
+    None when it cannot be decided (an unknown arg, a value that is no truth value)."""
+    for attr, wanted in (("if", True), ("unless", False)):
+        text = elem.get(attr)
+        if text is None:
+            continue
+        value = truth(substituted(text, scope) or "")
+        if value is None:
+            return None
+        if value is not wanted:
+            return False
+    return True
