@@ -71,11 +71,27 @@ def _environment(home: str) -> dict[str, str]:
     }
 
 
-def _with_our_scripts_last(path: str) -> str:
-    """PATH with this interpreter's scripts last: a ROS 1 launch file's `command="xacro ..."`
-    finds the xacro marm-setup runs when the user's ROS has none (Debian's roslaunch). Not for
-    ROS 2: its launch check puts its own interpreter's xacro (ament-aware) last."""
-    return os.pathsep.join(p for p in (path, os.path.dirname(sys.executable)) if p)
+XACRO_PACKAGE = (
+    '<?xml version="1.0"?>\n<package format="2"><name>xacro</name><version>0.0.0</version></package>\n'
+)
+XACRO_SCRIPT = "#!{python}\nimport sys\nfrom marm_setup.robot.xacro_command import main\nsys.exit(main())\n"
+
+
+def _xacro_fallback(home: str) -> str:
+    """A package folder `xacro` holding an executable `xacro` of marm-setup's own
+    (robot/xacro_command.py), for ROS 1 launch files' `command="xacro ..."` and
+    `command="$(find xacro)/xacro ..."` when the user's ROS has no xacro (Debian's roslaunch).
+    It goes last on PATH and ROS_PACKAGE_PATH: a real xacro wins. Not for ROS 2: its launch
+    check puts its own interpreter's (ament-aware) xacro last."""
+    folder = os.path.join(home, "fallback", "xacro")
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "package.xml"), "w", encoding="utf-8") as out:
+        out.write(XACRO_PACKAGE)
+    script = os.path.join(folder, "xacro")
+    with open(script, "w", encoding="utf-8") as out:
+        out.write(XACRO_SCRIPT.format(python=sys.executable))
+    os.chmod(script, 0o755)
+    return folder
 
 
 def _run(argv: list[str], env: dict[str, str], seconds: float) -> subprocess.CompletedProcess | None:
@@ -209,11 +225,17 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
     ran = f"roslaunch --dump-params ({roslaunch}), and the static rules"
     out = []
     with tempfile.TemporaryDirectory(prefix="marm_ros1_") as home:
-        roots = [str(pkg.root), *(str(p) for p in pkg.package_paths), os.environ.get("ROS_PACKAGE_PATH", "")]
+        xacro = _xacro_fallback(home)
+        roots = [
+            str(pkg.root),
+            *(str(p) for p in pkg.package_paths),
+            os.environ.get("ROS_PACKAGE_PATH", ""),
+            os.path.dirname(xacro),
+        ]
         env = {
             **_environment(home),
             "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r),
-            "PATH": _with_our_scripts_last(os.environ.get("PATH", "")),
+            "PATH": os.pathsep.join(p for p in (os.environ.get("PATH", ""), xacro) if p),
         }
         for launch in pkg.launch:
             rel = launch.file
