@@ -60,7 +60,7 @@ def read_sensors(doc: Located) -> SensorsFile | None:
             continue
         plugin = next((p.value for p in params if p.key == "sensor_plugin"), None)
         others = tuple(p for p in params if p.key != "sensor_plugin")
-        out.append(Sensor(name, entry.where, str(plugin) if plugin else None, others))
+        out.append(Sensor(name, entry.where, None if plugin is None else str(plugin), others))
     return SensorsFile(listed.where, tuple(out))
 
 

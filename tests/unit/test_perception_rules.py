@@ -186,3 +186,28 @@ def test_moveit1_servo_and_sensors(tmp_path):
     assert "padding_scale: expected a double, got 'big'" in found["sensors.parameter-type"][0]
     other = ros1_package(tmp_path / "b" / "bot_moveit_config", "/arm_controller/joint_trajectory", POINTCLOUD)
     assert list(rules(other)) == ["servo.no-controller"]
+
+
+@pytest.mark.parametrize(
+    "sensors",
+    ["sensors:\n  - {}\n", "sensors: [{}]\n", "sensors:\n  - {sensor_plugin: ''}\n"],
+)
+def test_moveit1_setup_assistants_empty_sensor_is_no_error(tmp_path, sensors):
+    """MoveIt 1's Setup Assistant writes `sensors: - {}` when no sensor was chosen: MoveIt logs
+    'No sensor plugin specified; ignoring' and goes on (a warning); an empty plugin it skips
+    on purpose (nothing)."""
+    pkg = ros1_package(tmp_path / "bot_moveit_config", "/arm_controller/command", POINTCLOUD)
+    (pkg / "config/sensors_3d.yaml").write_text(sensors, encoding="utf-8")
+    found = rules(pkg)
+    expected = [] if "sensor_plugin" in sensors else ["sensors.empty"]
+    assert list(found) == expected, found
+    assert all(m.startswith("warning") for ms in found.values() for m in ms)
+
+
+@pytest.mark.parametrize(("listed", "rule"), [('[""]', "sensors.empty"), ("[cam]", "sensors.unknown-plugin")])
+def test_moveit2_empty_sensor_name_is_a_warning_a_named_one_without_plugin_an_error(tmp_path, listed, rule):
+    pkg = ros2_package(tmp_path / "bot_moveit_config")
+    (pkg / "config/sensors_3d.yaml").write_text(f"sensors: {listed}\n", encoding="utf-8")
+    found = rules(pkg)
+    assert list(found) == [rule], found
+    assert found[rule][0].startswith("warning" if rule == "sensors.empty" else "error")

@@ -25,8 +25,16 @@ Sensors (occupancy map monitor; the Setup Assistant's updaters, pluginlib names 
 moveit_ros/perception/*_plugin_description.xml, identical on the three branches):
 - sensors.unknown-plugin (error): no sensor_plugin, or an `occupancy_map_monitor/` plugin that is
   none of MoveIt's: the sensor is not loaded (noetic occupancy_map_monitor.cpp l.119-123 and
-  l.148-155; humble l.103-111, jazzy l.101-109). MoveIt 1 skips an empty or `~` plugin on purpose
-  (noetic l.126-128); a plugin of another namespace may be the user's own: neither is checked.
+  l.148-155; humble l.103-111, jazzy l.101-109). MoveIt skips an empty or `~` plugin on purpose
+  with an info line (noetic l.126-128; humble occupancy_map_monitor_middleware_handle.cpp
+  l.109-112, jazzy l.108-112); a plugin of another namespace may be the user's own: neither is
+  checked.
+- sensors.empty (warning): an entry with nothing in it, as MoveIt 1's Setup Assistant writes when
+  no sensor was chosen (`sensors: - {}`, moveit_config_data.cpp output3DSensorPluginYAML), or an
+  empty MoveIt 2 name (`sensors: [""]`): MoveIt logs "No sensor plugin specified for octomap
+  updater ...; ignoring." and goes on (noetic occupancy_map_monitor.cpp l.119-123 at 5555c3d;
+  moveit2 jazzy occupancy_map_monitor_middleware_handle.cpp l.103-112 at 4d84106, humble
+  l.104-112): no sensor was meant, none is lost.
 - sensors.no-topic (error): PointCloudOctomapUpdater::setParams fails without point_cloud_topic
   (noetic pointcloud_octomap_updater.cpp l.73-74; humble l.78-88, jazzy l.75-85) and an empty
   topic subscribes nothing; the DepthImage updater reads image_topic (noetic
@@ -160,15 +168,18 @@ def check_sensors(pkg: MoveItPackage) -> list[Finding]:
     for sensor in pkg.sensors.sensors if pkg.sensors is not None else ():
         kind = by_plugin.get(sensor.plugin or "")
         if kind is None:
-            out += _unknown_plugin(sensor, sorted(by_plugin), pkg.target)
+            out += _unknown_plugin(sensor, sorted(by_plugin))
             continue
         out += _sensor(sensor, kind.topic_key, dict(kind.defaults), pkg.target)
     return out
 
 
-def _unknown_plugin(sensor: Sensor, valid: list[str], target: Target) -> list[Finding]:
+def _unknown_plugin(sensor: Sensor, valid: list[str]) -> list[Finding]:
     plugin = sensor.plugin
-    skipped = target == Target.ROS1 and plugin is not None and (not plugin or plugin.startswith("~"))
+    if plugin is None and not sensor.params and (sensor.name.isdigit() or not sensor.name):
+        msg = "an empty sensor entry: MoveIt logs 'No sensor plugin specified' and ignores it"
+        return [warning("sensors.empty", sensor.where.file, sensor.where.element, msg, "remove the entry")]
+    skipped = plugin is not None and (not plugin or plugin.startswith("~"))
     if skipped or (plugin and not plugin.startswith(PLUGIN_PREFIX)):
         return []
     said = f"sensor_plugin '{plugin}' is none of MoveIt's updaters" if plugin else "no sensor_plugin"
