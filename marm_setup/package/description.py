@@ -165,7 +165,11 @@ def setup_assistant_description(
     where = str(Path(shown) / ".setup_assistant")
     relative_inside(str(sa.urdf_path), shown=where, element="URDF.relative_path")
     pkg_dir = find_package(str(sa.urdf_package), find_packages(paths), path=where, element="URDF.package")
-    return Description(pkg_dir / str(sa.urdf_path), ".setup_assistant", args)
+    return Description(pkg_dir / str(sa.urdf_path), SETUP_ASSISTANT_ORIGIN, args)
+
+
+# Only the Setup Assistant reads .setup_assistant; move_group takes what the launch files load.
+SETUP_ASSISTANT_ORIGIN = ".setup_assistant (no launch file names a robot description)"
 
 
 RUNTIME_ONLY = (

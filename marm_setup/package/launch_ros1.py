@@ -10,19 +10,22 @@ a launch may load instead, e.g. with `gazebo_sim:=true`). What it records:
 - each YAML file a `<rosparam command="load" file=...>` loads, with the namespace it lands in,
   the args in scope (for `subst_value`), and the `moveit_controller_manager` param set beside
   it (roslaunch xmlloader.py `_rosparam_tag`, loader.py `load_rosparam`);
-- the SRDF a `*_semantic` param loads, from `textfile=` or `command="xacro FILE a:=b"` with
-  those xacro args (MoveIt 1 planning_context.launch);
+- the URDF a `robot_description` param loads and the SRDF its `_semantic` loads, from
+  `textfile=` or a xacro `command=` read as xacro reads it (`$(find xacro)/xacro --inorder
+  a:=b FILE c:=d`: robot/xacro_cli.py), with those xacro args, in this package or another one
+  `$(find)` leads to (MoveIt 1 planning_context.launch; move_group reads both params);
 - `<param name value>` values (their full names).
 """
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from marm_setup.package.launch_xml import LaunchXml, condition, package_file, package_relative, substituted
+from marm_setup.package.launch_xml import LaunchXml, condition, package_file, substituted
 from marm_setup.package.substitution import Scope, SubstitutionError, substitute, truth
 
 if TYPE_CHECKING:
@@ -30,6 +33,7 @@ if TYPE_CHECKING:
 
 MAX_DEPTH = 20
 MANAGER_PARAM = "moveit_controller_manager"
+DESCRIPTION = "robot_description"
 
 
 @dataclass(frozen=True, slots=True)
@@ -45,12 +49,19 @@ class YamlLoad:
 
 
 @dataclass(frozen=True, slots=True)
-class SemanticLoad:
-    """The SRDF a launch file sets as `<robot_description>_semantic`, with its xacro args."""
+class DescriptionLoad:
+    """The file a launch file sets as `robot_description` (URDF) or `robot_description_semantic`
+    (SRDF), with the xacro args its command passes. `file` is relative to the package (`../`
+    when a `$(find)` leads into another package), None when the launch names none statically."""
 
-    file: str
+    file: str | None
     xacro_args: tuple[tuple[str, str], ...]
     launch: str
+    unread_args: tuple[str, ...] = ()  # xacro args given values only the run time has
+    missing_package: str | None = None  # the `$(find pkg)` no package path holds
+
+
+SemanticLoad = DescriptionLoad
 
 
 @dataclass(frozen=True, slots=True)
@@ -65,8 +76,9 @@ class LaunchParam:
 @dataclass(frozen=True)
 class Ros1Launch:
     loads: tuple[YamlLoad, ...] = ()  # first reach of each (file, ns), entry points in order
-    semantic: SemanticLoad | None = None
+    semantic: DescriptionLoad | None = None
     params: tuple[LaunchParam, ...] = ()
+    description: DescriptionLoad | None = None  # robot_description as a user's entry launch sets it
 
 
 @dataclass
@@ -77,7 +89,8 @@ class _Walk:
     trees: Mapping[str, LaunchXml]
     find: Callable[[str], str | None]
     loads: list[YamlLoad] = field(default_factory=list)
-    semantic: list[tuple[SemanticLoad, bool]] = field(default_factory=list)
+    semantic: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
+    description: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
     params: list[LaunchParam] = field(default_factory=list)
     included: set[str] = field(default_factory=set)
 
@@ -100,7 +113,8 @@ def evaluate_ros1(
     order), whose args reach the included ones as roslaunch passes them, then the included
     files on their own defaults."""
     loads: dict[tuple[str, str], YamlLoad] = {}
-    semantic: list[tuple[SemanticLoad, bool]] = []
+    semantic: list[tuple[DescriptionLoad, bool]] = []
+    description: list[tuple[DescriptionLoad, bool]] = []
     params: dict[str, LaunchParam] = {}
     walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
     for rel, walk in walks.items():
@@ -113,12 +127,18 @@ def evaluate_ros1(
             if known is None or (known.conditional and not load.conditional):
                 loads[load.file, load.ns] = load
         semantic += walk.semantic
+        description += walk.description
         for p in walk.params:
             params.setdefault(p.name, p)
-    chosen = next((s for s, conditional in semantic if not conditional), None)
     return Ros1Launch(
-        tuple(loads.values()), chosen or next((s for s, _ in semantic), None), tuple(params.values())
+        tuple(loads.values()), first_taken(semantic), tuple(params.values()), first_taken(description)
     )
+
+
+def first_taken(found: list[tuple[DescriptionLoad, bool]]) -> DescriptionLoad | None:
+    """The first load on a branch the arg defaults take, else the first at all (a launch that
+    loads the description only with `load_robot_description:=true` still names MoveIt's robot)."""
+    return next((d for d, conditional in found if not conditional), next((d for d, _ in found), None))
 
 
 def _walk_file(
@@ -235,10 +255,12 @@ def _param(
     if not name:
         return ctx
     full = _ns(ctx, name)
-    if name.endswith("_semantic"):
-        found = _semantic(elem, ctx, walk.root)
+    leaf = full.rsplit("/", 1)[-1]
+    if leaf in (DESCRIPTION, f"{DESCRIPTION}_semantic"):
+        found = _description(elem, ctx, walk.root)
         if found is not None:
-            walk.semantic.append((found, ctx.conditional))
+            kept = walk.semantic if leaf.endswith("_semantic") else walk.description
+            kept.append((found, ctx.conditional))
     value = _text(elem.get("value"), ctx) if elem.get("value") is not None else None
     if value is None:
         return ctx
@@ -257,27 +279,65 @@ _HANDLERS: dict[str, Callable] = {
 }
 
 
-def _semantic(elem: etree._Element, ctx: _Context, root: Path) -> SemanticLoad | None:
-    if elem.get("textfile"):
-        target = _package_file(elem.get("textfile"), ctx, root)
-        return SemanticLoad(target, (), ctx.file) if target is not None else None
-    command = elem.get("command")
-    if not command:
+def _description(elem: etree._Element, ctx: _Context, root: Path) -> DescriptionLoad | None:
+    """The file a `robot_description[_semantic]` param loads: `textfile=`, or the input file of
+    a xacro `command=` with its mappings (robot/xacro_cli.py reads it as xacro does). A
+    `$(find pkg)` no package path holds and args without a value are kept as such, not lost."""
+    from marm_setup.robot.xacro_cli import parse_xacro_command
+
+    textfile = elem.get("textfile")
+    lenient = _Lenient(ctx.scope)
+    text = _text(textfile or elem.get("command"), replace(ctx, scope=lenient.scope()))
+    if not text:
         return None
-    # `$(find xacro)/xacro`: the tool's own package need not be on the package path
-    lenient = replace(
-        ctx, scope=Scope(ctx.scope.args, lambda n: ctx.scope.find(n) or f"/{n}", ctx.scope.dirname)
-    )
-    text = _text(command, lenient)
-    if text is None:
-        return None
-    words = text.replace("'", " ").replace('"', " ").split()
-    files = [w for w in words if w.endswith((".xacro", ".srdf"))]
-    target = package_relative(files[-1], root) if files else None
-    if target is None:
-        return None
-    mappings = tuple(sorted(tuple(w.split(":=", 1)) for w in words if ":=" in w and not w.startswith("__")))
-    return SemanticLoad(target, mappings, ctx.file)  # type: ignore[arg-type]
+    call = parse_xacro_command(text) if not textfile else None
+    file = text.strip() if textfile else call.file if call is not None else None
+    args = call.args if call is not None else ()
+    missing = next((p for p in lenient.packages if file and f"{MISSING}{p}" in file), None)
+    unread = tuple(sorted(k for k, v in args if UNREAD in v))
+    rel = None if file is None or missing else _relative_anywhere(file, root)
+    known = tuple((k, v) for k, v in args if UNREAD not in v)
+    return DescriptionLoad(rel, known, ctx.file, unread, missing)
+
+
+MISSING = "/\x00missing-package:"  # stands for a `$(find pkg)` no package path holds
+UNREAD = "\x00unread-arg"  # stands for an `$(arg)` the launch gives no value
+
+
+class _Lenient:
+    """A scope whose unknown packages and args resolve to markers, recording the packages."""
+
+    def __init__(self, scope: Scope):
+        self.base = scope
+        self.packages: list[str] = []
+
+    def find(self, name: str) -> str:
+        found = self.base.find(name)
+        if found is None and name == "xacro":
+            return "/xacro"  # `$(find xacro)/xacro`: the tool need not be on the package path
+        if found is None:
+            self.packages.append(name)
+            return f"{MISSING}{name}"
+        return found
+
+    def scope(self) -> Scope:
+        return Scope(_ArgsWithUnread(self.base.args), self.find, self.base.dirname)
+
+
+class _ArgsWithUnread(dict):
+    """Launch args where one without a value reads as the UNREAD marker."""
+
+    def __contains__(self, key: object) -> bool:
+        return True
+
+    def __missing__(self, key: str) -> str:
+        return UNREAD
+
+
+def _relative_anywhere(path: str, root: Path) -> str:
+    """`path` (absolute, or relative to `root`) relative to the package, `../` when outside."""
+    full = os.path.normpath(os.path.join(str(root), path))
+    return os.path.relpath(full, root).replace(os.sep, "/")
 
 
 def _text(text: str | None, ctx: _Context) -> str | None:

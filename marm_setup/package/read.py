@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from marm_setup.bounded_read import XML_BYTES
-from marm_setup.errors import InputError
+from marm_setup.errors import InputError, PackageNotFound
 from marm_setup.findings import Finding, error, warning
 from marm_setup.package.builder import BuilderFiles, builder_files, chosen_file
 from marm_setup.package.description import (
@@ -28,7 +28,7 @@ from marm_setup.package.description import (
 from marm_setup.package.driver_file import Ros2ControlFile, read_ros2_control
 from marm_setup.package.files import FileProblem, PackageFiles
 from marm_setup.package.launch_python import XacroCommand, read_python_launch
-from marm_setup.package.launch_ros1 import Ros1Launch, SemanticLoad, YamlLoad, evaluate_ros1
+from marm_setup.package.launch_ros1 import DescriptionLoad, Ros1Launch, YamlLoad, evaluate_ros1
 from marm_setup.package.launch_ros2 import evaluate_ros2_xml
 from marm_setup.package.launch_xml import LaunchXml, launch_file_names, parse_launch, python_launch_names
 from marm_setup.package.layout import Kinds, read_move_group_file, read_ros1_kinds, read_ros2_kinds
@@ -51,11 +51,12 @@ class _Launched:
     """What the launch files load."""
 
     loads: tuple[YamlLoad, ...] = ()
-    semantic: SemanticLoad | None = None
+    semantic: DescriptionLoad | None = None
     builder: BuilderFiles | None = None
     control_files: tuple[str, ...] = ()
     commands: tuple[XacroCommand, ...] = ()  # descriptions a Python launch file builds with xacro
     named_yaml: tuple[tuple[str, str], ...] = ()  # (package-relative YAML path, Python launch naming it)
+    description: DescriptionLoad | None = None  # robot_description as a ROS 1 launch sets it
 
     def command(self, parameter: str) -> XacroCommand | None:
         return next((c for c in self.commands if c.parameter == parameter), None)
@@ -64,7 +65,9 @@ class _Launched:
         """Xacro args the launch files pass `parameter`'s file with values only the run time gives."""
         command = self.command(parameter)
         own = self.builder.unread_args(parameter) if self.builder is not None else ()
-        return tuple(sorted({*own, *(command.unread_args if command is not None else ())}))
+        xml = self.semantic if parameter.endswith("_semantic") else self.description
+        launched = (*(command.unread_args if command else ()), *(xml.unread_args if xml else ()))
+        return tuple(sorted({*own, *launched}))
 
 
 @dataclass(frozen=True)
@@ -98,7 +101,7 @@ def read_package(
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
     launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
     problems += _other_robots(launched.builder)
-    srdf_rel, srdf_args = _srdf_choice(files, srdf, found.marm, found.sa, launched)
+    srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
     description = _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
@@ -146,8 +149,22 @@ def _setup(files: PackageFiles, shown: str, package_paths: Iterable[str | Path])
         marm = read_marm_setup(files.yaml("marm_setup.yaml"), str(Path(shown) / "marm_setup.yaml"))
     sa = read_setup_assistant(files.yaml(".setup_assistant")) if files.is_file(".setup_assistant") else None
     pkg_xml = _package_xml(files)
-    paths = (root, *(Path(p).resolve() for p in package_paths), *marm_package_paths(root, marm), root.parent)
+    given = (Path(p).resolve() for p in package_paths)
+    paths = (root, *given, *marm_package_paths(root, marm), root.parent, *_enclosing_workspace(root))
     return _Setup(marm, sa, pkg_xml, paths, detect_target(root, pkg_xml, marm), _name(root))
+
+
+WORKSPACE_LEVELS = 4  # folders above the package looked at for its repository or workspace
+
+
+def _enclosing_workspace(root: Path) -> tuple[Path, ...]:
+    """The repository (a folder holding `.git`) or workspace `src/` folder enclosing the
+    package, a few levels up: a vendor repository's description packages live there, as
+    a sourced workspace's ROS_PACKAGE_PATH would find them."""
+    for folder in list(root.parents)[1:WORKSPACE_LEVELS]:
+        if (folder / ".git").exists() or folder.name == "src":
+            return (folder,)
+    return ()
 
 
 def _name(root: Path) -> str:
@@ -220,7 +237,7 @@ def _launched(
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
                 files.scopes.setdefault(load.file, load.scope)
-        return _Launched(ros1.loads, ros1.semantic)
+        return _Launched(ros1.loads, ros1.semantic, description=ros1.description)
     xml = evaluate_ros2_xml(files.root, trees, find)
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
     builder = builder_files(python.builders, name, wanted)
@@ -238,14 +255,12 @@ def _relative(path: str, root: Path) -> str | None:
 
 
 def _srdf_choice(
-    files: PackageFiles,
-    given: str | Path | None,
-    marm: MarmSetupFile | None,
-    sa: SetupAssistantFile | None,
-    launched: _Launched,
+    files: PackageFiles, given: str | Path | None, found: _Setup, launched: _Launched
 ) -> tuple[str | None, tuple[tuple[str, str], ...]]:
-    """(relative SRDF path or None, its xacro args): `--srdf` when given, else `choose_srdf`."""
-    root = files.root
+    """(relative SRDF path or None, its xacro args): `--srdf` when given, else `choose_srdf`;
+    a launch file's semantic description may lie in another package the package paths hold
+    (a `.srdf.xacro` beside the URDF)."""
+    root, marm, sa = files.root, found.marm, found.sa
     if given is not None:
         if not Path(given).is_file():
             raise InputError("file not found", path=str(given), element="--srdf")
@@ -261,13 +276,58 @@ def _srdf_choice(
         if explicit and builder
         else None
     )
-    semantic = (launched.semantic.file, launched.semantic.xacro_args) if launched.semantic else None
+    semantic = _launched_file(files, launched.semantic, "robot_description_semantic", found.paths)
     command = launched.command("robot_description_semantic")
     rel = _relative(command.file, root) if command is not None and command.file else None
     if semantic is None and command is not None and rel is not None:
         semantic = (rel, command.args)
     default = f"config/{builder.robot_name}.srdf" if builder is not None else None
-    return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, files.refused)
+    outside = semantic[0] if semantic is not None and semantic[0].startswith("../") else None
+
+    def refused(rel: str, file: str, element: str) -> bool:
+        return rel != outside and files.refused(rel, file, element)
+
+    return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, refused)
+
+
+def _launched_file(
+    files: PackageFiles, load: DescriptionLoad | None, param: str, paths: tuple[Path, ...]
+) -> tuple[str, tuple[tuple[str, str], ...]] | None:
+    """(path relative to the package, xacro args) of the file a ROS 1 launch file loads as
+    `param`, when it exists inside the package or a package the package paths hold; else None,
+    with a finding saying why where MoveIt would not start or validate reads another file."""
+    from marm_setup.untrusted import inside
+
+    if load is None or (load.file is None and load.missing_package is None):
+        return None
+    if load.missing_package is not None:
+        files.problems.append(missing_package(load, param))
+        return None
+    assert load.file is not None
+    path = files.root / load.file
+    if not inside(path, (files.root, *paths)):
+        files.refused(load.file, load.launch, param)
+        return None
+    if not path.is_file():
+        msg = f"loads {load.file}, which does not exist: roslaunch stops before move_group starts"
+        files.problems.append(error(f"{_kind(param)}.missing", load.launch, param, msg, "fix the path"))
+        return None
+    return load.file, load.xacro_args
+
+
+def _kind(param: str) -> str:
+    return "srdf" if param.endswith("_semantic") else "urdf"
+
+
+def missing_package(load: DescriptionLoad, param: str) -> Finding:
+    """A description in a package no package path holds: validate cannot read what MoveIt loads
+    (the rules needing it are skipped); the user passes the folder holding it."""
+    msg = (
+        f"loads its {'SRDF' if param.endswith('_semantic') else 'robot description'} from package "
+        f"'{load.missing_package}', which no package path holds: the rules needing it are skipped"
+    )
+    hint = f"pass --package-path DIR (the folder holding {load.missing_package})"
+    return warning(f"{_kind(param)}.package-missing", load.launch, param, msg, hint)
 
 
 def _description(
@@ -288,22 +348,29 @@ def _description(
     robots = (builder.robot_name if builder and builder.calls else None, srdf_robot_name(root, srdf_rel))
     given = (Path(urdf) if urdf is not None else None, tuple(sorted((xacro_args or {}).items())))
     command = launched.command("robot_description")
+    if urdf is None and not (found.marm and found.marm.urdf) and launched.description is not None:
+        from_launch = _launch_description(files, launched.description, given[1], found.paths)
+        if from_launch is not None:
+            return from_launch
     if urdf is None and not (found.marm and found.marm.urdf) and not (rel and (root / rel).is_file()):
         from_command = _command_description(command, shown, given[1], found.paths)
         if from_command is not None:
             return from_command
-    found_description = find_description(
-        root,
-        shown,
-        found.name,
-        given,
-        found.marm,
-        found.sa,
-        found.paths,
-        robots,
-        (rel, mappings, how),
-        files.refused,
-    )
+    try:
+        found_description = find_description(
+            root,
+            shown,
+            found.name,
+            given,
+            found.marm,
+            found.sa,
+            found.paths,
+            robots,
+            (rel, mappings, how),
+            files.refused,
+        )
+    except PackageNotFound as exc:  # .setup_assistant's package: a finding, the robot rules skipped
+        return _missing_sa_package(files, exc)
     if found_description.urdf is None and command is not None:
         why = (
             f"{command.launch} builds it with xacro from {command.file}, outside the package and the folders named"
@@ -312,6 +379,34 @@ def _description(
         )
         return Description(None, why, ())
     return found_description
+
+
+def _missing_sa_package(files: PackageFiles, exc: PackageNotFound) -> Description:
+    msg = (
+        f"names the robot description in package '{exc.package}', which no package path holds: the "
+        "rules needing the robot are skipped"
+    )
+    hint = f"pass --package-path DIR (the folder holding {exc.package}), or --urdf FILE"
+    files.problems.append(warning("urdf.package-missing", ".setup_assistant", "URDF.package", msg, hint))
+    return Description(None, f".setup_assistant, from package '{exc.package}' not found", ())
+
+
+def _launch_description(
+    files: PackageFiles, load: DescriptionLoad, args: tuple[tuple[str, str], ...], paths: tuple[Path, ...]
+) -> Description | None:
+    """The robot description a ROS 1 launch file sets (what move_group reads), with its xacro
+    args and --xacro-arg on top; None when it names no file validate can read statically (then
+    the package's other sources are asked). A missing package or file is a finding, and the
+    description is then unknown (None file), never another robot's."""
+    origin = f"robot_description in {load.launch}"
+    if load.missing_package is not None:
+        files.problems.append(missing_package(load, "robot_description"))
+        return Description(None, f"{origin}, from package '{load.missing_package}' not found", ())
+    chosen = _launched_file(files, load, "robot_description", paths)
+    if chosen is None:
+        return Description(None, f"{origin}: not found", ()) if load.file is not None else None
+    merged = tuple(sorted({**dict(load.xacro_args), **dict(args)}.items()))
+    return Description((files.root / chosen[0]).resolve(), origin, merged)
 
 
 def _command_description(

@@ -69,6 +69,9 @@ class Validation:
     planned_pairs: int | None  # pose pairs planned by the runtime checks; None when they did not run
     skipped: tuple[str, ...] = ()  # rule families that did not run, each with why
     launched_by: str = ""  # what ran the launch files: the user's ROS, or the static rules only
+    srdf: str | None = None  # the SRDF read, relative to the package
+    srdf_origin: str = ""  # which launch file sets it, or how it was chosen
+    xacro_args: tuple[tuple[str, str], ...] = ()  # those the description was expanded with
 
     def describe(self) -> str:
         """One line: what was validated, against which robot, and whether planning ran."""
@@ -78,15 +81,19 @@ class Validation:
         runtime += " (no group has two usable named poses)" if n == 0 else ""
         skipped = "".join(f"; skipped {s}" for s in self.skipped)
         launched = f"; launch files: {self.launched_by}" if self.launched_by else ""
+        args = " ".join(f"{k}:={v}" for k, v in self.xacro_args)
+        urdf = f"{self.urdf}{f' {args}' if args else ''} ({self.urdf_origin})"
+        srdf = f", SRDF {self.srdf} ({self.srdf_origin})" if self.srdf else ", no SRDF"
         return (
             f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
-            f"from {self.urdf} ({self.urdf_origin}); {runtime}{launched}{skipped}"
+            f"from {urdf}{srdf}; {runtime}{launched}{skipped}"
         )
 
     def as_dict(self) -> dict:
         """The json `validated` object (everything but the findings)."""
         keys = ("package", "target", "layout", "urdf", "urdf_origin", "robot", "planned_pairs", "launched_by")
-        return {**{key: getattr(self, key) for key in keys}, "skipped": list(self.skipped)}
+        loaded = {"srdf": self.srdf, "srdf_origin": self.srdf_origin, "xacro_args": dict(self.xacro_args)}
+        return {**{key: getattr(self, key) for key in keys}, **loaded, "skipped": list(self.skipped)}
 
 
 def guarded(family: str, fn: Callable[..., Iterable[Finding]], *args: Any, **kwargs: Any) -> list[Finding]:
@@ -229,6 +236,9 @@ def _validation(
         planned_pairs=None if planned is None else len(planned),
         skipped=(*skipped_families(pkg, robot), *unplanned_pairs(planned or ()), *_untrusted_skips()),
         launched_by=launched_by,
+        srdf=pkg.srdf_path,
+        srdf_origin=source.how if (source := pkg.source("srdf")) is not None else "",
+        xacro_args=pkg.xacro_args,
     )
 
 
@@ -282,7 +292,9 @@ def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str,
         for f in pkg.problems
         if f.rule in ("srdf.parse", "srdf.unsupported", "srdf.runtime-arg")
     ]
-    if robot is None and pkg.urdf is None:
+    if robot is None and description_unreadable(pkg):
+        out.append(f"every rule needing the robot (its description, {pkg.urdf_origin})")
+    elif robot is None and pkg.urdf is None:
         out.append(
             f"every rule needing the robot ({RUNTIME_ONLY_SKIPPED}: its description comes only at run time)"
         )
@@ -304,7 +316,7 @@ def shown_path(pkg: MoveItPackage, file: Path) -> str:
 def user_urdf(pkg: MoveItPackage) -> str:
     """The robot description as the user would type it: as given to --urdf, else `DIR/...`."""
     if pkg.urdf is None:
-        return "the run time's /robot_description"
+        return "no file" if description_unreadable(pkg) else "the run time's /robot_description"
     if pkg.urdf_origin == "--urdf":
         return str(pkg.urdf)
     return os.path.normpath(pkg.user_path(shown_path(pkg, pkg.urdf)))
@@ -315,14 +327,17 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
     from marm_setup.robot import load_robot
 
     if pkg.urdf is None:
+        if description_unreadable(pkg):  # its own finding (package.read) says why
+            return None, []
         return None, [runtime_only_description(pkg)]
     shown = shown_path(pkg, pkg.urdf) if pkg.urdf_origin != "--urdf" else str(pkg.urdf)
     if not pkg.urdf.is_file():  # named by marm_setup.yaml or .setup_assistant (--urdf is checked earlier)
-        element = "robot.urdf" if pkg.urdf_origin == "marm_setup.yaml" else "URDF.relative_path"
+        marm = pkg.urdf_origin == "marm_setup.yaml"
+        file, element = (
+            ("marm_setup.yaml", "robot.urdf") if marm else (".setup_assistant", "URDF.relative_path")
+        )
         message = f"robot description '{shown}' not found"
-        return None, [
-            error("urdf.missing", pkg.urdf_origin, element, message, "fix the path, or pass --urdf URDF")
-        ]
+        return None, [error("urdf.missing", file, element, message, "fix the path, or pass --urdf URDF")]
     try:
         return load_robot(pkg.urdf, dict(pkg.xacro_args), pkg.package_paths), []
     except CodeNotRun:  # --untrusted: a xacro description is not expanded (the summary says so)
@@ -336,6 +351,15 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
 
 
 RUNTIME_RULES = ("urdf.runtime-only", "urdf.runtime-arg")
+UNREADABLE_DESCRIPTION = ("urdf.missing", "urdf.package-missing")
+
+
+def description_unreadable(pkg: MoveItPackage) -> bool:
+    """The description the launch files (or .setup_assistant) name is in a package no package
+    path holds, or does not exist: reading the package said so."""
+    return pkg.urdf is None and any(f.rule in UNREADABLE_DESCRIPTION for f in pkg.problems)
+
+
 RUNTIME_ONLY_SKIPPED = (
     "SRDF links and joints against the URDF, named pose values, KDL chains, joint limits against the "
     "URDF, controller joints and coverage, ros2_control systems, collisions, the matrix and planning"

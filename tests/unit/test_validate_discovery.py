@@ -14,7 +14,8 @@ from tests.validate_helpers import generate_marm, panda
 def test_moveit1_setup_assistant_package():
     good = panda("ros1")
     pkg = read_package(good.path, package_paths=good.package_paths)
-    assert (pkg.target, pkg.layout, pkg.urdf_origin) == ("ros1", "moveit1", ".setup_assistant")
+    assert (pkg.target, pkg.layout) == ("ros1", "moveit1")
+    assert pkg.urdf_origin == "robot_description in launch/planning_context.launch"
     assert pkg.name == "moveit_resources_panda_moveit_config"
     assert pkg.urdf.name == "panda_arm_hand.urdf.xacro"
     assert pkg.srdf_path == "config/panda.srdf" and pkg.srdf.robot_name == "panda"

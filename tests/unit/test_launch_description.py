@@ -1,0 +1,170 @@
+"""validate loads the robot MoveIt 1 loads: `robot_description` and its `_semantic` as the
+package's launch files set them (xacro command lines read as xacro reads them, `textfile=`, a
+`.srdf.xacro` in the description package), before `.setup_assistant`, which MoveIt never reads."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from marm_setup.package.read import read_package
+from marm_setup.robot.xacro_cli import parse_xacro_command
+from marm_setup.robot.xacro_command import main as xacro_main
+from marm_setup.validate.runner import validate
+from tests.helpers import build_file_tree
+from tests.vendor_packages import CATKIN, _arm_urdf, _srdf
+
+
+@pytest.mark.parametrize(
+    ("command", "file", "args"),
+    [
+        ("xacro FILE", "FILE", ()),
+        ("/opt/ros/share/xacro/xacro --inorder ns:=x FILE a:=b", "FILE", (("a", "b"), ("ns", "x"))),
+        ("rosrun xacro xacro 'FILE' -o out.urdf", "FILE", ()),
+        ("python3 /x/xacro.py --verbosity 2 FILE __name:=n _private:=p", "FILE", (("__name", "n"),)),
+        ("xacro --root-dir /r -i  FILE", "FILE", ()),
+    ],
+)
+def test_xacro_command_lines_are_read_as_xacro_reads_them(command, file, args):
+    call = parse_xacro_command(command)
+    assert call is not None and (call.file, call.args) == (file, args)
+
+
+def test_a_command_that_is_not_xacro_names_no_file():
+    assert parse_xacro_command("cat robot.urdf") is None
+
+
+def test_the_fallback_xacro_takes_mappings_before_the_file(tmp_path, capsys):
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text(
+        '<robot name="$(arg n)" xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:arg name="n" default="d"/>'
+        '<link name="a"/></robot>'
+    )
+    assert xacro_main(["--inorder", "n:=given", str(robot)]) == 0
+    assert 'name="given"' in capsys.readouterr().out
+
+
+PLANNING_CONTEXT = """<launch>
+  <arg name="load_robot_description" default="false"/>
+  <arg name="robot_description" default="robot_description"/>
+  <arg name="prefix" default="left_"/>
+  <param if="$(arg load_robot_description)" name="$(arg robot_description)"
+         {description}/>
+  <param name="$(arg robot_description)_semantic" {semantic}/>
+</launch>
+"""
+DEMO = """<launch>
+  <include file="$(dirname)/planning_context.launch">
+    <arg name="load_robot_description" value="true"/>
+  </include>
+</launch>
+"""
+XACRO_ROBOT = """<?xml version="1.0"?>
+<robot name="{name}" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="prefix" default=""/>
+  <xacro:arg name="limited" default="false"/>
+  <xacro:include filename="$(find vd_description)/urdf/arm.urdf"/>
+</robot>
+"""
+
+
+def vendor(root: Path, description: str, semantic: str, *, with_description: bool = True) -> Path:
+    """A MoveIt 1 config package whose launch files load the robot from `vd_description`, and a
+    stale `.setup_assistant` naming another robot's file."""
+    files = {
+        "vd_moveit_config/package.xml": CATKIN.format(name="vd_moveit_config"),
+        "vd_moveit_config/launch/planning_context.launch": PLANNING_CONTEXT.format(
+            description=description, semantic=semantic
+        ),
+        "vd_moveit_config/launch/demo.launch": DEMO,
+        "vd_moveit_config/config/vd.srdf": _srdf("vd", 6, False),
+        "vd_moveit_config/.setup_assistant": (
+            "moveit_setup_assistant_config:\n  URDF:\n    package: other_description\n"
+            "    relative_path: urdf/other.urdf\n  SRDF:\n    relative_path: config/vd.srdf\n"
+        ),
+        "other_description/package.xml": CATKIN.format(name="other_description"),
+        "other_description/urdf/other.urdf": _arm_urdf("other", 3, False),
+    }
+    if with_description:
+        files |= {
+            "vd_description/package.xml": CATKIN.format(name="vd_description"),
+            "vd_description/urdf/arm.urdf": _links_only(_arm_urdf("vd", 6, False)),
+            "vd_description/urdf/vd.urdf.xacro": XACRO_ROBOT.format(name="vd"),
+            "vd_description/urdf/vd.urdf": _arm_urdf("vd", 6, False),
+            "vd_description/srdf/vd.srdf.xacro": _srdf("vd", 6, False),
+        }
+    build_file_tree(root, files)
+    return root / "vd_moveit_config"
+
+
+def _links_only(urdf: str) -> str:
+    """A URDF's links and joints, wrapped for inclusion by a xacro."""
+    body = urdf.split(">", 2)[2].rsplit("</robot>", 1)[0] if urdf.startswith("<?xml") else urdf
+    return f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{body}</robot>'
+
+
+XACRO_COMMAND = (
+    """command="$(find xacro)/xacro --inorder prefix:=$(arg prefix) '$(find vd_description)/urdf/vd.urdf.xacro' """
+    """limited:=true" """
+)
+TEXTFILE_SRDF = 'textfile="$(find vd_moveit_config)/config/vd.srdf"'
+
+
+def test_the_description_is_the_one_the_launch_files_load(tmp_path):
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+    assert pkg.urdf_origin == "robot_description in launch/planning_context.launch"
+    assert dict(pkg.xacro_args) == {"prefix": "left_", "limited": "true"}
+    assert pkg.srdf_path == "config/vd.srdf"
+
+
+def test_the_summary_names_the_description_srdf_and_args(tmp_path):
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    result = validate(root, plan=False)
+    assert result.robot == "vd"
+    described = result.describe()
+    assert (
+        "vd.urdf.xacro limited:=true prefix:=left_ (robot_description in launch/planning_context.launch)"
+        in described
+    )
+    assert (
+        "SRDF config/vd.srdf (set as the semantic description by launch/planning_context.launch)" in described
+    )
+    assert result.as_dict()["xacro_args"] == {"limited": "true", "prefix": "left_"}
+
+
+def test_a_textfile_description_and_an_srdf_xacro_in_the_description_package(tmp_path):
+    semantic = "command=\"xacro '$(find vd_description)/srdf/vd.srdf.xacro'\""
+    root = vendor(tmp_path, 'textfile="$(find vd_description)/urdf/vd.urdf"', semantic)
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf").resolve()
+    assert pkg.srdf_path == "../vd_description/srdf/vd.srdf.xacro"
+    assert validate(root, plan=False).robot == "vd"
+
+
+def test_a_description_package_no_path_holds_is_a_finding_not_exit_2(tmp_path):
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF, with_description=False)
+    result = validate(root, plan=False)
+    missing = [f for f in result.findings if f.rule == "urdf.package-missing"]
+    assert [(f.severity, f.file, f.element) for f in missing] == [
+        ("warning", "launch/planning_context.launch", "robot_description")
+    ]
+    assert "--package-path DIR (the folder holding vd_description)" in missing[0].hint
+    assert result.robot is None  # never the stale .setup_assistant's robot
+    assert any("every rule needing the robot" in s for s in result.skipped)
+
+
+def test_a_description_file_the_launch_names_but_nobody_ships_is_an_error(tmp_path):
+    command = "command=\"xacro '$(find vd_description)/urdf/gone.urdf.xacro'\""
+    root = vendor(tmp_path, command, TEXTFILE_SRDF)
+    found = [f for f in validate(root, plan=False).findings if f.rule == "urdf.missing"]
+    assert [(f.severity, f.file) for f in found] == [("error", "launch/planning_context.launch")]
+
+
+def test_setup_assistant_only_when_no_launch_file_names_a_description(tmp_path):
+    root = vendor(tmp_path, 'value=""', TEXTFILE_SRDF)
+    (tmp_path / "other_description/urdf/other.urdf").write_text(_arm_urdf("vd", 6, False))
+    pkg = read_package(root)
+    assert pkg.urdf_origin.startswith(".setup_assistant (no launch file names")
