@@ -61,12 +61,16 @@ def test_marm_packages(tmp_path, target):
         assert pkg.moveit_controllers.where.file == "config/controllers.yaml"
 
 
-def test_setup_assistant_urdf_needs_its_package(tmp_path):
+def test_the_description_package_no_path_holds_is_a_finding(tmp_path):
     good = panda("ros1")
     copy = tmp_path / "panda_moveit_config"
     shutil.copytree(good.path, copy)
-    with pytest.raises(InputError, match="moveit_resources_panda_description"):
-        read_package(copy)
+    pkg = read_package(copy)
+    assert pkg.urdf is None
+    assert [(f.rule, f.file) for f in pkg.problems] == [
+        ("urdf.package-missing", "launch/planning_context.launch")
+    ]
+    assert "moveit_resources_panda_description" in pkg.problems[0].message
     assert read_package(copy, package_paths=good.package_paths).urdf.is_file()
 
 
