@@ -20,7 +20,7 @@ from lxml import etree
 from marm_setup import bounded_read
 from marm_setup.collision.pairs import UNPROVED_MARK, DisabledPair, DisabledReason
 from marm_setup.errors import InputError
-from marm_setup.robot import xml_syntax_message
+from marm_setup.robot import tinyxml_comments, xml_syntax_message
 
 COMPUTED = frozenset(
     {DisabledReason.ADJACENT, DisabledReason.DEFAULT, DisabledReason.ALWAYS, DisabledReason.NEVER}
@@ -76,7 +76,8 @@ def read_srdf_entries(text: str, *, shown: str) -> list[SrdfEntry]:
     link names and reasons from lxml's tree, so entity references read as the parser reads them.
     """
     try:
-        root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(remove_comments=True))
+        data = tinyxml_comments(text).encode("utf-8")  # as srdfdom reads it; offsets kept
+        root = etree.fromstring(data, etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError as exc:
         raise InputError(
             f"malformed XML: {xml_syntax_message(exc)}", path=shown, element=f"line {exc.lineno}"

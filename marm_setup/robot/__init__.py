@@ -10,6 +10,7 @@ from marm_setup.exports import lazy_api
 
 API = {
     "load": "load_robot parse_xacro_args xml_syntax_message",
+    "tinyxml": "tinyxml_comments",
     "xacro_expand": "check_xacro_args expand_xacro run_xacro XacroOutput",
     "model": (
         "Box CollisionShape Cylinder described_joints described_systems Joint limit_slack LIMIT_TOLERANCE Link "
@@ -78,6 +79,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.sandbox import ChildDied as ChildDied
     from marm_setup.robot.sandbox import TimeLimitExceeded as TimeLimitExceeded
     from marm_setup.robot.sandbox import run_limited as run_limited
+    from marm_setup.robot.tinyxml import tinyxml_comments as tinyxml_comments
     from marm_setup.robot.urdf import strict_float as strict_float
     from marm_setup.robot.xacro_expand import XacroOutput as XacroOutput
     from marm_setup.robot.xacro_expand import check_xacro_args as check_xacro_args

@@ -16,6 +16,7 @@ from marm_setup.robot.model import RobotModel
 from marm_setup.robot.ros2_control import HardwareArg, MockSwitch, systems_in_urdf
 from marm_setup.robot.ros_packages import find_packages
 from marm_setup.robot.text_input import read_text
+from marm_setup.robot.tinyxml import tinyxml_comments
 from marm_setup.robot.urdf import parse_urdf
 from marm_setup.robot.xacro_expand import expand_xacro, run_xacro
 
@@ -75,10 +76,11 @@ def load_robot(
 
 
 def parse_xml(text: str, *, shown: str) -> etree._Element:
-    """Parse XML text; syntax errors become InputError with the line number."""
+    """Parse URDF text as urdfdom does (`tinyxml_comments`); syntax errors become InputError
+    with the line number."""
     try:
         parser = etree.XMLParser(remove_comments=True)
-        return etree.fromstring(text.encode("utf-8"), parser)
+        return etree.fromstring(tinyxml_comments(text).encode("utf-8"), parser)
     except etree.XMLSyntaxError as exc:
         raise InputError(
             f"malformed XML: {xml_syntax_message(exc)}", path=shown, element=f"line {exc.lineno}"

@@ -2,9 +2,10 @@
 do): a second system for the same joints makes the controller manager refuse the duplicate
 interfaces, so a generated package adds its own system only for the joints no system covers.
 
-Mock hardware, per ROS 2 distro (ros-controls/ros2_control, hardware_interface/*_plugin_description.xml):
-Humble exports `mock_components/GenericSystem` and the deprecated `fake_components/GenericSystem`;
-Jazzy only `mock_components/GenericSystem` (fake_components is gone). Both are SystemInterfaces:
+Mock hardware, per ROS 2 distro (its row's `mock_plugins`, marm_setup.ros DISTROS; ros-controls/
+ros2_control, hardware_interface/*_plugin_description.xml): Humble exports
+`mock_components/GenericSystem` and the deprecated `fake_components/GenericSystem`; Jazzy on only
+`mock_components/GenericSystem` (fake_components is gone). Both are SystemInterfaces:
 the resource manager loads a `type="actuator"` or `"sensor"` element through the actuator or
 sensor loader instead (humble hardware_interface/src/resource_manager.cpp l.699-720), which
 does not know them, so a mocked element must also be `type="system"`.
@@ -14,12 +15,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-MOCK_PLUGIN = "mock_components/GenericSystem"
-MOCK_PLUGINS = {
-    "humble": frozenset({MOCK_PLUGIN, "fake_components/GenericSystem"}),
-    "jazzy": frozenset({MOCK_PLUGIN}),
-}
+from marm_setup.ros import DISTROS, MOCK
+
+MOCK_PLUGIN = MOCK
+MOCK_PLUGINS = {name: row.mock_plugins for name, row in DISTROS.items() if row.mock_plugins}
 ANY_MOCK = frozenset().union(*MOCK_PLUGINS.values())
+
+
+def mock_plugins(distro: str | None) -> frozenset[str]:
+    """The mock hardware plugins of `distro`'s ros2_control (any distro's when None or unknown)."""
+    row = DISTROS.get(distro or "")
+    return row.mock_plugins if row is not None and row.mock_plugins else ANY_MOCK
 
 
 @dataclass(frozen=True, slots=True)
@@ -35,7 +41,7 @@ class Ros2ControlSystem:
 
     def is_mock(self, distro: str | None = None) -> bool:
         """Its plugin is mock hardware (of `distro`, or of any distro when None)."""
-        return self.plugin in (MOCK_PLUGINS.get(distro, ANY_MOCK) if distro else ANY_MOCK)
+        return self.plugin in mock_plugins(distro)
 
 
 @dataclass(frozen=True, slots=True)
@@ -71,8 +77,10 @@ def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
         return ()
     from lxml import etree
 
+    from marm_setup.robot.tinyxml import tinyxml_comments
+
     try:
-        root = etree.fromstring(xml.encode(), parser=etree.XMLParser(remove_comments=True))
+        root = etree.fromstring(tinyxml_comments(xml).encode(), parser=etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError:
         return ()
     systems = []

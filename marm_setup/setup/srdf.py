@@ -146,11 +146,14 @@ def parse_srdf_document(
     text: str | bytes, path: str = "<srdf>", skipped: list[InputError] | None = None
 ) -> tuple[Srdf, etree._Element]:
     """(the SRDF, its XML root): the one place SRDF text is parsed (read_srdf reads a file into
-    it); the root is for what only the XML shows (pairs written twice, misplaced elements)."""
+    it), as srdfdom's tinyxml2 parses it (`--` inside a comment is read: robot.tinyxml_comments);
+    the root is for what only the XML shows (pairs written twice, misplaced elements)."""
     from lxml import etree
 
+    from marm_setup.robot import tinyxml_comments
+
     try:
-        data = text.encode() if isinstance(text, str) else text
+        data = tinyxml_comments(text.encode() if isinstance(text, str) else text)
         root = etree.fromstring(data, etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError as exc:
         raise srdf_syntax_error(exc, path) from None

@@ -99,3 +99,13 @@ def test_a_group_this_validator_cannot_model_is_skipped_without_a_cascade(tmp_pa
     assert ("srdf.unsupported", "warning", "group[panda_arm]") in found
     # poses may collide now that the arm's `ready` start pose is gone: the rest is no cascade
     assert not [f for f in found if f[1] == "error" and f[0] != "pose.collision"], found
+
+
+def test_double_hyphens_in_an_srdf_comment_are_read_as_srdfdom_reads_them(tmp_path):
+    """srdfdom's tinyxml2 takes `--` inside a comment (libxml2 does not): no srdf.parse, and the
+    SRDF rules run (the transport pose's real collision is still found)."""
+    good = panda("ros1")
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, SRDF, "<robot", "<!-- edited -- by hand --->\n<robot")
+    assert found(pkg, good, "srdf.") == []
+    assert found(pkg, good, "pose.collision") == [("pose.collision", "error", "group_state[transport]")]
