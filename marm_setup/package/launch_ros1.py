@@ -280,24 +280,36 @@ _HANDLERS: dict[str, Callable] = {
 
 
 def _description(elem: etree._Element, ctx: _Context, root: Path) -> DescriptionLoad | None:
-    """The file a `robot_description[_semantic]` param loads: `textfile=`, or the input file of
-    a xacro `command=` with its mappings (robot/xacro_cli.py reads it as xacro does). A
-    `$(find pkg)` no package path holds and args without a value are kept as such, not lost."""
-    from marm_setup.robot.xacro_cli import parse_xacro_command
-
+    """The file a `robot_description[_semantic]` param loads: `textfile=`, or a `command=`."""
     textfile = elem.get("textfile")
-    lenient = _Lenient(ctx.scope)
-    text = _text(textfile or elem.get("command"), replace(ctx, scope=lenient.scope()))
-    if not text:
+    text = textfile or elem.get("command")
+    return description_load(text, ctx.scope, root, ctx.file, textfile=bool(textfile)) if text else None
+
+
+def description_load(
+    text: str, scope: Scope, root: Path, launch: str, *, textfile: bool = False
+) -> DescriptionLoad | None:
+    """The file a description command (or `textfile`) names: the input of a xacro command with
+    its mappings (robot/xacro_cli.py reads it as xacro does), or the file of `cat FILE`. A
+    `$(find pkg)` no package path holds and args without a value are kept as such, not lost;
+    None for a command that is neither."""
+    from marm_setup.robot.xacro_cli import parse_xacro_command, split_command
+
+    lenient = _Lenient(scope)
+    expanded = substituted(text, lenient.scope())
+    if not expanded:
         return None
-    call = parse_xacro_command(text) if not textfile else None
-    file = text.strip() if textfile else call.file if call is not None else None
+    words = split_command(expanded)
+    if not textfile and len(words) == 2 and words[0] == "cat":
+        textfile, expanded = True, words[1]
+    call = None if textfile else parse_xacro_command(words)
+    file = expanded.strip() if textfile else call.file if call is not None else None
     args = call.args if call is not None else ()
     missing = next((p for p in lenient.packages if file and f"{MISSING}{p}" in file), None)
     unread = tuple(sorted(k for k, v in args if UNREAD in v))
     rel = None if file is None or missing else _relative_anywhere(file, root)
     known = tuple((k, v) for k, v in args if UNREAD not in v)
-    return DescriptionLoad(rel, known, ctx.file, unread, missing)
+    return DescriptionLoad(rel, known, launch, unread, missing)
 
 
 MISSING = "/\x00missing-package:"  # stands for a `$(find pkg)` no package path holds
@@ -321,7 +333,8 @@ class _Lenient:
         return found
 
     def scope(self) -> Scope:
-        return Scope(_ArgsWithUnread(self.base.args), self.find, self.base.dirname)
+        base = self.base
+        return Scope(_ArgsWithUnread(base.args), self.find, base.dirname, base.ros2, base.environ)
 
 
 class _ArgsWithUnread(dict):

@@ -3,8 +3,8 @@
 Every XML launch file is an entry point, walked in document order with its `<arg default>` /
 `<let value>` values; `<include file>` passes its `<arg name value>` children. Recorded: each
 parameter file a `<node>` loads with `<param from="...">` (launch_ros `Node`'s parameter
-files), and the SRDF a `robot_description_semantic` param reads (`$(command 'cat FILE')` or
-`'xacro FILE a:=b'`). `if` / `unless` branches the defaults do not take are marked conditional.
+files), and the URDF and SRDF a node's `robot_description` / `robot_description_semantic`
+param reads (`$(command 'cat FILE')` or `'xacro FILE a:=b'`, launch_ros1.description_load). `if` / `unless` branches the defaults do not take are marked conditional.
 """
 
 from __future__ import annotations
@@ -15,8 +15,14 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from marm_setup.package.launch_ros1 import SemanticLoad, YamlLoad
-from marm_setup.package.launch_xml import LaunchXml, condition, package_file, package_relative, substituted
+from marm_setup.package.launch_ros1 import (
+    DESCRIPTION,
+    DescriptionLoad,
+    YamlLoad,
+    description_load,
+    first_taken,
+)
+from marm_setup.package.launch_xml import LaunchXml, condition, package_file, substituted
 from marm_setup.package.substitution import Scope
 
 if TYPE_CHECKING:
@@ -29,7 +35,8 @@ COMMAND = re.compile(r"\$\(command\s+(['\"])(.*?)\1\s*\)")
 @dataclass(frozen=True)
 class Ros2XmlLaunch:
     loads: tuple[YamlLoad, ...] = ()
-    semantic: SemanticLoad | None = None
+    semantic: DescriptionLoad | None = None
+    description: DescriptionLoad | None = None
 
 
 @dataclass(frozen=True)
@@ -48,14 +55,16 @@ class _Walk:
     root: Path
     trees: Mapping[str, LaunchXml]
     loads: list[YamlLoad] = field(default_factory=list)
-    semantic: list[tuple[SemanticLoad, bool]] = field(default_factory=list)
+    semantic: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
+    description: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
 
 
 def evaluate_ros2_xml(
     root: Path, trees: Mapping[str, LaunchXml], find: Callable[[str], str | None]
 ) -> Ros2XmlLaunch:
     loads: dict[tuple[str, str], YamlLoad] = {}
-    semantic: list[tuple[SemanticLoad, bool]] = []
+    semantic: list[tuple[DescriptionLoad, bool]] = []
+    description: list[tuple[DescriptionLoad, bool]] = []
     for rel in sorted(trees):
         walk = _Walk(root, trees)
         _walk_file(walk, find, rel, {}, False, 0)
@@ -64,8 +73,8 @@ def evaluate_ros2_xml(
             if known is None or (known.conditional and not load.conditional):
                 loads[load.file, load.ns] = load
         semantic += walk.semantic
-    chosen = next((s for s, conditional in semantic if not conditional), None)
-    return Ros2XmlLaunch(tuple(loads.values()), chosen or next((s for s, _ in semantic), None))
+        description += walk.description
+    return Ros2XmlLaunch(tuple(loads.values()), first_taken(semantic), first_taken(description))
 
 
 def _walk_file(
@@ -139,24 +148,14 @@ def _param(walk: _Walk, elem: etree._Element, ctx: _Context) -> None:
             walk.loads.append(YamlLoad(target, ctx.node, ctx.file, None, "", ctx.conditional))
         return
     value = elem.get("value")
-    if (elem.get("name") or "").endswith("_semantic") and value:
-        found = _semantic(value, ctx, walk.root)
-        if found is not None:
-            walk.semantic.append((found, ctx.conditional))
-
-
-def _semantic(value: str, ctx: _Context, root: Path) -> SemanticLoad | None:
+    leaf = (_text(elem.get("name"), ctx) or "").rsplit(".", 1)[-1]
+    if leaf not in (DESCRIPTION, f"{DESCRIPTION}_semantic") or not value:
+        return
     match = COMMAND.search(value)
-    text = _text(match.group(2) if match else value, ctx)
-    if text is None:
-        return None
-    words = text.replace("'", " ").replace('"', " ").split()
-    files = [w for w in words if w.endswith((".xacro", ".srdf"))]
-    target = package_relative(files[-1], root) if files else None
-    if target is None:
-        return None
-    mappings = tuple(sorted((a, b) for a, _, b in (w.partition(":=") for w in words if ":=" in w)))
-    return SemanticLoad(target, mappings, ctx.file)
+    found = description_load(match.group(2) if match else value, ctx.scope, walk.root, ctx.file)
+    if found is not None:
+        kept = walk.semantic if leaf.endswith("_semantic") else walk.description
+        kept.append((found, ctx.conditional))
 
 
 def _text(text: str | None, ctx: _Context) -> str | None:

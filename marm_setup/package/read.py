@@ -245,7 +245,7 @@ def _launched(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
     named = tuple((rel, launch) for path, launch in python.named_yaml if (rel := _relative(path, files.root)))
-    return _Launched(xml.loads, xml.semantic, builder, control, python.commands, named)
+    return _Launched(xml.loads, xml.semantic, builder, control, python.commands, named, xml.description)
 
 
 def _relative(path: str, root: Path) -> str | None:

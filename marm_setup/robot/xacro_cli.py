@@ -55,7 +55,7 @@ def parse_xacro_argv(argv: Sequence[str]) -> XacroCall:
 def parse_xacro_command(command: str | Sequence[str]) -> XacroCall | None:
     """A whole command line (a string split as roslaunch splits it, shlex, or its words): None
     when it does not run xacro."""
-    words = _split(command) if isinstance(command, str) else list(command)
+    words = split_command(command) if isinstance(command, str) else list(command)
     start = 0
     while start < len(words) and _tool_word(words[start]):
         start += 1
@@ -64,7 +64,8 @@ def parse_xacro_command(command: str | Sequence[str]) -> XacroCall | None:
     return parse_xacro_argv(words[start:])
 
 
-def _split(command: str) -> list[str]:
+def split_command(command: str) -> list[str]:
+    """A command line's words, as roslaunch and launch's `$(command)` split it (shlex)."""
     try:
         return shlex.split(command)
     except ValueError:  # unbalanced quotes: roslaunch fails too; read what is there

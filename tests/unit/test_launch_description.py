@@ -13,7 +13,7 @@ from marm_setup.robot.xacro_cli import parse_xacro_command
 from marm_setup.robot.xacro_command import main as xacro_main
 from marm_setup.validate.runner import validate
 from tests.helpers import build_file_tree
-from tests.vendor_packages import CATKIN, _arm_urdf, _srdf
+from tests.vendor_packages import AMENT, CATKIN, _arm_urdf, _srdf
 
 
 @pytest.mark.parametrize(
@@ -168,3 +168,29 @@ def test_setup_assistant_only_when_no_launch_file_names_a_description(tmp_path):
     (tmp_path / "other_description/urdf/other.urdf").write_text(_arm_urdf("vd", 6, False))
     pkg = read_package(root)
     assert pkg.urdf_origin.startswith(".setup_assistant (no launch file names")
+
+
+ROS2_LAUNCH = """<launch>
+  <arg name="prefix" default="right_"/>
+  <node pkg="moveit_ros_move_group" exec="move_group">
+    <param name="robot_description"
+           value="$(command 'xacro $(find-pkg-share vd_description)/urdf/vd.urdf.xacro prefix:=$(var prefix)')"/>
+    <param name="robot_description_semantic" value="$(command 'cat $(find-pkg-share vd_moveit_config)/config/vd.srdf')"/>
+  </node>
+</launch>
+"""
+
+
+def test_a_ros2_xml_launch_gives_move_group_its_description(tmp_path):
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    (root / "launch/planning_context.launch").unlink()
+    (root / "launch/demo.launch").unlink()
+    (root / "launch/move_group.launch.xml").write_text(ROS2_LAUNCH)
+    (root / "package.xml").write_text(AMENT.format(name="vd_moveit_config"))
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+    assert (pkg.urdf_origin, dict(pkg.xacro_args)) == (
+        "robot_description in launch/move_group.launch.xml",
+        {"prefix": "right_"},
+    )
+    assert pkg.srdf_path == "config/vd.srdf"
