@@ -14,10 +14,21 @@ API = {
         "validate_read ValidatedPackage Validation"
     ),
     "runtime": "check_runtime PlannedPair",
+    "registry": "all_rules allows rule rule_families rule_family severity_of",
+    "registry.catalogue": "rules_json rules_markdown rules_text",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.validate.registry import all_rules as all_rules
+    from marm_setup.validate.registry import allows as allows
+    from marm_setup.validate.registry import rule as rule
+    from marm_setup.validate.registry import rule_families as rule_families
+    from marm_setup.validate.registry import rule_family as rule_family
+    from marm_setup.validate.registry import severity_of as severity_of
+    from marm_setup.validate.registry.catalogue import rules_json as rules_json
+    from marm_setup.validate.registry.catalogue import rules_markdown as rules_markdown
+    from marm_setup.validate.registry.catalogue import rules_text as rules_text
     from marm_setup.validate.runner import ValidatedPackage as ValidatedPackage
     from marm_setup.validate.runner import Validation as Validation
     from marm_setup.validate.runner import check_given_xacro_args as check_given_xacro_args

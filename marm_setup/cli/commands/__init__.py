@@ -18,6 +18,7 @@ COMMAND_SPECS = (
     ("report", "report", "report"),
     ("plan", "plan", "plan"),
     ("inspect", "inspect", "inspect"),
+    ("rules", "rules", "rules"),
 )
 
 
