@@ -71,10 +71,11 @@ class ControllersFile:
     settings: tuple[Param, ...] = ()  # the file's other top-level keys (manager plugin, execution)
     initial: tuple[InitialPose, ...] | None = None  # fake controllers; None when absent
     initial_malformed: bool = False  # `initial` is not a list
+    loaded_into: str = ""  # the key a launch file puts the whole file under ('' for none)
 
     @property
     def namespaced(self) -> bool:
-        """The list sits below a key (MoveIt 2's `moveit_simple_controller_manager`)."""
+        """The list sits below a key of the file (MoveIt 2's `moveit_simple_controller_manager`)."""
         return bool(self.where.keys)
 
     @property

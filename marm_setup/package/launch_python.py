@@ -385,6 +385,40 @@ def undefined_unread_arg(message: str, unread: tuple[str, ...]) -> str | None:
     return found.group(1) if found and found.group(1) in unread else None
 
 
+def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
+    """The key of the dict the Python launch file `launch` puts the YAML file `rel` under, as
+    `{"moveit_simple_controller_manager": load_yaml("pkg", "config/c.yaml")}` does (also through
+    a name bound to the load); None when it hands the file over as it is (or cannot be read)."""
+    from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
+    from marm_setup.package.launch_xml import package_relative
+
+    try:
+        tree = ast.parse(read_text(root / launch, XML_BYTES, shown=launch), launch)
+    except (OSError, UnicodeDecodeError, SyntaxError, ValueError, FileTooLarge):
+        return None
+    keys = _yaml_keys(tree)
+    return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)
+
+
+def _yaml_keys(tree: ast.AST) -> dict[str, str]:
+    """YAML path literal -> the key of the innermost dict entry holding it (ast.walk goes
+    outside in, so inner entries overwrite)."""
+    bound = {
+        node.targets[0].id: node.value
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
+    }
+    out: dict[str, str] = {}
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Dict):
+            continue
+        for key, value in zip(node.keys, node.values, strict=True):
+            if isinstance(key, ast.Constant) and isinstance(key.value, str):
+                held = bound.get(value.id, value) if isinstance(value, ast.Name) else value
+                out.update(dict.fromkeys(_named_yaml(held), key.value))
+    return out
+
+
 def _named_yaml(tree: ast.AST) -> Iterator[str]:
     """YAML paths a launch file writes as string literals: the files it loads by hand
     (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder."""

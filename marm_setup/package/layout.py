@@ -11,7 +11,7 @@ MoveItConfigsBuilder loads (`builder`), else the Setup Assistant's file names.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from marm_setup.package.builder import BuilderFiles, Chosen, chosen_file, controllers_file, planning_pipelines
@@ -25,6 +25,7 @@ from marm_setup.package.driver_file import (
 from marm_setup.package.files import PackageFiles
 from marm_setup.package.joint_limits_file import read_joint_limits
 from marm_setup.package.kinematics_file import read_kinematics
+from marm_setup.package.launch_python import launch_yaml_key
 from marm_setup.package.launch_ros1 import YamlLoad
 from marm_setup.package.model import Source
 from marm_setup.package.perception_files import ServoConfig, read_sensors, read_servo
@@ -287,10 +288,13 @@ def _ros2_controllers(
 ) -> None:
     """MoveIt's controllers: the builder's file; else the `config/*_controllers.yaml` with a
     MoveIt controller list that a Python launch names (one that loads it by hand)."""
-    chosen = controllers_file(builder, files.root) or _named_controllers(files, named_yaml)
+    chosen, into = controllers_file(builder, files.root), ""
+    if chosen is None:
+        chosen, into = _named_controllers(files, named_yaml)
     doc = _named(files, chosen.file) if chosen is not None else None
     if doc is not None and chosen is not None:
-        kinds.put("moveit_controllers", read_controllers(unwrap_parameters(doc)), doc, chosen.how)
+        listed = replace(read_controllers(unwrap_parameters(doc)), loaded_into=into)
+        kinds.put("moveit_controllers", listed, doc, chosen.how)
     alternatives = []
     for rel in files.glob("config/*_controllers.yaml"):
         other = _named(files, rel) if chosen is None or rel != chosen.file else None
@@ -299,14 +303,19 @@ def _ros2_controllers(
     kinds.values["alt_moveit_controllers"] = tuple(alternatives)
 
 
-def _named_controllers(files: PackageFiles, named_yaml: tuple[tuple[str, str], ...]) -> Chosen | None:
+def _named_controllers(
+    files: PackageFiles, named_yaml: tuple[tuple[str, str], ...]
+) -> tuple[Chosen | None, str]:
+    """The controller list a Python launch loads by hand, and the key it puts it under ('' for
+    none: `{"moveit_simple_controller_manager": load_yaml(...)}` gives that key)."""
     for rel, launch in named_yaml:
         doc = _named(files, rel)
         if doc is not None and _is_moveit_controllers(unwrap_parameters(doc)):
-            return Chosen(
-                rel, f"loaded by hand (named in {launch}) as moveit_simple_controller_manager's list"
-            )
-    return None
+            into = launch_yaml_key(files.root, launch, rel) or ""
+            where = f" under {into}" if into else ""
+            how = f"loaded by hand (named in {launch}){where} as moveit_simple_controller_manager's list"
+            return Chosen(rel, how), into
+    return None, ""
 
 
 def _is_moveit_controllers(doc: Located) -> bool:

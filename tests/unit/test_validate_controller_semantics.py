@@ -7,6 +7,8 @@ real panda robot of ../shared/realworld.
 
 from __future__ import annotations
 
+import dataclasses
+
 import yaml
 
 from marm_setup.package.controllers_file import ControllersFile, read_controllers
@@ -125,6 +127,10 @@ def test_ros2_controllers_outside_the_simple_manager_namespace():
         "moveit_simple_controller_manager/MoveItSimpleControllerManager", "x/Ros2ControlManager"
     )
     assert check_ros2_namespace(section(ros2_control)) == []
+    by_launch = dataclasses.replace(section(MC2), loaded_into="moveit_simple_controller_manager")
+    assert check_ros2_namespace(by_launch) == []  # `{"moveit_simple_controller_manager": load_yaml(...)}`
+    twice = dataclasses.replace(section(nested), loaded_into="moveit_simple_controller_manager")
+    assert [f.rule for f in check_ros2_namespace(twice)] == ["controller.no-namespace"]
 
 
 KORTEX_R2C = """

@@ -403,3 +403,41 @@ def test_an_srdf_xacro_arg_only_the_run_time_gives_is_a_warning(tmp_path):
     assert errors(findings(source, paths)) == [
         ("controller.missing-action-ns", "moveit_simple_controller_manager.bot_hand_controller")
     ]
+
+
+# -- a controller list a Python launch puts under the simple manager's namespace itself ----------
+
+HAND_LAUNCH = "launch/moveit.launch.py"
+HAND_LOAD = 'load_yaml("hl_moveit_config", "config/hlarm_controllers.yaml")'
+
+
+def test_a_controller_list_the_launch_puts_under_the_manager_namespace(tmp_path):
+    """`{"moveit_simple_controller_manager": load_yaml(...)}` lands a top-level controller_names
+    where MoveIt 2 reads it (also through a name bound to the load): no controller.no-namespace.
+    Handed over as it is, or namespaced twice, MoveIt 2 finds no controllers (an error)."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path / "a")
+    assert of_rule(findings(source, paths), "controller.no-namespace") == []
+    loaded = read_package(source, package_paths=paths).source("moveit_controllers")
+    assert loaded is not None and "under moveit_simple_controller_manager" in loaded.how
+    bound, paths = PACKAGES["hand_loaded"](tmp_path / "b")
+    edit(bound / HAND_LAUNCH, "    controllers = {", f"    listed = {HAND_LOAD}\n    controllers = {{")
+    edit(
+        bound / HAND_LAUNCH,
+        f'"moveit_simple_controller_manager": {HAND_LOAD}',
+        '"moveit_simple_controller_manager": listed',
+    )
+    assert of_rule(findings(bound, paths), "controller.no-namespace") == []
+    plain, paths = PACKAGES["hand_loaded"](tmp_path / "c")
+    edit(plain / HAND_LAUNCH, f'"moveit_simple_controller_manager": {HAND_LOAD},', "")
+    edit(plain / HAND_LAUNCH, "parameters=[controllers,", f"parameters=[controllers, {HAND_LOAD},")
+    assert of_rule(findings(plain, paths), "controller.no-namespace") == [("error", "controller_names")]
+    twice, paths = PACKAGES["hand_loaded"](tmp_path / "d")
+    text = (twice / "config/hlarm_controllers.yaml").read_text()
+    nested = "moveit_simple_controller_manager:\n" + "".join(f"  {line}\n" for line in text.splitlines())
+    (twice / "config/hlarm_controllers.yaml").write_text(nested)
+    found = [f for f in findings(twice, paths) if f.rule == "controller.no-namespace"]
+    assert [f.severity for f in found] == ["error"]
+    assert (
+        "moveit_simple_controller_manager.moveit_simple_controller_manager.controller_names"
+        in found[0].message
+    )

@@ -64,19 +64,31 @@ def check_listed(controllers: ControllersFile) -> list[Finding]:
 
 def check_ros2_namespace(controllers: ControllersFile) -> list[Finding]:
     """MoveIt 2: the simple controller manager reads `moveit_simple_controller_manager.controller_names`
-    (moveit2 moveit_simple_controller_manager.cpp, `initialize`: PARAM_BASE_NAME prefix, "No
-    controller_names specified" otherwise), and MoveItConfigsBuilder.trajectory_execution loads
-    the file's keys as they are: top-level `controller_names` give MoveIt no controllers.
-    Ros2ControlManager asks ros2_control for its controllers instead and needs no list."""
-    if (
-        controllers.namespaced
-        or controllers.form != "controller_names"
-        or "Ros2ControlManager" in controllers.manager
-    ):
+    (moveit2 moveit_simple_controller_manager.cpp `initialize` l.105-108 at 8fcb5d2: PARAM_BASE_NAME
+    prefix, "No controller_names specified" otherwise). Where the list lands is the key a launch
+    puts the file under (`{"moveit_simple_controller_manager": load_yaml(...)}` in a Python
+    launch: `loaded_into`) followed by the file's own keys; MoveItConfigsBuilder.trajectory_execution
+    hands the file over as it is (moveit_configs_builder.py l.343-382 at jazzy 4d84106), so there
+    top-level `controller_names` give MoveIt no controllers, and so does a file that names the
+    namespace again under a launch that already adds it. Ros2ControlManager asks ros2_control for
+    its controllers instead and needs no list."""
+    if controllers.form != "controller_names" or "Ros2ControlManager" in controllers.manager:
         return []
-    msg = f"controller_names is not under '{SIMPLE_MANAGER}': MoveIt 2 finds no controllers"
-    hint = f"indent controller_names and the controllers under '{SIMPLE_MANAGER}:'"
-    return [error("controller.no-namespace", controllers.where.file, "controller_names", msg, hint)]
+    in_file = (SIMPLE_MANAGER,) if controllers.namespaced else ()
+    landed = (*((controllers.loaded_into,) if controllers.loaded_into else ()), *in_file)
+    if landed == (SIMPLE_MANAGER,):
+        return []
+    file = controllers.where.file
+    if not landed:
+        msg = f"controller_names is not under '{SIMPLE_MANAGER}': MoveIt 2 finds no controllers"
+        hint = f"indent controller_names and the controllers under '{SIMPLE_MANAGER}:'"
+        return [error("controller.no-namespace", file, "controller_names", msg, hint)]
+    msg = (
+        f"the launch puts this file under '{controllers.loaded_into}', so controller_names lands at "
+        f"'{'.'.join(landed)}.controller_names', not '{SIMPLE_MANAGER}.controller_names': MoveIt 2 finds no controllers"
+    )
+    hint = f"drop the file's own '{SIMPLE_MANAGER}:' level" if controllers.namespaced else ""
+    return [error("controller.no-namespace", file, "controller_names", msg, hint)]
 
 
 def check_moveit_controllers(
