@@ -1,0 +1,237 @@
+"""Every parameter a ROS 2 package hands move_group and servo, against MoveIt's declared
+parameters of the package's distro family (marm_setup/moveit_params, pinned MoveIt sources).
+
+- params.type: a value of another type than MoveIt declares, an integer for a double included:
+  rclcpp refuses it (rclcpp node_parameters.cpp declare_parameter: InvalidParameterTypeException;
+  get_parameter<double>: ParameterValue::get throws ParameterTypeException). An error where MoveIt
+  then throws (move_group or servo_node dies at start-up, e.g. trajectory_execution_manager.cpp
+  jazzy l.208-216) or drops the item (moveit_simple_controller_manager.cpp jazzy l.121-243
+  catches it and skips the controller); a warning where it only logs (planning_scene_monitor.cpp
+  jazzy l.300-305).
+- params.bounds: a value outside a generate_parameter_library validator (gt_eq, one_of, ...):
+  the ParamListener throws, the node stops; severity as for params.type.
+- params.unknown (warning): a key MoveIt never reads inside a namespace it owns
+  (trajectory_execution, moveit_simple_controller_manager.<controller>, ...), with a did-you-mean.
+- params.plugin (error): a planner, adapter, kinematics solver, controller manager, capability
+  or servo smoothing filter class that the family's pluginlib files do not export and that is no
+  known third-party plugin: pluginlib cannot load it.
+
+Left to other rules (one finding per defect): a pipeline's own parameters
+(pipeline_param_rules, distro_rules: adapters of the other distro), sensors (perception_rules),
+joint and Cartesian limits given as integers (limits_rules), non-positive IK timeouts
+(kinematics_rules), a controller's type (controller_rules), servo's command_out_type
+(perception_rules) and empty lists (ros2_params_rules).
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from typing import TYPE_CHECKING
+
+from marm_setup.findings import Finding, error, warning
+from marm_setup.moveit_params import (
+    LOGS,
+    ParamRow,
+    Table,
+    family_of,
+    load_table,
+    received_parameters,
+    type_problem,
+    validator_problem,
+)
+
+if TYPE_CHECKING:
+    from marm_setup.moveit_params import Received
+    from marm_setup.package import MoveItPackage
+
+# the names limits_rules checks for integers (NUMERIC_KEYS, _SCALARS there)
+LIMIT_NUMBERS = frozenset(
+    {"max_velocity", "max_acceleration", "max_jerk", "min_position", "max_position",
+     "default_velocity_scaling_factor", "default_acceleration_scaling_factor",
+     "max_trans_vel", "max_trans_acc", "max_trans_dec", "max_rot_vel"}
+)  # fmt: skip
+CHECKED_ELSEWHERE = ("moveit_simple_controller_manager.<controller>.type", "command_out_type")
+IKFAST = re.compile(r"\w+/IKFastKinematicsPlugin")
+PLUGIN_KEYS = (  # (name pattern, plugin kind)
+    (re.compile(r"[^.]+\.planning_plugins?"), "planner"),
+    (re.compile(r"[^.]+\.request_adapters"), "request_adapter"),
+    (re.compile(r"[^.]+\.response_adapters"), "response_adapter"),
+    (re.compile(r"robot_description_kinematics\.[^.]+\.kinematics_solver"), "kinematics"),
+    (re.compile(r"moveit_controller_manager"), "controller_manager"),
+    (re.compile(r"(disable_)?capabilities|[^.]+\.capabilities"), "capability"),
+    (re.compile(r"smoothing_filter_plugin_name"), "smoothing_filter"),
+)
+
+
+def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Finding]:
+    """The findings on every parameter move_group and servo receive from a ROS 2 package; with
+    no known distro, the family its format shows, else only what Jazzy's and Humble's agree on."""
+    received = received_parameters(pkg)
+    family = family_of(distro) or inferred_family(received)
+    if family is not None:
+        return _check_all(received, load_table(family))
+    found = [_check_all(received, load_table(f)) for f in ("jazzy", "humble")]
+    agreed = {(f.rule, f.file, f.element) for f in found[1]}
+    return [f for f in found[0] if (f.rule, f.file, f.element) in agreed]
+
+
+def inferred_family(received: list[Received]) -> str | None:
+    """jazzy when a pipeline is written as Jazzy writes it (planning_plugins, response_adapters),
+    humble for Humble's planning_plugin string; None when neither shows."""
+    tails = {r.name.rsplit(".", 1)[-1] for r in received if r.node == "move_group"}
+    if tails & {"planning_plugins", "response_adapters"}:
+        return "jazzy"
+    return "humble" if "planning_plugin" in tails else None
+
+
+def _check_all(received: list[Received], table: Table) -> list[Finding]:
+    instances = _instances(received)
+    out: list[Finding] = []
+    for r in received:
+        out += _check_plugins(r, table)
+        if not _elsewhere(r, instances):
+            out += _check_one(r, table, instances)
+    return out
+
+
+def _instances(received: list[Received]) -> dict[str, set[str]]:
+    """The names placeholders may take: pipelines, sensors, controllers, controller managers."""
+
+    def listed(name: str) -> set[str]:
+        values = [r.value for r in received if r.node == "move_group" and r.name == name]
+        return {str(v) for value in values if isinstance(value, list) for v in value}
+
+    pipelines = listed("planning_pipelines") | {
+        r.name.split(".", 1)[0]
+        for r in received
+        if r.name.endswith((".planning_plugin", ".planning_plugins"))
+    }
+    return {
+        "pipeline": pipelines,
+        "sensor": listed("sensors"),
+        "controller": listed("moveit_simple_controller_manager.controller_names"),
+        "plugin_package": {"moveit_simple_controller_manager", "moveit_ros_control_interface"},
+    }
+
+
+def _elsewhere(r: Received, instances: dict[str, set[str]]) -> bool:
+    """Whether other rules check this parameter (pipelines' and sensors' namespaces)."""
+    head = r.name.split(".", 1)[0]
+    return r.node == "move_group" and "." in r.name and head in instances["pipeline"] | instances["sensor"]
+
+
+def _row(r: Received, table: Table, instances: dict[str, set[str]]) -> ParamRow | None:
+    """The most specific row `r` is an instance of (placeholders bound to known names)."""
+    fitting = []
+    for row in table.rows(r.node):
+        bound = row.bindings(r.name)
+        if bound is not None and all(v in instances.get(k, {v}) for k, v in bound.items()):
+            fitting.append((len(bound), row))
+    return min(fitting, key=lambda f: f[0])[1] if fitting else None
+
+
+def _check_one(r: Received, table: Table, instances: dict[str, set[str]]) -> list[Finding]:
+    row = _row(r, table, instances)
+    if row is None:
+        return _unknown(r, table, instances)
+    if row.name.endswith(CHECKED_ELSEWHERE) or r.value in ([], {}, None):
+        return []
+    problem = type_problem(row, r.value)
+    if problem and _limits_rules_integer(r, row):
+        return []
+    rule = "params.type"
+    if problem is None:
+        rule, problem = "params.bounds", validator_problem(row, r.value)
+        if problem is None or r.name.startswith("robot_description_kinematics."):
+            return []  # kinematics_rules reports non-positive timeouts and resolutions
+    make = warning if row.on_wrong == LOGS else error
+    return [make(rule, r.file, r.element, f"{problem}: {_consequence(row)}", _cite(row, table))]
+
+
+def _limits_rules_integer(r: Received, row: ParamRow) -> bool:
+    integer = isinstance(r.value, int) and not isinstance(r.value, bool)
+    return (
+        integer
+        and row.type == "double"
+        and r.name.startswith("robot_description_planning.")
+        and r.name.rsplit(".", 1)[-1] in LIMIT_NUMBERS
+    ) or (integer and r.name.startswith("robot_description_kinematics.") and r.value <= 0)
+
+
+def _consequence(row: ParamRow) -> str:
+    node = "servo_node" if row.node == "servo" else "move_group"
+    return {
+        "throws": f"{node} stops at start-up",
+        "drops": "MoveIt drops that item (e.g. the controller)",
+    }.get(row.on_wrong, "MoveIt logs an error and ignores it")
+
+
+def _cite(row: ParamRow, table: Table) -> str:
+    repo, ref, sha = table.pinned[0]
+    note = f"; {row.note}" if row.note else ""
+    return f"declared as {row.type} at {repo}@{sha[:8]} ({ref}) {row.source}{note}"
+
+
+def _unknown(r: Received, table: Table, instances: dict[str, set[str]]) -> list[Finding]:
+    """A key MoveIt never reads in a namespace it owns, with the nearest name it reads."""
+    for prefix, source in table.owned:
+        bound = re.compile(ParamRow("", prefix + "<rest>", "", "", "").pattern.pattern)
+        match = bound.fullmatch(r.name)
+        if match is None or not all(
+            v in instances.get(k, {v}) for k, v in match.groupdict().items() if k != "rest"
+        ):
+            continue
+        names = [_instance(row.name, match.groupdict()) for row in table.rows(r.node)]
+        known = [n for n in names if n.startswith(r.name[: len(r.name) - len(match["rest"])])]
+        close = difflib.get_close_matches(r.name, known, n=1, cutoff=0.6)
+        hint = f"did you mean {close[0].rsplit('.', 1)[-1]}?" if close else f"MoveIt reads: {_short(known)}"
+        msg = f"MoveIt reads no {match['rest']} here ({source}): it is ignored"
+        return [warning("params.unknown", r.file, r.element, msg, hint)]
+    return []
+
+
+def _instance(pattern: str, bound: dict[str, str]) -> str:
+    return re.sub(r"<(\w+)>", lambda m: bound.get(m[1], m[0]), pattern)
+
+
+def _short(names: list[str]) -> str:
+    tails = sorted({n.rsplit(".", 1)[-1] for n in names})
+    return ", ".join(tails[:12]) + (", ..." if len(tails) > 12 else "")
+
+
+def _check_plugins(r: Received, table: Table) -> list[Finding]:
+    """Plugin class names pluginlib cannot load in this family."""
+    kind = next((k for pattern, k in PLUGIN_KEYS if pattern.fullmatch(r.name)), None)
+    if kind is None:
+        return []
+    known = table.classes(kind)
+    out = []
+    for name in _plugin_names(r.value):
+        if (
+            name in known
+            or (kind == "kinematics" and IKFAST.fullmatch(name))
+            or _other_family(name, kind, table)
+        ):
+            continue
+        close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+        hint = f"did you mean {close[0]}?" if close else f"known: {', '.join(known[:8])}"
+        msg = f"no {kind.replace('_', ' ')} plugin '{name}' in MoveIt ({table.family}) nor a known third-party one: pluginlib cannot load it"
+        out.append(error("params.plugin", r.file, r.element, msg, hint))
+    return out
+
+
+def _plugin_names(value: object) -> list[str]:
+    if isinstance(value, str):
+        return value.split()
+    return [v for v in value if isinstance(v, str)] if isinstance(value, list) else []
+
+
+def _other_family(name: str, kind: str, table: Table) -> bool:
+    """A class of another family's (distro_rules reports the other distro's adapters)."""
+    others = (f for f in ("jazzy", "humble") if f != table.family)
+    return any(
+        name in load_table(f).classes(k)
+        for f in others
+        for k in (kind, "request_adapter", "response_adapter")
+    )
