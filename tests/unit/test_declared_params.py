@@ -16,8 +16,10 @@ from marm_setup.package import read_package
 from marm_setup.pipeline import with_collision_matrix
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
-from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
+from marm_setup.validate.rules.declared_param_rules import check_declared_parameters, drop_superseded
+from tests.conftest import FIXTURES
 from tests.render_helpers import inferred_marm
+from tests.validate_helpers import validate_package
 
 MOVEIT_YAML = "config/moveit.yaml"
 SERVO_YAML = "config/arm_servo.yaml"
@@ -138,10 +140,21 @@ def test_an_unknown_trajectory_execution_key_is_a_warning_with_the_name_meant(fr
 
 
 def test_a_wrong_type_moveit_only_logs_is_a_warning(fresh, tmp_path):
-    pkg = edited(
-        fresh, tmp_path, "jazzy", MOVEIT_YAML, "publish_state_updates: true", "publish_state_updates: 1"
+    old = "publish_transforms_updates: true\n"
+    pkg = edited(fresh, tmp_path, "jazzy", MOVEIT_YAML, old, old + "    publish_planning_scene_hz: 4\n")
+    assert only(findings(pkg)) == (
+        "params.type",
+        "warning",
+        MOVEIT_YAML,
+        f"{PARAMS}publish_planning_scene_hz",
     )
-    assert only(findings(pkg)) == ("params.type", "warning", MOVEIT_YAML, f"{PARAMS}publish_state_updates")
+
+
+def test_the_kinematics_rules_unknown_solver_warning_gives_way_to_params_plugin(fresh, tmp_path):
+    pkg = edited(fresh, tmp_path, "jazzy", MOVEIT_YAML, "KDLKinematicsPlugin", "KDLKinematicPlugin")
+    found = validate_package(pkg, package_paths=[FIXTURES / "marm"], plan=False)
+    kept = drop_superseded(found + findings(pkg))
+    assert [f.rule for f in kept if f.element.endswith("kinematics_solver")] == ["params.plugin"]
 
 
 def test_without_a_distro_the_format_tells_the_family(fresh, tmp_path):

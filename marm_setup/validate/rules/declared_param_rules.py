@@ -51,7 +51,13 @@ LIMIT_NUMBERS = frozenset(
      "default_velocity_scaling_factor", "default_acceleration_scaling_factor",
      "max_trans_vel", "max_trans_acc", "max_trans_dec", "max_rot_vel"}
 )  # fmt: skip
-CHECKED_ELSEWHERE = ("moveit_simple_controller_manager.<controller>.type", "command_out_type")
+CHECKED_ELSEWHERE = (  # controller_rules, perception_rules, distro_rules (moveit.publish-flags)
+    "moveit_simple_controller_manager.<controller>.type", "command_out_type",
+    "publish_planning_scene", "publish_geometry_updates", "publish_state_updates", "publish_transforms_updates",
+)  # fmt: skip
+# kinematics_rules' warning on a solver it does not know, which params.plugin replaces (an
+# error, with the class meant) wherever this rule runs
+SUPERSEDED = "kinematics.unknown-solver"
 IKFAST = re.compile(r"\w+/IKFastKinematicsPlugin")
 PLUGIN_KEYS = (  # (name pattern, plugin kind)
     (re.compile(r"[^.]+\.planning_plugins?"), "planner"),
@@ -74,6 +80,13 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
     found = [_check_all(received, load_table(f)) for f in ("jazzy", "humble")]
     agreed = {(f.rule, f.file, f.element) for f in found[1]}
     return [f for f in found[0] if (f.rule, f.file, f.element) in agreed]
+
+
+def drop_superseded(findings: list[Finding]) -> list[Finding]:
+    """`findings` without the kinematics.unknown-solver warnings a params.plugin error at the
+    same file and element replaces (one finding per defect)."""
+    plugins = {(f.file, f.element) for f in findings if f.rule == "params.plugin"}
+    return [f for f in findings if f.rule != SUPERSEDED or (f.file, f.element) not in plugins]
 
 
 def inferred_family(received: list[Received]) -> str | None:
@@ -135,7 +148,7 @@ def _check_one(r: Received, table: Table, instances: dict[str, set[str]]) -> lis
     row = _row(r, table, instances)
     if row is None:
         return _unknown(r, table, instances)
-    if row.name.endswith(CHECKED_ELSEWHERE) or r.value in ([], {}, None):
+    if row.name.endswith(CHECKED_ELSEWHERE) or r.value in ([], {}, None):  # empty: ros2_params_rules
         return []
     problem = type_problem(row, r.value)
     if problem and _limits_rules_integer(r, row):
