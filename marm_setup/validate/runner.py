@@ -26,6 +26,7 @@ from marm_setup.package import (
 )
 from marm_setup.ros import Target
 from marm_setup.untrusted import CodeNotRun, no_package_code, skipped_code, skips_code
+from marm_setup.validate.rules.conflict_rules import check_merge_conflicts
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
     check_fake_controllers,
@@ -188,6 +189,7 @@ def validate_read(
     xml = pkg.package_xml.file if pkg.package_xml is not None else None
     findings += guarded("package", check_package_xml, pkg.root, xml)
     findings += guarded("package", check_pending_write, pkg.root)
+    findings += guarded("package", check_merge_conflicts, pkg.root)
     findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch, pkg.target)
     robot, problems = load_package_robot(pkg)
     findings += problems
