@@ -8,8 +8,9 @@ moveit2 moveit_plugins/moveit_ros_control_interface: `moveit_core_plugins.xml` r
 (`moveit_ros_control_interface_plugins.xml`): `joint_trajectory_controller/JointTrajectoryController`
 (a FollowJointTrajectory handle on `<name>/follow_joint_trajectory`,
 joint_trajectory_controller_plugin.cpp l.55), `position_controllers/`, `effort_controllers/`
-and `parallel_gripper_action_controller/GripperActionController` (a GripperCommand handle on
-`<name>/gripper_cmd`, gripper_command_controller_plugin.cpp l.55). None is a default controller.
+(a GripperCommand handle on `<name>/gripper_cmd`, gripper_command_controller_plugin.cpp l.55) and
+`parallel_gripper_action_controller/GripperActionController` (a ParallelGripperCommand handle,
+parallel_gripper_command_controller_plugin.cpp l.55). None is a default controller.
 """
 
 from __future__ import annotations
@@ -33,7 +34,8 @@ ROS2_CONTROL_HANDLES = {
     ),
     "position_controllers/GripperActionController": ("GripperCommand", "gripper_cmd"),
     "effort_controllers/GripperActionController": ("GripperCommand", "gripper_cmd"),
-    "parallel_gripper_action_controller/GripperActionController": ("GripperCommand", "gripper_cmd"),
+    # a ParallelGripperCommand handle (moveit2 jazzy on, parallel_gripper_command_controller_plugin.cpp l.55)
+    "parallel_gripper_action_controller/GripperActionController": ("ParallelGripperCommand", "gripper_cmd"),
 }
 
 

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from marm_setup.errors import InputError
 from marm_setup.package.where import Located
-from marm_setup.ros import TARGETS, Distro, Target
+from marm_setup.ros import DISTROS, TARGETS, Distro, Target
 
 if TYPE_CHECKING:
     from marm_setup.setup import SetupModel
@@ -169,7 +169,7 @@ def read_marm_setup(doc: Located | None, shown: str = "marm_setup.yaml") -> Marm
         True,
         _text(data.get("robot_name")) if data.get("robot_name") else None,
         Target(data["target"]) if data.get("target") in TARGETS else None,
-        Distro(data["ros_distro"]) if data.get("ros_distro") in set(Distro) else None,
+        str(data["ros_distro"]) if data.get("ros_distro") in DISTROS else None,
         robot.get("urdf") if isinstance(robot.get("urdf"), str) else None,
         xacro_pairs(robot.get("xacro_args")),
         tuple(p for p in paths if isinstance(p, str)) if isinstance(paths, list) else (),

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.robot import RobotModel, parse_xacro_args
-from marm_setup.ros import ROS_DISTROS, TARGETS, Distro, Target
+from marm_setup.ros import TARGETS, Distro, Target, default_distro, distros_of
 from marm_setup.setup import RobotSource, SetupModel
 
 if TYPE_CHECKING:
@@ -225,7 +225,7 @@ def choose_distro(request: InitRequest, spec: Partial, target: Target) -> Distro
     else the target's default (noetic for ros1, humble for ros2)."""
     from marm_setup.setup import distro_problem
 
-    distros = ROS_DISTROS[target]
+    distros = distros_of(target)
     from_spec = spec.get("ros_distro")
     for given, where in (
         (request.ros_distro, "--ros-distro"),
@@ -238,8 +238,8 @@ def choose_distro(request: InitRequest, spec: Partial, target: Target) -> Distro
             raise InputError(
                 problem, path=None if where == "--ros-distro" else str(request.spec), element=where
             )
-        return Distro(given)
-    return Distro(request.env_distro) if request.env_distro in distros else distros[0]
+        return given
+    return request.env_distro if request.env_distro in distros else default_distro(target)
 
 
 def _source(request: InitRequest) -> RobotSource:

@@ -14,7 +14,7 @@ from marm_setup.package import Sensor as SourceSensor
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
 from marm_setup.robot import RobotModel
-from marm_setup.ros import Distro, Target
+from marm_setup.ros import Target
 from marm_setup.setup import (
     SENSOR_TYPES,
     SERVO_POSITION,
@@ -94,7 +94,7 @@ def _or_default(servos: tuple[Servo, ...], model: SetupModel, robot: RobotModel)
 
     default = default_servos(model, robot)
     plans = {p.group: p for p in plan_servos(dataclasses.replace(model, servo=default), robot)}
-    period = 0.01 if model.distro == Distro.JAZZY else 0.034
+    period = model.row.servo_publish_period
     bare = []
     for servo in servos:
         plan = plans.get(servo.group)

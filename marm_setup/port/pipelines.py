@@ -20,7 +20,7 @@ import re
 from marm_setup.package import FrozenMapping, MoveItPackage, Param, PlanningPipeline, Where
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
-from marm_setup.ros import Distro, Target
+from marm_setup.ros import Target, distro_row
 from marm_setup.setup import PIPELINES, SetupModel, effective_parameters, parameter, value_problem
 
 ADAPTER_KEYS = ("request_adapters", "response_adapters")
@@ -109,24 +109,24 @@ def _carried_pipeline(
     if key in names:
         log.dropped(setting, src, f"a second {key} pipeline: the new package has one", AREA)
         return None
-    known = PIPELINES[key]
-    if distro in known.from_source and pkg.marm_setup is None:
+    known, row = PIPELINES[key], distro_row(distro)
+    if key in row.planners_from_source and pkg.marm_setup is None:
         detail = f"{distro}'s MoveIt binaries lack {known.package}: build it from source and add {key} to planning_pipelines"
         log.dropped(setting, src, detail, AREA)
         return None
-    if distro not in known.distros + known.from_source:
+    if key not in row.planners + row.planners_from_source:
         log.dropped(setting, src, f"{distro}'s MoveIt has no {key} planner", AREA)
         return None
     log.carried(setting, src, f"as {key}", AREA)
     return key
 
 
-def _source_distro(pkg: MoveItPackage, pipeline: PlanningPipeline) -> Distro | None:
-    """The ROS 2 distro whose format the source pipeline is written in: Humble's planning_plugin
-    string or Jazzy's planning_plugins list (None: a MoveIt 1 package)."""
+def _source_distro(pkg: MoveItPackage, pipeline: PlanningPipeline) -> str | None:
+    """The MoveIt parameter format (a DistroRow `params`) the source pipeline is written in:
+    Humble's planning_plugin string or Jazzy's planning_plugins list (None: a MoveIt 1 package)."""
     if pkg.target != Target.ROS2:
         return None
-    return Distro.JAZZY if pipeline.setting("planning_plugins") is not None else Distro.HUMBLE
+    return "jazzy" if pipeline.setting("planning_plugins") is not None else "humble"
 
 
 def _namespace(pipeline: PlanningPipeline, key: str, log: PortLog) -> list[Param]:
@@ -149,7 +149,7 @@ def _namespace(pipeline: PlanningPipeline, key: str, log: PortLog) -> list[Param
 
 
 def _port_parameters(
-    pipeline: PlanningPipeline, key: str, source: Distro | None, model: SetupModel, log: PortLog
+    pipeline: PlanningPipeline, key: str, source: str | None, model: SetupModel, log: PortLog
 ) -> tuple:
     """The pipeline's parameters the target reads that differ from what it writes by default."""
     distro = model.distro
@@ -174,7 +174,7 @@ def _is_unset(value: object) -> bool:
 
 
 def _parameter(
-    param: Param, key: str, source: Distro | None, model: SetupModel, setting: str, log: PortLog
+    param: Param, key: str, source: str | None, model: SetupModel, setting: str, log: PortLog
 ) -> tuple[str, object] | None:
     """(name, value) as the target's pipeline_parameters take it, else None (reported)."""
     distro = model.distro
@@ -193,7 +193,7 @@ def _parameter(
         log.dropped(setting, param.where, f"{short(param.value)}: {distro}'s MoveIt does not read it", AREA)
         return None
     value = _value(param, name)
-    if name in ADAPTER_KEYS and source != distro:
+    if name in ADAPTER_KEYS and source != model.row.params:
         detail = f"{short(param.value)}: {distro}'s adapters are written (the adapter lists of {source or 'MoveIt 1'} and {distro} differ)"
         log.changed(setting, param.where, detail, AREA)
         return None

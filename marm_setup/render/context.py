@@ -14,15 +14,15 @@ from pathlib import PurePosixPath
 from marm_setup.errors import InputError
 from marm_setup.names import name_problem
 from marm_setup.robot import Joint, RobotModel
-from marm_setup.ros import Target
+from marm_setup.ros import ControllerKind, Target
 from marm_setup.setup import (
     ARBOTIX_GRIPPER_ACTION_NS,
     FOLLOW_JOINT_TRAJECTORY,
     GRIPPER_COMMAND,
     MOCK_HARDWARE,
+    MOVEIT_CONTROLLER_TYPES,
     OMPL_PLANNERS,
     PIPELINES,
-    ROS2_CONTROLLER_TYPES,
     Controller,
     GroupState,
     Kinematics,
@@ -82,8 +82,20 @@ class GroupInfo:
 
 @dataclass(frozen=True, slots=True)
 class ControllerInfo:
+    """A setup controller and the distro's ros2_controllers controller that serves it."""
+
     controller: Controller
-    ros2_type: str
+    kind: ControllerKind
+
+    @property
+    def ros2_type(self) -> str:
+        return self.kind.type
+
+    @property
+    def moveit_type(self) -> str:
+        """The moveit_simple_controller_manager handle type (ParallelGripperCommand for a
+        parallel gripper controller's GripperCommand kind)."""
+        return self.kind.moveit_type
 
     @property
     def name(self) -> str:
@@ -182,10 +194,14 @@ def group_infos(model: SetupModel, robot: RobotModel) -> list[GroupInfo]:
 
 
 def controller_infos(model: SetupModel) -> list[ControllerInfo]:
+    """ros2: each controller with the distro's ros2_controllers controller of its type."""
+    if model.target != Target.ROS2:
+        return []
+    row = model.row
     return [
-        ControllerInfo(c, ROS2_CONTROLLER_TYPES[c.type])
+        ControllerInfo(c, row.controller(c.type))
         for c in model.controllers
-        if c.type in ROS2_CONTROLLER_TYPES
+        if c.type in MOVEIT_CONTROLLER_TYPES
     ]
 
 
@@ -343,6 +359,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "robot": robot,
         "pkg": model.package_name,
         "distro": model.distro,
+        "distro_row": model.row,
         "robot_name": model.robot_name,
         "ros2_control_macro": ros2_control_macro(model.robot_name),
         "description": ref,
@@ -364,6 +381,6 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "cartesian_limits": CARTESIAN_LIMITS,
         "arbotix_gripper_action_ns": ARBOTIX_GRIPPER_ACTION_NS,
         "servos": servos,
-        "forward_controllers": forward_controllers(servos) if model.target == Target.ROS2 else [],
+        "forward_controllers": forward_controllers(servos, model.row) if model.target == Target.ROS2 else [],
         "perception": plan_perception(model, robot),
     }

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from marm_setup.ros import Distro
 from marm_setup.setup import PIPELINES, PipelineParameterValue, SetupModel, effective_parameters
 
 ADAPTER_KEYS = ("request_adapters", "response_adapters")
@@ -43,7 +42,7 @@ def pipeline_infos(model: SetupModel) -> list[PipelineInfo]:
         pipeline = PIPELINES[key]
         values = dict(effective_parameters(key, model.distro, given.get(key, ())))
         adapters = {k: tuple(values.pop(k, ())) for k in ADAPTER_KEYS}  # type: ignore[arg-type]
-        capabilities = str(values.pop("capabilities", "")) if model.distro == Distro.HUMBLE else ""
+        capabilities = str(values.pop("capabilities", "")) if model.row.top_level_capabilities else ""
         out.append(
             PipelineInfo(
                 key,

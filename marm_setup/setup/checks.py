@@ -17,7 +17,7 @@ from marm_setup.errors import InputError
 from marm_setup.findings import Finding
 from marm_setup.names import did_you_mean, name_problem, with_hint
 from marm_setup.robot import MIN_RATE, RobotModel
-from marm_setup.ros import ROS_DISTROS, Target
+from marm_setup.ros import DISTROS, Target, distros_of
 from marm_setup.setup.domain import KINEMATICS_KEYS
 from marm_setup.setup.limits import joint_limits, timing_problem
 from marm_setup.setup.model import Controller, SetupModel
@@ -109,7 +109,7 @@ def _check_author(c: _Checker) -> None:
 
 def distro_problem(target: Target, distro: str | None) -> str | None:
     """Why `distro` is not one the target is written for (None: it is, or none is given)."""
-    distros = ROS_DISTROS[target]
+    distros = distros_of(target)
     if distro is None or distro in distros:
         return None
     return f"'{distro}' is not a {target} distro (valid: {', '.join(distros)})"
@@ -128,10 +128,12 @@ def _check_pipelines(c: _Checker) -> None:
         c.name("planning pipeline", name, PIPELINES, where)
         if name in names[:i]:
             raise c.fail(f"'{name}' is listed twice", where)
-        pipeline = PIPELINES[name]
-        if c.model.distro not in pipeline.distros + pipeline.from_source:
-            shipped = ", ".join(pipeline.distros + pipeline.from_source)
-            raise c.fail(f"'{name}' is not in MoveIt's {c.model.distro} binaries (only {shipped})", where)
+        row = c.model.row
+        if name not in row.planners + row.planners_from_source:
+            shipped = ", ".join(
+                r.name for r in DISTROS.values() if name in r.planners + r.planners_from_source
+            )
+            raise c.fail(f"'{name}' is not in MoveIt's {row.name} binaries (only {shipped})", where)
     _check_pipeline_parameters(c)
 
 
@@ -143,7 +145,7 @@ def _check_pipeline_parameters(c: _Checker) -> None:
     model = c.model
     if model.pipeline_parameters and model.target != Target.ROS2:
         raise c.fail(
-            "written for ROS 2 (humble, jazzy) only: noetic's pipeline launch files keep MoveIt's defaults",
+            f"written for ROS 2 ({', '.join(distros_of(Target.ROS2))}) only: noetic's pipeline launch files keep MoveIt's defaults",
             "pipeline_parameters",
         )
     for pipeline, params in model.pipeline_parameters:
@@ -167,7 +169,7 @@ def setup_warnings(model: SetupModel) -> tuple[str, ...]:
     distro, out = model.distro, []
     for i, name in enumerate(model.planning_pipelines):
         pipeline = PIPELINES.get(name)
-        if pipeline is not None and distro in pipeline.from_source:
+        if pipeline is not None and name in model.row.planners_from_source:
             out.append(
                 f"warning: planning_pipelines[{i}]: '{name}' is not in MoveIt's {distro} binaries (moveit2's "
                 f"{distro} branch has no moveit_planners/{name}): build {pipeline.package} from moveit2's "

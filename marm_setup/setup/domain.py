@@ -17,9 +17,13 @@ VIRTUAL_JOINT_TYPES = ("fixed", "floating", "planar")
 
 FOLLOW_JOINT_TRAJECTORY = "FollowJointTrajectory"
 GRIPPER_COMMAND = "GripperCommand"
-# The controller types MoveIt's simple controller manager knows (moveit_simple_controller_manager
-# moveit_simple_controller_manager.cpp: FollowJointTrajectory and GripperCommand handles).
+# The controller kinds a setup names (a FollowJointTrajectory or a gripper controller).
 MOVEIT_CONTROLLER_TYPES = (FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND)
+# The handle types MoveIt's simple controller manager knows (moveit2 humble to main,
+# moveit_simple_controller_manager.cpp l.148-213: FollowJointTrajectory, GripperCommand and, from
+# Jazzy on, ParallelGripperCommand, what a parallel_gripper_action_controller serves).
+PARALLEL_GRIPPER_COMMAND = "ParallelGripperCommand"
+MOVEIT_HANDLE_TYPES = (*MOVEIT_CONTROLLER_TYPES, PARALLEL_GRIPPER_COMMAND)
 
 # Action namespaces the drivers serve: ros2_control's JointTrajectoryController
 # `<name>/follow_joint_trajectory`, its GripperActionController `<name>/gripper_cmd`, the ArbotiX
@@ -35,6 +39,12 @@ DRIVER_CONTROLLERS = {
     "JointTrajectoryController": (FOLLOW_JOINT_TRAJECTORY, FOLLOW_JOINT_TRAJECTORY_NS),
     "GripperActionController": (GRIPPER_COMMAND, GRIPPER_CMD_NS),
     "ParallelGripperCommandController": (GRIPPER_COMMAND, GRIPPER_CMD_NS),
+}
+# Full controller types whose class name alone says too little: ros2_controllers'
+# parallel_gripper_action_controller serves control_msgs ParallelGripperCommand
+# (parallel_gripper_action_controller.hpp l.97), not GripperCommand.
+DRIVER_CONTROLLER_TYPES = {
+    "parallel_gripper_action_controller/GripperActionController": (PARALLEL_GRIPPER_COMMAND, GRIPPER_CMD_NS),
 }
 # Driver controller classes whose `joints` / `joint` parameters name URDF joints.
 JOINT_DRIVER_CONTROLLERS = frozenset(
@@ -120,15 +130,13 @@ MOCK_HARDWARE = "mock_components/GenericSystem"
 @dataclass(frozen=True, slots=True)
 class Pipeline:
     """A MoveIt planning pipeline: its parameter namespace (the name move_group's
-    planning_pipelines lists), planner plugin per MoveIt generation, the package exporting it,
-    the distros whose binaries ship it and those whose MoveIt runs it built from source."""
+    planning_pipelines lists), planner plugin per MoveIt generation and the package exporting it.
+    Which distros ship it: their rows (marm_setup.ros DISTROS, `planners`, `planners_from_source`)."""
 
     namespace: str
     plugin_ros1: str
     plugin_ros2: str
     package: str
-    distros: tuple[str, ...]
-    from_source: tuple[str, ...] = ()
 
     def plugin(self, target: Target) -> str:
         return self.plugin_ros1 if target == Target.ROS1 else self.plugin_ros2
@@ -147,25 +155,20 @@ PIPELINES = {
         "ompl_interface/OMPLPlanner",
         "ompl_interface/OMPLPlanner",
         "moveit_planners_ompl",
-        ("noetic", "humble", "jazzy"),
     ),
     "chomp": Pipeline(
         "chomp",
         "chomp_interface/CHOMPPlanner",
         "chomp_interface/CHOMPPlanner",
         "moveit_planners_chomp",
-        ("noetic", "humble", "jazzy"),
     ),
     "pilz": Pipeline(
         "pilz_industrial_motion_planner",
         "pilz_industrial_motion_planner::CommandPlanner",
         "pilz_industrial_motion_planner/CommandPlanner",
         "pilz_industrial_motion_planner",
-        ("noetic", "humble", "jazzy"),
     ),
-    "stomp": Pipeline(
-        "stomp", "", "stomp_moveit/StompPlanner", "moveit_planners_stomp", ("jazzy",), ("humble",)
-    ),
+    "stomp": Pipeline("stomp", "", "stomp_moveit/StompPlanner", "moveit_planners_stomp"),
 }
 # OMPL for any query, Pilz for deterministic PTP/LIN/CIRC motions (needs only the cartesian
 # limits); CHOMP and STOMP optimise trajectories and want tuning per robot, so they are opt-in.
@@ -201,9 +204,11 @@ SERVO_OUTPUTS = (SERVO_TRAJECTORY, SERVO_POSITION)
 # moveit_servo's command_in_type values (noetic servo.cpp readParameters, humble
 # servo_parameters.cpp validate, jazzy servo_parameters.yaml `one_of`).
 SERVO_COMMAND_IN_TYPES = ("unitless", "speed_units")
-# The forward controller servo's `position` output drives (ros2_controllers, package
-# position_controllers: subscribes to `<name>/commands`, std_msgs/Float64MultiArray).
-FORWARD_POSITION_CONTROLLER = "position_controllers/JointGroupPositionController"
+# The kind of the forward controller servo's `position` output drives (subscribes to
+# `<name>/commands`, std_msgs/Float64MultiArray); its type is the distro's (marm_setup.ros DISTROS
+# `controllers`: position_controllers/JointGroupPositionController, on Rolling
+# forward_command_controller/ForwardCommandController).
+FORWARD_POSITION = "forward_position"
 
 # -- 3D perception -------------------------------------------------------------------------------
 

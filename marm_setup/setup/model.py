@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from marm_setup.collision import DisabledPair, DisabledReason, UnprovedPair
-from marm_setup.ros import ROS_DISTROS, Distro, Target
+from marm_setup.ros import Distro, DistroRow, Target, default_distro, distro_row
 from marm_setup.setup.domain import (
     DEFAULT_PIPELINES,
     DEFAULT_PLANNER,
@@ -294,7 +294,7 @@ class SetupModel:
     robot_name: str
     robot: RobotSource
     target: Target = Target.ROS2
-    ros_distro: Distro | None = None  # None: the target's default (ROS_DISTROS[target][0])
+    ros_distro: Distro | None = None  # None: the target's default (marm_setup.ros default_distro)
     driver: str | None = None  # ros1: the hardware driver whose files to write (arbotix), or none
     author: Author = field(default_factory=Author)
     virtual_joints: tuple[VirtualJoint, ...] = ()
@@ -330,7 +330,12 @@ class SetupModel:
     @property
     def distro(self) -> Distro:
         """The ROS distro the package is written for."""
-        return self.ros_distro or ROS_DISTROS[self.target][0]
+        return self.ros_distro or default_distro(self.target)
+
+    @property
+    def row(self) -> DistroRow:
+        """What the distro's MoveIt, ros2_control and ros2_controllers read (InputError: unknown)."""
+        return distro_row(self.distro, self.target)
 
     def group(self, name: str) -> Group:
         return next(g for g in self.groups if g.name == name)

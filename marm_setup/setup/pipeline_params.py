@@ -42,6 +42,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
+from marm_setup.ros import DISTROS, distro_row
 from marm_setup.setup.model import PipelineParameterValue as ParamValue
 
 DOUBLE, INT, BOOL, STRING, STRINGS = "double", "int", "bool", "string", "string list"
@@ -105,33 +106,17 @@ PLANNER_PARAMS = {
     "stomp": STOMP,
     "pilz": (PipelineParameter("default_planner_config", STRING),),
 }
+# per MoveIt parameter format (a DistroRow's `params`)
 COMMON = {"humble": HUMBLE_COMMON, "jazzy": JAZZY_COMMON}
-ROS2_DISTROS = tuple(COMMON)
+# per parameter format: the prefixes of the adapter plugins its MoveIt exports
+# (planning_request_adapters_plugin_description.xml and, Jazzy on,
+# planning_response_adapters_plugin_description.xml): a name of another format's cannot be loaded
+ADAPTER_FAMILIES = {r.params: r.adapter_families for r in DISTROS.values() if r.adapter_families}
 # keys a pipeline's namespace holds that are not settings of it: the plugin, OMPL's planner list
 STRUCTURE_KEYS = frozenset({"planning_plugin", "planning_plugins", "planner_configs"})
 
 # -- defaults ------------------------------------------------------------------------------------
 
-_HUMBLE = "default_planner_request_adapters/"
-_REQUEST, _RESPONSE = "default_planning_request_adapters/", "default_planning_response_adapters/"
-HUMBLE_ADAPTERS = tuple(
-    _HUMBLE + a
-    for a in (
-        "AddTimeOptimalParameterization", "ResolveConstraintFrames", "FixWorkspaceBounds",
-        "FixStartStateBounds", "FixStartStateCollision", "FixStartStatePathConstraints",
-    )
-)  # fmt: skip
-JAZZY_REQUESTS = tuple(
-    _REQUEST + a
-    for a in ("ResolveConstraintFrames", "ValidateWorkspaceBounds", "CheckStartStateBounds", "CheckStartStateCollision")
-)  # fmt: skip
-JAZZY_RESPONSES = tuple(
-    _RESPONSE + a for a in ("AddTimeOptimalParameterization", "ValidateSolution", "DisplayMotionPath")
-)
-# The adapter plugins each distro's MoveIt exports (planning_request_adapters_plugin_description.xml
-# and, Jazzy, planning_response_adapters_plugin_description.xml): a name of the other distro's
-# family cannot be loaded.
-ADAPTER_FAMILIES = {"humble": (_HUMBLE,), "jazzy": (_REQUEST, _RESPONSE)}
 PILZ_CAPABILITIES = "pilz_industrial_motion_planner/MoveGroupSequenceAction pilz_industrial_motion_planner/MoveGroupSequenceService"
 CHOMP_DEFAULTS = (
     ("planning_time_limit", 10.0), ("max_iterations", 200), ("max_iterations_after_collision_free", 5),
@@ -146,35 +131,28 @@ STOMP_DEFAULTS = (
     ("num_timesteps", 60), ("num_iterations", 40), ("num_iterations_after_valid", 0), ("num_rollouts", 30),
     ("max_rollouts", 30), ("exponentiated_cost_sensitivity", 0.8), ("control_cost_weight", 0.1), ("delta_t", 0.1),
 )  # fmt: skip
-# What marm-setup writes where the setup gives nothing: on Humble MoveIt's own defaults
-# (moveit_configs_utils/default_configs/*_planning.yaml, humble: OMPL and CHOMP with the six
-# adapters, start_state_max_bounds_error 0.1 and jiggle_fraction 0.05; Pilz without adapters).
-DEFAULTS: dict[tuple[str, str], tuple[tuple[str, ParamValue], ...]] = {
-    ("humble", "ompl"): (
-        ("request_adapters", HUMBLE_ADAPTERS), ("start_state_max_bounds_error", 0.1), ("jiggle_fraction", 0.05),
-    ),
-    ("humble", "chomp"): (
-        ("request_adapters", HUMBLE_ADAPTERS), ("start_state_max_bounds_error", 0.1), ("jiggle_fraction", 0.05),
-        *CHOMP_DEFAULTS,
-    ),
-    ("humble", "stomp"): (("request_adapters", HUMBLE_ADAPTERS), *STOMP_DEFAULTS),
-    ("humble", "pilz"): (
-        ("request_adapters", ()), ("capabilities", PILZ_CAPABILITIES), ("default_planner_config", "PTP"),
-    ),
-    ("jazzy", "ompl"): (("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES)),
-    ("jazzy", "chomp"): (
-        ("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES[:1]), *CHOMP_DEFAULTS,
-    ),
-    ("jazzy", "stomp"): (("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES), *STOMP_DEFAULTS),
-    ("jazzy", "pilz"): (
-        ("request_adapters", JAZZY_REQUESTS[1:]), ("capabilities", PILZ_CAPABILITIES), ("default_planner_config", "PTP"),
-    ),
-}  # fmt: skip
+# What marm-setup writes where the setup gives nothing: the distro's adapter defaults (its row,
+# marm_setup.ros DISTROS `adapter_defaults`), then the planner's.
+PLANNER_DEFAULTS: dict[str, tuple[tuple[str, ParamValue], ...]] = {
+    "chomp": CHOMP_DEFAULTS,
+    "stomp": STOMP_DEFAULTS,
+    "pilz": (("capabilities", PILZ_CAPABILITIES), ("default_planner_config", "PTP")),
+}
+
+
+def defaults(pipeline: str, distro: str) -> tuple[tuple[str, ParamValue], ...]:
+    """marm-setup's parameters for `pipeline` on `distro` where the setup gives none."""
+    return (*distro_row(distro).adapters(pipeline), *PLANNER_DEFAULTS.get(pipeline, ()))
+
+
+def parameter_format(distro: str) -> str:
+    """The MoveIt parameter format `distro` reads (its row's `params`); InputError when unknown."""
+    return distro_row(distro).params
 
 
 def known_parameters(pipeline: str, distro: str) -> tuple[PipelineParameter, ...]:
     """The parameters `distro`'s MoveIt reads in the namespace of a pipeline (a setup name)."""
-    return (*COMMON.get(distro, ()), *PLANNER_PARAMS.get(pipeline, ()))
+    return (*COMMON[parameter_format(distro)], *PLANNER_PARAMS.get(pipeline, ()))
 
 
 def parameter(pipeline: str, distro: str, name: str) -> PipelineParameter | None:
@@ -186,7 +164,7 @@ def effective_parameters(
 ) -> tuple[tuple[str, ParamValue], ...]:
     """marm-setup's defaults for the pipeline overlaid with the setup's values that `distro`
     reads, in the order MoveIt's sources list them; each value of its parameter's type."""
-    values = dict(DEFAULTS.get((distro, pipeline), ()))
+    values = dict(defaults(pipeline, distro))
     values.update((n, v) for n, v in given if parameter(pipeline, distro, n) is not None)
     out = []
     for p in known_parameters(pipeline, distro):
@@ -243,11 +221,18 @@ def value_problem(p: PipelineParameter, value: object, *, int_as_double: bool = 
 def adapter_problem(name: str, distro: str) -> str | None:
     """Why `distro`'s MoveIt cannot load the adapter plugin `name` (None: it can, or it is a
     plugin of the user's own)."""
-    other = next((d for d, fam in ADAPTER_FAMILIES.items() if d != distro and name.startswith(fam)), None)
+    mine = distro_row(distro).adapter_families
+    other = next(
+        (
+            r.name
+            for r in DISTROS.values()
+            if r.adapter_families and r.adapter_families != mine and name.startswith(r.adapter_families)
+        ),
+        None,
+    )
     if other is None:
         return None
-    mine = " ".join(ADAPTER_FAMILIES[distro])
-    return f"'{name}' is {other.capitalize()}'s adapter: {distro.capitalize()} has none such (its adapters: {mine}...)"
+    return f"'{name}' is {other.capitalize()}'s adapter: {distro.capitalize()} has none such (its adapters: {' '.join(mine)}...)"
 
 
 def unknown_name_hint(pipeline: str, distro: str, name: str) -> str:
@@ -263,8 +248,15 @@ def unknown_name_hint(pipeline: str, distro: str, name: str) -> str:
 
 
 def other_distros_reading(pipeline: str, distro: str, name: str) -> tuple[str, ...]:
-    """The other ROS 2 distros whose MoveIt reads `name` in this pipeline's namespace."""
-    return tuple(d for d in ROS2_DISTROS if d != distro and parameter(pipeline, d, name) is not None)
+    """The other ROS 2 parameter formats whose MoveIt reads `name` in this pipeline's
+    namespace, each named by its first distro (`jazzy` for Jazzy, Kilted and Rolling)."""
+    mine = parameter_format(distro)
+    first: dict[str, str] = {}
+    for r in DISTROS.values():
+        first.setdefault(r.params, r.name)
+    return tuple(
+        d for f, d in first.items() if f in COMMON and f != mine and parameter(pipeline, d, name) is not None
+    )
 
 
 def flatten(data: dict, prefix: str = "") -> Iterator[tuple[str, object]]:

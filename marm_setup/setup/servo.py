@@ -21,10 +21,10 @@ from collections.abc import Mapping
 from marm_setup.errors import InputError
 from marm_setup.names import did_you_mean, with_hint
 from marm_setup.robot import RobotModel
-from marm_setup.ros import Distro, Target
+from marm_setup.ros import ControllerKind, DistroRow, Target
 from marm_setup.setup.domain import (
     FOLLOW_JOINT_TRAJECTORY,
-    FORWARD_POSITION_CONTROLLER,
+    FORWARD_POSITION,
     SERVO_POSITION,
     SERVO_TRAJECTORY,
 )
@@ -129,21 +129,26 @@ def _plan(model: SetupModel, robot: RobotModel, by_name: Mapping[str, Group], se
 @dataclasses.dataclass(frozen=True, slots=True)
 class ForwardController:
     """A ros2_control forward position controller for servo's `position` output; `replaces` is
-    the trajectory controller claiming the same joints ('' when there is none)."""
+    the trajectory controller claiming the same joints ('' when there is none); `kind` the
+    distro's controller (type, package, interface_name)."""
 
     name: str
-    type: str
+    kind: ControllerKind
     joints: tuple[str, ...]
     replaces: str
 
+    @property
+    def type(self) -> str:
+        return self.kind.type
 
-def forward_controllers(plans: list[ServoPlan]) -> list[ForwardController]:
-    """The forward position controllers the servos need, in servo order."""
-    return [
-        ForwardController(p.output_controller, FORWARD_POSITION_CONTROLLER, p.joints, p.trajectory_controller)
-        for p in plans
-        if not p.is_trajectory
-    ]
+
+def forward_controllers(plans: list[ServoPlan], row: DistroRow) -> list[ForwardController]:
+    """The forward position controllers the servos need, in servo order, of `row`'s ros2_controllers."""
+    wanted = [p for p in plans if not p.is_trajectory]
+    if not wanted:
+        return []
+    kind = row.controller(FORWARD_POSITION)
+    return [ForwardController(p.output_controller, kind, p.joints, p.trajectory_controller) for p in wanted]
 
 
 # -- checks --------------------------------------------------------------------------------------
@@ -193,9 +198,9 @@ def _check_group(
             path,
             f"{where}.group",
         )
-    if model.distro == Distro.JAZZY and servo.group not in {k.group for k in model.kinematics}:
+    if model.row.servo_needs_kinematics and servo.group not in {k.group for k in model.kinematics}:
         raise _fail(
-            f"group '{servo.group}' has no IK solver (kinematics): Jazzy's servo takes its planning "
+            f"group '{servo.group}' has no IK solver (kinematics): {model.distro.capitalize()}'s servo takes its planning "
             "and end-effector frames from it",
             path,
             f"{where}.group",

@@ -582,7 +582,7 @@ def test_a_distro_of_another_target_is_one_line(tmp_path):
     assert result.exit_code == 2
     assert (
         result.stderr.strip()
-        == f"error: {spec}: ros_distro: 'noetic' is not a ros2 distro (valid: humble, jazzy)"
+        == f"error: {spec}: ros_distro: 'noetic' is not a ros2 distro (valid: humble, jazzy, kilted, rolling)"
     )
 
 

@@ -136,7 +136,7 @@ def test_switching_target_without_the_drivers_action_ns_is_refused(tmp_path):
     assert result.exit_code == 2  # the distro must change with the target
     assert (
         result.stderr.strip()
-        == f"error: {setup}: ros_distro: 'noetic' is not a ros2 distro (valid: humble, jazzy)"
+        == f"error: {setup}: ros_distro: 'noetic' is not a ros2 distro (valid: humble, jazzy, kilted, rolling)"
     )
     setup.write_text(setup.read_text().replace("ros_distro: noetic", "ros_distro: humble"))
     before = snapshot(pkg)

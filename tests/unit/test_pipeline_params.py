@@ -107,7 +107,9 @@ def test_a_bad_parameter_is_one_error_naming_it(distro, params, element, message
 
 def test_ros1_takes_no_pipeline_parameters():
     model, robot = marm_with("ros1", "noetic", pipeline_parameters=(("ompl", (("jiggle_fraction", 0.1),)),))
-    assert_check_error(model, robot, "pipeline_parameters", "written for ROS 2 (humble, jazzy) only")
+    assert_check_error(
+        model, robot, "pipeline_parameters", "written for ROS 2 (humble, jazzy, kilted, rolling) only"
+    )
 
 
 def test_the_setup_file_takes_them_nested_or_dotted_and_writes_them_back():

@@ -192,7 +192,12 @@ def test_every_pipeline_loads_on_its_distro(distro):
 @pytest.mark.parametrize(
     ("target", "distro", "pipelines", "message"),
     [
-        ("ros1", "noetic", ("stomp",), "'stomp' is not in MoveIt's noetic binaries (only jazzy, humble)"),
+        (
+            "ros1",
+            "noetic",
+            ("stomp",),
+            "'stomp' is not in MoveIt's noetic binaries (only humble, jazzy, kilted, rolling)",
+        ),
         ("ros2", "jazzy", ("ompl", "ompl"), "'ompl' is listed twice"),
         ("ros2", "jazzy", ("omp",), "unknown planning pipeline 'omp'"),
         ("ros2", "jazzy", (), "no planning pipeline"),

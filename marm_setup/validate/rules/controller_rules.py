@@ -21,7 +21,7 @@ from marm_setup.setup import (
     FOLLOW_JOINT_TRAJECTORY,
     FOLLOW_JOINT_TRAJECTORY_NS,
     GRIPPER_CMD_NS,
-    MOVEIT_CONTROLLER_TYPES,
+    MOVEIT_HANDLE_TYPES,
     active_group_joints,
     groups_by_name,
 )
@@ -108,8 +108,8 @@ def check_moveit_controllers(
 
 
 def _check_type(file: str, c: MoveItController) -> list[Finding]:
-    if c.type not in MOVEIT_CONTROLLER_TYPES:
-        msg = f"type '{c.type}' is not one MoveIt's simple controller manager knows ({', '.join(MOVEIT_CONTROLLER_TYPES)})"
+    if c.type not in MOVEIT_HANDLE_TYPES:
+        msg = f"type '{c.type}' is not one MoveIt's simple controller manager knows ({', '.join(MOVEIT_HANDLE_TYPES)})"
         return [error("controller.unknown-type", file, c.element, msg)]
     if c.action_ns and _implausible(c.type, c.action_ns):
         msg = f"action_ns '{c.action_ns}' is implausible for a {c.type} controller"

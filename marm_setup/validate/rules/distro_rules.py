@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
 from marm_setup.package import MoveItPackage, Param, PlanningPipeline, Ros2ControlFile
-from marm_setup.ros import Distro, Target
+from marm_setup.ros import DISTROS, Distro, Target, distro_row
 from marm_setup.setup import active_group_joints, groups_by_name
 
 if TYPE_CHECKING:
@@ -50,7 +50,8 @@ JAZZY_ADAPTERS = ("default_planning_request_adapters/", "default_planning_respon
 
 
 def check_pipeline_format(pipeline: PlanningPipeline, distro: Distro) -> list[Finding]:
-    """One pipeline's planner and adapter parameters as `distro` (humble | jazzy) reads them."""
+    """One pipeline's planner and adapter parameters as `distro` reads them (its row's
+    parameter format: humble or jazzy)."""
     if not pipeline.is_mapping:
         return []
     data = pipeline.data
@@ -58,7 +59,7 @@ def check_pipeline_format(pipeline: PlanningPipeline, distro: Distro) -> list[Fi
     def where(*keys: object) -> str:
         return pipeline.where.child(*keys).element
 
-    if distro == Distro.HUMBLE:
+    if distro_row(distro).params == "humble":
         return _humble_format(pipeline.name, data, pipeline.where.file, where)
     return _jazzy_format(pipeline.name, data, pipeline.where.file, where)
 
@@ -94,9 +95,8 @@ def _built_from_source(plugin: object, file: str, where: Callable[..., str]) -> 
     built it from source."""
     from marm_setup.setup import PIPELINES
 
-    found = next(
-        (p for p in PIPELINES.values() if p.plugin_ros2 == plugin and "humble" in p.from_source), None
-    )
+    from_source = {k for r in DISTROS.values() if r.params == "humble" for k in r.planners_from_source}
+    found = next((p for k, p in PIPELINES.items() if p.plugin_ros2 == plugin and k in from_source), None)
     if found is None:
         return []
     msg = f"{plugin} is not in MoveIt's Humble binaries: move_group loads it only where {found.package} is built from moveit2's source"
@@ -194,7 +194,7 @@ def check_package_runtime(pkg: MoveItPackage, robot: RobotModel | None) -> list[
     if pkg.target != Target.ROS2:
         return out
     distro = pkg.ros_distro
-    if distro in (Distro.HUMBLE, Distro.JAZZY):
+    if distro in DISTROS and DISTROS[distro].params in ("humble", "jazzy"):
         from marm_setup.validate.rules.pipeline_param_rules import check_pipeline_parameters
 
         for pipeline in _ros2_pipelines(pkg):

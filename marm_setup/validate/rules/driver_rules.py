@@ -10,12 +10,13 @@ from marm_setup.findings import Finding, error
 from marm_setup.package import ArbotixFile, ControllersFile, DriverController, DriverFile, MoveItController
 from marm_setup.robot import RobotModel
 from marm_setup.setup import (
+    DRIVER_CONTROLLER_TYPES,
     DRIVER_CONTROLLERS,
     FOLLOW_JOINT_TRAJECTORY,
     FOLLOW_JOINT_TRAJECTORY_NS,
     GRIPPER_COMMAND,
     JOINT_DRIVER_CONTROLLERS,
-    MOVEIT_CONTROLLER_TYPES,
+    MOVEIT_HANDLE_TYPES,
 )
 
 
@@ -53,11 +54,12 @@ def _check_against_driver(moveit: ControllersFile, driver: DriverFile, c: MoveIt
         msg = f"controller '{c.name}' is not in {file} (has: {known})"
         return [error("controller.driver-missing", moveit.where.file, c.element, msg)]
     suffix = d.type.rsplit("/", 1)[-1]
-    if suffix not in DRIVER_CONTROLLERS:
+    served = DRIVER_CONTROLLER_TYPES.get(d.type) or DRIVER_CONTROLLERS.get(suffix)
+    if served is None:
         return []  # a driver type we do not know: no claim either way
-    expected_type, served_ns = DRIVER_CONTROLLERS[suffix]
+    expected_type, served_ns = served
     out = []
-    if c.type in MOVEIT_CONTROLLER_TYPES and c.type != expected_type:
+    if c.type in MOVEIT_HANDLE_TYPES and c.type != expected_type:
         msg = f"MoveIt expects a {c.type} action but '{c.name}' is a {d.type}"
         out.append(error("controller.driver-type", file, d.element, msg))
     elif c.action != f"{c.name}/{served_ns}":

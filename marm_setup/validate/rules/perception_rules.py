@@ -57,7 +57,7 @@ from collections.abc import Iterable
 from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package import MoveItPackage, Param, Sensor, ServoConfig
 from marm_setup.robot import RobotModel
-from marm_setup.ros import Distro, Target
+from marm_setup.ros import DISTROS, Target
 from marm_setup.setup import SENSOR_TYPES
 
 TRAJECTORY, FORWARD = "trajectory_msgs/JointTrajectory", "std_msgs/Float64MultiArray"
@@ -100,7 +100,8 @@ def check_servos(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     out: list[Finding] = []
     for servo in pkg.servo:
         out += _group(servo, groups)
-        if pkg.ros_distro != Distro.JAZZY:
+        row = DISTROS.get(pkg.ros_distro or "")
+        if row is None or not row.servo_needs_kinematics:  # else servo takes its frames from IK
             out += _frames(servo, frames)
         out += _output(servo, topics, pkg)
     return out
