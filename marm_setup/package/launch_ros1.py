@@ -293,7 +293,7 @@ def description_load(
     its mappings (robot/xacro_cli.py reads it as xacro does), or the file of `cat FILE`. A
     `$(find pkg)` no package path holds and args without a value are kept as such, not lost;
     None for a command that is neither."""
-    from marm_setup.robot.xacro_cli import parse_xacro_command, split_command
+    from marm_setup.robot import parse_xacro_command, split_command
 
     lenient = _Lenient(scope)
     expanded = substituted(text, lenient.scope())

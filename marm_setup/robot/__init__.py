@@ -31,6 +31,7 @@ API = {
     ),
     "urdf": "strict_float",
     "sandbox": "ChildDied run_limited TimeLimitExceeded",
+    "xacro_cli": "parse_xacro_argv parse_xacro_command split_command XacroCall",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -46,6 +47,10 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.kinematics import sample_configurations as sample_configurations
     from marm_setup.robot.kinematics import wrap_continuous as wrap_continuous
     from marm_setup.robot.load import load_robot as load_robot
+    from marm_setup.robot.xacro_cli import XacroCall as XacroCall
+    from marm_setup.robot.xacro_cli import parse_xacro_argv as parse_xacro_argv
+    from marm_setup.robot.xacro_cli import parse_xacro_command as parse_xacro_command
+    from marm_setup.robot.xacro_cli import split_command as split_command
     from marm_setup.robot.load import parse_xacro_args as parse_xacro_args
     from marm_setup.robot.load import xml_syntax_message as xml_syntax_message
     from marm_setup.robot.meshes import load_mesh as load_mesh
