@@ -26,6 +26,7 @@ from marm_setup.package import (
 )
 from marm_setup.ros import Target
 from marm_setup.untrusted import CodeNotRun, no_package_code, skipped_code, skips_code
+from marm_setup.validate.registry import rule_family
 from marm_setup.validate.rules.conflict_rules import check_merge_conflicts
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
@@ -36,6 +37,7 @@ from marm_setup.validate.rules.controller_rules import (
     check_ros_control_coverage,
     uses_ros_control_interface,
 )
+from marm_setup.validate.rules.declared_param_rules import check_declared_parameters, drop_superseded
 from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
 from marm_setup.validate.rules.kinematics_rules import check_kinematics
@@ -99,7 +101,8 @@ class Validation:
 
 def guarded(family: str, fn: Callable[..., Iterable[Finding]], *args: Any, **kwargs: Any) -> list[Finding]:
     """`fn(*args)`'s findings; a crash in one rule family becomes one finding of its own (exit 2)
-    instead of stopping the others."""
+    instead of stopping the others. `family` is one of the registry's (KeyError otherwise)."""
+    rule_family(family)
     try:
         return list(fn(*args, **kwargs))
     except MarmError as exc:  # a file the family needed could not be read
@@ -208,6 +211,7 @@ def validate_read(
         findings += scene_findings
     elif robot is None and any(f.rule in RUNTIME_RULES for f in problems):
         findings += without_skipped_group_cascade(check_without_robot(pkg), pkg)
+    findings = drop_superseded(findings)
     validation = _validation(pkg, robot, findings, planned, launched_by)
     return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
 
@@ -273,6 +277,7 @@ def check_as_launched(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[lis
         if not skips_code("the $(command ...) of the XML launch files (the launch command rules)"):
             out += guarded("launch", check_ros2_launch, pkg, distro)
         out += guarded("params", check_params_files, pkg.root)
+        out += guarded("params", check_declared_parameters, pkg, distro)
     if skips_code("the launch files in the user's ROS (roslaunch / ros2 launch)"):
         return out, "static rules only (--untrusted: no launch file was run)"
     run = run_consumer(pkg, robot, distro)
