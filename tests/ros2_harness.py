@@ -22,6 +22,9 @@ from tests.conftest import ROOT
 HARNESS = ROOT.parent / "shared" / "ros2-consumer"
 CHECK = HARNESS / "check_ros2_pkg.py"
 DISTROS = ("humble", "jazzy")
+# Kilted and Rolling: Jazzy's launch frontend and MoveIt tables (setup.sh links their environments
+# to Jazzy's); the tests run them on a few packages only (test_ros2_consumer.py)
+NEWER_DISTROS = ("kilted", "rolling")
 RUNS: list[tuple[str, float]] = []  # (package, wall time [s]) of each harness run, for the summary
 
 
@@ -32,7 +35,7 @@ def _venv_root() -> Path:
 @functools.lru_cache(maxsize=1)
 def _built() -> str:
     """'' when both environments import, else why they could not be built."""
-    if all((_venv_root() / d / "bin" / "python").exists() for d in DISTROS):
+    if all((_venv_root() / d / "bin" / "python").exists() for d in (*DISTROS, *NEWER_DISTROS)):
         return ""
     python = shutil.which("python3.11") or shutil.which("python3") or "python3"
     done = subprocess.run(

@@ -78,6 +78,7 @@ class MoveItPackage:
     files: tuple[str, ...] = ()  # every file of the package
     sources: tuple[Source, ...] = ()
     problems: tuple[Finding, ...] = field(default=())
+    distro_given: Distro | None = None  # validate --ros-distro, over marm_setup.yaml's
 
     @property
     def managed_controllers(self) -> ControllersFile | None:
@@ -109,8 +110,27 @@ class MoveItPackage:
 
     @property
     def ros_distro(self) -> Distro | None:
-        """The distro marm_setup.yaml names (`ros_distro`), else None."""
+        """The distro the package is checked for: --ros-distro, else marm_setup.yaml's
+        `ros_distro`, else None."""
+        if self.distro_given is not None:
+            return self.distro_given
         return self.marm_setup.ros_distro if self.marm_setup is not None else None
+
+    def for_distro(self, name: str | None) -> MoveItPackage:
+        """The package checked for `name` (None: as it says); InputError naming the distros of
+        its target when `name` is none of them."""
+        from dataclasses import replace
+
+        from marm_setup.ros import distros_of
+
+        if name is None:
+            return self
+        if name not in distros_of(self.target):
+            valid = ", ".join(distros_of(self.target))
+            raise InputError(
+                f"'{name}' is not a {self.target} distro (valid: {valid})", element="--ros-distro"
+            )
+        return replace(self, distro_given=name)
 
     @property
     def description_file(self) -> Path:

@@ -12,7 +12,14 @@ import pytest
 
 from marm_setup.robot.ros2_control import MOCK_PLUGINS
 from tests.generated_packages import KEYS
-from tests.ros2_harness import DISTROS, check_package, harness_python, node_processes, ros2_control_of
+from tests.ros2_harness import (
+    DISTROS,
+    NEWER_DISTROS,
+    check_package,
+    harness_python,
+    node_processes,
+    ros2_control_of,
+)
 from tests.vendor_descriptions import NAMES as VENDOR_STYLES
 
 
@@ -95,3 +102,32 @@ def test_kinova_gen3_robotiq_false_gives_kinova_and_robotiq_drivers(ros2_package
         "kortex_driver/KortexMultiInterfaceHardware",
         "robotiq_driver/RobotiqGripperHardwareInterface",
     }
+
+
+# The acceptance of Kilted and Rolling (issue 32): the marm (servo and a sensor:
+# test_servo_perception.py), the shared panda and the shared Gen3 pass the real consumer with
+# mock hardware, with the controllers their ros2_controllers have (no gripper_controllers).
+NEWER_KEYS = ("marm", "shared:panda_ros2", "shared:kinova_gen3_robotiq")
+
+
+@pytest.mark.parametrize("distro", NEWER_DISTROS)
+@pytest.mark.parametrize("key", NEWER_KEYS)
+def test_kilted_and_rolling_packages_pass_the_real_ros2_parsers(ros2_packages, key, distro):
+    import yaml
+
+    generated = ros2_packages.get(key, distro)
+    report = check_package(generated.out, distro, generated.roots)
+    assert report["errors"] == [], report["errors"]
+    assert all(entry["return_code"] == 0 for entry in report["launch"].values())
+    assert {p.get("executable") for p in node_processes(report, DEMO)} >= DEMO_EXECUTABLES
+    systems = ros2_control_of(report, DEMO)
+    assert systems and set(systems.values()) <= MOCK_PLUGINS[distro], systems
+    controllers = yaml.safe_load((generated.out / "config" / "ros2_controllers.yaml").read_text())
+    types = {
+        v["type"]
+        for k, v in controllers["controller_manager"]["ros__parameters"].items()
+        if isinstance(v, dict)
+    }
+    assert not any(
+        t.startswith(("position_controllers/GripperActionController", "gripper_controllers")) for t in types
+    )

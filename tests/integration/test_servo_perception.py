@@ -68,17 +68,15 @@ SERVO_INTEGERS = {
 }
 
 
-@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+@pytest.mark.parametrize("distro", ["humble", "jazzy", "kilted", "rolling"])
 def test_ros2_servo_node_and_move_group_sensor(tmp_path, distro):
+    from marm_setup.ros import DISTROS
+
+    row = DISTROS[distro]
     pkg = write_marm(tmp_path, "ros2", distro)
     with harness_report(pkg, distro, [FIXTURES / "marm"]) as report:
         assert report["errors"] == []
-        servo = node_values(
-            launched(
-                report, "launch/servo.launch.xml", "servo_node_main" if distro == "humble" else "servo_node"
-            ),
-            distro,
-        )
+        servo = node_values(launched(report, "launch/servo.launch.xml", row.servo_executable), distro)
         move_group = node_values(launched(report, "launch/move_group.launch.xml", "move_group"), distro)
     assert servo["moveit_servo.move_group_name"] == ("STRING", "arm")
     assert servo["moveit_servo.command_out_topic"] == ("STRING", "/arm_controller/joint_trajectory")
@@ -89,9 +87,9 @@ def test_ros2_servo_node_and_move_group_sensor(tmp_path, distro):
     numbers = {
         k: t for k, (t, _) in servo.items() if k.startswith("moveit_servo.") and t in ("INTEGER", "DOUBLE")
     }
-    assert {k for k, t in numbers.items() if t == "INTEGER"} <= SERVO_INTEGERS[distro]
+    assert {k for k, t in numbers.items() if t == "INTEGER"} <= SERVO_INTEGERS[row.params]
     assert numbers["moveit_servo.publish_period"] == "DOUBLE"
-    if distro == "humble":
+    if row.params == "humble":
         assert servo["moveit_servo.planning_frame"] == ("STRING", "base_link")
         assert servo["moveit_servo.ee_frame_name"] == ("STRING", "grasping_frame")
     else:  # Jazzy's servo takes both frames from the IK solver: no such parameters
@@ -106,12 +104,15 @@ def test_ros2_servo_node_and_move_group_sensor(tmp_path, distro):
     assert not any(k.startswith("wrist_camera") or k == "sensors" for k in servo)  # move_group's alone
 
 
-def test_ros2_forward_position_controller_is_loaded_inactive(tmp_path):
+@pytest.mark.parametrize("distro", ["jazzy", "rolling"])  # Rolling: ForwardCommandController
+def test_ros2_forward_position_controller_is_loaded_inactive(tmp_path, distro):
+    import yaml
+
     extra = "servo:\n- {group: arm, command_out: position}\n"
-    pkg = write_marm(tmp_path, "ros2", "jazzy", extra)
-    with harness_report(pkg, "jazzy", [FIXTURES / "marm"]) as report:
+    pkg = write_marm(tmp_path, "ros2", distro, extra)
+    with harness_report(pkg, distro, [FIXTURES / "marm"]) as report:
         assert report["errors"] == []
-        servo = node_values(launched(report, "launch/servo.launch.xml", "servo_node"), "jazzy")
+        servo = node_values(launched(report, "launch/servo.launch.xml", "servo_node"), distro)
         spawners = [
             p["cmd"]
             for p in report["launch"]["launch/demo.launch.xml"]["processes"]
@@ -124,6 +125,13 @@ def test_ros2_forward_position_controller_is_loaded_inactive(tmp_path):
     assert len(forward) == 1 and "--inactive" in forward[0]
     assert not any("--inactive" in c for c in spawners if c[1] != "arm_position_controller")
     assert math.isclose(servo["moveit_servo.publish_period"][1], 0.01)
+    controllers = yaml.safe_load((pkg / "config" / "ros2_controllers.yaml").read_text())
+    forward_type = controllers["controller_manager"]["ros__parameters"]["arm_position_controller"]["type"]
+    if distro == "rolling":  # position_controllers removed (ros2_controllers master 27ea539)
+        assert forward_type == "forward_command_controller/ForwardCommandController"
+        assert controllers["arm_position_controller"]["ros__parameters"]["interface_name"] == "position"
+    else:
+        assert forward_type == "position_controllers/JointGroupPositionController"
 
 
 DEPTH = "{name: depth_camera, type: depth_image, topic: /camera/depth/image_raw}"

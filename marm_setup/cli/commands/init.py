@@ -20,7 +20,7 @@ from marm_setup.cli.common import (
     load_robot_from_cli,
     parse_count,
 )
-from marm_setup.ros import Target
+from marm_setup.ros import Target, distros_of
 
 OutOption = Annotated[Path, typer.Option("--out", help="Package folder to create.", metavar="DIR")]
 NameOption = Annotated[
@@ -31,7 +31,8 @@ DistroOption = Annotated[
     str | None,
     typer.Option(
         "--ros-distro",
-        help="noetic (ros1); humble or jazzy (ros2) [default: SPEC's, else $ROS_DISTRO, else noetic / humble].",
+        help=f"{', '.join(distros_of(Target.ROS1))} (ros1); {', '.join(distros_of(Target.ROS2))} (ros2) "
+        "[default: SPEC's, else $ROS_DISTRO, else the target's first].",
         metavar="DISTRO",
     ),
 ]

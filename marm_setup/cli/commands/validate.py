@@ -17,6 +17,7 @@ from marm_setup.cli.common import (
     XacroArgs,
     echo_err,
 )
+from marm_setup.ros import Target, distros_of
 
 if TYPE_CHECKING:
     from marm_setup.validate import Validation
@@ -34,6 +35,15 @@ def validate(
     strict: Annotated[bool, typer.Option("--strict", help="Warnings fail the check too (exit 1).")] = False,
     format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
     untrusted: UntrustedOption = False,
+    ros_distro: Annotated[
+        str | None,
+        typer.Option(
+            "--ros-distro",
+            help=f"Check for this distro: {', '.join(distros_of(Target.ROS1))} (ros1); "
+            f"{', '.join(distros_of(Target.ROS2))} (ros2) [default: marm_setup.yaml's ros_distro, else inferred].",
+            metavar="DISTRO",
+        ),
+    ] = None,
 ) -> None:
     """Validate a config package: SRDF vs URDF, poses, collision matrix, kinematics, limits,
     controllers, OMPL, launch files. Exit 0 clean, 1 with errors (or warnings with --strict),
@@ -49,6 +59,7 @@ def validate(
         package_paths=package_path or [],
         plan=not no_plan,
         untrusted=untrusted,
+        ros_distro=ros_distro,
     )
     result = _run_for_json(package, options) if as_json else _run(package, options)
     if as_json:
