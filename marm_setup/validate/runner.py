@@ -135,6 +135,7 @@ def validate(
     matrix_trials: int = MATRIX_TRIALS,
     progress: Progress | None = None,
     untrusted: bool = False,
+    ros_distro: str | None = None,
 ) -> Validation:
     """Validate the package at `path`: its findings and what was checked (`validate_package`).
 
@@ -150,6 +151,7 @@ def validate(
         matrix_trials=matrix_trials,
         progress=progress,
         untrusted=untrusted,
+        ros_distro=ros_distro,
     ).validation
 
 
@@ -164,6 +166,7 @@ def validate_package(
     matrix_trials: int = MATRIX_TRIALS,
     progress: Progress | None = None,
     untrusted: bool = False,
+    ros_distro: str | None = None,
 ) -> ValidatedPackage:
     """Validate the package at `path`, keeping what was read and planned; `progress(done, total)`
     hears of each pose pair the runtime checks plan. `untrusted`: no package code runs (no
@@ -173,6 +176,7 @@ def validate_package(
     """
     with no_package_code() if untrusted else nullcontext():
         pkg = read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
+        pkg = pkg.for_distro(ros_distro)  # --ros-distro over marm_setup.yaml's
         return validate_read(
             pkg, xacro_args=xacro_args, plan=plan, matrix_trials=matrix_trials, progress=progress
         )
