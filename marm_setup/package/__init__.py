@@ -23,7 +23,8 @@ API = {
     "joint_limits_file": "JointLimitEntry JointLimitsFile",
     "perception_files": "Sensor ServoConfig",
     "planning_file": "GroupPlanning PlanningPipeline",
-    "launch_xml": "LaunchXml",
+    "launch_xml": "condition LaunchXml",
+    "substitution": "Scope",
     "srdf_file": "SrdfFile",
     "setup_files": "RecordedProofs",
     "launch_ros1": "launch_nodes",
@@ -52,6 +53,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.launch_python import undefined_unread_arg as undefined_unread_arg
     from marm_setup.package.launch_ros1 import launch_nodes as launch_nodes
     from marm_setup.package.launch_xml import LaunchXml as LaunchXml
+    from marm_setup.package.launch_xml import condition as condition
     from marm_setup.package.limits import LoadedLimit as LoadedLimit
     from marm_setup.package.limits import effective_limits as effective_limits
     from marm_setup.package.model import MoveItPackage as MoveItPackage
@@ -64,6 +66,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.setup_files import RecordedProofs as RecordedProofs
     from marm_setup.package.srdf_file import SrdfFile as SrdfFile
     from marm_setup.package.start import package_start_values as package_start_values
+    from marm_setup.package.substitution import Scope as Scope
     from marm_setup.package.where import FrozenMapping as FrozenMapping
     from marm_setup.package.where import Param as Param
     from marm_setup.package.where import Value as Value

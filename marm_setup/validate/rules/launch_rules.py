@@ -11,7 +11,7 @@ from pathlib import Path
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package import LaunchXml
+from marm_setup.package import LaunchXml, Scope, condition
 from marm_setup.ros import Target
 
 FIND = re.compile(r"\$\((find|find-pkg-share)\s+([^\s)]+)\)|\$\((dirname)\)")
@@ -31,7 +31,7 @@ def check_launch_files(
     )
     passed = passed_args(parsed, root, package)
     for rel, tree in parsed.items():
-        out += check_paths(tree, rel, root, package)
+        out += check_paths(tree, rel, root, package, target == Target.ROS2)
         out += check_args(tree, rel, _defined_args(tree) | shared_args | passed.get(rel, set()))
         if target == Target.ROS2:
             out += check_description_types(tree, rel)
@@ -83,23 +83,63 @@ def _where(elem) -> str:
     return f"line {elem.sourceline}: {label}"
 
 
-def check_paths(tree, rel: str, root: Path, package: str) -> list[Finding]:
-    """`$(find <this package>)/x`, `$(find-pkg-share ...)/x` and `$(dirname)/x` must exist."""
+def check_paths(tree, rel: str, root: Path, package: str, ros2: bool = False) -> list[Finding]:
+    """`$(find <this package>)/x`, `$(find-pkg-share ...)/x` and `$(dirname)/x` must exist.
+
+    A file the launcher opens (`file`, `textfile`, `command`, a ROS 2 `<param from>`) is an error
+    on the branch the file's own arg defaults take: roslaunch stops ("error loading <rosparam>
+    tag: file does not exist", ros/ros_comm tools/roslaunch/src/roslaunch/loader.py l.390-391 at
+    845f746; an `<include>` or `textfile` likewise), and launch_ros skips a parameter file that is
+    not a file with only a log line, so the node starts without those parameters: move_group
+    without its pipelines, kinematics or controllers (ros2/launch_ros
+    launch_ros/actions/node.py l.459-463 at humble 25a207c and jazzy 62c56e5). On a branch only
+    other args take (or that cannot be decided), and for any other attribute naming a path, a
+    warning: with the defaults nothing fails."""
     out = []
     launch_dir = (root / rel).parent
+    scope = _default_scope(tree, launch_dir, ros2)
     for elem in _elements(tree):
         for attr, text in elem.attrib.items():
+            opened = attr in FILE_ATTRS or "$(command" in text or (attr == "from" and elem.tag == "param")
             for target, shown in _referenced(attr, text, root, launch_dir, package):
                 if target.exists():
                     continue
-                if attr in FILE_ATTRS or "$(command" in text:
-                    out.append(
-                        error("launch.missing-file", rel, _where(elem), f"{attr} '{shown}' does not exist")
-                    )
+                if opened and _taken(elem, scope):
+                    msg = f"{attr} '{shown}' does not exist: {_consequence(elem, attr)}"
+                    out.append(error("launch.missing-file", rel, _where(elem), msg))
+                elif opened:
+                    msg = f"{attr} '{shown}' does not exist (on a branch only non-default launch args take: the launch fails then)"
+                    out.append(warning("launch.missing-file", rel, _where(elem), msg))
                 elif target.suffix:
                     msg = f"{attr} refers to '{shown}', which does not exist"
                     out.append(warning("launch.missing-file", rel, _where(elem), msg))
     return out
+
+
+def _consequence(elem, attr: str) -> str:
+    """What the launcher does without the file."""
+    if attr == "from":
+        return "launch_ros skips it ('Parameter file path is not a file'): the node starts without these parameters"
+    if elem.tag == "rosparam":
+        return "roslaunch stops ('error loading <rosparam> tag: file does not exist')"
+    return "the launch fails"
+
+
+def _default_scope(tree, launch_dir: Path, ros2: bool) -> Scope:
+    """The substitutions a launch file sees run on its own: its args' defaults (or fixed values)."""
+    args = {
+        e.get("name"): e.get("default", e.get("value"))
+        for e in _elements(tree)
+        if e.tag == "arg" and e.get("name") and getattr(e.getparent(), "tag", None) != "include"
+    }
+    known = {name: value for name, value in args.items() if value is not None}
+    return Scope(known, dirname=str(launch_dir), ros2=ros2)
+
+
+def _taken(elem, scope: Scope) -> bool:
+    """Whether the element and every element around it are on the branch `scope` takes (an
+    `if` / `unless` that cannot be decided counts as not taken)."""
+    return all(condition(e, scope) is True for e in (elem, *elem.iterancestors()))
 
 
 WHOLE_PATH_ATTRS = ("file", "textfile", "binfile")
