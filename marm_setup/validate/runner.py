@@ -315,8 +315,13 @@ def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str,
         out.append(f"every rule needing the robot ({why})")
     elif pkg.srdf is None:
         why = "no SRDF found" if pkg.srdf_path is None else f"{pkg.srdf_path} could not be read"
-        out.append(f"the SRDF, pose, kinematics, limits, OMPL, controller and collision rules ({why})")
+        out.append(f"the {', '.join(SRDF_FAMILIES)} rules ({why})")
     return tuple(out)
+
+
+SRDF_FAMILIES = tuple(
+    rule_family(f).name for f in ("srdf", "pose", "kinematics", "limits", "ompl", "controller", "matrix")
+)
 
 
 def shown_path(pkg: MoveItPackage, file: Path) -> str:
