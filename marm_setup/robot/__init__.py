@@ -47,10 +47,6 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.kinematics import sample_configurations as sample_configurations
     from marm_setup.robot.kinematics import wrap_continuous as wrap_continuous
     from marm_setup.robot.load import load_robot as load_robot
-    from marm_setup.robot.xacro_cli import XacroCall as XacroCall
-    from marm_setup.robot.xacro_cli import parse_xacro_argv as parse_xacro_argv
-    from marm_setup.robot.xacro_cli import parse_xacro_command as parse_xacro_command
-    from marm_setup.robot.xacro_cli import split_command as split_command
     from marm_setup.robot.load import parse_xacro_args as parse_xacro_args
     from marm_setup.robot.load import xml_syntax_message as xml_syntax_message
     from marm_setup.robot.meshes import load_mesh as load_mesh
@@ -86,6 +82,10 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.sandbox import run_limited as run_limited
     from marm_setup.robot.tinyxml import tinyxml_comments as tinyxml_comments
     from marm_setup.robot.urdf import strict_float as strict_float
+    from marm_setup.robot.xacro_cli import XacroCall as XacroCall
+    from marm_setup.robot.xacro_cli import parse_xacro_argv as parse_xacro_argv
+    from marm_setup.robot.xacro_cli import parse_xacro_command as parse_xacro_command
+    from marm_setup.robot.xacro_cli import split_command as split_command
     from marm_setup.robot.xacro_expand import XacroOutput as XacroOutput
     from marm_setup.robot.xacro_expand import check_xacro_args as check_xacro_args
     from marm_setup.robot.xacro_expand import expand_xacro as expand_xacro
