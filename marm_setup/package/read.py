@@ -308,9 +308,10 @@ def _launched_file(
     if not inside(path, (files.root, *paths)):
         files.refused(load.file, load.launch, param)
         return None
-    if not path.is_file():
+    if not path.is_file() and load.file.startswith("../"):  # in this package: launch.missing-file
         msg = f"loads {load.file}, which does not exist: roslaunch stops before move_group starts"
         files.problems.append(error(f"{_kind(param)}.missing", load.launch, param, msg, "fix the path"))
+    if not path.is_file():
         return None
     return load.file, load.xacro_args
 

@@ -159,8 +159,12 @@ def test_a_description_package_no_path_holds_is_a_finding_not_exit_2(tmp_path):
 def test_a_description_file_the_launch_names_but_nobody_ships_is_an_error(tmp_path):
     command = "command=\"xacro '$(find vd_description)/urdf/gone.urdf.xacro'\""
     root = vendor(tmp_path, command, TEXTFILE_SRDF)
-    found = [f for f in validate(root, plan=False).findings if f.rule == "urdf.missing"]
-    assert [(f.severity, f.file) for f in found] == [("error", "launch/planning_context.launch")]
+    result = validate(root, plan=False)
+    found = [f for f in result.findings if f.rule in ("urdf.missing", "launch.missing-file")]
+    assert [(f.rule, f.severity, f.file) for f in found] == [
+        ("urdf.missing", "error", "launch/planning_context.launch")
+    ]
+    assert result.robot is None and not [f for f in result.findings if f.rule == "urdf.runtime-only"]
 
 
 def test_setup_assistant_only_when_no_launch_file_names_a_description(tmp_path):

@@ -56,7 +56,7 @@ def test_type_checkers_see_the_same_names(package):
     module = importlib.import_module(f"marm_setup.{package}")
     tree = ast.parse(Path(module.__file__).read_text(encoding="utf-8"))
     typed = {
-        (node.module.rsplit(".", 1)[-1], alias.name)
+        (node.module.removeprefix(f"marm_setup.{package}."), alias.name)
         for block in tree.body
         if isinstance(block, ast.If)
         for node in block.body

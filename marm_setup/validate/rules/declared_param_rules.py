@@ -73,13 +73,24 @@ PLUGIN_KEYS = (  # (name pattern, plugin kind)
 def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Finding]:
     """The findings on every parameter move_group and servo receive from a ROS 2 package; with
     no known distro, the family its format shows, else only what Jazzy's and Humble's agree on."""
-    received = received_parameters(pkg)
+    received = [r for r in received_parameters(pkg) if not _unread_group(r, pkg)]
     family = family_of(distro) or inferred_family(received)
     if family is not None:
         return _check_all(received, load_table(family))
     found = [_check_all(received, load_table(f)) for f in ("jazzy", "humble")]
     agreed = {(f.rule, f.file, f.element) for f in found[1]}
     return [f for f in found[0] if (f.rule, f.file, f.element) in agreed]
+
+
+def _unread_group(r: Received, pkg: MoveItPackage) -> bool:
+    """A kinematics entry of a group the SRDF lacks: MoveIt loads a solver per group of the
+    robot model only (kinematics_plugin_loader.cpp, getLoaderFunction over the SRDF's groups), so
+    it never reads it (kinematics_rules' kinematics.unknown-group says so)."""
+    srdf = pkg.srdf
+    parts = r.name.split(".")
+    if srdf is None or parts[0] != "robot_description_kinematics" or len(parts) < 3:
+        return False
+    return parts[1] not in {g.name for g in srdf.groups}
 
 
 def drop_superseded(findings: list[Finding]) -> list[Finding]:
