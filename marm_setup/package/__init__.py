@@ -27,7 +27,7 @@ API = {
     "substitution": "Scope",
     "srdf_file": "SrdfFile",
     "setup_files": "RecordedProofs",
-    "launch_ros1": "launch_nodes",
+    "launch_ros1": "LaunchParam launch_nodes",
     "launch_python": "undefined_unread_arg",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
@@ -51,6 +51,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.kinematics_file import GroupKinematics as GroupKinematics
     from marm_setup.package.kinematics_file import KinematicsFile as KinematicsFile
     from marm_setup.package.launch_python import undefined_unread_arg as undefined_unread_arg
+    from marm_setup.package.launch_ros1 import LaunchParam as LaunchParam
     from marm_setup.package.launch_ros1 import launch_nodes as launch_nodes
     from marm_setup.package.launch_xml import LaunchXml as LaunchXml
     from marm_setup.package.launch_xml import condition as condition

@@ -28,7 +28,7 @@ from marm_setup.package.description import (
 from marm_setup.package.driver_file import Ros2ControlFile, read_ros2_control
 from marm_setup.package.files import FileProblem, PackageFiles
 from marm_setup.package.launch_python import XacroCommand, read_python_launch
-from marm_setup.package.launch_ros1 import DescriptionLoad, Ros1Launch, YamlLoad, evaluate_ros1
+from marm_setup.package.launch_ros1 import DescriptionLoad, LaunchParam, Ros1Launch, YamlLoad, evaluate_ros1
 from marm_setup.package.launch_ros2 import evaluate_ros2_xml
 from marm_setup.package.launch_xml import LaunchXml, launch_file_names, parse_launch, python_launch_names
 from marm_setup.package.layout import Kinds, read_move_group_file, read_ros1_kinds, read_ros2_kinds
@@ -57,6 +57,7 @@ class _Launched:
     commands: tuple[XacroCommand, ...] = ()  # descriptions a Python launch file builds with xacro
     named_yaml: tuple[tuple[str, str], ...] = ()  # (package-relative YAML path, Python launch naming it)
     description: DescriptionLoad | None = None  # robot_description as a ROS 1 launch sets it
+    params: tuple[LaunchParam, ...] = ()  # ROS 1 `<param name value>`s
 
     def command(self, parameter: str) -> XacroCommand | None:
         return next((c for c in self.commands if c.parameter == parameter), None)
@@ -124,6 +125,7 @@ def read_package(
         marm_setup=found.marm,
         srdf_file=srdf_file,
         launch=tuple(trees.values()),
+        launch_params=launched.params,
         python_launch_files=files.inside_only(python_launch_names(root)),
         ros2_control_files=_ros2_control_files(files) if found.target == Target.ROS2 else (),
         files=files.listing(),
@@ -237,7 +239,7 @@ def _launched(
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
                 files.scopes.setdefault(load.file, load.scope)
-        return _Launched(ros1.loads, ros1.semantic, description=ros1.description)
+        return _Launched(ros1.loads, ros1.semantic, description=ros1.description, params=ros1.params)
     xml = evaluate_ros2_xml(files.root, trees, find)
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
     builder = builder_files(python.builders, name, wanted)

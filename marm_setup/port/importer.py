@@ -14,6 +14,7 @@ from marm_setup.package import MoveItPackage
 from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver, report_shared_joints
 from marm_setup.port.kinematics import port_kinematics
 from marm_setup.port.limits import port_joint_limits
+from marm_setup.port.move_group import port_move_group
 from marm_setup.port.package import (
     port_author,
     read_files,
@@ -80,6 +81,7 @@ def port_package(pkg: MoveItPackage, robot: RobotModel, request: PortRequest) ->
     model = _with_settings(pkg, model, robot, log)
     model = _with_controllers(pkg, model, robot, log)
     model = port_pipelines(pkg, model, log)
+    model = port_move_group(pkg, model, log)
     model = port_perception(pkg, model, robot, log)
     _report_runtime_files(pkg, log)
     report_leftovers(pkg, read_files(pkg), log)

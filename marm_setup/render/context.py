@@ -34,6 +34,7 @@ from marm_setup.setup import (
     groups_by_name,
     joint_limits,
     model_start_values,
+    move_group_values,
     plan_perception,
     plan_servos,
     start_pose,
@@ -383,4 +384,5 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "servos": servos,
         "forward_controllers": forward_controllers(servos, model.row) if model.target == Target.ROS2 else [],
         "perception": plan_perception(model, robot),
+        "move_group": move_group_values(model.move_group_parameters),
     }

@@ -43,6 +43,7 @@ API = {
     "sensors": "check_sensors plan_perception",
     "servo": "check_servos default_servos forward_controllers plan_servos",
     "spec_overlay": "patch_items spec_items without_replaced",
+    "move_group_params": "BY_ROS1_NAME MOVE_GROUP_PARAMS MoveGroupParam move_group_problem move_group_values",
     "pipeline_params": (
         "ADAPTER_FAMILIES effective_parameters flatten known_parameters other_distros_reading parameter "
         "STRUCTURE_KEYS unknown_name_hint value_problem"
@@ -120,6 +121,11 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.model import ServoScale as ServoScale
     from marm_setup.setup.model import SetupModel as SetupModel
     from marm_setup.setup.model import VirtualJoint as VirtualJoint
+    from marm_setup.setup.move_group_params import BY_ROS1_NAME as BY_ROS1_NAME
+    from marm_setup.setup.move_group_params import MOVE_GROUP_PARAMS as MOVE_GROUP_PARAMS
+    from marm_setup.setup.move_group_params import MoveGroupParam as MoveGroupParam
+    from marm_setup.setup.move_group_params import move_group_problem as move_group_problem
+    from marm_setup.setup.move_group_params import move_group_values as move_group_values
     from marm_setup.setup.pipeline_params import ADAPTER_FAMILIES as ADAPTER_FAMILIES
     from marm_setup.setup.pipeline_params import STRUCTURE_KEYS as STRUCTURE_KEYS
     from marm_setup.setup.pipeline_params import effective_parameters as effective_parameters
