@@ -100,6 +100,8 @@ def _one(key: str, param: LaunchParam, model: SetupModel, given: dict, log: Port
         model = _fix_adapter(key, value, source, model, log)
     elif key in DROPPED:
         log.dropped(key, source, f"{param.value}: {DROPPED[key]}", AREA)
+    elif key.rsplit("/", 1)[-1] == "request_adapters":
+        _adapters(key, str(param.value), source, model, log)
     elif key in ("capabilities", "disable_capabilities"):
         _capabilities(key, str(param.value), source, model, log)
     elif key.startswith(ELSEWHERE) or key in ELSEWHERE:
@@ -143,6 +145,52 @@ def _fix_adapter(key: str, value: object, source: str, model: SetupModel, log: P
     params[pipeline] = tuple(merged.items())  # type: ignore[arg-type]
     log.carried(setting, source, f"{value}", "planners")
     return dataclasses.replace(model, pipeline_parameters=tuple(params.items()))
+
+
+_HUMBLE_XML = "moveit2 humble moveit_ros/planning/planning_request_adapters_plugin_description.xml l.3-40"
+_JAZZY_XML = "moveit2 jazzy moveit_ros/planning/default_request_adapters_plugin_description.xml"
+# a MoveIt 1 adapter -> (what the target does instead, humble or jazzy family), or None: the same
+ADAPTER_CHANGES = {
+    "AddTimeParameterization": (
+        f"IPTP (iterative parabolic) -> TOTG (AddTimeOptimalParameterization): {_HUMBLE_XML} has no IPTP adapter",
+        f"IPTP (iterative parabolic) -> TOTG (response adapter AddTimeOptimalParameterization): {_JAZZY_XML} l.3-27 "
+        "and default_response_adapters_plugin_description.xml l.3 have no IPTP",
+    ),
+    "AddIterativeSplineParameterization": (
+        f"ISTP -> TOTG: {_HUMBLE_XML} has no spline adapter",
+        "ISTP -> TOTG: jazzy's response adapters (default_response_adapters_plugin_description.xml l.3-21) have none",
+    ),
+    "FixWorkspaceBounds": (None, f"-> ValidateWorkspaceBounds (same default workspace; {_JAZZY_XML} l.9)"),
+    "FixStartStateBounds": (
+        None,
+        f"repair -> rejection: CheckStartStateBounds refuses a start state out of bounds instead of moving it in ({_JAZZY_XML} l.3)",
+    ),
+    "FixStartStateCollision": (
+        None,
+        f"repair -> rejection: CheckStartStateCollision refuses a colliding start state instead of jiggling it free ({_JAZZY_XML} l.15)",
+    ),
+    "FixStartStatePathConstraints": (
+        None,
+        f"dropped: jazzy has no adapter that plans to a start satisfying the path constraints ({_JAZZY_XML} l.3-27)",
+    ),
+}
+
+
+def _adapters(key: str, text: str, source: str, model: SetupModel, log: PortLog) -> None:
+    """What becomes of each MoveIt 1 planning request adapter on the target: the same adapter,
+    or the change the target's adapter set forces (time parameterization, start-state repair)."""
+    parts = key.split("/")
+    pipeline = parts[1] if len(parts) == 3 and parts[0] == "planning_pipelines" else "ompl"
+    jazzy = model.target == Target.ROS2 and model.row.params == "jazzy"
+    for name in text.split():
+        short = name.rsplit("/", 1)[-1]
+        change = ADAPTER_CHANGES.get(short)
+        detail = (change[1] if jazzy else change[0]) if change and model.target == Target.ROS2 else None
+        setting = f"{pipeline}.request_adapters[{short}]"
+        if detail is None:
+            log.carried(setting, source, f"{model.distro} has {short}", "planners")
+        else:
+            log.changed(setting, source, detail, "planners")
 
 
 def _capabilities(key: str, text: str, source: str, model: SetupModel, log: PortLog) -> None:

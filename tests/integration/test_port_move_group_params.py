@@ -102,3 +102,12 @@ def test_a_kinova_arm_keeps_execution_duration_monitoring_off(tmp_path):
     assert items["allowed_execution_duration_scaling"]["status"] == "dropped"
     assert items["trajectory_execution.execution_duration_monitoring"]["area"] == "execution"
     assert items["capabilities[move_group/MoveGroupPickPlaceAction]"]["status"] == "dropped"
+    # the changes Jazzy forces, named with their MoveIt reason, before anything that does not move the robot
+    iptp = items["ompl.request_adapters[AddTimeParameterization]"]
+    assert iptp["status"] == "changed" and "IPTP" in iptp["detail"] and "TOTG" in iptp["detail"]
+    assert "rejection" in items["ompl.request_adapters[FixStartStateCollision]"]["detail"]
+    motion = [
+        i["area"] in ("limits", "scaling", "controllers", "kinematics", "planners", "execution")
+        for i in doc["port"]["items"]
+    ]
+    assert motion == sorted(motion, reverse=True)
