@@ -183,7 +183,32 @@ def _without_srdf_errors(model: SetupModel, robot: RobotModel, file: str, log: P
     ):
         for item in items:  # only what the new package holds is carried
             log.carried(f"{kind}[{item.name}]", where(file, kind), _srdf_detail(item), "srdf")
+    _report_skipped_virtual_joints(model, robot, file, log)
     return model
+
+
+def _report_skipped_virtual_joints(model: SetupModel, robot: RobotModel, file: str, log: PortLog) -> None:
+    """A virtual joint MoveIt skips (setup.root_virtual_joint) stays in the SRDF as the source had
+    it, but the new demo publishes no TF for it: the source's demo gave its child a second TF
+    parent (the Setup Assistant's demo publishes one for every virtual joint)."""
+    from marm_setup.setup import root_virtual_joint
+
+    root_vj = root_virtual_joint(model.virtual_joints, robot)
+    parents = robot.parent_joint_of
+    for vj in model.virtual_joints:
+        if vj == root_vj or vj.child_link == vj.parent_frame:
+            continue
+        parent = parents.get(vj.child_link)
+        why = (
+            f"its child '{vj.child_link}' has the URDF parent joint '{parent.name}'"
+            if parent is not None
+            else f"MoveIt builds the root joint from '{root_vj.name if root_vj else ''}'"
+        )
+        detail = (
+            f"MoveIt skips it ({why}; moveit_core robot_model.cpp): the demo launch publishes no static "
+            f"TF {vj.parent_frame} -> {vj.child_link} for it, so '{vj.child_link}' keeps one TF parent"
+        )
+        log.changed(f"virtual_joints[{vj.name}].static_tf", where(file, "virtual_joint"), detail, "robot")
 
 
 def _srdf_detail(item: Any) -> str:

@@ -37,7 +37,7 @@ API = {
         "setup_to_srdf Srdf srdf_to_setup"
     ),
     "groups": "active_group_joints group_joints group_links groups_by_name is_chain planning_joints",
-    "srdf_load": "as_moveit_loads",
+    "srdf_load": "as_moveit_loads root_virtual_joint",
     "poses": "choose_start_poses infer_poses",
     "limits": "joint_limits timing_problem",
     "sensors": "check_sensors plan_perception",
@@ -160,6 +160,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.srdf import setup_to_srdf as setup_to_srdf
     from marm_setup.setup.srdf import srdf_to_setup as srdf_to_setup
     from marm_setup.setup.srdf_load import as_moveit_loads as as_moveit_loads
+    from marm_setup.setup.srdf_load import root_virtual_joint as root_virtual_joint
     from marm_setup.setup.start_state import demo_start_values as demo_start_values
     from marm_setup.setup.start_state import model_start_values as model_start_values
     from marm_setup.setup.start_state import pose_configuration as pose_configuration
