@@ -372,8 +372,8 @@ def _description(
             (rel, mappings, how),
             files.refused,
         )
-    except PackageNotFound as exc:  # .setup_assistant's package: a finding, the robot rules skipped
-        return _missing_sa_package(files, exc)
+    except PackageNotFound as exc:  # .setup_assistant's or marm_setup.yaml's package: a finding
+        return _missing_package(files, exc)
     if found_description.urdf is None and command is not None:
         why = (
             f"{command.launch} builds it with xacro from {command.file}, outside the package and the folders named"
@@ -384,14 +384,17 @@ def _description(
     return found_description
 
 
-def _missing_sa_package(files: PackageFiles, exc: PackageNotFound) -> Description:
+def _missing_package(files: PackageFiles, exc: PackageNotFound) -> Description:
+    """The package `.setup_assistant` (URDF.package) or marm_setup.yaml (robot.urdf's
+    `package://`) names the description in, which no package path holds: the robot rules skip."""
+    file = Path(exc.path or ".setup_assistant").name
     msg = (
         f"names the robot description in package '{exc.package}', which no package path holds: the "
         "rules needing the robot are skipped"
     )
     hint = f"pass --package-path DIR (the folder holding {exc.package}), or --urdf FILE"
-    files.problems.append(warning("urdf.package-missing", ".setup_assistant", "URDF.package", msg, hint))
-    return Description(None, f".setup_assistant, from package '{exc.package}' not found", ())
+    files.problems.append(warning("urdf.package-missing", file, exc.element or "", msg, hint))
+    return Description(None, f"{file}, from package '{exc.package}' not found", ())
 
 
 def _launch_description(
