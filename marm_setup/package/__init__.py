@@ -26,7 +26,7 @@ API = {
     "launch_xml": "condition LaunchXml",
     "substitution": "Scope",
     "srdf_file": "SrdfFile",
-    "setup_files": "RecordedProofs",
+    "setup_files": "read_package_xml RecordedProofs",
     "launch_ros1": "LaunchParam launch_nodes",
     "launch_python": "undefined_unread_arg",
 }
@@ -65,6 +65,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.planning_file import PlanningPipeline as PlanningPipeline
     from marm_setup.package.read import read_package as read_package
     from marm_setup.package.setup_files import RecordedProofs as RecordedProofs
+    from marm_setup.package.setup_files import read_package_xml as read_package_xml
     from marm_setup.package.srdf_file import SrdfFile as SrdfFile
     from marm_setup.package.start import package_start_values as package_start_values
     from marm_setup.package.substitution import Scope as Scope

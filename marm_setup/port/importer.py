@@ -4,6 +4,7 @@ robot -> a SetupModel for the target, plus the port report of every setting."""
 from __future__ import annotations
 
 import dataclasses
+import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -12,6 +13,7 @@ from typing import Any
 from marm_setup.errors import InputError
 from marm_setup.package import MoveItPackage
 from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver, report_shared_joints
+from marm_setup.port.description_packages import description_packages, report_description_packages
 from marm_setup.port.kinematics import port_kinematics
 from marm_setup.port.limits import port_joint_limits
 from marm_setup.port.move_group import port_move_group
@@ -97,6 +99,8 @@ def _base(pkg: MoveItPackage, robot: RobotModel, request: PortRequest, log: Port
     name = request.name or pkg.name
     report_metadata(pkg, name, request.target, log)
     source = robot_source(pkg, request.out, request.package_paths, log)
+    needed = description_packages(pkg.description_file, robot)
+    report_description_packages(needed, request.target, request.ros_distro, log, os.environ, _as_typed(pkg))
     report_marm_setup(pkg, log)
     marm = pkg.marm_setup
     if marm is not None and marm.kept_error is not None:
@@ -119,6 +123,13 @@ def _base(pkg: MoveItPackage, robot: RobotModel, request: PortRequest, log: Port
         ros_distro=request.ros_distro,
         author=port_author(pkg, log),
         driver=given.driver or ("arbotix" if pkg.arbotix is not None else None),
+    )
+
+
+def _as_typed(pkg: MoveItPackage) -> Callable[[Path], str]:
+    """A folder as the user would type it: from the source package folder as they typed that."""
+    return lambda folder: os.path.normpath(
+        pkg.user_path(os.path.relpath(folder.resolve(), pkg.root.resolve()))
     )
 
 

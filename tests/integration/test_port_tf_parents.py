@@ -84,3 +84,39 @@ def test_init_from_the_srdf_publishes_no_tf_for_a_skipped_virtual_joint(tmp_path
     demo = etree.parse(str(out / "launch" / "demo.launch.xml"))
     assert [n.get("args") for n in demo.iter("node") if n.get("exec") == "static_transform_publisher"] == []
     assert "world_joint" in (out / "config" / "fp.srdf").read_text()
+
+
+def description_todos(doc: dict) -> list[str]:
+    return [i["detail"] for i in doc["port"]["items"] if i["setting"] == "description package fp_description"]
+
+
+def test_a_catkin_description_package_is_named_for_a_ros2_port(tmp_path, monkeypatch):
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    _, _, doc = port(tmp_path, ["--target", "ros2", "--ros-distro", "jazzy"])
+    (detail,) = description_todos(doc)
+    assert detail.startswith("a catkin package: it is not built for jazzy") and "urdf/fp.urdf" in detail
+    (item,) = [i for i in doc["port"]["items"] if i["setting"] == "description package fp_description"]
+    assert (item["status"], item["source"]) == ("todo", str(tmp_path / "src" / "fp_description"))  # as typed
+
+
+def test_a_sourced_ros2_install_lacking_the_included_urdf_is_named(tmp_path, monkeypatch):
+    """The launch finds the sourced jazzy fp_description, which has no urdf/fp.urdf."""
+    share = tmp_path / "jazzy" / "share" / "fp_description"
+    share.mkdir(parents=True)
+    (share / "package.xml").write_text(
+        '<package format="3"><name>fp_description</name><buildtool_depend>ament_cmake</buildtool_depend></package>'
+    )
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "jazzy"))
+    _, _, doc = port(tmp_path, ["--target", "ros2", "--ros-distro", "jazzy"])
+    (detail,) = description_todos(doc)
+    assert detail.startswith(f"the sourced jazzy install ({share}) has no urdf/fp.urdf")
+    (share / "urdf").mkdir()
+    (share / "urdf" / "fp.urdf").write_text("<robot/>")
+    _, _, doc = port(tmp_path / "again", ["--target", "ros2", "--ros-distro", "jazzy"])
+    assert description_todos(doc) == []
+
+
+def test_a_catkin_description_package_is_fine_for_a_ros1_port(tmp_path, monkeypatch):
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    _, _, doc = port(tmp_path, ["--target", "ros1"])
+    assert description_todos(doc) == []
