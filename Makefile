@@ -25,7 +25,7 @@ $(STAMP): pyproject.toml $(DEMO_STAMP)
 # is on PATH), plan home -> forward into a trajectory file, and write the HTML report.
 demo: $(DEMO_STAMP)
 	$(BIN)/marm-setup inspect fixtures/marm/urdf/marm.urdf.xacro
-	$(BIN)/marm-setup init fixtures/marm/urdf/marm.urdf.xacro --out $(DEMO_OUT) \
+	$(BIN)/marm-setup init fixtures/marm/urdf/marm.urdf.xacro --output $(DEMO_OUT) \
 		--setup fixtures/marm/marm_setup.yaml --target ros1 --force
 	$(BIN)/marm-setup validate $(DEMO_OUT)
 	$(BIN)/marm-setup plan $(DEMO_OUT) --group arm --from home --to forward \
