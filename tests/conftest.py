@@ -99,10 +99,12 @@ def assert_golden(request):
 
 @pytest.fixture(autouse=True)
 def no_sourced_ros(monkeypatch):
-    """validate uses the real ROS launcher where ROS is sourced (validate/consumers.py): tests
-    see no ROS unless they name one (MARM_SETUP_ROS2_PYTHON, MARM_SETUP_ROSLAUNCH)."""
-    for name in ("ROS_DISTRO", "MARM_SETUP_ROS2_PYTHON", "MARM_SETUP_ROSLAUNCH"):
-        monkeypatch.delenv(name, raising=False)
+    """validate uses the real ROS launcher it finds (validate/consumers.py: a sourced ROS, or
+    roslaunch / ros2 on PATH): tests see no ROS unless they name one (MARM_SETUP_ROS2_PYTHON,
+    MARM_SETUP_ROSLAUNCH; empty turns each off)."""
+    monkeypatch.delenv("ROS_DISTRO", raising=False)
+    for name in ("MARM_SETUP_ROS2_PYTHON", "MARM_SETUP_ROSLAUNCH"):
+        monkeypatch.setenv(name, "")
 
 
 @pytest.fixture(scope="session")

@@ -22,7 +22,7 @@ def test_clean_marm_package_exits_0(tmp_path):
     assert result.stdout.splitlines() == [
         f"validated marm_moveit_config (ros1, moveit1 layout) with robot 'marm' from {urdf} "
         "(marm_setup.yaml), SRDF config/marm.srdf (set as the semantic description by launch/planning_context.launch); "
-        "runtime planning skipped; launch files: static rules only (no roslaunch: source ROS 1)",
+        "runtime planning skipped; launch files: static rules only (MARM_SETUP_ROSLAUNCH is empty)",
         "no findings",
     ]
 
@@ -35,7 +35,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         f"validated moveit_resources_panda_moveit_config (ros2, moveit2 layout) with robot 'panda' "
         f"from {good.path / 'config/panda.urdf.xacro'} (config/<robot>.urdf.xacro), SRDF "
         "config/panda_arm_hand.srdf.xacro (chosen by its name); planned 4 pose pairs; "
-        "launch files: static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)"
+        "launch files: static rules only (MARM_SETUP_ROS2_PYTHON is empty)"
     )
     assert text[-1] == "1 error, 3 warnings"
     doc = json.loads(runner.invoke(app, [*args, "--format", "json", "--no-plan"]).stdout)
@@ -47,7 +47,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         "urdf_origin": "config/<robot>.urdf.xacro",
         "robot": "panda",
         "planned_pairs": None,
-        "launched_by": "static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)",
+        "launched_by": "static rules only (MARM_SETUP_ROS2_PYTHON is empty)",
         "srdf": "config/panda_arm_hand.srdf.xacro",
         "srdf_origin": "chosen by its name",
         "xacro_args": {},
