@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 from marm_setup.package import MoveItPackage
 from marm_setup.port.report import PortLog
 from marm_setup.ros import Target
-from marm_setup.setup import BY_ROS1_NAME, MOVE_GROUP_PARAMS, SetupModel, parameter
+from marm_setup.setup import BY_ROS1_NAME, MOVE_GROUP_PARAMS, SetupModel, parameter, written_values
 
 if TYPE_CHECKING:
     from marm_setup.package import LaunchParam
@@ -82,7 +82,7 @@ def port_move_group(pkg: MoveItPackage, model: SetupModel, log: PortLog) -> Setu
                 f"not set: MoveIt 1's default {known.moveit1_default} held, and is written ({known.source})"
             )
             log.carried(known.name, "launch files", detail, AREA)
-    return dataclasses.replace(model, move_group_parameters=tuple(sorted(given.items())))  # type: ignore[arg-type]
+    return _with_parameters(model, given)
 
 
 def _one(key: str, param: LaunchParam, model: SetupModel, given: dict, log: PortLog) -> SetupModel:
@@ -229,4 +229,12 @@ def _from_ros2(pkg: MoveItPackage, model: SetupModel, log: PortLog) -> SetupMode
         if move_group_problem(param.key, param.value) is None:
             given[param.key] = param.value
             log.carried(param.key, param.where, str(param.value), AREA)
-    return dataclasses.replace(model, move_group_parameters=tuple(sorted(given.items())))  # type: ignore[arg-type]
+    return _with_parameters(model, given)
+
+
+def _with_parameters(model: SetupModel, given: dict[str, object]) -> SetupModel:
+    """`model` recording the `given` values that differ from what marm-setup writes anyway (a
+    port of a generated package reproduces its marm_setup.yaml)."""
+    written = written_values(model.target)
+    kept = {k: v for k, v in given.items() if written.get(k) != v or type(written.get(k)) is not type(v)}
+    return dataclasses.replace(model, move_group_parameters=tuple(sorted(kept.items())))  # type: ignore[arg-type]

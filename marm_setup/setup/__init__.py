@@ -43,7 +43,9 @@ API = {
     "sensors": "check_sensors plan_perception",
     "servo": "check_servos default_servos forward_controllers plan_servos",
     "spec_overlay": "patch_items spec_items without_replaced",
-    "move_group_params": "BY_ROS1_NAME MOVE_GROUP_PARAMS MoveGroupParam move_group_problem move_group_values",
+    "move_group_params": (
+        "BY_ROS1_NAME MOVE_GROUP_PARAMS MoveGroupParam move_group_problem move_group_values written_values"
+    ),
     "pipeline_params": (
         "ADAPTER_FAMILIES effective_parameters flatten known_parameters other_distros_reading parameter "
         "STRUCTURE_KEYS unknown_name_hint value_problem"
@@ -126,6 +128,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.move_group_params import MoveGroupParam as MoveGroupParam
     from marm_setup.setup.move_group_params import move_group_problem as move_group_problem
     from marm_setup.setup.move_group_params import move_group_values as move_group_values
+    from marm_setup.setup.move_group_params import written_values as written_values
     from marm_setup.setup.pipeline_params import ADAPTER_FAMILIES as ADAPTER_FAMILIES
     from marm_setup.setup.pipeline_params import STRUCTURE_KEYS as STRUCTURE_KEYS
     from marm_setup.setup.pipeline_params import effective_parameters as effective_parameters

@@ -56,7 +56,21 @@ MOVE_GROUP_PARAMS = (
     MoveGroupParam("publish_transforms_updates", f"{_PS}/publish_transforms_updates", bool, True, False,
                    f"moveit2 {_PSM2} l.265; moveit {_PSM1} l.10"),
 )  # fmt: skip
+# What the ros1 launch templates write where the setup gives nothing (as the Setup Assistant's
+# move_group.launch and trajectory_execution.launch.xml do): templates/ros1/launch/*.j2
+ROS1_WRITTEN: dict[str, MoveGroupValue] = {
+    "moveit_manage_controllers": True,
+    "allow_trajectory_execution": True,
+}
 BY_NAME = {p.name: p for p in MOVE_GROUP_PARAMS}
+
+
+def written_values(target: str) -> dict[str, MoveGroupValue]:
+    """{MoveIt 2 name: value} a package of `target` writes where the setup gives nothing."""
+    out = {p.name: p.written for p in MOVE_GROUP_PARAMS if p.written is not None}
+    return {**out, **ROS1_WRITTEN} if target == "ros1" else out
+
+
 BY_ROS1_NAME = {p.ros1: p for p in MOVE_GROUP_PARAMS}
 
 
