@@ -9,6 +9,7 @@ only to say so)."""
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.package import MoveItPackage
@@ -232,7 +233,7 @@ def _from_ros2(pkg: MoveItPackage, model: SetupModel, log: PortLog) -> SetupMode
     return _with_parameters(model, given)
 
 
-def _with_parameters(model: SetupModel, given: dict[str, object]) -> SetupModel:
+def _with_parameters(model: SetupModel, given: Mapping[str, object]) -> SetupModel:
     """`model` recording the `given` values that differ from what marm-setup writes anyway (a
     port of a generated package reproduces its marm_setup.yaml)."""
     written = written_values(model.target)
