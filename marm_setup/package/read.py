@@ -44,6 +44,7 @@ from marm_setup.package.setup_files import (
 from marm_setup.package.srdf_file import SrdfFile, read_srdf_file, srdf_robot_name
 from marm_setup.package.where import unwrap_parameters
 from marm_setup.ros import Target
+from marm_setup.untrusted import confine_reads, excerpt, readable
 
 
 @dataclass(frozen=True)
@@ -97,6 +98,7 @@ def read_package(
     problems: list[Finding] = []
     package_paths = tuple(package_paths)
     files = PackageFiles(root, problems, _user_folders(package_paths, urdf, srdf))
+    confine_reads((root, *files.allowed))  # --untrusted: nothing outside is read from now on
     found = _setup(files, shown, package_paths)
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
     launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
@@ -104,7 +106,9 @@ def read_package(
     srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    description = _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
+    description = _readable_description(
+        files, _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
+    )
     kinds = _kinds(files, found.target, launched, problems)
     unread = launched.unread_args("robot_description_semantic")
     srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems)
@@ -380,6 +384,22 @@ def _description(
         )
         return Description(None, why, ())
     return found_description
+
+
+def _readable_description(files: PackageFiles, description: Description) -> Description:
+    """`description`, or none under `--untrusted` when its file lies outside the package and the
+    folders the user named (a `package.outside` warning: the robot rules are then skipped)."""
+    if description.urdf is None or readable(description.urdf):
+        return description
+    msg = (
+        f"the robot description {excerpt(str(description.urdf))} ({description.origin}) lies outside the "
+        "package: not read (--untrusted reads nothing outside it)"
+    )
+    hint = "pass --urdf FILE (or --package-path DIR) to name it yourself"
+    files.problems.append(
+        warning("package.outside", description.origin.split(" ")[0], "robot description", msg, hint)
+    )
+    return Description(None, f"{description.origin}: outside the package, not read (--untrusted)", ())
 
 
 def _missing_sa_package(files: PackageFiles, exc: PackageNotFound) -> Description:

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from marm_setup.package.eval_expr import EvalRefused, evaluate_expression
-from marm_setup.untrusted import CodeNotRun, excerpt, refuse_code
+from marm_setup.untrusted import CodeNotRun, environment_refused, excerpt, refuse_code
 
 ROS1_COMMANDS = ("arg", "find", "env", "optenv", "dirname", "anon")
 ROS2_COMMANDS = ("var", "find-pkg-share", "find-pkg-prefix", "env", "optenv", "dirname", "eval", "anon")
@@ -117,6 +117,8 @@ def _resolve(command: str, rest: str, scope: Scope, environ: Mapping[str, str]) 
         if folder is None:
             raise SubstitutionError(f"$({command} {excerpt(rest)}): unknown package")
         return str(folder)
+    if command in ("env", "optenv") and (refused := environment_refused(f"$({command} {excerpt(rest)})")):
+        raise SubstitutionError(refused)
     if command == "env":
         if not words or words[0] not in environ:
             raise SubstitutionError(f"$(env {excerpt(rest)}): variable not set")
