@@ -238,18 +238,34 @@ def _launched(
     find = _finder(paths)
     if target == Target.ROS1:
         ros1: Ros1Launch = evaluate_ros1(files.root, trees, find)
+        _stopped_walks(files, ros1.stopped)
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
                 files.scopes.setdefault(load.file, load.scope)
         return _Launched(ros1.loads, ros1.semantic, description=ros1.description)
     xml = evaluate_ros2_xml(files.root, trees, find)
+    _stopped_walks(files, xml.stopped)
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
+    for launch_file, why in python.unread:
+        files.problems.append(warning("launch.python-unread", launch_file, "", why))
     builder = builder_files(python.builders, name, wanted)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
     named = tuple((rel, launch) for path, launch in python.named_yaml if (rel := _relative(path, files.root)))
     return _Launched(xml.loads, xml.semantic, builder, control, python.commands, named, xml.description)
+
+
+def _stopped_walks(files: PackageFiles, stopped: tuple[str, ...]) -> None:
+    """A warning per launch file whose includes went past the walk bound (launch_ros1.MAX_VISITS)."""
+    from marm_setup.package.launch_ros1 import MAX_VISITS
+
+    for rel in stopped:
+        msg = (
+            f"its includes take more than {MAX_VISITS} file walks (a file including itself with new args): "
+            "what lies past them was not read"
+        )
+        files.problems.append(warning("launch.include-bound", rel, "include", msg))
 
 
 def _relative(path: str, root: Path) -> str | None:
