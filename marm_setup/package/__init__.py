@@ -24,7 +24,7 @@ API = {
     "perception_files": "Sensor ServoConfig",
     "planning_file": "GroupPlanning PlanningPipeline",
     "launch_xml": "condition LaunchXml",
-    "substitution": "Scope",
+    "substitution": "Scope SubstitutionError SubstitutionTooLarge substitute",
     "srdf_file": "SrdfFile",
     "setup_files": "read_package_xml RecordedProofs",
     "launch_ros1": "LaunchParam launch_nodes",
@@ -69,6 +69,9 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.srdf_file import SrdfFile as SrdfFile
     from marm_setup.package.start import package_start_values as package_start_values
     from marm_setup.package.substitution import Scope as Scope
+    from marm_setup.package.substitution import SubstitutionError as SubstitutionError
+    from marm_setup.package.substitution import SubstitutionTooLarge as SubstitutionTooLarge
+    from marm_setup.package.substitution import substitute as substitute
     from marm_setup.package.where import FrozenMapping as FrozenMapping
     from marm_setup.package.where import Param as Param
     from marm_setup.package.where import Value as Value

@@ -44,6 +44,7 @@ from marm_setup.package.setup_files import (
 from marm_setup.package.srdf_file import SrdfFile, read_srdf_file, srdf_robot_name
 from marm_setup.package.where import unwrap_parameters
 from marm_setup.ros import Target
+from marm_setup.untrusted import confine_reads, excerpt, readable
 
 
 @dataclass(frozen=True)
@@ -98,6 +99,7 @@ def read_package(
     problems: list[Finding] = []
     package_paths = tuple(package_paths)
     files = PackageFiles(root, problems, _user_folders(package_paths, urdf, srdf))
+    confine_reads((root, *files.allowed))  # --untrusted: nothing outside is read from now on
     found = _setup(files, shown, package_paths)
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
     launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
@@ -105,7 +107,9 @@ def read_package(
     srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    description = _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
+    description = _readable_description(
+        files, _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
+    )
     kinds = _kinds(files, found.target, launched, problems)
     unread = launched.unread_args("robot_description_semantic")
     srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems)
@@ -236,18 +240,34 @@ def _launched(
     find = _finder(paths)
     if target == Target.ROS1:
         ros1: Ros1Launch = evaluate_ros1(files.root, trees, find)
+        _stopped_walks(files, ros1.stopped)
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
                 files.scopes.setdefault(load.file, load.scope)
         return _Launched(ros1.loads, ros1.semantic, description=ros1.description, params=ros1.params)
     xml = evaluate_ros2_xml(files.root, trees, find)
+    _stopped_walks(files, xml.stopped)
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
+    for launch_file, why in python.unread:
+        files.problems.append(warning("launch.python-unread", launch_file, "", why))
     builder = builder_files(python.builders, name, wanted)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
     named = tuple((rel, launch) for path, launch in python.named_yaml if (rel := _relative(path, files.root)))
     return _Launched(xml.loads, xml.semantic, builder, control, python.commands, named, xml.description)
+
+
+def _stopped_walks(files: PackageFiles, stopped: tuple[str, ...]) -> None:
+    """A warning per launch file whose includes went past the walk bound (launch_ros1.MAX_VISITS)."""
+    from marm_setup.package.launch_ros1 import MAX_VISITS
+
+    for rel in stopped:
+        msg = (
+            f"its includes take more than {MAX_VISITS} file walks (a file including itself with new args): "
+            "what lies past them was not read"
+        )
+        files.problems.append(warning("launch.include-bound", rel, "include", msg))
 
 
 def _relative(path: str, root: Path) -> str | None:
@@ -382,6 +402,22 @@ def _description(
         )
         return Description(None, why, ())
     return found_description
+
+
+def _readable_description(files: PackageFiles, description: Description) -> Description:
+    """`description`, or none under `--untrusted` when its file lies outside the package and the
+    folders the user named (a `package.outside` warning: the robot rules are then skipped)."""
+    if description.urdf is None or readable(description.urdf):
+        return description
+    msg = (
+        f"the robot description {excerpt(str(description.urdf))} ({description.origin}) lies outside the "
+        "package: not read (--untrusted reads nothing outside it)"
+    )
+    hint = "pass --urdf FILE (or --package-path DIR) to name it yourself"
+    files.problems.append(
+        warning("package.outside", description.origin.split(" ")[0], "robot description", msg, hint)
+    )
+    return Description(None, f"{description.origin}: outside the package, not read (--untrusted)", ())
 
 
 def _missing_package(files: PackageFiles, exc: PackageNotFound) -> Description:

@@ -2,7 +2,8 @@
 
 validate (through its public API) gives the findings, the package's SRDF and robot and the
 trajectories its runtime checks planned; the collision scene gives the contacts of each state;
-the collision matrix is recomputed (the package's seed and trials) for each pair's hits and
+the collision matrix is recomputed (seed 0, `--trials` or DEFAULT_TRIALS: never the package's
+own `collision` settings, a claim that may ask for 1e12 trials) for each pair's hits and
 closest distance, the reasons staying the SRDF's. Each pair's proof status is the one the
 package's marm_setup.yaml records where its proof key matches this robot (proved, unproved);
 else the matrix is proved as `collisions` proves it (--prove on), and a pair the SRDF disables
@@ -56,8 +57,7 @@ def build_report(
     max_faces: int = MAX_FACES,
     progress: Progress | None = None,
 ) -> Report:
-    """The report of the package at `path`; `trials` for the matrix (default: the package's,
-    else DEFAULT_TRIALS). Raises InputError (exit 2) when `path` is no config package at all."""
+    """The report of the package at `path`; `trials` for the matrix (default: DEFAULT_TRIALS). Raises InputError (exit 2) when `path` is no config package at all."""
     from marm_setup.report.page import render_page
     from marm_setup.validate import validate_package
 
@@ -133,12 +133,11 @@ def _matrix_section(
     """The matrix picture and pairs (reasons from the SRDF, counts and proofs from a fresh
     computation, or the proofs the package records; see the module doc), and the matrix."""
     from marm_setup.collision import compute_collision_matrix, describe_matrix, render_matrix_svg
-    from marm_setup.validate import matrix_proofs, matrix_settings
+    from marm_setup.validate import matrix_proofs
 
     if not scene.candidate_pairs:
         return None
-    seed, computed = matrix_settings(validated.package)
-    count = trials or computed or DEFAULT_TRIALS
+    seed, count = 0, trials or DEFAULT_TRIALS  # the command's own, whatever the package says
     recorded = matrix_proofs(validated.package, robot)
     prove = "on" if recorded is None else "off"
     matrix = compute_collision_matrix(

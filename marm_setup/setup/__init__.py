@@ -48,7 +48,7 @@ API = {
     ),
     "pipeline_params": (
         "ADAPTER_FAMILIES effective_parameters flatten known_parameters other_distros_reading parameter "
-        "STRUCTURE_KEYS unknown_name_hint value_problem"
+        "STRUCTURE_KEYS infinite_problem unknown_name_hint value_problem"
     ),
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
@@ -133,6 +133,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.pipeline_params import STRUCTURE_KEYS as STRUCTURE_KEYS
     from marm_setup.setup.pipeline_params import effective_parameters as effective_parameters
     from marm_setup.setup.pipeline_params import flatten as flatten
+    from marm_setup.setup.pipeline_params import infinite_problem as infinite_problem
     from marm_setup.setup.pipeline_params import known_parameters as known_parameters
     from marm_setup.setup.pipeline_params import other_distros_reading as other_distros_reading
     from marm_setup.setup.pipeline_params import parameter as parameter
