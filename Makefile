@@ -9,7 +9,7 @@ DEMO_STAMP := $(VENV)/.installed
 DEMO_DIR ?= demo_out
 DEMO_OUT := $(DEMO_DIR)/marm_moveit_config
 
-.PHONY: demo test lint bench fuzz clean
+.PHONY: demo test check lint bench fuzz clean
 
 $(DEMO_STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -37,7 +37,14 @@ test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/mypy
-	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci
+	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto
+
+# The inner loop: lint and the unit tests but the slow ones (the `slow` marker, tests/conftest.py),
+# on every core. `make test` (and CI) runs everything.
+check: $(STAMP)
+	$(BIN)/ruff check marm_setup tests benchmarks
+	$(BIN)/lint-imports --no-cache
+	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto -m "not slow" tests/unit
 
 # The reliability suite at length: a random-seeded fuzzer (FUZZ_EXAMPLES per input kind) and
 # RELIABILITY_KILLS SIGKILLs per writing command; prints its counts. Then the proofs' property
