@@ -80,7 +80,7 @@ def build_report(
         drawing = _drawing(validated, robot, srdf_model, robot_geometry(robot, max_faces), trials, jobs, step)
     name = robot.name if robot is not None else validated.validation.package
     content = page_content(name, drawing, validated.validation.findings, _summary(validated))
-    return Report(render_page(content), validated, drawing)
+    return Report(render_page(_relative(content, validated)), validated, drawing)
 
 
 def _stages(progress: Progress | None) -> Callable[[str], Callable[[int, int], None]]:
@@ -163,6 +163,22 @@ def _with_recorded(matrix: CollisionMatrix, mode: str, recorded: Mapping) -> Col
     return dataclasses.replace(matrix, stats=stats, prove=mode)
 
 
+def _relative(content: dict, validated: ValidatedPackage) -> dict:
+    """`content` with paths relative to the package, none of the machine's (report/paths.py)."""
+    from marm_setup.report.paths import relative_content
+
+    return relative_content(content, validated.package.root, _package_of)
+
+
+def _package_of(folder: Path) -> str | None:
+    from marm_setup.robot import package_name
+
+    return package_name(folder)
+
+
 def _summary(validated: ValidatedPackage) -> dict:
-    v = validated.validation
+    from marm_setup.report.paths import with_page_urdf
+
+    pkg = validated.package
+    v = with_page_urdf(validated.validation, pkg.root, _package_of, pkg.urdf)
     return {"package": v.package, "target": v.target, "layout": v.layout, "validated": v.describe()}
