@@ -77,10 +77,15 @@ def build_report(
     robot, srdf_model = validated.robot, validated.package.srdf
     drawing = None
     if robot is not None and srdf_model is not None:
-        drawing = _drawing(validated, robot, srdf_model, robot_geometry(robot, max_faces), trials, jobs, step)
+        geometry = robot_geometry(robot, max_faces, step("meshes") if progress else None)
+        drawing = _drawing(validated, robot, srdf_model, geometry, trials, jobs, step)
     name = robot.name if robot is not None else validated.validation.package
+    writing = step("writing the page")
+    writing(0, 0)
     content = page_content(name, drawing, validated.validation.findings, _summary(validated))
-    return Report(render_page(content), validated, drawing)
+    html = render_page(_relative(content, validated))
+    writing(1, 1)
+    return Report(html, validated, drawing)
 
 
 def _stages(progress: Progress | None) -> Callable[[str], Callable[[int, int], None]]:
@@ -111,13 +116,19 @@ def _drawing(
     from marm_setup.report.motions import motions
     from marm_setup.report.states import robot_states, witness_states
 
+    posing = step("robot states")
+    posing(0, 0)
     scene = CollisionScene(robot)
     start = package_start_values(validated.package, robot)
     states = robot_states(srdf, robot, scene, start, validated.validation.findings)
+    posing(1, 1)
     section = _matrix_section(validated, robot, srdf, scene, trials, jobs, step("collision matrix"))
     if section is not None:
         states += witness_states(section[1], srdf, robot)
+    moving = step("trajectories")
+    moving(0, 0)
     moves = motions(robot, validated.plans, drawn_links(robot, geometry, srdf))
+    moving(1, 1)
     return Drawing(robot, srdf, geometry, states, moves, section[0] if section else None)
 
 
@@ -163,6 +174,22 @@ def _with_recorded(matrix: CollisionMatrix, mode: str, recorded: Mapping) -> Col
     return dataclasses.replace(matrix, stats=stats, prove=mode)
 
 
+def _relative(content: dict, validated: ValidatedPackage) -> dict:
+    """`content` with paths relative to the package, none of the machine's (report/paths.py)."""
+    from marm_setup.report.paths import relative_content
+
+    return relative_content(content, validated.package.root, _package_of)
+
+
+def _package_of(folder: Path) -> str | None:
+    from marm_setup.robot import package_name
+
+    return package_name(folder)
+
+
 def _summary(validated: ValidatedPackage) -> dict:
-    v = validated.validation
+    from marm_setup.report.paths import with_page_urdf
+
+    pkg = validated.package
+    v = with_page_urdf(validated.validation, pkg.root, _package_of, pkg.urdf)
     return {"package": v.package, "target": v.target, "layout": v.layout, "validated": v.describe()}

@@ -11,6 +11,7 @@ mesh file used by several links (left and right arms) is sent once.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -53,11 +54,23 @@ class RobotGeometry:
     meshes: tuple[MeshArrays, ...]
 
 
-def robot_geometry(robot: RobotModel, max_faces: int = MAX_FACES) -> RobotGeometry:
-    """The collision shapes of every link that has any, meshes decimated to `max_faces`."""
+def robot_geometry(
+    robot: RobotModel, max_faces: int = MAX_FACES, progress: Callable[[int, int], None] | None = None
+) -> RobotGeometry:
+    """The collision shapes of every link that has any, meshes decimated to `max_faces`;
+    `progress(done, total)` after each mesh file."""
     mesh_ids: dict[tuple[str, tuple[float, ...]], int] = {}
     meshes: list[MeshArrays] = []
     links = []
+    total = len(
+        {
+            (s.geometry.path, tuple(s.geometry.scale))
+            for name in robot.links_in_tree_order
+            for s in robot.link(name).collisions
+            if isinstance(s.geometry, Mesh)
+        }
+    )
+    count = len(meshes)
     for name in robot.links_in_tree_order:
         link = robot.link(name)
         if not link.has_geometry:
@@ -66,6 +79,9 @@ def robot_geometry(robot: RobotModel, max_faces: int = MAX_FACES) -> RobotGeomet
         for k, shape in enumerate(link.collisions):
             element = f"link[{name}]/collision[{k}]"
             shapes.append(_shape(shape, robot, element, mesh_ids, meshes, max_faces))
+            if progress is not None and len(meshes) > count:
+                count = len(meshes)
+                progress(count, total)
         links.append((name, tuple(shapes)))
     return RobotGeometry(tuple(links), tuple(meshes))
 

@@ -34,6 +34,11 @@
     if (text !== undefined) node.textContent = text;
     return node;
   }
+  function breakable(tag, attrs, text) { // `text` that may wrap after each _ / or . (a <wbr>; copying it is unchanged)
+    const node = el(tag, attrs);
+    for (const part of String(text).split(/(?<=[_\/.])/)) node.append(part, el("wbr"));
+    return node;
+  }
   function button(text, onClick, extra) {
     const b = el("button", { type: "button", class: "pick" + (extra ? " " + extra : "") }, text);
     b.addEventListener("click", onClick);
@@ -388,16 +393,19 @@
     for (const f of data.findings) {
       const row = el("tr", { class: f.severity });
       const where = el("td");
-      where.append(el("div", {}, f.file), el("div", { class: "meta" }, f.element));
+      where.append(breakable("div", {}, f.file), breakable("div", { class: "meta" }, f.element));
       const what = el("td");
       what.append(el("div", {}, f.message), el("div", { class: "meta" }, f.rule));
       if (f.hint) what.append(el("div", { class: "hint" }, "hint: " + f.hint));
+      where.classList.add("name");
       row.append(el("td", { class: "sev" }, f.severity), where, what);
       const target = findingTarget(f);
       if (target) { row.classList.add("clickable"); row.title = "show it"; row.addEventListener("click", target); }
       table.append(row);
     }
-    box.append(table);
+    const scroll = el("div", { class: "scroll" }); // its header row sticks inside it, never over the next section
+    scroll.append(table);
+    box.append(scroll);
   }
   function proofText(p) {
     if (p.proof === "unproved") return `unproved (${(100 * p.proved_fraction).toFixed(1)} %)`;
@@ -408,7 +416,7 @@
     const hits = p.samples ? `${p.hits}/${p.samples}` : "";
     const closest = p.min_distance === null ? "" : (1000 * p.min_distance).toFixed(1);
     const seen = p.seen_colliding === null ? "" : p.seen_colliding ? "yes" : "no";
-    row.append(el("td", {}, p.link1), el("td", {}, p.link2), el("td", {}, p.reason || "enabled"),
+    row.append(breakable("td", { class: "name" }, p.link1), breakable("td", { class: "name" }, p.link2), el("td", {}, p.reason || "enabled"),
       el("td", { class: "num" }, hits), el("td", { class: "num" }, seen), el("td", { class: "num" }, closest),
       el("td", {}, proofText(p)));
     row.dataset.reason = p.reason || "enabled";
@@ -423,7 +431,7 @@
     const box = document.getElementById("matrix");
     const m = data.matrix;
     if (!m) { box.append(el("div", { class: "meta" }, "not computed (no robot or no SRDF)")); return; }
-    const picture = el("div");
+    const picture = el("div", { class: "picture" });
     picture.innerHTML = m.svg; // our own SVG (collision/report.py), names escaped there
     picture.addEventListener("click", (event) => {
       const cell = event.target.closest("g");

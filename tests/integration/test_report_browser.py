@@ -12,6 +12,7 @@ printed (`pytest -s`).
 
 from __future__ import annotations
 
+import re
 import shutil
 import time
 from dataclasses import dataclass
@@ -247,3 +248,84 @@ def test_the_broken_marm_shows_its_errors(browser, root):
         t.startswith("pose.collision:") for t in titles
     )
     assert opened.errors == [] and opened.fetched == []
+
+
+# Readability at a laptop's 1280x800 and on a wide screen (issue 33): per visible text, its font
+# size on screen (an SVG text's scaled by the SVG's own scale); per table, how far it reaches past
+# the box it sits in, and whether that box scrolls; the side column's own horizontal overflow;
+# every text and tooltip of the page.
+READABILITY = """() => {
+  const fonts = [];
+  const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+  for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+    const e = n.parentElement;
+    if (!n.textContent.trim() || !e || e.closest("script, style, option, title")) continue;
+    if (!e.getClientRects().length) continue;
+    let px = parseFloat(getComputedStyle(e).fontSize);
+    if (e instanceof SVGElement) { const m = e.getScreenCTM(); px *= Math.hypot(m.a, m.b); }
+    fonts.push([px, n.textContent.trim().slice(0, 40)]);
+  }
+  const tables = [...document.querySelectorAll("table")].map((t) => {
+    const box = t.parentElement;
+    return { box: box.className || box.id, past: t.getBoundingClientRect().width - box.clientWidth,
+             scrolls: ["auto", "scroll"].includes(getComputedStyle(box).overflowX) };
+  });
+  const side = document.getElementById("side");
+  const texts = [];
+  const all = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+  for (let n = all.nextNode(); n; n = all.nextNode()) if (!n.parentElement.closest("script, style")) texts.push(n.textContent);
+  for (const e of document.querySelectorAll("[title]")) texts.push(e.title);
+  return { fonts, tables, sideOverflow: side.scrollWidth - side.clientWidth, text: texts.join("\\n") };
+}"""
+# After following a section link: every sticky or fixed element of the side column overlapping
+# the section's heading (none may), whether the heading is in view, and whether it is what is
+# drawn at its own middle.
+COVERED = """(id) => {
+  const heading = document.getElementById(id).querySelector("h2");
+  const h = heading.getBoundingClientRect();
+  const over = [];
+  for (const e of document.querySelectorAll("#side *")) {
+    const position = getComputedStyle(e).position;
+    if (position !== "sticky" && position !== "fixed") continue;
+    const r = e.getBoundingClientRect();
+    if (r.width && r.height && r.bottom > h.top + 0.5 && r.top < h.bottom - 0.5 && r.right > h.left && r.left < h.right)
+      over.push(e.id || e.tagName);
+  }
+  const side = document.getElementById("side").getBoundingClientRect();
+  const atMiddle = document.elementFromPoint(h.left + 5, (h.top + h.bottom) / 2);
+  return { over, shown: h.top >= side.top && h.bottom <= side.bottom, top: atMiddle === heading || heading.contains(atMiddle) };
+}"""
+SIZES = ((1280, 800), (1920, 1080))
+MACHINE_PATH = re.compile(r"(?<![\w./~+@-])/(?:[\w.+@~-]+/)+[\w.+@~-]+")
+
+
+@pytest.mark.parametrize("size", SIZES, ids=lambda s: f"{s[0]}x{s[1]}")
+@pytest.mark.parametrize("name", ("marm_broken", "pr2"))
+def test_the_page_is_readable_at_each_size(browser, root, name, size):
+    """Text >= 11 px (the matrix's labels included), no table wider than its box, no path of
+    this machine, and a section link never leaves its heading under a sticky element; a
+    screenshot per size (and of the matrix) in the pages folder, to look at."""
+    opened = Opened(browser, _page(root, name).path)
+    page = opened.page
+    page.set_viewport_size({"width": size[0], "height": size[1]})
+    page.screenshot(path=str(root / f"{name}-{size[0]}x{size[1]}.png"))
+    seen = page.evaluate(READABILITY)
+    smallest = min(seen["fonts"])
+    assert round(smallest[0], 1) >= 11, f"text '{smallest[1]}' is {smallest[0]:.1f} px"
+    for table in seen["tables"]:  # no column cut: every table fits its box (1 px of rounding)
+        assert table["past"] <= 1, f"a table in {table['box']} is {table['past']:.0f} px too wide"
+    assert seen["sideOverflow"] <= 0, "the side column scrolls sideways"
+    machine = [p for p in MACHINE_PATH.findall(seen["text"]) if Path("/", p.split("/")[1]).is_dir()]
+    assert machine == [] and str(root) not in seen["text"], f"absolute paths on the page: {machine[:3]}"
+    links = page.query_selector_all("#toc a")
+    assert len(links) == 5
+    for link in links:
+        section = link.get_attribute("href").lstrip("#")
+        link.click()
+        covered = page.evaluate(COVERED, section)
+        assert covered == {"over": [], "shown": True, "top": True}, f"{section}: {covered}"
+        if section == "matrix-section":
+            page.screenshot(path=str(root / f"{name}-{size[0]}x{size[1]}-matrix.png"))
+    print(f"\n{name} at {size[0]}x{size[1]}: screenshots in {root}")
+    assert opened.errors == [] and opened.fetched == []
+    page.close()
