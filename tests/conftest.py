@@ -105,6 +105,14 @@ def no_sourced_ros(monkeypatch):
         monkeypatch.delenv(name, raising=False)
 
 
+@pytest.fixture(autouse=True)
+def own_proof_cache(monkeypatch, tmp_path_factory, request):
+    """Each test gets its own empty proof cache (collision/proof_cache.py), never the user's."""
+    folder = tmp_path_factory.getbasetemp() / "proof-caches" / f"{abs(hash(request.node.nodeid)):x}"
+    monkeypatch.setenv("MARM_SETUP_CACHE", str(folder))
+    monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+
+
 @pytest.fixture(scope="session")
 def ros2_packages(tmp_path_factory):
     """Every ROS 2 package the tests generate, made once per session (tests/generated_packages.py)."""

@@ -32,23 +32,30 @@ _STATE: dict[str, Any] = {}  # in a pool process: its scene, chains and task
 
 
 def screen_pairs(
-    scene: CollisionScene, pairs: Sequence[Pair], mode: str, seed: int = 0, jobs: int = 1
+    scene: CollisionScene,
+    pairs: Sequence[Pair],
+    mode: str,
+    seed: int = 0,
+    jobs: int = 1,
+    known: frozenset[Pair] = frozenset(),
 ) -> dict[Pair, PairProof]:
     """Pair -> its proof before the trials (see proof.SCREEN): pairs whose links' reach balls
     are apart are proved at once (`collision/reach_balls.py`); the others get a branch and
     bound of their own when the screen's pool gives each at least SCREEN_LEAST units, else they
-    wait for `settle_pairs` (an unproved proof keeps its state, to go on from)."""
+    wait for `settle_pairs` (an unproved proof keeps its state, to go on from). The `known`
+    pairs (proofs from the cache) share the pool as they would, but are not proved."""
     from marm_setup.collision.reach_balls import far_apart
 
     least, most, pool = SCREEN[_checked(mode)]
     levers = {link: scene.lever_points(link) for pair in pairs for link in pair}
     far = far_apart(scene.robot, pairs, levers, scene.padding + CERT_MARGIN)
-    proofs = {pair: PairProof(PROVED, 1.0, units=1) for pair in pairs if pair in far}
+    proofs = {pair: PairProof(PROVED, 1.0, units=1) for pair in pairs if pair in far and pair not in known}
     rest = [pair for pair in pairs if pair not in far]
     boxes = most if pool is None else int(min(most, pool // max(1, len(rest))))
+    open_pairs = [pair for pair in rest if pair not in known]
     if boxes < least:
-        return proofs | {pair: PairProof(UNPROVED, 0.0) for pair in rest}
-    return proofs | prove_pairs(scene, rest, Budget(boxes, 0), seed, jobs)
+        return proofs | {pair: PairProof(UNPROVED, 0.0) for pair in open_pairs}
+    return proofs | prove_pairs(scene, open_pairs, Budget(boxes, 0), seed, jobs)
 
 
 def settle_pairs(
@@ -59,14 +66,16 @@ def settle_pairs(
     jobs: int = 1,
     spent: int = 0,
     starts: dict[Pair, np.ndarray] | None = None,
+    known: int = 0,
 ) -> dict[Pair, PairProof]:
     """Pair -> its proof after its unproved screen `priors[pair]` (see proof.Settle): the branch
     and bound goes on with what the screen's pool has left after `spent` units, then the witness
     search (first from `starts[pair]`, robot states: the pair's closest trial states), then a
-    second round of it for the pairs whose first ended close to contact."""
+    second round of it for the pairs whose first ended close to contact. `known`: how many
+    more pairs (proofs from the cache) share the pools."""
     plan = SETTLE[_checked(mode)]
     screen_pool = SCREEN[mode][2]
-    count = max(1, len(priors))
+    count = max(1, len(priors) + known)
     boxes = plan.again if screen_pool is None else min(plan.again, max(0, screen_pool - spent) // count)
     proofs = prove_pairs(
         scene,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
@@ -29,11 +29,9 @@ def with_collision_matrix(
     prove: str = "on",
 ) -> SetupModel:
     """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
-    from marm_setup.collision import compute_collision_matrix
-
     if model.collision.disabled:
         return model
-    matrix = compute_collision_matrix(
+    matrix = compute_matrix(
         robot,
         scene,
         trials=trials,
@@ -45,6 +43,20 @@ def with_collision_matrix(
         prove=prove,
     )
     return dataclasses.replace(model, collision=collision_settings(matrix, matrix.disabled, robot))
+
+
+def compute_matrix(robot: RobotModel, scene: CollisionScene | None = None, **options: Any) -> CollisionMatrix:
+    """compute_collision_matrix(robot, scene, **options) with the proofs of the user's proof
+    cache (collision/proof_cache.py), its new finished proofs kept there: the same matrix as
+    without the cache, for less work."""
+    from marm_setup.collision import CollisionScene, compute_collision_matrix, known_proofs, remember_proofs
+
+    scene = CollisionScene(robot) if scene is None else scene
+    if options.get("prove", "off") == "off":
+        return compute_collision_matrix(robot, scene, **options)
+    matrix = compute_collision_matrix(robot, scene, known=known_proofs(scene), **options)
+    remember_proofs(scene, matrix)
+    return matrix
 
 
 def collision_settings(

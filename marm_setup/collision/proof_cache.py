@@ -1,0 +1,159 @@
+"""The user's proof cache: finished pair proofs by their key (collision/proof_keys.py).
+
+One SQLite file, `$XDG_CACHE_HOME/marm-setup/proofs.sqlite` (else `~/.cache/marm-setup/`),
+written only by the user's own runs of `init` and `collisions`: a package never supplies a
+proof, so this is the only place proofs are trusted from (validate skips the resample of a
+Never pair only when this cache holds its proof). `MARM_SETUP_CACHE=off` turns it off;
+`MARM_SETUP_CACHE=DIR` puts it in DIR. Only finished proofs are kept ("proved": no state of
+the pair's box is in contact; "collides": a state that is), with what the matrix needs to
+account for them as a run without the cache would (its units, and the screen's outcome and
+units). A cache that cannot be read or written is skipped: it only ever saves work.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import sqlite3
+from collections.abc import Iterable, Mapping
+from contextlib import closing
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from marm_setup.collision.matrix import CollisionMatrix
+    from marm_setup.collision.scene import CollisionScene
+
+Pair = tuple[str, str]
+LOG = logging.getLogger(__name__)
+FILE = "proofs.sqlite"
+OUTCOMES = ("proved", "collides")
+
+
+@dataclass(frozen=True, slots=True)
+class CachedProof:
+    """A finished proof as the cache keeps it: `screen` is (outcome, units) of the screen
+    before the trials ("unproved": the proof finished after them)."""
+
+    outcome: str
+    fraction: float
+    witness: tuple[tuple[str, float], ...]
+    units: int
+    screen: tuple[str, int]
+
+    @property
+    def settled(self) -> bool:
+        """Finished after the trials (the pair went through them in a run without cache)."""
+        return self.screen[0] not in OUTCOMES
+
+
+def cache_dir() -> Path | None:
+    """The cache folder, or None when MARM_SETUP_CACHE is "off"."""
+    setting = os.environ.get("MARM_SETUP_CACHE", "")
+    if setting.lower() in ("off", "0", "no", "false"):
+        return None
+    if setting:
+        return Path(setting)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "marm-setup"
+
+
+def known_proofs(scene: CollisionScene, pairs: Iterable[Pair] | None = None) -> dict[Pair, CachedProof]:
+    """Pair -> its proof in the cache, for `pairs` (default: every candidate pair of `scene`)."""
+    if cache_dir() is None:
+        return {}
+    from marm_setup.collision.proof_keys import pair_keys
+
+    keys = pair_keys(scene, scene.candidate_pairs if pairs is None else pairs)
+    found = load_proofs(keys.values())
+    return {pair: found[key] for pair, key in keys.items() if key in found}
+
+
+def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix) -> None:
+    """Keep the finished proofs of `matrix` (computed on `scene`) in the cache."""
+    from marm_setup.collision.proof_keys import pair_keys
+
+    finished = {s.pair: s.proof for s in matrix.stats if s.proof is not None and s.proof.outcome in OUTCOMES}
+    if cache_dir() is None or not finished:
+        return
+    keys = pair_keys(scene, finished)
+    dump_proofs(
+        {
+            keys[pair]: CachedProof(
+                proof.outcome,
+                proof.proved_fraction,
+                proof.witness,
+                proof.units,
+                matrix.screened.get(pair, ("unproved", 0)),
+            )
+            for pair, proof in finished.items()
+        }
+    )
+
+
+def load_proofs(keys: Iterable[str]) -> dict[str, CachedProof]:
+    """Key -> its cached proof, for the keys the cache holds (none when it is off or unreadable)."""
+    folder = cache_dir()
+    wanted = sorted(set(keys))
+    if folder is None or not wanted or not (folder / FILE).is_file():
+        return {}
+    found: dict[str, CachedProof] = {}
+    try:
+        with closing(_connect(folder)) as db:
+            for start in range(0, len(wanted), 500):
+                part = wanted[start : start + 500]
+                marks = ",".join("?" * len(part))
+                rows = db.execute(f"SELECT key, value FROM proofs WHERE key IN ({marks})", part)
+                found.update((key, proof) for key, value in rows if (proof := _parsed(value)) is not None)
+    except sqlite3.Error as exc:
+        LOG.debug("proof cache not read: %s", exc)
+        return {}
+    return found
+
+
+def dump_proofs(proofs: Mapping[str, CachedProof]) -> None:
+    """Add `proofs` (key -> finished proof) to the cache (nothing when it is off or unwritable)."""
+    folder = cache_dir()
+    if folder is None or not proofs:
+        return
+    rows = [(key, json.dumps(_fields(proof))) for key, proof in sorted(proofs.items())]
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with closing(_connect(folder)) as db, db:
+            db.executemany("INSERT OR REPLACE INTO proofs (key, value) VALUES (?, ?)", rows)
+    except (OSError, sqlite3.Error) as exc:
+        LOG.debug("proof cache not written: %s", exc)
+
+
+def _connect(folder: Path) -> sqlite3.Connection:
+    db = sqlite3.connect(folder / FILE, timeout=10.0)
+    db.execute("CREATE TABLE IF NOT EXISTS proofs (key TEXT PRIMARY KEY, value TEXT NOT NULL)")
+    return db
+
+
+def _fields(proof: CachedProof) -> dict:
+    return {
+        "outcome": proof.outcome,
+        "fraction": proof.fraction,
+        "witness": [list(item) for item in proof.witness],
+        "units": proof.units,
+        "screen": list(proof.screen),
+    }
+
+
+def _parsed(value: str) -> CachedProof | None:
+    """A cached proof from its JSON, or None when it is not one."""
+    try:
+        data = json.loads(value)
+        proof = CachedProof(
+            str(data["outcome"]),
+            float(data["fraction"]),
+            tuple((str(joint), float(v)) for joint, v in data["witness"]),
+            int(data["units"]),
+            (str(data["screen"][0]), int(data["screen"][1])),
+        )
+    except (ValueError, TypeError, KeyError, IndexError):
+        return None
+    return proof if proof.outcome in OUTCOMES else None
