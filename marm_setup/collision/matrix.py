@@ -31,15 +31,18 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED, PairProof
-from marm_setup.collision.proof_cache import CachedProof
 from marm_setup.collision.trials import CHUNK, Work, trial_samples
 from marm_setup.collision.workers import Workers
 from marm_setup.robot import RobotModel, default_configuration, sample_configurations
+
+if TYPE_CHECKING:
+    from marm_setup.collision.proof_cache import CachedProof
 
 __all__ = ["CHUNK", "CollisionMatrix", "PairStats", "compute_collision_matrix", "trial_samples"]
 
@@ -112,6 +115,7 @@ def compute_collision_matrix(
     distances: bool = True,
     prove: str = "off",
     known: Mapping[Pair, CachedProof] | None = None,
+    proof_progress: Callable[[int, int, int], None] | None = None,
 ) -> CollisionMatrix:
     """MoveIt's matrix for `robot` (scene: a CollisionScene, built when None).
 
@@ -121,6 +125,7 @@ def compute_collision_matrix(
     outputs show it; measuring it costs a distance query per pair and closest state).
     `prove`: "off" (MoveIt's rule), "on" or "exhaustive" (the proof budget; see the module doc).
     `known`: finished proofs of pairs, taken as they are (see the module doc; ignored when off).
+    `proof_progress(proved, in_contact, left)`: told as each proof ends.
     """
     if scene is None:
         from marm_setup.collision.scene import CollisionScene
@@ -139,7 +144,8 @@ def compute_collision_matrix(
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
     unseen_pairs = tuple(p for p in remaining if p not in seen)
     cached = {p: known[p] for p in unseen_pairs if p in known} if known and prove != "off" else {}
-    screened = _screen(scene, unseen_pairs, prove, seed, jobs, frozenset(cached))
+    tally = _tally(proof_progress, cached, prove)
+    screened = _screen(scene, unseen_pairs, prove, seed, jobs, frozenset(cached), tally)
     screened.update(
         {p: PairProof(proof.screen[0], 0.0, units=proof.screen[1]) for p, proof in cached.items()}
     )
@@ -156,7 +162,7 @@ def compute_collision_matrix(
     unseen = {p: screened[p] for p in trial_pairs if p not in seen and p in screened}
     spent = sum(p.units for p in screened.values())
     settled = sum(1 for c in cached.values() if c.settled)
-    proofs.update(_settle(scene, unseen, prove, (seed, trials), jobs, (spent, settled), rows))
+    proofs.update(_settle(scene, unseen, prove, (seed, trials), jobs, (spent, settled), rows, tally))
     enabled = seen | {p for p, proof in proofs.items() if proof.outcome == COLLIDES}
     reasons.update(dict.fromkeys((p for p in remaining if p not in enabled), DisabledReason.NEVER))
     stats = tuple(
@@ -196,8 +202,20 @@ def _followed(
     )
 
 
+def _tally(report, cached: Mapping[Pair, CachedProof], prove: str):
+    """A ProofTally for `report` (None without one), counting the `cached` proofs first."""
+    if report is None or prove == "off":
+        return None
+    from marm_setup.collision.proving import ProofTally
+
+    tally = ProofTally(report)
+    outcomes = [c.outcome for c in cached.values()]
+    tally.start(outcomes.count(PROVED), outcomes.count(COLLIDES), 0)
+    return tally
+
+
 def _screen(
-    scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int, known: frozenset[Pair]
+    scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int, known: frozenset[Pair], tally
 ) -> dict[Pair, PairProof]:
     """The branch and bound of `pairs` before the trials (but of the `known` ones, which count
     for the budgets only); none when `prove` is "off"."""
@@ -205,7 +223,7 @@ def _screen(
         return {}
     from marm_setup.collision.proving import screen_pairs
 
-    return screen_pairs(scene, pairs, prove, seed, jobs, known)
+    return screen_pairs(scene, pairs, prove, seed, jobs, known, tally)
 
 
 def _settle(
@@ -216,6 +234,7 @@ def _settle(
     jobs: int,
     spent: tuple[int, int],
     rows,
+    tally=None,
 ) -> dict[Pair, PairProof]:
     """The rest of the proof of the unproved pairs the trials never saw in collision (`spent`:
     the screen's units, and how many known pairs would have been settled too; `rows`: each
@@ -228,7 +247,7 @@ def _settle(
     wanted = sorted({i for p in priors for i in rows.get(p, ())})
     states = dict(zip(wanted, trial_states(scene.robot, *draw, wanted), strict=True))
     starts = {p: np.array([states[i] for i in rows.get(p, ())]) for p in priors}
-    return settle_pairs(scene, priors, prove, draw[0], jobs, spent[0], starts, spent[1])
+    return settle_pairs(scene, priors, prove, draw[0], jobs, spent[0], starts, spent[1], tally)
 
 
 def _with_tracked(shards: list[tuple[Pair, ...]], tracked: tuple[Pair, ...]) -> list:

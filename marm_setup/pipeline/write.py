@@ -48,13 +48,15 @@ def with_collision_matrix(
 def compute_matrix(robot: RobotModel, scene: CollisionScene | None = None, **options: Any) -> CollisionMatrix:
     """compute_collision_matrix(robot, scene, **options) with the proofs of the user's proof
     cache (collision/proof_cache.py), its new finished proofs kept there: the same matrix as
-    without the cache, for less work."""
+    without the cache, for less work. A `progress` with a `proofs(proved, in_contact, left)`
+    method (cli/progress.py) is told of the proofs too."""
     from marm_setup.collision import CollisionScene, compute_collision_matrix, known_proofs, remember_proofs
 
     scene = CollisionScene(robot) if scene is None else scene
     if options.get("prove", "off") == "off":
         return compute_collision_matrix(robot, scene, **options)
-    matrix = compute_collision_matrix(robot, scene, known=known_proofs(scene), **options)
+    told = getattr(options.get("progress"), "proofs", None)  # a progress that shows the proofs
+    matrix = compute_collision_matrix(robot, scene, known=known_proofs(scene), proof_progress=told, **options)
     remember_proofs(scene, matrix)
     return matrix
 
