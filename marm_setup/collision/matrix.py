@@ -150,7 +150,9 @@ def compute_collision_matrix(
         {p: PairProof(proof.screen[0], 0.0, units=proof.screen[1]) for p, proof in cached.items()}
     )
     proofs = {p: proof for p, proof in screened.items() if proof.outcome != UNPROVED and p not in cached}
-    proofs.update({p: PairProof(c.outcome, c.fraction, c.witness, c.units) for p, c in cached.items()})
+    proofs.update(
+        {p: PairProof(c.outcome, c.fraction, c.witness, c.units, second=c.second) for p, c in cached.items()}
+    )
     trial_pairs = tuple(p for p in remaining if p not in seen and p not in proofs)
     costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
     followed = _followed(remaining, proofs, cached) if distances else ()
@@ -161,7 +163,7 @@ def compute_collision_matrix(
     )
     unseen = {p: screened[p] for p in trial_pairs if p not in seen and p in screened}
     spent = sum(p.units for p in screened.values())
-    settled = sum(1 for c in cached.values() if c.settled)
+    settled = {p: c.second for p, c in cached.items() if c.settled}
     proofs.update(_settle(scene, unseen, prove, (seed, trials), jobs, (spent, settled), rows, tally))
     enabled = seen | {p for p, proof in proofs.items() if proof.outcome == COLLIDES}
     reasons.update(dict.fromkeys((p for p in remaining if p not in enabled), DisabledReason.NEVER))
@@ -232,13 +234,14 @@ def _settle(
     prove: str,
     draw: tuple[int, int],
     jobs: int,
-    spent: tuple[int, int],
+    spent: tuple[int, Mapping[Pair, float | None]],
     rows,
     tally=None,
 ) -> dict[Pair, PairProof]:
     """The rest of the proof of the unproved pairs the trials never saw in collision (`spent`:
-    the screen's units, and how many known pairs would have been settled too; `rows`: each
-    pair's closest trial states, of `draw` (seed, trials))."""
+    the screen's units, and the known pairs that would have been settled too, with where their
+    first round ended when a second settled them; `rows`: each pair's closest trial states, of
+    `draw` (seed, trials))."""
     if prove == "off" or not priors:
         return {}
     from marm_setup.collision.proving import settle_pairs

@@ -35,13 +35,15 @@ OUTCOMES = ("proved", "collides")
 @dataclass(frozen=True, slots=True)
 class CachedProof:
     """A finished proof as the cache keeps it: `screen` is (outcome, units) of the screen
-    before the trials ("unproved": the proof finished after them)."""
+    before the trials ("unproved": the proof finished after them); `second` where the first
+    round of its witness search ended, when a second round finished it."""
 
     outcome: str
     fraction: float
     witness: tuple[tuple[str, float], ...]
     units: int
     screen: tuple[str, int]
+    second: float | None = None  # settled in the second round: where its first ended [m]
 
     @property
     def settled(self) -> bool:
@@ -87,6 +89,7 @@ def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix) -> None:
                 proof.witness,
                 proof.units,
                 matrix.screened.get(pair, ("unproved", 0)),
+                proof.second,
             )
             for pair, proof in finished.items()
         }
@@ -140,6 +143,7 @@ def _fields(proof: CachedProof) -> dict:
         "witness": [list(item) for item in proof.witness],
         "units": proof.units,
         "screen": list(proof.screen),
+        "second": proof.second,
     }
 
 
@@ -153,6 +157,7 @@ def _parsed(value: str) -> CachedProof | None:
             tuple((str(joint), float(v)) for joint, v in data["witness"]),
             int(data["units"]),
             (str(data["screen"][0]), int(data["screen"][1])),
+            None if data.get("second") is None else float(data["second"]),
         )
     except (ValueError, TypeError, KeyError, IndexError):
         return None

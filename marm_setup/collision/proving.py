@@ -10,7 +10,7 @@ to whichever process is free.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -78,17 +78,19 @@ def settle_pairs(
     jobs: int = 1,
     spent: int = 0,
     starts: dict[Pair, np.ndarray] | None = None,
-    known: int = 0,
+    known: Mapping[Pair, float | None] | None = None,
     tally: ProofTally | None = None,
 ) -> dict[Pair, PairProof]:
     """Pair -> its proof after its unproved screen `priors[pair]` (see proof.Settle): the branch
     and bound goes on with what the screen's pool has left after `spent` units, then the witness
     search (first from `starts[pair]`, robot states: the pair's closest trial states), then a
-    second round of it for the pairs whose first ended close to contact. `known`: how many
-    more pairs (proofs from the cache) share the pools."""
+    second round of it for the pairs whose first ended close to contact (their proofs keep
+    where the first ended: `second`). `known`: more pairs (proofs from the cache) that share the
+    pools as they would, each with its `second` (None: it ended in the first round)."""
+    known = known or {}
     plan = SETTLE[_checked(mode)]
     screen_pool = SCREEN[mode][2]
-    count = max(1, len(priors) + known)
+    count = max(1, len(priors) + len(known))
     boxes = plan.again if screen_pool is None else min(plan.again, max(0, screen_pool - spent) // count)
     if tally is not None:
         tally.start(tally.proved, tally.in_contact, len(priors))
@@ -102,19 +104,25 @@ def settle_pairs(
         starts,
         tally,
     )
-    close = _nearest(proofs, scene.padding + plan.close, plan.nearest)
+    reached = {pair: proof.reached for pair, proof in proofs.items() if proof.outcome == UNPROVED}
+    reached.update({pair: second for pair, second in known.items() if second is not None})
+    close = _nearest(reached, scene.padding + plan.close, plan.nearest)
     if close and plan.second:
         descent = _share(plan.second, plan.second_pool, len(close))
+        todo = [pair for pair in close if pair not in known]
         if tally is not None:
-            tally.start(tally.proved, tally.in_contact, len(close))
-        proofs.update(prove_pairs(scene, close, Budget(0, descent), seed + 1, jobs, proofs, tally=tally))
+            tally.start(tally.proved, tally.in_contact, len(todo))
+        again = prove_pairs(scene, todo, Budget(0, descent), seed + 1, jobs, proofs, tally=tally)
+        proofs.update(
+            {pair: dataclasses.replace(proof, second=reached[pair]) for pair, proof in again.items()}
+        )
     return {pair: dataclasses.replace(proof, state=None, near=()) for pair, proof in proofs.items()}
 
 
-def _nearest(proofs: dict[Pair, PairProof], close: float, share: float) -> list[Pair]:
-    """The unproved pairs whose witness search ended within `close` [m] of contact, and at
-    least the nearest `share` of them all, in pair order."""
-    open_pairs = sorted((proof.reached, pair) for pair, proof in proofs.items() if proof.outcome == UNPROVED)
+def _nearest(reached: Mapping[Pair, float], close: float, share: float) -> list[Pair]:
+    """Of the unproved pairs (and where their witness search ended [m]), those that ended
+    within `close` [m] of contact, and at least the nearest `share` of them all, in pair order."""
+    open_pairs = sorted((distance, pair) for pair, distance in reached.items())
     least = int(np.ceil(share * len(open_pairs)))
     return sorted(pair for k, (reached, pair) in enumerate(open_pairs) if reached <= close or k < least)
 
