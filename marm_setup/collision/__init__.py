@@ -12,7 +12,7 @@ API = {
     "pairs": "DisabledPair DisabledReason link_pair PROVE_MODES UnprovedPair",
     "proof": "PairProof",
     "proof_cache": "CachedProof known_proofs remember_proofs",
-    "proof_keys": "pair_keys",
+    "proof_keys": "pair_keys run_context",
     "proof_report": "proof_key unproved_notes unproved_pairs",
     "scene": "CollisionScene",
     "matrix": "CollisionMatrix compute_collision_matrix Progress ROUND trial_samples",
@@ -37,6 +37,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.proof_cache import known_proofs as known_proofs
     from marm_setup.collision.proof_cache import remember_proofs as remember_proofs
     from marm_setup.collision.proof_keys import pair_keys as pair_keys
+    from marm_setup.collision.proof_keys import run_context as run_context
     from marm_setup.collision.proof_report import proof_key as proof_key
     from marm_setup.collision.proof_report import unproved_notes as unproved_notes
     from marm_setup.collision.proof_report import unproved_pairs as unproved_pairs

@@ -4,14 +4,18 @@ One SQLite file, `$XDG_CACHE_HOME/marm-setup/proofs.sqlite` (else `~/.cache/marm
 written only by the user's own runs of `init` and `collisions`: a package never supplies a
 proof, so this is the only place proofs are trusted from (validate skips the resample of a
 Never pair only when this cache holds its proof). `MARM_SETUP_CACHE=off` turns it off;
-`MARM_SETUP_CACHE=DIR` puts it in DIR. Only finished proofs are kept ("proved": no state of
-the pair's box is in contact; "collides": a state that is), with what the matrix needs to
-account for them as a run without the cache would (its units, and the screen's outcome and
-units). A cache that cannot be read or written is skipped: it only ever saves work.
+`MARM_SETUP_CACHE=DIR` puts it in DIR. Finished proofs ("proved": no state of the pair's box
+is in contact; "collides": a state that is) are kept by their pair's key, for any robot that
+has the pair; an unproved one (the outcome of the budget its whole run gave it) by its pair's
+key within that run (proof_keys.run_context), for the very same run only. Each keeps what the
+matrix needs to account for it as a run without the cache would (its units, the screen's
+outcome and units, where its first witness-search round ended). A cache that cannot be read
+or written is skipped: it only ever saves work.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import logging
 import os
@@ -35,15 +39,15 @@ OUTCOMES = ("proved", "collides")
 @dataclass(frozen=True, slots=True)
 class CachedProof:
     """A finished proof as the cache keeps it: `screen` is (outcome, units) of the screen
-    before the trials ("unproved": the proof finished after them); `second` where the first
-    round of its witness search ended, when a second round finished it."""
+    before the trials ("unproved": the proof went on after them); `second` where the first
+    round of its witness search ended, when that round left it open."""
 
     outcome: str
     fraction: float
     witness: tuple[tuple[str, float], ...]
     units: int
     screen: tuple[str, int]
-    second: float | None = None  # settled in the second round: where its first ended [m]
+    second: float | None = None  # left open by the first witness-search round: where it ended [m]
 
     @property
     def settled(self) -> bool:
@@ -62,28 +66,42 @@ def cache_dir() -> Path | None:
     return Path(base) / "marm-setup"
 
 
-def known_proofs(scene: CollisionScene, pairs: Iterable[Pair] | None = None) -> dict[Pair, CachedProof]:
-    """Pair -> its proof in the cache, for `pairs` (default: every candidate pair of `scene`)."""
+def known_proofs(
+    scene: CollisionScene, pairs: Iterable[Pair] | None = None, context: str | None = None
+) -> dict[Pair, CachedProof]:
+    """Pair -> its finished proof in the cache, for `pairs` (default: every candidate pair of
+    `scene`); with `context` (proof_keys.run_context) also the unproved ones that very run left."""
     if cache_dir() is None:
         return {}
     from marm_setup.collision.proof_keys import pair_keys
 
     keys = pair_keys(scene, scene.candidate_pairs if pairs is None else pairs)
-    found = load_proofs(keys.values())
-    return {pair: found[key] for pair, key in keys.items() if key in found}
+    runs = {pair: _in_run(key, context) for pair, key in keys.items()} if context else {}
+    found = load_proofs([*keys.values(), *runs.values()])
+    out = {pair: found[key] for pair, key in runs.items() if key in found}
+    out.update(
+        {pair: found[key] for pair, key in keys.items() if key in found and found[key].outcome in OUTCOMES}
+    )
+    return out
 
 
-def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix) -> None:
-    """Keep the finished proofs of `matrix` (computed on `scene`) in the cache."""
+def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix, context: str | None = None) -> None:
+    """Keep the finished proofs of `matrix` (computed on `scene`) in the cache, and with
+    `context` the unproved ones too (for that very run only)."""
     from marm_setup.collision.proof_keys import pair_keys
 
-    finished = {s.pair: s.proof for s in matrix.stats if s.proof is not None and s.proof.outcome in OUTCOMES}
-    if cache_dir() is None or not finished:
+    kept = {
+        s.pair: s.proof
+        for s in matrix.stats
+        if s.proof is not None
+        and (s.proof.outcome in OUTCOMES or (context and s.proof.outcome == "unproved"))
+    }
+    if cache_dir() is None or not kept:
         return
-    keys = pair_keys(scene, finished)
+    keys = pair_keys(scene, kept)
     dump_proofs(
         {
-            keys[pair]: CachedProof(
+            (keys[pair] if proof.outcome in OUTCOMES else _in_run(keys[pair], context or "")): CachedProof(
                 proof.outcome,
                 proof.proved_fraction,
                 proof.witness,
@@ -91,9 +109,14 @@ def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix) -> None:
                 matrix.screened.get(pair, ("unproved", 0)),
                 proof.second,
             )
-            for pair, proof in finished.items()
+            for pair, proof in kept.items()
         }
     )
+
+
+def _in_run(key: str, context: str) -> str:
+    """The key of an unproved proof: its pair's key within one run's context."""
+    return hashlib.sha256(f"{key} {context}".encode()).hexdigest()[:32]
 
 
 def load_proofs(keys: Iterable[str]) -> dict[str, CachedProof]:
@@ -161,4 +184,4 @@ def _parsed(value: str) -> CachedProof | None:
         )
     except (ValueError, TypeError, KeyError, IndexError):
         return None
-    return proof if proof.outcome in OUTCOMES else None
+    return proof if proof.outcome in (*OUTCOMES, "unproved") else None

@@ -13,7 +13,7 @@ same key for its unchanged pairs. KEY_VERSION changes whenever what a proof mean
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.robot import Joint, Mesh, RobotModel, load_mesh
@@ -76,3 +76,16 @@ def _joint(robot: RobotModel, joint: Joint) -> tuple:
     mimic = (joint.mimic.joint, joint.mimic.multiplier, joint.mimic.offset) if joint.mimic else None
     leader = robot.joint(joint.mimic.joint) if joint.mimic else joint
     return (joint.name, joint.type, joint.origin, joint.axis, mimic, leader.name, leader.bounds)
+
+
+def run_context(scene: CollisionScene, settings: Mapping[str, object]) -> str:
+    """32 hex digits of what a whole matrix computation depends on: every candidate pair's key,
+    the sampled joints (names, types, bounds, mimic) and the `settings` (seed, trials, ...). An
+    unproved proof is the outcome of its budget, which the whole run decides: it is kept under
+    its pair's key and this context, and reused only by the very same run."""
+    robot = scene.robot
+    keys = sorted(pair_keys(scene, scene.candidate_pairs).values())
+    joints = [_joint(robot, joint) for joint in robot.joints if joint.is_actuated]
+    values = sorted((name, repr(v.tolist() if hasattr(v, "tolist") else v)) for name, v in settings.items())
+    text = repr((KEY_VERSION, keys, joints, values))
+    return hashlib.sha256(text.encode()).hexdigest()[:32]

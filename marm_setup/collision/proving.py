@@ -84,9 +84,10 @@ def settle_pairs(
     """Pair -> its proof after its unproved screen `priors[pair]` (see proof.Settle): the branch
     and bound goes on with what the screen's pool has left after `spent` units, then the witness
     search (first from `starts[pair]`, robot states: the pair's closest trial states), then a
-    second round of it for the pairs whose first ended close to contact (their proofs keep
-    where the first ended: `second`). `known`: more pairs (proofs from the cache) that share the
-    pools as they would, each with its `second` (None: it ended in the first round)."""
+    second round of it for the pairs whose first ended close to contact (a proof the first round
+    left open keeps where it ended: `second`). `known`: more pairs (proofs from the cache) that
+    share the pools and the choice of the second round as they would, each with its `second`
+    (None: the first round finished it)."""
     known = known or {}
     plan = SETTLE[_checked(mode)]
     screen_pool = SCREEN[mode][2]
@@ -105,6 +106,9 @@ def settle_pairs(
         tally,
     )
     reached = {pair: proof.reached for pair, proof in proofs.items() if proof.outcome == UNPROVED}
+    proofs.update(
+        {pair: dataclasses.replace(proofs[pair], second=distance) for pair, distance in reached.items()}
+    )
     reached.update({pair: second for pair, second in known.items() if second is not None})
     close = _nearest(reached, scene.padding + plan.close, plan.nearest)
     if close and plan.second:

@@ -50,15 +50,35 @@ def compute_matrix(robot: RobotModel, scene: CollisionScene | None = None, **opt
     cache (collision/proof_cache.py), its new finished proofs kept there: the same matrix as
     without the cache, for less work. A `progress` with a `proofs(proved, in_contact, left)`
     method (cli/progress.py) is told of the proofs too."""
-    from marm_setup.collision import CollisionScene, compute_collision_matrix, known_proofs, remember_proofs
+    from marm_setup.collision import (
+        CollisionScene,
+        compute_collision_matrix,
+        known_proofs,
+        remember_proofs,
+        run_context,
+    )
 
     scene = CollisionScene(robot) if scene is None else scene
     if options.get("prove", "off") == "off":
         return compute_collision_matrix(robot, scene, **options)
     told = getattr(options.get("progress"), "proofs", None)  # a progress that shows the proofs
-    matrix = compute_collision_matrix(robot, scene, known=known_proofs(scene), proof_progress=told, **options)
-    remember_proofs(scene, matrix)
+    context = run_context(scene, {name: options.get(name, value) for name, value in RUN_SETTINGS.items()})
+    known = known_proofs(scene, context=context)
+    matrix = compute_collision_matrix(robot, scene, known=known, proof_progress=told, **options)
+    remember_proofs(scene, matrix, context)
     return matrix
+
+
+# compute_collision_matrix's options an unproved proof depends on, with their defaults
+RUN_SETTINGS = {
+    "trials": 10000,
+    "seed": 0,
+    "min_collision_fraction": 0.95,
+    "check_default": True,
+    "check_always": True,
+    "default_q": None,
+    "prove": "off",
+}
 
 
 def collision_settings(

@@ -39,6 +39,25 @@ def test_a_cached_run_gives_the_same_matrix_with_no_proof_redone(marm, jobs):
     )
 
 
+def test_the_same_run_reuses_its_unproved_pairs_too_and_proves_nothing(marm):
+    """Within one run's context the unproved proofs come back as well: nothing is proved again
+    and the matrix is the same; another seed's context reuses the finished proofs only."""
+    from marm_setup.collision import run_context
+
+    def context(seed):
+        return run_context(CollisionScene(marm), {"trials": 2000, "seed": seed, "prove": "on"})
+
+    cold = compute_collision_matrix(marm, CollisionScene(marm), trials=2000, prove="on")
+    assert any(s.proof is not None and s.proof.outcome == "unproved" for s in cold.stats)
+    remember_proofs(CollisionScene(marm), cold, context(0))
+    known = known_proofs(CollisionScene(marm), context=context(0))
+    assert set(known) == {s.pair for s in cold.stats if s.proof is not None}
+    warm = compute_collision_matrix(marm, CollisionScene(marm), trials=2000, prove="on", known=known)
+    assert warm == cold and warm.work.proof_units == sum(k.units for k in known.values())
+    other = known_proofs(CollisionScene(marm), context=context(1))
+    assert {p.outcome for p in other.values()} == {"proved", "collides"} and set(other) < set(known)
+
+
 @pytest.mark.skipif(not PANDA.exists(), reason="../shared/realworld absent")
 def test_the_panda_cached_with_distances_is_the_same_matrix():
     robot = load_robot(PANDA)
