@@ -13,9 +13,10 @@ as MoveIt's rule says. Those the trials never saw in collision are then settled 
 proof and a witness search: `collides` enables them, else they are Never, `proved` or
 `unproved`. "off" is MoveIt's sampling alone, byte for byte.
 
-Known proofs (`known`: finished proofs from the user's cache, collision/proof_cache.py) are
-taken as they are, before the trials: such a pair is neither screened nor sampled nor settled
-again. The other pairs get the very budgets they would get without them (a known pair still
+Known proofs (`known`: proofs from the user's cache, collision/proof_cache.py) are taken as
+they are, before the trials: such a pair is neither screened nor sampled nor settled again (a
+known screen of a pair the same run's trials saw in collision, outcome SEEN, spares its screen
+only). The other pairs get the very budgets they would get without them (a known pair still
 counts where it would have shared a pool), so for the same robot and settings the matrix is
 the same, byte for byte, with or without the cache.
 
@@ -143,13 +144,12 @@ def compute_collision_matrix(
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
     unseen_pairs = tuple(p for p in remaining if p not in seen)
-    cached = {p: known[p] for p in unseen_pairs if p in known} if known and prove != "off" else {}
+    screens = {p: known[p] for p in unseen_pairs if p in known} if known and prove != "off" else {}
+    cached = {p: c for p, c in screens.items() if c.outcome != "seen"}  # "seen": its screen only
     tally = _tally(proof_progress, cached, prove)
-    screened = _screen(scene, unseen_pairs, prove, seed, jobs, frozenset(cached), tally)
-    screened.update(
-        {p: PairProof(proof.screen[0], 0.0, units=proof.screen[1]) for p, proof in cached.items()}
-    )
-    proofs = {p: proof for p, proof in screened.items() if proof.outcome != UNPROVED and p not in cached}
+    screened = _screen(scene, unseen_pairs, prove, seed, jobs, frozenset(screens), tally)
+    screened.update({p: PairProof(c.screen[0], 0.0, units=c.screen[1]) for p, c in screens.items()})
+    proofs = {p: proof for p, proof in screened.items() if proof.outcome != UNPROVED and p not in screens}
     proofs.update(
         {p: PairProof(c.outcome, c.fraction, c.witness, c.units, second=c.second) for p, c in cached.items()}
     )
@@ -221,7 +221,7 @@ def _screen(
 ) -> dict[Pair, PairProof]:
     """The branch and bound of `pairs` before the trials (but of the `known` ones, which count
     for the budgets only); none when `prove` is "off"."""
-    if prove == "off":
+    if prove == "off" or all(p in known for p in pairs):  # nothing to prove: no budget to share
         return {}
     from marm_setup.collision.proving import screen_pairs
 

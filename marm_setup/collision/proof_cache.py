@@ -7,7 +7,8 @@ Never pair only when this cache holds its proof). `MARM_SETUP_CACHE=off` turns i
 `MARM_SETUP_CACHE=DIR` puts it in DIR. Finished proofs ("proved": no state of the pair's box
 is in contact; "collides": a state that is) are kept by their pair's key, for any robot that
 has the pair; an unproved one (the outcome of the budget its whole run gave it) by its pair's
-key within that run (proof_keys.run_context), for the very same run only. Each keeps what the
+key within that run (proof_keys.run_context), for the very same run only, as is the screen of
+a pair that run's trials then saw in collision (SEEN). Each keeps what the
 matrix needs to account for it as a run without the cache would (its units, the screen's
 outcome and units, where its first witness-search round ended). A cache that cannot be read
 or written is skipped: it only ever saves work.
@@ -27,13 +28,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from marm_setup.collision.matrix import CollisionMatrix
+    from marm_setup.collision.matrix import CollisionMatrix, PairStats
     from marm_setup.collision.scene import CollisionScene
 
 Pair = tuple[str, str]
 LOG = logging.getLogger(__name__)
 FILE = "proofs.sqlite"
 OUTCOMES = ("proved", "collides")
+SEEN = "seen"  # within one run: screened unproved, then seen in collision by the trials
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,31 +89,32 @@ def known_proofs(
 
 def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix, context: str | None = None) -> None:
     """Keep the finished proofs of `matrix` (computed on `scene`) in the cache, and with
-    `context` the unproved ones too (for that very run only)."""
+    `context` the unproved ones and the screens of the pairs its trials saw in collision (SEEN),
+    for that very run only."""
     from marm_setup.collision.proof_keys import pair_keys
 
-    kept = {
-        s.pair: s.proof
-        for s in matrix.stats
-        if s.proof is not None
-        and (s.proof.outcome in OUTCOMES or (context and s.proof.outcome == "unproved"))
-    }
+    kept: dict[Pair, CachedProof] = {}
+    for stats in matrix.stats:
+        proof = _kept(stats, matrix.screened)
+        if proof is not None and (proof.outcome in OUTCOMES or context):
+            kept[stats.pair] = proof
     if cache_dir() is None or not kept:
         return
     keys = pair_keys(scene, kept)
     dump_proofs(
         {
-            (keys[pair] if proof.outcome in OUTCOMES else _in_run(keys[pair], context or "")): CachedProof(
-                proof.outcome,
-                proof.proved_fraction,
-                proof.witness,
-                proof.units,
-                matrix.screened.get(pair, ("unproved", 0)),
-                proof.second,
-            )
+            keys[pair] if proof.outcome in OUTCOMES else _in_run(keys[pair], context or ""): proof
             for pair, proof in kept.items()
         }
     )
+
+
+def _kept(stats: PairStats, screened: Mapping[Pair, tuple[str, int]]) -> CachedProof | None:
+    """What the cache keeps of one pair: its proof, or the screen of a pair seen after it."""
+    proof, screen = stats.proof, screened.get(stats.pair, ("unproved", 0))
+    if proof is None:
+        return CachedProof(SEEN, 0.0, (), 0, screen) if stats.pair in screened else None
+    return CachedProof(proof.outcome, proof.proved_fraction, proof.witness, proof.units, screen, proof.second)
 
 
 def _in_run(key: str, context: str) -> str:
@@ -184,4 +187,4 @@ def _parsed(value: str) -> CachedProof | None:
         )
     except (ValueError, TypeError, KeyError, IndexError):
         return None
-    return proof if proof.outcome in (*OUTCOMES, "unproved") else None
+    return proof if proof.outcome in (*OUTCOMES, "unproved", SEEN) else None
