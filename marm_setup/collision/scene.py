@@ -381,7 +381,7 @@ class CollisionScene:
             _set(tf_a, pose_a, la)
             _set(tf_b, pose_b, lb)
             result.clear()
-            _same_start(request, self._coal)
+            request.cached_gjk_guess, request.cached_support_func_guess = _GUESS, _HINT  # _same_start
             self._distance_solver(ga, gb)(tf_a, tf_b, request, result)
             distance = float(result.min_distance)
             if distance < best[0]:
@@ -418,7 +418,8 @@ def _same_start(request, coal) -> None:
     default, a coal functor starts from where its previous query ended, so a distance (within
     coal's tolerance, 1e-8 m on the PR2's hulls) and what a proof decides from it would depend
     on which pairs and states the process measured before (its --jobs share, the proof cache);
-    a distance functor changes it as it runs, so distance queries set it before each run."""
+    a distance functor changes the guess and hint as it runs, so distance queries set those two
+    again before each run."""
     request.gjk_initial_guess = coal.GJKInitialGuess.CachedGuess
     request.cached_gjk_guess = _GUESS
     request.cached_support_func_guess = _HINT
