@@ -52,6 +52,7 @@ def compute_matrix(robot: RobotModel, scene: CollisionScene | None = None, **opt
     method (cli/progress.py) is told of the proofs too."""
     from marm_setup.collision import (
         CollisionScene,
+        cache_dir,
         compute_collision_matrix,
         known_proofs,
         remember_proofs,
@@ -62,6 +63,8 @@ def compute_matrix(robot: RobotModel, scene: CollisionScene | None = None, **opt
     if options.get("prove", "off") == "off":
         return compute_collision_matrix(robot, scene, **options)
     told = getattr(options.get("progress"), "proofs", None)  # a progress that shows the proofs
+    if cache_dir() is None:
+        return compute_collision_matrix(robot, scene, proof_progress=told, **options)
     context = run_context(scene, {name: options.get(name, value) for name, value in RUN_SETTINGS.items()})
     known = known_proofs(scene, context=context)
     matrix = compute_collision_matrix(robot, scene, known=known, proof_progress=told, **options)
