@@ -187,11 +187,15 @@ _JAZZY = DistroRow(
     "jazzy",
     Target.ROS2,
     params="jazzy",
+    # MoveIt's own defaults (moveit_configs_utils/default_configs/*_planning.yaml, jazzy 4d84106:
+    # ompl l.4-12, chomp l.5-13, stomp l.3-11 and pilz_industrial_motion_planner l.4-11 all end
+    # their responses with ValidateSolution, so no path reaches execution unchecked; Pilz has no
+    # time parameterization: its planner times the trajectory itself)
     adapter_defaults=(
         ("ompl", (("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES))),
-        ("chomp", (("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES[:1]))),
+        ("chomp", (("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES))),
         ("stomp", (("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES))),
-        ("pilz", (("request_adapters", JAZZY_REQUESTS[1:]),)),
+        ("pilz", (("request_adapters", JAZZY_REQUESTS), ("response_adapters", JAZZY_RESPONSES[1:]))),
     ),
     adapter_families=(_REQUEST, _RESPONSE),
     planners=("ompl", "chomp", "pilz", "stomp"),

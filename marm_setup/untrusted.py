@@ -7,7 +7,10 @@ code the way ROS does when it loads the package (xacro of the robot description 
 memory; `--untrusted` runs none of it (`no_package_code`), and whatever was skipped is recorded
 for the summary. A file named by a package (a symlink, a path in `marm_setup.yaml` or
 `.setup_assistant`) is read only when it lies inside the package or a folder the user named
-(`confined`). Findings quote package content only as `excerpt`: short and printable.
+(`confined`). Under `--untrusted` nothing else outside it is read either (`confine_reads`,
+`readable`: a robot description or mesh elsewhere), nor the user's environment (`$(env)`,
+`$(optenv)`: `environment_refused`). Findings quote package content only as `excerpt`: short and
+printable.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ EXCERPT_CHARS = 60
 
 _code_allowed: ContextVar[bool] = ContextVar("package_code_allowed", default=True)
 _skipped: ContextVar[list[str] | None] = ContextVar("package_code_skipped", default=None)
+_read_folders: ContextVar[list[Path] | None] = ContextVar("package_read_folders", default=None)
 
 
 class CodeNotRun(InputError):
@@ -43,11 +47,36 @@ def no_package_code() -> Iterator[list[str]]:
     """Within: no package code runs (`refuse_code` raises); yields the list of what was skipped."""
     skipped: list[str] = []
     allowed, recorded = _code_allowed.set(False), _skipped.set(skipped)
+    folders = _read_folders.set([])
     try:
         yield skipped
     finally:
         _code_allowed.reset(allowed)
         _skipped.reset(recorded)
+        _read_folders.reset(folders)
+
+
+def confine_reads(folders: Iterable[Path]) -> None:
+    """Under `--untrusted` (inside `no_package_code`): from now on files are read only inside
+    `folders` (the package and the folders the user named); otherwise nothing."""
+    confined_to = _read_folders.get()
+    if confined_to is not None:
+        confined_to.extend(Path(os.path.realpath(f)) for f in folders)
+
+
+def readable(path: Path) -> bool:
+    """Whether `path` may be read: always, except under `--untrusted` once `confine_reads` named
+    the package: then only inside the folders it named (symlinks followed)."""
+    confined_to = _read_folders.get()
+    return not confined_to or inside(path, confined_to)
+
+
+def environment_refused(what: str) -> str | None:
+    """Under `--untrusted`: why `what` (`$(env X)`) is not read (the user's environment may
+    hold secrets a package would echo into findings); otherwise None."""
+    if _code_allowed.get():
+        return None
+    return f"{what}: not read (--untrusted reads nothing from your environment)"
 
 
 def package_code_allowed() -> bool:

@@ -41,6 +41,47 @@ def realworld2(*parts: str) -> Path:
 
 _GOLDENS_READ: set[str] = set()
 
+# The slow tests (marker `slow`): `make check` leaves them out, `make test` and CI run them.
+SLOW = (
+    "tests/integration/test_ros2_consumer.py",  # the real ROS 2 launch frontend and rcl
+    "tests/integration/test_roslaunch.py",  # the real roslaunch
+    "tests/integration/test_launch_defects.py",
+    "tests/integration/test_wheel.py",  # builds and installs the wheel
+    "tests/integration/test_pre_commit_hook.py",  # installs marm-setup into pre-commit's venv
+    "tests/integration/test_report_browser.py",  # chromium
+    "tests/integration/test_init_every_robot.py",
+    "tests/reliability/test_kill.py",  # SIGKILLs during writes
+    "tests/reliability/test_bounds.py",  # the 1000- and 3000-link inputs
+    "tests/reliability/test_fuzz.py",
+    "tests/unit/test_collision_matrix.py::test_shortcuts_give_the_exhaustive_matrix_on_the_pr2_in_two_processes",
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        if item.nodeid.startswith(SLOW):
+            item.add_marker(pytest.mark.slow)
+
+
+def pytest_sessionfinish(session):
+    """Under pytest-xdist, a worker hands the controller what the summary below reports."""
+    from tests.ros2_harness import RUNS
+
+    output = getattr(session.config, "workeroutput", None)
+    if output is not None:
+        output["ros2_runs"] = list(RUNS)
+        output["goldens_read"] = sorted(_GOLDENS_READ)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """pytest-xdist: gather each worker's harness runs and golden files read."""
+    from tests.ros2_harness import RUNS
+
+    output = getattr(node, "workeroutput", {})
+    RUNS.extend(tuple(run) for run in output.get("ros2_runs", ()))
+    _GOLDENS_READ.update(output.get("goldens_read", ()))
+
 
 def pytest_terminal_summary(terminalreporter):
     """Report golden files no test read (never deleted) and the ROS 2 consumer harness's figures."""
@@ -99,17 +140,18 @@ def assert_golden(request):
 
 @pytest.fixture(autouse=True)
 def no_sourced_ros(monkeypatch):
-    """validate uses the real ROS launcher where ROS is sourced (validate/consumers.py): tests
-    see no ROS unless they name one (MARM_SETUP_ROS2_PYTHON, MARM_SETUP_ROSLAUNCH)."""
-    for name in ("ROS_DISTRO", "MARM_SETUP_ROS2_PYTHON", "MARM_SETUP_ROSLAUNCH"):
-        monkeypatch.delenv(name, raising=False)
+    """validate uses the real ROS launcher it finds (validate/consumers.py: a sourced ROS, or
+    roslaunch / ros2 on PATH): tests see no ROS unless they name one (MARM_SETUP_ROS2_PYTHON,
+    MARM_SETUP_ROSLAUNCH; empty turns each off)."""
+    monkeypatch.delenv("ROS_DISTRO", raising=False)
+    for name in ("MARM_SETUP_ROS2_PYTHON", "MARM_SETUP_ROSLAUNCH"):
+        monkeypatch.setenv(name, "")
 
 
 @pytest.fixture(autouse=True)
-def own_proof_cache(monkeypatch, tmp_path_factory, request):
+def own_proof_cache(monkeypatch, tmp_path_factory):
     """Each test gets its own empty proof cache (collision/proof_cache.py), never the user's."""
-    folder = tmp_path_factory.getbasetemp() / "proof-caches" / f"{abs(hash(request.node.nodeid)):x}"
-    monkeypatch.setenv("MARM_SETUP_CACHE", str(folder))
+    monkeypatch.setenv("MARM_SETUP_CACHE", str(tmp_path_factory.mktemp("proof-cache")))
     monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
 
 

@@ -22,6 +22,9 @@ layouts published vendor packages use, none of them copied):
 - `own_wrapper`: MoveIt 2; the launch names the package's own ros2_control wrapper
   (`.robot_description(file_path="config/wr.urdf.xacro")`, as moveit_resources' fanuc does) and
   `.setup_assistant` the description it wraps.
+- `footprint_parented`: MoveIt 1; the URDF's root is `base_footprint` (fixed to `base_link`), the
+  SRDF's virtual joint `world -> base_link` names a link that already has a URDF parent: MoveIt
+  skips it (its source demo.launch gave base_link two TF parents).
 
 Each returns (package folder, package paths to pass).
 """
@@ -459,6 +462,39 @@ def own_wrapper(root: Path) -> tuple[Path, list[Path]]:
     )
     files[f"{config}/launch/demo.launch.py"] = WRAPPER_LAUNCH_PY
     build_file_tree(root, files)
+    return root / config, [root]
+
+
+def footprint_parented(root: Path) -> tuple[Path, list[Path]]:
+    """`fp_moveit_config` (MoveIt 1 Setup Assistant layout): SRDF virtual joint world -> base_link
+    onto a URDF rooted at base_footprint (a mobile base's description); demo.launch publishes
+    its static TF, as the Setup Assistant writes it."""
+    config = "fp_moveit_config"
+    urdf = _arm_urdf("fp", 6, gripper=False).replace(
+        '<robot name="fp">\n',
+        '<robot name="fp">\n  <link name="base_footprint"/>\n  <joint name="base_footprint_joint" '
+        'type="fixed"><parent link="base_footprint"/><child link="base_link"/>'
+        '<origin xyz="0 0 0.1"/></joint>\n',
+    )
+    demo = (
+        '<launch>\n  <node pkg="tf2_ros" type="static_transform_publisher" name="virtual_joint_broadcaster_0"'
+        ' args="0 0 0 0 0 0 world base_link"/>\n</launch>\n'
+    )
+    build_file_tree(
+        root,
+        {
+            "fp_description/package.xml": CATKIN.format(name="fp_description"),
+            "fp_description/urdf/fp.urdf": urdf,
+            f"{config}/package.xml": CATKIN.format(name=config),
+            f"{config}/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  URDF:\n    package: fp_description\n"
+                "    relative_path: urdf/fp.urdf\n  SRDF:\n    relative_path: config/fp.srdf\n"
+            ),
+            f"{config}/config/fp.srdf": _srdf("fp", 6, gripper=False),
+            f"{config}/config/kinematics.yaml": KDL,
+            f"{config}/launch/demo.launch": demo,
+        },
+    )
     return root / config, [root]
 
 

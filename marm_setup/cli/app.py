@@ -52,6 +52,9 @@ def handle_errors(fn: Callable[P, R], command: str | None = None) -> Callable[P,
             raise typer.Exit(2) from None
         except (typer.Exit, typer.Abort, typer.TyperException):  # click-style exits and usage errors
             raise
+        except KeyboardInterrupt:
+            echo_err(interrupted_line(command))
+            raise typer.Exit(INTERRUPTED) from None
         except Exception as exc:
             if _DEBUG["on"]:
                 if getattr(exc, "detail", ""):  # e.g. the traceback a worker process sent
@@ -63,6 +66,19 @@ def handle_errors(fn: Callable[P, R], command: str | None = None) -> Callable[P,
             raise typer.Exit(2) from None
 
     return wrapper
+
+
+INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a Ctrl-C
+
+
+def interrupted_line(command: str | None) -> str:
+    """What a Ctrl-C left: every writer replaces its file (init and render: the whole package)
+    in one atomic rename (render/writer.py, render/switch.py), so nothing is half-written."""
+    what = f"marm-setup {command}" if command else "marm-setup"
+    return (
+        f"error: interrupted (Ctrl-C): {what} stopped; every file it writes was left as it was or "
+        "written whole (each write is one atomic rename), nothing half-written"
+    )
 
 
 def error_line(exc: MarmError, command: str | None) -> str:
@@ -139,7 +155,10 @@ def main() -> None:
         else:
             echo_err(usage_error_line(exc))
         sys.exit(exc.exit_code if isinstance(exc.exit_code, int) and exc.exit_code else 2)
-    except typer.Abort:
+    except typer.Abort as exc:
+        if isinstance(exc.__cause__, KeyboardInterrupt):  # a Ctrl-C outside a command's body
+            echo_err(interrupted_line(None))
+            sys.exit(INTERRUPTED)
         echo_err("error: aborted")
         sys.exit(1)
     sys.exit(code if isinstance(code, int) else 0)

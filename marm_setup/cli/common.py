@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import enum
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, TypeVar
 
 import typer
 
 if TYPE_CHECKING:
     from marm_setup.robot import RobotModel
+
+T = TypeVar("T")
 
 UrdfArg = Annotated[
     Path, typer.Argument(help="Robot description: .urdf, .xacro or .urdf.xacro.", metavar="URDF")
@@ -35,6 +37,16 @@ PackageSrdf = Annotated[
     Path | None,
     typer.Option("--srdf", help="SRDF (or .srdf.xacro) to use instead of the one the package names."),
 ]
+
+
+def either(value: T | None, old: T | None, *, name: str, old_name: str) -> T | None:
+    """An option's value given by its name or its old (hidden) one; an InputError when both are
+    given and differ."""
+    from marm_setup.errors import InputError
+
+    if value is not None and old is not None and value != old:
+        raise InputError(f"given twice ({old_name} is the old name of {name}): keep one", element=name)
+    return value if value is not None else old
 
 
 class OutputFormat(str, enum.Enum):

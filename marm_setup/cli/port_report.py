@@ -35,7 +35,7 @@ def format_port_text(result: PortResult) -> str:
     motion = [i for i in ported.items if i.moves_robot]
     moved = counts(tuple(motion))
     lines.append(
-        "how the robot moves (limits, scaling, controllers, IK, planners): "
+        "how the robot moves (limits, scaling, controllers, IK, planners, execution): "
         + ", ".join(f"{moved[s]} {s}" for s in STATUSES)
     )
     lines += [one_line(f"  {i.status} {_item(i)}") for i in motion if i.status != "carried"]

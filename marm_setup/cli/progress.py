@@ -97,7 +97,15 @@ class SamplingProgress:
                 f"{duration(took)}): pass --yes to run them, or fewer --trials",
                 element="--trials",
             )
-        self._say(f"sampling {total:,} trials: about {duration(seconds)} here (from the first {done:,})")
+        self._tell(f"sampling {total:,} trials: about {duration(seconds)} here (from the first {done:,})")
+
+    def _tell(self, line: str) -> None:
+        """Say `line` on its own line: above the bar while one is drawn (rich moves the bar down),
+        never written into it."""
+        if self._bar is None:
+            self._say(line)
+            return
+        self._bar.console.print(line, markup=False, highlight=False, soft_wrap=True)
 
     def _start_bar(self) -> None:
         """The bar appears with the first sampling step (init does other work before)."""

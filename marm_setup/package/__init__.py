@@ -24,10 +24,10 @@ API = {
     "perception_files": "Sensor ServoConfig",
     "planning_file": "GroupPlanning PlanningPipeline",
     "launch_xml": "condition LaunchXml",
-    "substitution": "Scope",
+    "substitution": "Scope SubstitutionError SubstitutionTooLarge substitute",
     "srdf_file": "SrdfFile",
-    "setup_files": "RecordedProofs",
-    "launch_ros1": "launch_nodes",
+    "setup_files": "read_package_xml RecordedProofs",
+    "launch_ros1": "LaunchParam launch_nodes",
     "launch_python": "undefined_unread_arg",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
@@ -51,6 +51,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.kinematics_file import GroupKinematics as GroupKinematics
     from marm_setup.package.kinematics_file import KinematicsFile as KinematicsFile
     from marm_setup.package.launch_python import undefined_unread_arg as undefined_unread_arg
+    from marm_setup.package.launch_ros1 import LaunchParam as LaunchParam
     from marm_setup.package.launch_ros1 import launch_nodes as launch_nodes
     from marm_setup.package.launch_xml import LaunchXml as LaunchXml
     from marm_setup.package.launch_xml import condition as condition
@@ -64,9 +65,13 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.planning_file import PlanningPipeline as PlanningPipeline
     from marm_setup.package.read import read_package as read_package
     from marm_setup.package.setup_files import RecordedProofs as RecordedProofs
+    from marm_setup.package.setup_files import read_package_xml as read_package_xml
     from marm_setup.package.srdf_file import SrdfFile as SrdfFile
     from marm_setup.package.start import package_start_values as package_start_values
     from marm_setup.package.substitution import Scope as Scope
+    from marm_setup.package.substitution import SubstitutionError as SubstitutionError
+    from marm_setup.package.substitution import SubstitutionTooLarge as SubstitutionTooLarge
+    from marm_setup.package.substitution import substitute as substitute
     from marm_setup.package.where import FrozenMapping as FrozenMapping
     from marm_setup.package.where import Param as Param
     from marm_setup.package.where import Value as Value

@@ -147,11 +147,8 @@ def _marm_description(
 ) -> Description:
     from marm_setup.robot import description_file
 
-    assert marm.urdf is not None
-    try:
-        file = description_file(marm.urdf, root, (*paths, *marm_package_paths(root, marm)))
-    except InputError:  # a package:// the package cannot find: reported as the missing URDF
-        file = root / marm.urdf
+    assert marm.urdf is not None  # a package:// no package path holds raises PackageNotFound
+    file = description_file(marm.urdf, root, (*paths, *marm_package_paths(root, marm)))
     return Description(file, "marm_setup.yaml", args or marm.xacro_args)
 
 

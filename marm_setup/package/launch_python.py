@@ -39,8 +39,18 @@ FILE_METHODS = (
 )
 
 
+PYTHON_LAUNCH_BYTES = 2 << 20  # a Python launch file (the largest real MoveIt one is ~30 kB)
+MAX_AST_NODES = 200_000  # syntax tree nodes of one launch file
+MAX_AST_DEPTH = 150  # nesting of its syntax tree (static() recurses along it)
+STATIC_ITEMS = 1 << 20  # characters of a string, items of a list, computed without running
+
+
 class Unknown(Exception):
     """A value only running the launch file would give."""
+
+
+class Unreadable(Exception):
+    """A launch file validate does not read statically (the message says why)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -90,6 +100,7 @@ class PythonLaunch:
         return next((c for c in self.commands if c.parameter == parameter), None)
 
     named_yaml: tuple[tuple[str, str], ...] = ()  # (a YAML path written as a literal, launch file)
+    unread: tuple[tuple[str, str], ...] = ()  # (launch file, why it was not read: Unreadable)
 
 
 @dataclass
@@ -102,23 +113,63 @@ class _Env:
 
 
 def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str], str | None]) -> PythonLaunch:
-    from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text  # a launch file's bound
-
     builders: list[BuilderCall] = []
     control: list[tuple[str, str]] = []
     commands: list[XacroCommand] = []
     named: list[tuple[str, str]] = []
+    unread: list[tuple[str, str]] = []
     for rel in files:
         try:
-            tree = ast.parse(read_text(root / rel, XML_BYTES, shown=rel), rel)
-        except (OSError, UnicodeDecodeError, SyntaxError, ValueError, FileTooLarge):
+            tree = parse_launch_module(root / rel, rel)
+            env = _environment(tree, find)
+            found = (
+                [_builder(call, rel, env) for call in _builder_chains(tree)],
+                [(path, rel) for path in _control_files(tree, env)],
+                xacro_commands(tree, rel, env),
+                [(path, rel) for path in _named_yaml(tree)],
+            )
+        except Unreadable as exc:
+            if str(exc):
+                unread.append((rel, str(exc)))
             continue
-        env = _environment(tree, find)
-        builders += [_builder(call, rel, env) for call in _builder_chains(tree)]
-        control += [(path, rel) for path in _control_files(tree, env)]
-        commands += xacro_commands(tree, rel, env)
-        named += [(path, rel) for path in _named_yaml(tree)]
-    return PythonLaunch(tuple(builders), tuple(control), tuple(commands), tuple(named))
+        except RecursionError:  # a bound missed: still a finding, never an internal error
+            unread.append((rel, "its expressions nest too deeply to read statically"))
+            continue
+        builders += found[0]
+        control += found[1]
+        commands += found[2]
+        named += found[3]
+    return PythonLaunch(tuple(builders), tuple(control), tuple(commands), tuple(named), tuple(unread))
+
+
+def parse_launch_module(path: Path, rel: str) -> ast.Module:
+    """The syntax tree of the launch file at `path`, within the bounds above; Unreadable says
+    why not (empty for a file that is not there or not Python: the launcher reports those)."""
+    from marm_setup.bounded_read import FileTooLarge, read_text
+
+    try:
+        tree = ast.parse(read_text(path, PYTHON_LAUNCH_BYTES, shown=rel), rel)
+    except FileTooLarge as exc:
+        raise Unreadable(f"{exc.message}: not read") from None
+    except (OSError, UnicodeDecodeError, SyntaxError, ValueError):
+        raise Unreadable("") from None
+    except (RecursionError, MemoryError):  # CPython's parser: 'during ast construction'
+        raise Unreadable("its expressions nest too deeply for the Python parser: not read") from None
+    _check_tree_size(tree)
+    return tree
+
+
+def _check_tree_size(tree: ast.AST) -> None:
+    """Unreadable past MAX_AST_NODES nodes or MAX_AST_DEPTH levels (walked without recursion)."""
+    stack, count = [(tree, 0)], 0
+    while stack:
+        node, depth = stack.pop()
+        count += 1
+        if count > MAX_AST_NODES:
+            raise Unreadable(f"more than {MAX_AST_NODES:,} syntax tree nodes: not read")
+        if depth > MAX_AST_DEPTH:
+            raise Unreadable(f"expressions nested more than {MAX_AST_DEPTH} deep: not read")
+        stack += [(child, depth + 1) for child in ast.iter_child_nodes(node)]
 
 
 def _environment(tree: ast.AST, find: Callable[[str], str | None]) -> _Env:
@@ -130,7 +181,7 @@ def _environment(tree: ast.AST, find: Callable[[str], str | None]) -> _Env:
                 name = static(node.args[0], env)
                 default = _keyword(node, "default_value")
                 if default is not None and isinstance(name, str):
-                    env.defaults[name] = str(static(default, env))
+                    env.defaults[name] = _scalar(static(default, env))
             except Unknown:
                 continue
     _bind(tree, env)  # again, now with the launch arguments' defaults
@@ -157,13 +208,16 @@ def static(node: ast.AST | None, env: _Env) -> Any:
     if isinstance(node, ast.Dict):
         return {_key(k, env): _lenient(v, env) for k, v in zip(node.keys, node.values, strict=True)}
     if isinstance(node, ast.JoinedStr):
-        return "".join(
-            str(static(v.value if isinstance(v, ast.FormattedValue) else v, env)) for v in node.values
-        )
+        parts = [
+            _scalar(static(v.value if isinstance(v, ast.FormattedValue) else v, env)) for v in node.values
+        ]
+        return _joined("", parts)
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add | ast.Div):
         left, right = static(node.left, env), static(node.right, env)
         if isinstance(node.op, ast.Div):
-            return os.path.join(str(left), str(right))
+            return _joined(os.sep, [_scalar(left), _scalar(right)])
+        if isinstance(left, str | list) and isinstance(right, str | list):
+            _check_items(len(left) + len(right))
         return left + right
     if isinstance(node, ast.Call):
         return _static_call(node, env)
@@ -174,11 +228,14 @@ def _static_call(node: ast.Call, env: _Env) -> Any:
     name = _name(node.func)
     args = [static(a, env) for a in node.args]
     if name in ("Path", "PurePath", "join", "PathJoinSubstitution") and all(isinstance(a, str) for a in args):
+        _check_items(sum(map(len, args)) + len(args))
         return os.path.join(*args) if args else ""
     if name == "PathJoinSubstitution" and len(args) == 1 and isinstance(args[0], list):
-        return os.path.join(*map(str, args[0]))
+        parts = [_scalar(a) for a in args[0]]
+        _check_items(sum(map(len, parts)) + len(parts))
+        return os.path.join(*parts)
     if name == "str" and len(args) == 1:
-        return str(args[0])
+        return _scalar(args[0])
     if name in ("get_package_share_directory", "FindPackageShare") and len(args) == 1:
         found = env.find(str(args[0]))
         if found is None:
@@ -187,6 +244,28 @@ def _static_call(node: ast.Call, env: _Env) -> Any:
     if name == "LaunchConfiguration" and len(args) == 1 and str(args[0]) in env.defaults:
         return env.defaults[str(args[0])]
     raise Unknown
+
+
+def _scalar(value: Any) -> str:
+    """`str(value)` of a string, number or bool (a list or dict: Unknown, as a list doubling
+    itself by reference would print 2**n items)."""
+    if isinstance(value, str | int | float | bool):
+        return str(value)
+    raise Unknown
+
+
+def _joined(separator: str, parts: list[str]) -> str:
+    _check_items(sum(map(len, parts)) + len(separator) * len(parts))
+    return separator.join(parts)
+
+
+def _check_items(size: int) -> None:
+    """Unreadable past STATIC_ITEMS: `a = a + a` forty times is a terabyte when run."""
+    if size > STATIC_ITEMS:
+        raise Unreadable(
+            f"a value it builds grows past {STATIC_ITEMS:,} characters or items (built from itself over "
+            "and over?): not read"
+        )
 
 
 def _lenient(node: ast.AST | None, env: _Env) -> Any:
@@ -279,14 +358,15 @@ def _mappings(call: ast.Call, env: _Env) -> tuple[tuple[tuple[str, str], ...], t
     found = _try(_keyword(call, "mappings") or (call.args[1] if len(call.args) > 1 else None), env)
     if not isinstance(found, dict):
         return None
-    known = tuple(sorted((str(k), _text(v)) for k, v in found.items() if v is not Unknown and k is not None))
-    return known, tuple(sorted(str(k) for k, v in found.items() if v is Unknown and k is not None))
+    named = {str(k): v for k, v in found.items() if isinstance(k, str | int | float | bool)}
+    known = tuple(sorted((k, _text(v)) for k, v in named.items() if isinstance(v, str | int | float | bool)))
+    return known, tuple(sorted(k for k, v in named.items() if not isinstance(v, str | int | float | bool)))
 
 
 def _text(value: Any) -> str:
     if isinstance(value, bool):
         return str(value).lower()
-    return str(value)
+    return _scalar(value)
 
 
 def _try(node: ast.AST | None, env: _Env) -> Any:
@@ -389,12 +469,11 @@ def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
     """The key of the dict the Python launch file `launch` puts the YAML file `rel` under, as
     `{"moveit_simple_controller_manager": load_yaml("pkg", "config/c.yaml")}` does (also through
     a name bound to the load); None when it hands the file over as it is (or cannot be read)."""
-    from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
     from marm_setup.package.launch_xml import package_relative
 
     try:
-        tree = ast.parse(read_text(root / launch, XML_BYTES, shown=launch), launch)
-    except (OSError, UnicodeDecodeError, SyntaxError, ValueError, FileTooLarge):
+        tree = parse_launch_module(root / launch, launch)
+    except Unreadable:
         return None
     keys = _yaml_keys(tree)
     return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)

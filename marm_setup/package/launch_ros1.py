@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from lxml import etree
 
 MAX_DEPTH = 20
+MAX_VISITS = 2000  # file walks per entry point: a file that includes itself with new args each time
 MANAGER_PARAM = "moveit_controller_manager"
 DESCRIPTION = "robot_description"
 
@@ -79,6 +80,7 @@ class Ros1Launch:
     semantic: DescriptionLoad | None = None
     params: tuple[LaunchParam, ...] = ()
     description: DescriptionLoad | None = None  # robot_description as a user's entry launch sets it
+    stopped: tuple[str, ...] = ()  # entry points whose includes went past MAX_VISITS walks
 
 
 @dataclass
@@ -93,6 +95,8 @@ class _Walk:
     description: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
     params: list[LaunchParam] = field(default_factory=list)
     included: set[str] = field(default_factory=set)
+    walked: set[tuple] = field(default_factory=set)  # (file, args, ns, conditional, manager) walked
+    visits: int = 0
 
 
 @dataclass(frozen=True)
@@ -119,6 +123,7 @@ def evaluate_ros1(
     walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
     for rel, walk in walks.items():
         _walk_file(walk, rel, {}, "", False, "", 0)
+    stopped = tuple(rel for rel, walk in walks.items() if walk.visits > MAX_VISITS)
     included = set().union(*(w.included for w in walks.values()))
     for rel in sorted(walks, key=lambda r: (r in included, r)):
         walk = walks[rel]
@@ -131,7 +136,11 @@ def evaluate_ros1(
         for p in walk.params:
             params.setdefault(p.name, p)
     return Ros1Launch(
-        tuple(loads.values()), first_taken(semantic), tuple(params.values()), first_taken(description)
+        tuple(loads.values()),
+        first_taken(semantic),
+        tuple(params.values()),
+        first_taken(description),
+        stopped,
     )
 
 
@@ -145,12 +154,29 @@ def _walk_file(
     walk: _Walk, rel: str, passed: Mapping[str, str], ns: str, conditional: bool, manager: str, depth: int
 ) -> None:
     tree = walk.trees.get(rel)
-    if tree is None or tree.root is None or depth > MAX_DEPTH:
+    if (
+        tree is None
+        or tree.root is None
+        or depth > MAX_DEPTH
+        or not _first_walk(walk, rel, passed, ns, conditional, manager)
+    ):
         return
     dirname = str((walk.root / rel).parent)
     scope = Scope(dict(passed), walk.find, dirname)
     ctx = _Context(rel, scope, ns, conditional, manager, depth)
     _walk_children(walk, tree.root, ctx, dict(passed), set())
+
+
+def _first_walk(walk: _Walk, rel: str, passed: Mapping[str, str], *how: object) -> bool:
+    """Whether `rel` is walked: not when it was walked with the same args in the same place (a
+    walk is a function of them: a file included twice by itself is walked once per args), nor
+    past MAX_VISITS walks of the entry point (`walk.visits` then says so)."""
+    key = (rel, tuple(sorted(passed.items())), *how)
+    if key in walk.walked or walk.visits > MAX_VISITS:
+        return False
+    walk.walked.add(key)
+    walk.visits += 1
+    return walk.visits <= MAX_VISITS
 
 
 def _walk_children(

@@ -29,6 +29,7 @@ if TYPE_CHECKING:
     from lxml import etree
 
 MAX_DEPTH = 20
+MAX_VISITS = 2000  # file walks per entry point: a file that includes itself with new args each time
 COMMAND = re.compile(r"\$\(command\s+(['\"])(.*?)\1\s*\)")
 
 
@@ -37,6 +38,7 @@ class Ros2XmlLaunch:
     loads: tuple[YamlLoad, ...] = ()
     semantic: DescriptionLoad | None = None
     description: DescriptionLoad | None = None
+    stopped: tuple[str, ...] = ()  # entry points whose includes went past MAX_VISITS walks
 
 
 @dataclass(frozen=True)
@@ -57,6 +59,8 @@ class _Walk:
     loads: list[YamlLoad] = field(default_factory=list)
     semantic: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
     description: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
+    walked: set[tuple] = field(default_factory=set)  # (file, args, conditional) walked
+    visits: int = 0
 
 
 def evaluate_ros2_xml(
@@ -65,16 +69,21 @@ def evaluate_ros2_xml(
     loads: dict[tuple[str, str], YamlLoad] = {}
     semantic: list[tuple[DescriptionLoad, bool]] = []
     description: list[tuple[DescriptionLoad, bool]] = []
+    stopped: list[str] = []
     for rel in sorted(trees):
         walk = _Walk(root, trees)
         _walk_file(walk, find, rel, {}, False, 0)
+        if walk.visits > MAX_VISITS:
+            stopped.append(rel)
         for load in walk.loads:
             known = loads.get((load.file, load.ns))
             if known is None or (known.conditional and not load.conditional):
                 loads[load.file, load.ns] = load
         semantic += walk.semantic
         description += walk.description
-    return Ros2XmlLaunch(tuple(loads.values()), first_taken(semantic), first_taken(description))
+    return Ros2XmlLaunch(
+        tuple(loads.values()), first_taken(semantic), first_taken(description), tuple(stopped)
+    )
 
 
 def _walk_file(
@@ -86,10 +95,26 @@ def _walk_file(
     depth: int,
 ) -> None:
     tree = walk.trees.get(rel)
-    if tree is None or tree.root is None or depth > MAX_DEPTH:
+    if (
+        tree is None
+        or tree.root is None
+        or depth > MAX_DEPTH
+        or not _first_walk(walk, rel, passed, conditional)
+    ):
         return
     scope = Scope(dict(passed), find, str((walk.root / rel).parent), ros2=True)
     _walk_children(walk, tree.root, _Context(rel, scope, "", conditional, depth), passed)
+
+
+def _first_walk(walk: _Walk, rel: str, passed: Mapping[str, str], conditional: bool) -> bool:
+    """Whether `rel` is walked: not again with the same args (a file including itself twice is
+    walked once per args), nor past MAX_VISITS walks of the entry point (`visits` says so)."""
+    key = (rel, tuple(sorted(passed.items())), conditional)
+    if key in walk.walked or walk.visits > MAX_VISITS:
+        return False
+    walk.walked.add(key)
+    walk.visits += 1
+    return walk.visits <= MAX_VISITS
 
 
 def _walk_children(walk: _Walk, elem: etree._Element, ctx: _Context, passed: Mapping[str, str]) -> _Context:

@@ -20,6 +20,7 @@ from marm_setup.package.controllers_file import ControllersFile
 from marm_setup.package.driver_file import ArbotixFile, DriverFile, InitialPositions, Ros2ControlFile
 from marm_setup.package.joint_limits_file import JointLimitsFile
 from marm_setup.package.kinematics_file import KinematicsFile
+from marm_setup.package.launch_ros1 import LaunchParam
 from marm_setup.package.launch_xml import LaunchXml
 from marm_setup.package.perception_files import SensorsFile, ServoConfig
 from marm_setup.package.planning_file import PlanningPipeline
@@ -73,6 +74,7 @@ class MoveItPackage:
     sensors: SensorsFile | None = None
     servo: tuple[ServoConfig, ...] = ()
     launch: tuple[LaunchXml, ...] = ()  # the XML launch files, parsed
+    launch_params: tuple[LaunchParam, ...] = ()  # ROS 1 `<param name value>`s, as roslaunch sets them
     python_launch_files: tuple[str, ...] = ()
     ros2_control_files: tuple[Ros2ControlFile, ...] = ()  # config/*.ros2_control.xacro
     files: tuple[str, ...] = ()  # every file of the package

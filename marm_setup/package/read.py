@@ -28,7 +28,7 @@ from marm_setup.package.description import (
 from marm_setup.package.driver_file import Ros2ControlFile, read_ros2_control
 from marm_setup.package.files import FileProblem, PackageFiles
 from marm_setup.package.launch_python import XacroCommand, read_python_launch
-from marm_setup.package.launch_ros1 import DescriptionLoad, Ros1Launch, YamlLoad, evaluate_ros1
+from marm_setup.package.launch_ros1 import DescriptionLoad, LaunchParam, Ros1Launch, YamlLoad, evaluate_ros1
 from marm_setup.package.launch_ros2 import evaluate_ros2_xml
 from marm_setup.package.launch_xml import LaunchXml, launch_file_names, parse_launch, python_launch_names
 from marm_setup.package.layout import Kinds, read_move_group_file, read_ros1_kinds, read_ros2_kinds
@@ -44,6 +44,7 @@ from marm_setup.package.setup_files import (
 from marm_setup.package.srdf_file import SrdfFile, read_srdf_file, srdf_robot_name
 from marm_setup.package.where import unwrap_parameters
 from marm_setup.ros import Target
+from marm_setup.untrusted import confine_reads, excerpt, readable
 
 
 @dataclass(frozen=True)
@@ -57,6 +58,7 @@ class _Launched:
     commands: tuple[XacroCommand, ...] = ()  # descriptions a Python launch file builds with xacro
     named_yaml: tuple[tuple[str, str], ...] = ()  # (package-relative YAML path, Python launch naming it)
     description: DescriptionLoad | None = None  # robot_description as a ROS 1 launch sets it
+    params: tuple[LaunchParam, ...] = ()  # ROS 1 `<param name value>`s
 
     def command(self, parameter: str) -> XacroCommand | None:
         return next((c for c in self.commands if c.parameter == parameter), None)
@@ -97,6 +99,7 @@ def read_package(
     problems: list[Finding] = []
     package_paths = tuple(package_paths)
     files = PackageFiles(root, problems, _user_folders(package_paths, urdf, srdf))
+    confine_reads((root, *files.allowed))  # --untrusted: nothing outside is read from now on
     found = _setup(files, shown, package_paths)
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
     launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
@@ -104,7 +107,9 @@ def read_package(
     srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    description = _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
+    description = _readable_description(
+        files, _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
+    )
     kinds = _kinds(files, found.target, launched, problems)
     unread = launched.unread_args("robot_description_semantic")
     srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems)
@@ -124,6 +129,7 @@ def read_package(
         marm_setup=found.marm,
         srdf_file=srdf_file,
         launch=tuple(trees.values()),
+        launch_params=launched.params,
         python_launch_files=files.inside_only(python_launch_names(root)),
         ros2_control_files=_ros2_control_files(files) if found.target == Target.ROS2 else (),
         files=files.listing(),
@@ -234,18 +240,34 @@ def _launched(
     find = _finder(paths)
     if target == Target.ROS1:
         ros1: Ros1Launch = evaluate_ros1(files.root, trees, find)
+        _stopped_walks(files, ros1.stopped)
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
                 files.scopes.setdefault(load.file, load.scope)
-        return _Launched(ros1.loads, ros1.semantic, description=ros1.description)
+        return _Launched(ros1.loads, ros1.semantic, description=ros1.description, params=ros1.params)
     xml = evaluate_ros2_xml(files.root, trees, find)
+    _stopped_walks(files, xml.stopped)
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
+    for launch_file, why in python.unread:
+        files.problems.append(warning("launch.python-unread", launch_file, "", why))
     builder = builder_files(python.builders, name, wanted)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
     named = tuple((rel, launch) for path, launch in python.named_yaml if (rel := _relative(path, files.root)))
     return _Launched(xml.loads, xml.semantic, builder, control, python.commands, named, xml.description)
+
+
+def _stopped_walks(files: PackageFiles, stopped: tuple[str, ...]) -> None:
+    """A warning per launch file whose includes went past the walk bound (launch_ros1.MAX_VISITS)."""
+    from marm_setup.package.launch_ros1 import MAX_VISITS
+
+    for rel in stopped:
+        msg = (
+            f"its includes take more than {MAX_VISITS} file walks (a file including itself with new args): "
+            "what lies past them was not read"
+        )
+        files.problems.append(warning("launch.include-bound", rel, "include", msg))
 
 
 def _relative(path: str, root: Path) -> str | None:
@@ -370,8 +392,8 @@ def _description(
             (rel, mappings, how),
             files.refused,
         )
-    except PackageNotFound as exc:  # .setup_assistant's package: a finding, the robot rules skipped
-        return _missing_sa_package(files, exc)
+    except PackageNotFound as exc:  # .setup_assistant's or marm_setup.yaml's package: a finding
+        return _missing_package(files, exc)
     if found_description.urdf is None and command is not None:
         why = (
             f"{command.launch} builds it with xacro from {command.file}, outside the package and the folders named"
@@ -382,14 +404,33 @@ def _description(
     return found_description
 
 
-def _missing_sa_package(files: PackageFiles, exc: PackageNotFound) -> Description:
+def _readable_description(files: PackageFiles, description: Description) -> Description:
+    """`description`, or none under `--untrusted` when its file lies outside the package and the
+    folders the user named (a `package.outside` warning: the robot rules are then skipped)."""
+    if description.urdf is None or readable(description.urdf):
+        return description
+    msg = (
+        f"the robot description {excerpt(str(description.urdf))} ({description.origin}) lies outside the "
+        "package: not read (--untrusted reads nothing outside it)"
+    )
+    hint = "pass --urdf FILE (or --package-path DIR) to name it yourself"
+    files.problems.append(
+        warning("package.outside", description.origin.split(" ")[0], "robot description", msg, hint)
+    )
+    return Description(None, f"{description.origin}: outside the package, not read (--untrusted)", ())
+
+
+def _missing_package(files: PackageFiles, exc: PackageNotFound) -> Description:
+    """The package `.setup_assistant` (URDF.package) or marm_setup.yaml (robot.urdf's
+    `package://`) names the description in, which no package path holds: the robot rules skip."""
+    file = Path(exc.path or ".setup_assistant").name
     msg = (
         f"names the robot description in package '{exc.package}', which no package path holds: the "
         "rules needing the robot are skipped"
     )
     hint = f"pass --package-path DIR (the folder holding {exc.package}), or --urdf FILE"
-    files.problems.append(warning("urdf.package-missing", ".setup_assistant", "URDF.package", msg, hint))
-    return Description(None, f".setup_assistant, from package '{exc.package}' not found", ())
+    files.problems.append(warning("urdf.package-missing", file, exc.element or "", msg, hint))
+    return Description(None, f"{file}, from package '{exc.package}' not found", ())
 
 
 def _launch_description(

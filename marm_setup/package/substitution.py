@@ -18,16 +18,21 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from marm_setup.package.eval_expr import EvalRefused, evaluate_expression
-from marm_setup.untrusted import CodeNotRun, excerpt, refuse_code
+from marm_setup.untrusted import CodeNotRun, environment_refused, excerpt, refuse_code
 
 ROS1_COMMANDS = ("arg", "find", "env", "optenv", "dirname", "anon")
 ROS2_COMMANDS = ("var", "find-pkg-share", "find-pkg-prefix", "env", "optenv", "dirname", "eval", "anon")
 EVAL_SECONDS = 5.0  # one `$(eval)` in its child process; the evaluator bounds each step besides
 EVAL_MEMORY = 2 << 30  # [bytes] as xacro's child
+SUBSTITUTED_CHARS = 1 << 20  # one substituted text: args doubling themselves reach it in 20 steps
 
 
 class SubstitutionError(ValueError):
     """A substitution that could not be resolved (unknown arg, package or variable)."""
+
+
+class SubstitutionTooLarge(SubstitutionError):
+    """A substituted text past SUBSTITUTED_CHARS."""
 
 
 @dataclass(frozen=True)
@@ -62,7 +67,7 @@ def substitute(text: str, scope: Scope) -> str:
 def _substitute(text: str, scope: Scope, environ: Mapping[str, str]) -> str:
     commands = ROS2_COMMANDS if scope.ros2 else ROS1_COMMANDS
     out: list[str] = []
-    i = 0
+    i = size = 0
     while (start := text.find("$(", i)) >= 0:
         end = _closing(text, start)
         if end < 0:
@@ -81,9 +86,21 @@ def _substitute(text: str, scope: Scope, environ: Mapping[str, str]) -> str:
             out.append(evaluate(_substitute(rest, scope, environ), scope, environ))
         else:
             out.append(_resolve(command, _substitute(rest, scope, environ).strip(), scope, environ))
+        size = _bounded(size + len(out[-2]) + len(out[-1]))
         i = end + 1
     out.append(text[i:])
+    _bounded(size + len(out[-1]))
     return "".join(out)
+
+
+def _bounded(size: int) -> int:
+    """`size`, or SubstitutionError past SUBSTITUTED_CHARS (checked before the text is joined)."""
+    if size > SUBSTITUTED_CHARS:
+        raise SubstitutionTooLarge(
+            f"the substituted text grows past {SUBSTITUTED_CHARS:,} characters (an arg built from "
+            "itself over and over?): not expanded"
+        )
+    return size
 
 
 def _closing(text: str, start: int) -> int:
@@ -117,6 +134,8 @@ def _resolve(command: str, rest: str, scope: Scope, environ: Mapping[str, str]) 
         if folder is None:
             raise SubstitutionError(f"$({command} {excerpt(rest)}): unknown package")
         return str(folder)
+    if command in ("env", "optenv") and (refused := environment_refused(f"$({command} {excerpt(rest)})")):
+        raise SubstitutionError(refused)
     if command == "env":
         if not words or words[0] not in environ:
             raise SubstitutionError(f"$(env {excerpt(rest)}): variable not set")

@@ -133,7 +133,7 @@ def _write_srdf(
         return matrix.disabled
     text, disabled = update_srdf(srdf_text, matrix.disabled, keep=request.keep, shown=str(srdf), notes=notes)
     target = output or srdf
-    write_text_atomic(target, text, shown=str(target))
+    write_text_atomic(target, text, shown=str(target), follow_symlink=output is None)  # --srdf in place
     messages.append(f"wrote {target}")
     return disabled
 

@@ -32,11 +32,17 @@ class RenderResult:
 
 
 def run_render(
-    pkg_dir: Path, urdf: Path | None = None, *, force: bool = False, dry_run: bool = False
+    pkg_dir: Path,
+    urdf: Path | None = None,
+    *,
+    force: bool = False,
+    dry_run: bool = False,
+    xacro_args: dict[str, str] | None = None,
+    package_paths: tuple[Path, ...] = (),
 ) -> RenderResult:
     """Render DIR from DIR/marm_setup.yaml (which render never rewrites) and, unless `dry_run`,
     write it; nothing is written when a hand-edited file would be overwritten without `force`
-    (`refused` says which)."""
+    (`refused` says which). `xacro_args` and `package_paths` load the robot (load_package_setup)."""
     from marm_setup.render import (
         SETUP_FILE,
         apply_writes,
@@ -49,7 +55,7 @@ def run_render(
 
     if urdf is not None and not urdf.is_file():
         raise InputError("file not found", path=str(urdf), element="--urdf")
-    model, robot = load_package_setup(pkg_dir, urdf)
+    model, robot = load_package_setup(pkg_dir, urdf, xacro_args, package_paths)
     warnings = tuple(setup_warnings(model))
     rendered = [f for f in render_package(model, robot) if f.path != SETUP_FILE]
     changes = plan_writes(rendered, pkg_dir)
@@ -59,7 +65,9 @@ def run_render(
     clashing = conflicts(changes)
     if clashing and not force:
         refused = ConflictError(
-            f"{len(clashing)} hand-edited file(s) not overwritten: {', '.join(clashing)} (use --force)",
+            f"nothing written: {len(clashing)} file(s) edited by hand since the last render would be "
+            f"overwritten: {', '.join(clashing)} (use --force to overwrite them, each edit kept beside "
+            "it as <file>.orig; or undo the edits)",
             path=str(pkg_dir),
         )
         return RenderResult(tuple(changes), stale, False, refused, warnings)
@@ -67,9 +75,16 @@ def run_render(
     return RenderResult(tuple(changes), stale, True, warnings=warnings)
 
 
-def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupModel, RobotModel]:
+def load_package_setup(
+    pkg_dir: Path,
+    urdf: Path | None = None,
+    xacro_args: dict[str, str] | None = None,
+    package_paths: tuple[Path, ...] = (),
+) -> tuple[SetupModel, RobotModel]:
     """(SetupModel, RobotModel) of a package: DIR/marm_setup.yaml and the robot it names (or
-    `urdf`, when given: the package moved away from the description it names)."""
+    `urdf`, when given: the package moved away from the description it names), expanded with
+    `xacro_args` over the setup's robot.xacro_args and found through `package_paths` after its
+    robot.package_paths."""
     from marm_setup.robot import check_xacro_args, description_file, load_robot
     from marm_setup.setup import check_setup, load_setup
 
@@ -82,14 +97,16 @@ def load_package_setup(pkg_dir: Path, urdf: Path | None = None) -> tuple[SetupMo
         )
     model = load_setup(setup_path)
     source = model.robot
-    package_paths = [p for p in (_relative_to(pkg_dir, p) for p in source.package_paths) if p.is_dir()]
+    found = [p for p in (_relative_to(pkg_dir, p) for p in source.package_paths) if p.is_dir()]
+    searched = [*found, *package_paths]
     try:
-        urdf = description_file(source.urdf, pkg_dir, package_paths) if urdf is None else urdf
-        robot = load_robot(urdf, dict(source.xacro_args), package_paths)
+        urdf = description_file(source.urdf, pkg_dir, searched) if urdf is None else urdf
+        robot = load_robot(urdf, {**dict(source.xacro_args), **(xacro_args or {})}, searched)
     except InputError as exc:  # the robot's package paths and xacro args are the setup file's
         exc.needs = SETUP_KEYS.get(exc.needs or "", exc.needs)
         raise
     check_xacro_args(dict(source.xacro_args), robot.xacro_args, path=str(setup_path), key="robot.xacro_args")
+    check_xacro_args(dict(xacro_args or {}), robot.xacro_args, path=str(urdf))
     check_setup(model, robot, str(setup_path))  # an edit may name unknown joints or leave limits
     return model, robot
 

@@ -24,7 +24,7 @@ class ReportRequest:
     xacro_args: dict[str, str] = field(default_factory=dict)
     package_paths: tuple[Path, ...] = ()
     plan: bool = True
-    trials: int | None = None  # the matrix's; None: the package's, else report.build.DEFAULT_TRIALS
+    trials: int | None = None  # the matrix's; None: report.build.DEFAULT_TRIALS (never the package's)
     jobs: int = 1
     untrusted: bool = False  # run none of the package's code (marm_setup.untrusted)
 

@@ -4,6 +4,7 @@ robot -> a SetupModel for the target, plus the port report of every setting."""
 from __future__ import annotations
 
 import dataclasses
+import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -12,8 +13,10 @@ from typing import Any
 from marm_setup.errors import InputError
 from marm_setup.package import MoveItPackage
 from marm_setup.port.controllers import port_arbotix, port_controllers, report_driver, report_shared_joints
+from marm_setup.port.description_packages import description_packages, report_description_packages
 from marm_setup.port.kinematics import port_kinematics
 from marm_setup.port.limits import port_joint_limits
+from marm_setup.port.move_group import port_move_group
 from marm_setup.port.package import (
     port_author,
     read_files,
@@ -80,6 +83,7 @@ def port_package(pkg: MoveItPackage, robot: RobotModel, request: PortRequest) ->
     model = _with_settings(pkg, model, robot, log)
     model = _with_controllers(pkg, model, robot, log)
     model = port_pipelines(pkg, model, log)
+    model = port_move_group(pkg, model, log)
     model = port_perception(pkg, model, robot, log)
     _report_runtime_files(pkg, log)
     report_leftovers(pkg, read_files(pkg), log)
@@ -95,6 +99,8 @@ def _base(pkg: MoveItPackage, robot: RobotModel, request: PortRequest, log: Port
     name = request.name or pkg.name
     report_metadata(pkg, name, request.target, log)
     source = robot_source(pkg, request.out, request.package_paths, log)
+    needed = description_packages(pkg.description_file, robot)
+    report_description_packages(needed, request.target, request.ros_distro, log, os.environ, _as_typed(pkg))
     report_marm_setup(pkg, log)
     marm = pkg.marm_setup
     if marm is not None and marm.kept_error is not None:
@@ -117,6 +123,13 @@ def _base(pkg: MoveItPackage, robot: RobotModel, request: PortRequest, log: Port
         ros_distro=request.ros_distro,
         author=port_author(pkg, log),
         driver=given.driver or ("arbotix" if pkg.arbotix is not None else None),
+    )
+
+
+def _as_typed(pkg: MoveItPackage) -> Callable[[Path], str]:
+    """A folder as the user would type it: from the source package folder as they typed that."""
+    return lambda folder: os.path.normpath(
+        pkg.user_path(os.path.relpath(folder.resolve(), pkg.root.resolve()))
     )
 
 
@@ -181,7 +194,32 @@ def _without_srdf_errors(model: SetupModel, robot: RobotModel, file: str, log: P
     ):
         for item in items:  # only what the new package holds is carried
             log.carried(f"{kind}[{item.name}]", where(file, kind), _srdf_detail(item), "srdf")
+    _report_skipped_virtual_joints(model, robot, file, log)
     return model
+
+
+def _report_skipped_virtual_joints(model: SetupModel, robot: RobotModel, file: str, log: PortLog) -> None:
+    """A virtual joint MoveIt skips (setup.root_virtual_joint) stays in the SRDF as the source had
+    it, but the new demo publishes no TF for it: the source's demo gave its child a second TF
+    parent (the Setup Assistant's demo publishes one for every virtual joint)."""
+    from marm_setup.setup import root_virtual_joint
+
+    root_vj = root_virtual_joint(model.virtual_joints, robot)
+    parents = robot.parent_joint_of
+    for vj in model.virtual_joints:
+        if vj == root_vj or vj.child_link == vj.parent_frame:
+            continue
+        parent = parents.get(vj.child_link)
+        why = (
+            f"its child '{vj.child_link}' has the URDF parent joint '{parent.name}'"
+            if parent is not None
+            else f"MoveIt builds the root joint from '{root_vj.name if root_vj else ''}'"
+        )
+        detail = (
+            f"MoveIt skips it ({why}; moveit_core robot_model.cpp): the demo launch publishes no static "
+            f"TF {vj.parent_frame} -> {vj.child_link} for it, so '{vj.child_link}' keeps one TF parent"
+        )
+        log.changed(f"virtual_joints[{vj.name}].static_tf", where(file, "virtual_joint"), detail, "robot")
 
 
 def _srdf_detail(item: Any) -> str:

@@ -21,7 +21,14 @@ from marm_setup.package import FrozenMapping, MoveItPackage, Param, PlanningPipe
 from marm_setup.port.kinematics import short
 from marm_setup.port.report import PortLog
 from marm_setup.ros import Target, distro_row
-from marm_setup.setup import PIPELINES, SetupModel, effective_parameters, parameter, value_problem
+from marm_setup.setup import (
+    PIPELINES,
+    SetupModel,
+    effective_parameters,
+    infinite_problem,
+    parameter,
+    value_problem,
+)
 
 ADAPTER_KEYS = ("request_adapters", "response_adapters")
 STRUCTURE = frozenset({"planning_plugin", "planning_plugins", "planner_configs"})
@@ -200,6 +207,9 @@ def _parameter(
     problem = value_problem(known, value, int_as_double=False)
     if problem is not None:
         log.dropped(setting, param.where, f"{problem}: MoveIt would not load it", AREA)
+        return None
+    if (infinite := infinite_problem(value)) is not None:
+        log.dropped(setting, param.where, f"{infinite}: not carried", AREA)
         return None
     return name, value
 

@@ -12,8 +12,9 @@ from dataclasses import dataclass
 
 STATUSES = ("carried", "changed", "dropped", "todo")
 # Settings that change how the robot moves: joint limits, the default scaling factors, the
-# controllers MoveIt executes with, the IK solvers and their options, the planners.
-MOTION = ("limits", "scaling", "controllers", "kinematics", "planners")
+# controllers MoveIt executes with, the IK solvers and their options, the planners, how move_group
+# executes and monitors trajectories.
+MOTION = ("limits", "scaling", "controllers", "kinematics", "planners", "execution")
 AREAS = (*MOTION, "robot", "srdf", "driver", "perception", "package", "files")
 
 

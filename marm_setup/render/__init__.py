@@ -10,7 +10,7 @@ from marm_setup.exports import lazy_api
 
 API = {
     "context": "build_context ros2_control_joints",
-    "package": "render_package robot_reference SETUP_FILE",
+    "package": "description_package render_package robot_reference SETUP_FILE",
     "writer": (
         "apply_writes check_output_dir conflicts FileChange format_change plan_writes stale_files "
         "STATUS_WORDS write_text_atomic"
@@ -28,6 +28,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.render.hardware import description_hardware as description_hardware
     from marm_setup.render.hardware import hardware_lines as hardware_lines
     from marm_setup.render.package import SETUP_FILE as SETUP_FILE
+    from marm_setup.render.package import description_package as description_package
     from marm_setup.render.package import render_package as render_package
     from marm_setup.render.package import robot_reference as robot_reference
     from marm_setup.render.writer import STATUS_WORDS as STATUS_WORDS

@@ -29,13 +29,16 @@ from marm_setup.setup import (
     PlannerDefaults,
     Ros2ControlHardware,
     SetupModel,
+    VirtualJoint,
     active_group_joints,
     forward_controllers,
     groups_by_name,
     joint_limits,
     model_start_values,
+    move_group_values,
     plan_perception,
     plan_servos,
+    root_virtual_joint,
     start_pose,
 )
 
@@ -294,12 +297,22 @@ def trajectory_demo(model: SetupModel, robot: RobotModel) -> dict | None:
 
 def rviz_view(model: SetupModel, robot: RobotModel) -> dict:
     """The RViz config's MotionPlanning group (the first with an IK solver: an arm, else the first
-    group) and fixed frame (the first virtual joint's parent, else the root link)."""
+    group) and fixed frame (the parent of the virtual joint MoveIt builds, else the root link: a
+    skipped virtual joint's parent frame is in no TF tree)."""
     solved = {k.group for k in model.kinematics}
     groups = [g.name for g in model.groups]
     group = next((g for g in groups if g in solved), groups[0] if groups else "")
-    frame = model.virtual_joints[0].parent_frame if model.virtual_joints else robot.root
+    root_vj = root_virtual_joint(model.virtual_joints, robot)
+    frame = root_vj.parent_frame if root_vj is not None else robot.root
     return {"group": group, "fixed_frame": frame}
+
+
+def static_tfs(model: SetupModel, robot: RobotModel) -> list[VirtualJoint]:
+    """The virtual joints the demo publishes an identity TF for: the Setup Assistant's demo does
+    so for each one, whatever its type; only the one MoveIt builds here (setup.root_virtual_joint),
+    so every link keeps one TF parent (none for an identity onto itself, which tf2 refuses)."""
+    vj = root_virtual_joint(model.virtual_joints, robot)
+    return [vj] if vj is not None and vj.parent_frame != vj.child_link else []
 
 
 def ros2_control_macro(robot_name: str) -> str:
@@ -371,8 +384,7 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "gripper_nodes": gripper_nodes(model, robot),
         "ros2_control_joints": own_joints,
         "trajectory_demo": trajectory_demo(model, robot) if model.target == Target.ROS1 else None,
-        # the Setup Assistant's demo publishes an identity TF for every virtual joint, whatever its type
-        "static_tfs": model.virtual_joints,
+        "static_tfs": static_tfs(model, robot),
         "rviz": rviz_view(model, robot),
         "pipelines": [(name, PIPELINES[name]) for name in model.planning_pipelines],
         **pipeline_context(model),
@@ -383,4 +395,5 @@ def build_context(model: SetupModel, robot: RobotModel, package: tuple[str, str]
         "servos": servos,
         "forward_controllers": forward_controllers(servos, model.row) if model.target == Target.ROS2 else [],
         "perception": plan_perception(model, robot),
+        "move_group": move_group_values(model.move_group_parameters),
     }

@@ -25,6 +25,7 @@ from marm_setup.render.commit_record import COMMIT, pending_files
 from marm_setup.render.safe_fs import relative_path_problem
 from marm_setup.render.switch import package_lock, switch_package
 from marm_setup.templating import RenderedFile
+from marm_setup.untrusted import excerpt
 
 MANIFEST = ".marm_setup/manifest.json"
 Status = Literal["new", "identical", "update", "conflict"]
@@ -259,13 +260,21 @@ def format_change(change: FileChange, *, forced: bool = False) -> str:
     return line
 
 
-def write_text_atomic(path: Path, text: str, *, shown: str) -> None:
+def write_text_atomic(path: Path, text: str, *, shown: str, follow_symlink: bool = False) -> None:
     """Write `text` (UTF-8, newlines as given) to `path` through a temporary file.
 
-    A symlink is followed (its target is replaced, the link stays); the file keeps its mode, and
-    a new file gets the mode a plain open() would give (0666 less the umask).
+    A symlink at `path` is refused (InputError): marm-setup writes through no link it did not
+    create (a package may ship one leading anywhere); `follow_symlink` (an SRDF the user named to
+    update in place) replaces its target and keeps the link. The file keeps its mode, and a new
+    file gets the mode a plain open() would give (0666 less the umask).
     """
-    path, tmp = Path(os.path.realpath(path)), None
+    if not follow_symlink and os.path.islink(path):
+        raise InputError(
+            f"is a symlink (to {excerpt(os.readlink(path))}): not written through (marm-setup writes through no "
+            "link it did not create); remove it or choose another file",
+            path=shown,
+        )
+    path, tmp = Path(os.path.realpath(path) if follow_symlink else os.path.abspath(path)), None
     try:
         if path.is_dir():
             raise IsADirectoryError(21, "is a folder")
@@ -275,7 +284,7 @@ def write_text_atomic(path: Path, text: str, *, shown: str) -> None:
         with os.fdopen(fd, "wb") as out:
             os.fchmod(out.fileno(), mode)
             out.write(text.encode("utf-8"))
-        os.replace(tmp, path)
+        os.replace(tmp, path)  # replaces a link put there meanwhile, never its target
     except OSError as exc:
         if tmp is not None:
             Path(tmp).unlink(missing_ok=True)

@@ -2,12 +2,12 @@
 
 validate (through its public API) gives the findings, the package's SRDF and robot and the
 trajectories its runtime checks planned; the collision scene gives the contacts of each state;
-the collision matrix is recomputed (seed 0, `trials` or DEFAULT_TRIALS: never the package's
-own settings) for each pair's hits and closest distance, the reasons staying the SRDF's. Each
-pair's proof status is the report's own: the matrix is proved as `collisions` proves it
-(--prove on, reusing the user's proof cache), never taken from what the package's
-marm_setup.yaml says of itself; a pair the SRDF disables that a proof finds in contact is drawn
-at its witness state, as a stale pair's finding is.
+the collision matrix is recomputed (seed 0, `--trials` or DEFAULT_TRIALS: never the package's
+own `collision` settings, a claim that may ask for 1e12 trials) for each pair's hits and
+closest distance, the reasons staying the SRDF's. Each pair's proof status is the report's own:
+the matrix is proved as `collisions` proves it (--prove on, reusing the user's proof cache),
+never taken from what the package's marm_setup.yaml says of itself; a pair the SRDF disables
+that a proof finds in contact is drawn at its witness state, as a stale pair's finding is.
 """
 
 from __future__ import annotations
@@ -142,7 +142,7 @@ def _matrix_section(
 
     if not scene.candidate_pairs:
         return None
-    count = trials or DEFAULT_TRIALS
+    count = trials or DEFAULT_TRIALS  # the command's own, whatever the package says
     matrix = compute_collision_matrix(
         robot, scene, trials=count, jobs=jobs, progress=progress, prove="on", known=known_proofs(scene)
     )

@@ -18,6 +18,7 @@ from lxml import etree
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError, MeshNotFound, PackageNotFound
+from marm_setup.untrusted import excerpt, readable
 
 BY_MANIFEST, BY_FOLDER = "package.xml", "folder name"
 SEARCH_DEPTH = 3  # folder levels below a search root, as deep as packages are looked for
@@ -220,6 +221,13 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageMap, *, path: str, el
     if not candidate.is_file():
         raise MeshNotFound(
             f"mesh '{uri}' not found (looked at {candidate})", uri=uri, path=path, element=element
+        )
+    if not readable(candidate):
+        raise MeshNotFound(
+            f"mesh '{excerpt(uri)}' lies outside the package: not read (--untrusted reads nothing outside it)",
+            uri=uri,
+            path=path,
+            element=element,
         )
     return candidate.resolve()
 

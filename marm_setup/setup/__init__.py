@@ -37,15 +37,18 @@ API = {
         "setup_to_srdf Srdf srdf_to_setup"
     ),
     "groups": "active_group_joints group_joints group_links groups_by_name is_chain planning_joints",
-    "srdf_load": "as_moveit_loads",
+    "srdf_load": "as_moveit_loads root_virtual_joint",
     "poses": "choose_start_poses infer_poses",
     "limits": "joint_limits timing_problem",
     "sensors": "check_sensors plan_perception",
     "servo": "check_servos default_servos forward_controllers plan_servos",
     "spec_overlay": "patch_items spec_items without_replaced",
+    "move_group_params": (
+        "BY_ROS1_NAME MOVE_GROUP_PARAMS MoveGroupParam move_group_problem move_group_values written_values"
+    ),
     "pipeline_params": (
         "ADAPTER_FAMILIES effective_parameters flatten known_parameters other_distros_reading parameter "
-        "STRUCTURE_KEYS unknown_name_hint value_problem"
+        "STRUCTURE_KEYS infinite_problem unknown_name_hint value_problem"
     ),
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
@@ -120,10 +123,17 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.model import ServoScale as ServoScale
     from marm_setup.setup.model import SetupModel as SetupModel
     from marm_setup.setup.model import VirtualJoint as VirtualJoint
+    from marm_setup.setup.move_group_params import BY_ROS1_NAME as BY_ROS1_NAME
+    from marm_setup.setup.move_group_params import MOVE_GROUP_PARAMS as MOVE_GROUP_PARAMS
+    from marm_setup.setup.move_group_params import MoveGroupParam as MoveGroupParam
+    from marm_setup.setup.move_group_params import move_group_problem as move_group_problem
+    from marm_setup.setup.move_group_params import move_group_values as move_group_values
+    from marm_setup.setup.move_group_params import written_values as written_values
     from marm_setup.setup.pipeline_params import ADAPTER_FAMILIES as ADAPTER_FAMILIES
     from marm_setup.setup.pipeline_params import STRUCTURE_KEYS as STRUCTURE_KEYS
     from marm_setup.setup.pipeline_params import effective_parameters as effective_parameters
     from marm_setup.setup.pipeline_params import flatten as flatten
+    from marm_setup.setup.pipeline_params import infinite_problem as infinite_problem
     from marm_setup.setup.pipeline_params import known_parameters as known_parameters
     from marm_setup.setup.pipeline_params import other_distros_reading as other_distros_reading
     from marm_setup.setup.pipeline_params import parameter as parameter
@@ -154,6 +164,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.setup.srdf import setup_to_srdf as setup_to_srdf
     from marm_setup.setup.srdf import srdf_to_setup as srdf_to_setup
     from marm_setup.setup.srdf_load import as_moveit_loads as as_moveit_loads
+    from marm_setup.setup.srdf_load import root_virtual_joint as root_virtual_joint
     from marm_setup.setup.start_state import demo_start_values as demo_start_values
     from marm_setup.setup.start_state import model_start_values as model_start_values
     from marm_setup.setup.start_state import pose_configuration as pose_configuration

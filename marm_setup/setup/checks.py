@@ -135,6 +135,12 @@ def _check_pipelines(c: _Checker) -> None:
             )
             raise c.fail(f"'{name}' is not in MoveIt's {row.name} binaries (only {shipped})", where)
     _check_pipeline_parameters(c)
+    for name, value in c.model.move_group_parameters:
+        from marm_setup.setup.move_group_params import move_group_problem
+
+        problem = move_group_problem(name, value)
+        if problem:
+            raise c.fail(problem, f"move_group_parameters.{name}")
 
 
 def _check_pipeline_parameters(c: _Checker) -> None:

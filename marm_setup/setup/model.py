@@ -18,6 +18,8 @@ from marm_setup.setup.domain import (
     MOCK_HARDWARE,
 )
 
+# a value of a move_group parameter (setup.move_group_params checks its name and type)
+MoveGroupValue = bool | int | float | str
 # a value of a planning pipeline parameter (setup.pipeline_params checks it against its type)
 PipelineParameterValue = float | int | bool | str | tuple[str, ...]
 # The targets and their distros (marm_setup.ros). Humble and Jazzy differ in MoveIt's planning
@@ -313,6 +315,9 @@ class SetupModel:
     # per pipeline (a planning_pipelines name): parameters of its namespace over marm-setup's
     # defaults (setup.pipeline_params: the names each distro's MoveIt reads)
     pipeline_parameters: tuple[tuple[str, tuple[tuple[str, PipelineParameterValue], ...]], ...] = ()
+    # move_group's own parameters over marm-setup's defaults, by MoveIt 2 name
+    # (setup.move_group_params: trajectory_execution.*, publish_*, moveit_manage_controllers, ...)
+    move_group_parameters: tuple[tuple[str, MoveGroupValue], ...] = ()
     controllers: tuple[Controller, ...] = ()
     arbotix_joints: tuple[ArbotixJoint, ...] = ()
     ros2_control: Ros2ControlHardware | None = None  # None: mock hardware, position command

@@ -39,6 +39,7 @@ parameter with its type and refuses an override of another type or out of its bo
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
@@ -189,10 +190,18 @@ def parameter_problem(pipeline: str, distro: str, name: str, value: object) -> s
         return (
             f"unknown parameter '{name}' of pipeline {pipeline} ({unknown_name_hint(pipeline, distro, name)})"
         )
-    problem = value_problem(known, value)
+    problem = value_problem(known, value) or infinite_problem(value)
     if problem is None and known.name.endswith("_adapters") and isinstance(value, tuple | list):
         problem = next(filter(None, (adapter_problem(str(a), distro) for a in value)), None)
     return problem
+
+
+def infinite_problem(value: object) -> str | None:
+    """Why a setup cannot hold `value`: a NaN or infinite number (marm-setup writes finite numbers
+    only; templating.fmt_float), else None."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return f"must be a finite number, got {value!r} (marm-setup writes finite numbers only)"
+    return None
 
 
 def value_problem(p: PipelineParameter, value: object, *, int_as_double: bool = True) -> str | None:

@@ -28,8 +28,9 @@ import dataclasses
 from collections.abc import Mapping
 
 from marm_setup.robot import RobotModel
+from marm_setup.setup.domain import VIRTUAL_JOINT_TYPES
 from marm_setup.setup.groups import group_joints, groups_by_name
-from marm_setup.setup.model import EndEffector, Group, GroupState
+from marm_setup.setup.model import EndEffector, Group, GroupState, VirtualJoint
 from marm_setup.setup.srdf import Srdf
 
 START_BOUNDS_TOLERANCE = 0.05  # [rad or m] MoveIt's default start_state_max_bounds_error
@@ -72,6 +73,23 @@ def as_moveit_loads(srdf: Srdf, robot: RobotModel) -> tuple[Srdf, tuple[str, ...
         disabled=disabled,
     )
     return loaded, tuple(notes)
+
+
+def root_virtual_joint(virtual_joints: tuple[VirtualJoint, ...], robot: RobotModel) -> VirtualJoint | None:
+    """The virtual joint MoveIt builds as the robot's root joint: the first whose child is the
+    URDF's root link, with a parent frame and a known type (moveit/moveit2 moveit_core
+    robot_model.cpp `buildJointModel` l.985-1035, 8fcb5d2: a virtual joint whose child is not the
+    root is skipped, "does not match the URDF frame", as its child already has a URDF parent
+    joint; a fixed one onto a geometry-less URDF root `world`, l.989-996, only names that root's
+    joint). The others move nothing in MoveIt; a TF for one would give a link a second parent."""
+    return next(
+        (
+            vj
+            for vj in virtual_joints
+            if vj.child_link == robot.root and vj.parent_frame and vj.type in VIRTUAL_JOINT_TYPES
+        ),
+        None,
+    )
 
 
 def _loaded_groups(

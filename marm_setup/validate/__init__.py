@@ -16,10 +16,16 @@ API = {
     "runtime": "check_runtime PlannedPair",
     "registry": "all_rules allows rule rule_families rule_family severity_of",
     "registry.catalogue": "rules_json rules_markdown rules_text",
+    "sarif": "format_sarif",
+    "junit": "format_junit",
+    "locate": "finding_uri location_base",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.validate.junit import format_junit as format_junit
+    from marm_setup.validate.locate import finding_uri as finding_uri
+    from marm_setup.validate.locate import location_base as location_base
     from marm_setup.validate.registry import all_rules as all_rules
     from marm_setup.validate.registry import allows as allows
     from marm_setup.validate.registry import rule as rule
@@ -38,3 +44,4 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.validate.runner import validate_read as validate_read
     from marm_setup.validate.runtime import PlannedPair as PlannedPair
     from marm_setup.validate.runtime import check_runtime as check_runtime
+    from marm_setup.validate.sarif import format_sarif as format_sarif

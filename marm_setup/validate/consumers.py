@@ -7,9 +7,12 @@ nothing, in a child process bounded in time (DESIGN §7).
   naming the launch file (`ros2.launch`, `ros2.params`, `demo.real-hardware`).
 - ROS 1 (a `ros1` package): `roslaunch --dump-params` on each top-level `launch/*.launch`
   (`ros1.launch`); a file with an arg that has no value is meant to be included and is left out.
-Which interpreter: $MARM_SETUP_ROS2_PYTHON (ROS 2) and $MARM_SETUP_ROSLAUNCH (ROS 1) when set
-(empty: never), else `python3` / `roslaunch` on PATH when a ROS is sourced ($ROS_DISTRO set).
-Without one, only the static rules run, and the summary says so.
+Which launcher: $MARM_SETUP_ROS2_PYTHON (ROS 2) and $MARM_SETUP_ROSLAUNCH (ROS 1) when set
+(empty: never); else for ROS 2 the interpreter of the `ros2` command on PATH (its `#!` line: the
+Python ROS 2 was installed for, whatever venv comes first on PATH), then `python3` on PATH; for
+ROS 1 `roslaunch` on PATH (a sourced ROS, or Debian's python3-roslaunch, which needs no
+sourcing). Each is used only when it runs (a probe). The summary says what ran on how many files,
+and "static rules only (why)" whenever no launch or parameter file was evaluated.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -52,12 +56,29 @@ class ConsumerRun:
     ran: str
 
 
-def _command(env_name: str, fallback: str) -> str | None:
-    """The executable named by `env_name` (empty: none), else `fallback` on PATH when a ROS is sourced."""
-    given = os.environ.get(env_name)
-    if given is not None:
-        return given or None
-    return shutil.which(fallback) if os.environ.get("ROS_DISTRO") else None
+def _shebang_python(script: str) -> str | None:
+    """The interpreter a Python script's `#!` line names (`#!/usr/bin/env python3` looked up on PATH)."""
+    try:
+        with open(script, "rb") as f:
+            first = f.readline(512).decode("utf-8", "replace")
+    except OSError:
+        return None
+    words = first[2:].split() if first.startswith("#!") else []
+    if words and os.path.basename(words[0]) == "env":
+        words = words[1:]
+    return shutil.which(words[0]) if words and "python" in os.path.basename(words[0]) else None
+
+
+def _probe(argv: list[str]) -> tuple[bool, str]:
+    """(whether `argv` exits 0, its stdout or why not)."""
+    try:
+        done = subprocess.run(argv, capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        return False, type(exc).__name__
+    if done.returncode == 0:
+        return True, done.stdout.strip()
+    lines = done.stderr.strip().splitlines()
+    return False, lines[-1][:200] if lines else f"exit {done.returncode}"
 
 
 def _environment(home: str) -> dict[str, str]:
@@ -110,27 +131,61 @@ def _run(argv: list[str], env: dict[str, str], seconds: float) -> subprocess.Com
 
 def ros2_python() -> tuple[str, str] | None:
     """(interpreter, launch version) of a ROS 2 installation, or None."""
-    python = _command(ROS2_PYTHON_ENV, "python3")
-    if python is None:
-        return None
-    try:
-        probe = subprocess.run([python, "-c", PROBE], capture_output=True, text=True, timeout=60)
-    except (OSError, subprocess.TimeoutExpired):
-        return None
-    return (python, probe.stdout.strip()) if probe.returncode == 0 else None
+    return find_ros2_python()[0]
+
+
+def find_ros2_python() -> tuple[tuple[str, str] | None, str]:
+    """((interpreter, launch version), "") of the first Python that imports launch_ros, launch_xml
+    and rclpy (module doc), else (None, why none ran)."""
+    given = os.environ.get(ROS2_PYTHON_ENV)
+    if given is not None:
+        candidates = [given] if given else []
+        if not given:
+            return None, f"{ROS2_PYTHON_ENV} is empty"
+    else:
+        ros2 = shutil.which("ros2")
+        found = [_shebang_python(ros2) if ros2 else None, shutil.which("python3")]
+        candidates = list(dict.fromkeys(c for c in found if c))
+    tried = []
+    for python in candidates:
+        ok, said = _probe([python, "-c", PROBE])
+        if ok:
+            return (python, said), ""
+        tried.append(f"{python}: {said}")
+    if not tried:
+        return None, "no ros2 or python3 on PATH: source ROS 2"
+    why = "no Python with ROS 2's launch_ros and rclpy" + (
+        f" (set {ROS2_PYTHON_ENV}, or source ROS 2)" if given is None else ""
+    )
+    return None, f"{why}; tried {'; '.join(tried)}"
+
+
+def find_roslaunch() -> tuple[str | None, str]:
+    """(roslaunch, "") when $MARM_SETUP_ROSLAUNCH or `roslaunch` on PATH runs, else (None, why not)."""
+    given = os.environ.get(ROSLAUNCH_ENV)
+    if given == "":
+        return None, f"{ROSLAUNCH_ENV} is empty"
+    command = given or shutil.which("roslaunch")
+    if command is None:
+        return (
+            None,
+            f"no roslaunch on PATH: install ROS 1 (or Debian's python3-roslaunch), or set {ROSLAUNCH_ENV}",
+        )
+    ok, said = _probe([command, "-h"])
+    return (command, "") if ok else (None, f"{command} does not run ({said})")
 
 
 def run_consumer(pkg: MoveItPackage, robot: RobotModel | None, distro: str | None) -> ConsumerRun:
     """The real consumer for the package's target, when the user has it."""
     seconds = float(os.environ.get(TIMEOUT_ENV, TIMEOUT))
     if pkg.target == Target.ROS2:
-        found = ros2_python()
+        found, why = find_ros2_python()
         if found is None:
-            return ConsumerRun((), "static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)")
+            return ConsumerRun((), f"static rules only ({why})")
         return run_ros2(pkg, robot, distro, found, seconds)
-    roslaunch = _command(ROSLAUNCH_ENV, "roslaunch")
+    roslaunch, why = find_roslaunch()
     if roslaunch is None:
-        return ConsumerRun((), "static rules only (no roslaunch: source ROS 1)")
+        return ConsumerRun((), f"static rules only ({why})")
     return run_ros1(pkg, roslaunch, seconds)
 
 
@@ -159,16 +214,37 @@ def run_ros2(
         argv += [f"--package={n}={p}" for n, p in sorted(_packages(pkg, robot).items())]
         argv += [f"--launch={rel}" for rel in launch_files]
         done = _run(argv, _environment(home), seconds)
-        ran = f"ROS 2 launch {version} and rcl ({python}), and the static rules"
+        launcher = f"ROS 2 launch {version} and rcl ({python})"
         if done is None:
-            return ConsumerRun((_stopped(pkg, seconds),), ran)
+            return ConsumerRun((_stopped(pkg, seconds),), f"static rules only ({launcher} did not finish)")
         if done.returncode != 0 or not os.path.isfile(out):
             tail = " ".join(done.stderr.strip().splitlines()[-1:]) or f"exit {done.returncode}"
             msg = f"the ROS 2 check could not run ({tail}): the static rules ran"
+            ran = f"static rules only ({launcher} could not run the check)"
             return ConsumerRun((error("ros2.consumer", "launch", "", msg[:MESSAGE_CHARS]),), ran)
         with open(out, encoding="utf-8") as f:
             report = json.load(f)
-    return ConsumerRun(tuple(ros2_findings(report, distro)), ran)
+    return ConsumerRun(tuple(ros2_findings(report, distro)), ros2_ran(report, launcher))
+
+
+def ros2_ran(report: dict, launcher: str) -> str:
+    """The summary's words for what the ROS 2 check evaluated: launch files the launcher ran (not
+    those importing a module this ROS lacks) and parameter files rcl parsed; "static rules only"
+    when that is none."""
+    launch = report.get("launch", {})
+    unrun = sum(1 for e in launch.values() if any(MISSING_MODULE in m for m in e.get("errors", [])))
+    evaluated, params = len(launch) - unrun, len(report.get("params", {}))
+    if not evaluated and not params:
+        why = f"{unrun} import modules this ROS lacks" if unrun else "the package has none"
+        return f"static rules only ({launcher} evaluated no launch or parameter file: {why})"
+    said = [f"{_count(evaluated, 'launch file')} evaluated", f"{_count(params, 'parameter file')} parsed"]
+    if unrun:
+        said.append(f"{_count(unrun, 'launch file')} not runnable here")
+    return f"{launcher}: {', '.join(said)}; and the static rules"
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
 
 
 def ros2_launch_files(pkg: MoveItPackage) -> list[str]:
@@ -221,9 +297,10 @@ def ros2_findings(report: dict, distro: str | None) -> list[Finding]:
 
 
 def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
-    """`roslaunch --dump-params` on each top-level launch file that needs no arg."""
-    ran = f"roslaunch --dump-params ({roslaunch}), and the static rules"
+    """`roslaunch --dump-params` on each top-level launch file that needs no arg (as many at once
+    as there are CPUs: each is a Python start-up and xacro, about 1.5 s)."""
     out = []
+    evaluated = 0
     with tempfile.TemporaryDirectory(prefix="marm_ros1_") as home:
         xacro = _xacro_fallback(home)
         roots = [
@@ -237,17 +314,26 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
             "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r),
             "PATH": os.pathsep.join(p for p in (os.environ.get("PATH", ""), xacro) if p),
         }
-        for launch in pkg.launch:
-            rel = launch.file
-            if not rel.endswith(".launch") or launch.root is None or _needs_args(launch.root):
-                continue
-            done = _run([roslaunch, "--dump-params", str(pkg.path(rel))], env, seconds)
+        files = [
+            launch.file
+            for launch in pkg.launch
+            if launch.file.endswith(".launch") and launch.root is not None and not _needs_args(launch.root)
+        ]
+        argvs = [[roslaunch, "--dump-params", str(pkg.path(rel))] for rel in files]
+        with ThreadPoolExecutor(max_workers=max(1, min(len(files), os.cpu_count() or 1))) as pool:
+            runs = list(pool.map(lambda argv: _run(argv, env, seconds), argvs))  # each a process
+        for rel, done in zip(files, runs, strict=True):
+            evaluated += done is not None
             if done is None:
                 out.append(_stopped(pkg, seconds))
                 continue
             problem = _dump_problem(done)
             if problem:
                 out.append(error("ros1.launch", rel, "launch", f"roslaunch fails: {problem}"[:MESSAGE_CHARS]))
+    if not evaluated:
+        why = "did not finish" if out else "no top-level launch file runs without args"
+        return ConsumerRun(tuple(out), f"static rules only (roslaunch {roslaunch}: {why})")
+    ran = f"roslaunch --dump-params ({roslaunch}) on {_count(evaluated, 'top-level launch file')}, and the static rules"
     return ConsumerRun(tuple(out), ran)
 
 

@@ -59,6 +59,13 @@
     }
     return meshes[shape.mesh];
   }
+  // MeshCat's scene tree keeps children in a plain object: a link named `constructor`,
+  // `__proto__` or `toString` would find Object's own property there. Its paths are keys we make.
+  const nodeKeys = new Map(); // link name -> its scene tree key
+  function node(name) {
+    if (!nodeKeys.has(name)) nodeKeys.set(name, "link " + nodeKeys.size);
+    return nodeKeys.get(name);
+  }
   function buildRobot() {
     const meshes = data.geometry.meshes.map(meshGeometry);
     for (const link of data.geometry.links) {
@@ -71,12 +78,12 @@
         mesh.matrix.copy(matrix34(shape.origin));
         body.add(mesh);
       }
-      viewer.set_object(["robot", link.name], body);
+      viewer.set_object(["robot", node(link.name)], body);
     }
   }
   function placeLinks(frames, offset, which) { // `which`: indices into data.links (all when absent)
     (which || data.links.map((_, i) => i)).forEach((link, i) => {
-      viewer.set_transform(["robot", data.links[link]], matrix34(frames, offset + 12 * i).elements);
+      viewer.set_transform(["robot", node(data.links[link])], matrix34(frames, offset + 12 * i).elements);
     });
     viewer.set_dirty();
   }
@@ -111,7 +118,7 @@
   const markers = [];
   function drawFrames(size) {
     const add = (link, name, marker) => {
-      viewer.set_object(["robot", link, name], marker);
+      viewer.set_object(["robot", node(link), "frame " + markers.length], marker);
       markers.push(marker);
     };
     for (const vj of data.virtual_joints) {

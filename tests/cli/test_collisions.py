@@ -155,7 +155,7 @@ def test_padding(tmp_path):
         (["--seed", "-1"], "error: --seed: must be >= 0, got -1"),
         (["--padding", "-0.1"], "error: --padding: must be >= 0"),
         (["--padding", "nan"], "error: --padding: must be >= 0 and finite, got nan"),
-        (["--keep"], "error: --keep: --keep needs --srdf"),
+        (["--keep"], "error: --keep-disabled: needs --srdf"),  # the old name of --keep-disabled
         (["--report", "m.png"], "error: m.png: unknown report type '.png'; expected .svg or .html"),
         (["--srdf", "nothere.srdf"], "error: nothere.srdf: file not found"),
         (["--srdf", "."], "error: .: is a folder; expected an SRDF file"),

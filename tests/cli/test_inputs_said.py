@@ -174,7 +174,8 @@ def test_init_from_package_without_a_description_names_its_own_way_to_give_one(t
 
 
 def test_render_names_marm_setup_yaml_for_what_it_has_no_option_for(tmp_path):
-    """render takes no --package-path and no --xacro-arg: the robot's are marm_setup.yaml's."""
+    """The robot's package paths and xacro args are marm_setup.yaml's (render's --package-path and
+    --xacro-arg only add to them for one run): the remedy names the setup file."""
     out = tmp_path / "pkg"
     assert runner.invoke(app, ["init", str(MARM_URDF), "--out", str(out), *TRIALS]).exit_code == 0
     setup = out / "marm_setup.yaml"

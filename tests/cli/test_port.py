@@ -144,7 +144,7 @@ def test_not_a_package_is_one_error_line_and_writes_nothing(tmp_path):
 def test_init_without_urdf_or_package_is_one_error_line(tmp_path):
     result = runner.invoke(app, ["init", "--out", str(tmp_path / "o")])
     assert result.exit_code == 2
-    assert "give the robot's URDF, or --from-package PKG" in result.stderr
+    assert "missing: the robot's URDF (marm-setup init URDF -o DIR), or --from-package PKG" in result.stderr
 
 
 def _items(result) -> dict[str, list[dict]]:

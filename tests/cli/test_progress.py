@@ -80,3 +80,26 @@ def test_report_shows_each_stage_on_a_terminal(package, tmp_path):
         [*SCRIPT, "report", str(package), "-o", str(tmp_path / "p.html")], capture_output=True, text=True
     )
     assert out.returncode == 0 and out.stderr == "" and out.stdout.startswith("wrote ")
+
+
+def test_the_estimate_is_a_line_of_its_own_above_a_drawn_bar():
+    """A long sampling's estimate goes through the bar's console (rich prints it above the bar)
+    instead of being written into the bar's line."""
+    import io
+
+    from rich.console import Console
+    from rich.progress import Progress
+
+    from marm_setup.cli.progress import SamplingProgress
+
+    said: list[str] = []
+    progress = SamplingProgress(say=said.append)
+    progress._tell("without a bar")
+    terminal = io.StringIO()
+    bar = Progress(console=Console(file=terminal, force_terminal=True, width=60), transient=True)
+    bar.start()
+    progress._bar = bar
+    progress._tell("sampling 1,000,000 trials: about 12 min here (from the first 2,000)")
+    bar.stop()
+    assert said == ["without a bar"]
+    assert "sampling 1,000,000 trials: about 12 min here (from the first 2,000)\n" in terminal.getvalue()

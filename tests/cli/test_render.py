@@ -171,3 +171,35 @@ def test_render_of_an_edited_pipeline_setup_warns_and_rewrites_moveit_yaml(tmp_p
     assert result.stderr.startswith(
         f"error: {setup}: pipeline_parameters.stomp.timesteps: unknown parameter 'timesteps'"
     )
+
+
+def test_a_refused_render_says_of_each_file_that_it_was_not_written_and_why(tmp_path):
+    pkg = make_package(tmp_path)
+    edited = pkg / "config" / "kinematics.yaml"
+    edited.write_text(edited.read_text() + "# my tuning\n")
+    setup = pkg / "marm_setup.yaml"
+    setup.write_text(
+        setup.read_text().replace("default_velocity_scaling: 0.1", "default_velocity_scaling: 0.2")
+    )
+    before = snapshot(pkg)
+
+    result = runner.invoke(app, ["render", str(pkg)])
+    assert result.exit_code == 2
+    lines = result.stdout.splitlines()
+    assert "update    config/joint_limits.yaml (not written: a hand-edited file stopped the render)" in lines
+    assert "conflict  config/kinematics.yaml (edited by hand: not overwritten)" in lines
+    assert result.stderr.startswith(f"error: {pkg}: nothing written: 1 file(s) edited by hand")
+    assert snapshot(pkg) == before
+    dry = runner.invoke(app, ["render", str(pkg), "--dry-run"])  # a plan, not a refusal
+    assert "update    config/joint_limits.yaml" in dry.stdout.splitlines()
+
+
+def test_render_loads_the_robot_with_the_given_xacro_args_and_package_paths(tmp_path):
+    pkg = make_package(tmp_path)
+    assert runner.invoke(app, ["render", str(pkg), "--package-path", str(tmp_path)]).exit_code == 0
+    wrong = runner.invoke(app, ["render", str(pkg), "--xacro-arg", "nope:=1"])
+    assert wrong.exit_code == 2
+    assert "--xacro-arg nope: not an argument of this xacro; it takes: with_gripper" in wrong.stderr
+    no_gripper = runner.invoke(app, ["render", str(pkg), "--xacro-arg", "with_gripper:=false"])
+    assert no_gripper.exit_code == 2  # the setup's gripper group names joints this robot lacks
+    assert "finger_joint1" in no_gripper.stderr

@@ -22,7 +22,6 @@ def run(*args: str) -> subprocess.CompletedProcess:
     [
         (("init", str(MARM_URDF), "--target", "ros3", "--out", "x"), "'ros3' is not one of 'ros2', 'ros1'"),
         (("collisions", str(MARM_URDF), "--jobs", "abc"), "Invalid value for '--jobs'"),
-        (("init", str(MARM_URDF)), "Missing option '--out'"),
         (("validate", "--nope", "x"), "No such option: --nope"),
         (("nocommand",), "No such command 'nocommand'"),
     ],
@@ -33,6 +32,24 @@ def test_a_usage_error_is_one_line_exit_2(args, fragment):
     (line,) = result.stderr.strip().splitlines()
     assert line.startswith("error: ") and fragment in line and "--help')" in line
     assert result.stdout == ""
+
+
+@pytest.mark.parametrize(
+    ("args", "line"),
+    [
+        (
+            ("init",),
+            "error: URDF: missing: the robot's URDF (marm-setup init URDF -o DIR), or --from-package PKG",
+        ),
+        (("init", str(MARM_URDF)), "error: -o/--output: missing: the package folder to write (-o DIR)"),
+    ],
+)
+def test_a_missing_argument_is_named_first(args, line):
+    """init's URDF is optional for click (--from-package takes none): the URDF is asked for before
+    the output folder, each as one line."""
+    result = run(*args)
+    assert result.returncode == 2
+    assert result.stderr.splitlines() == [line]
 
 
 def test_help_and_version_still_print():

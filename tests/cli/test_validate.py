@@ -22,7 +22,7 @@ def test_clean_marm_package_exits_0(tmp_path):
     assert result.stdout.splitlines() == [
         f"validated marm_moveit_config (ros1, moveit1 layout) with robot 'marm' from {urdf} "
         "(marm_setup.yaml), SRDF config/marm.srdf (set as the semantic description by launch/planning_context.launch); "
-        "runtime planning skipped; launch files: static rules only (no roslaunch: source ROS 1)",
+        "runtime planning skipped; launch files: static rules only (MARM_SETUP_ROSLAUNCH is empty)",
         "no findings",
     ]
 
@@ -35,7 +35,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         f"validated moveit_resources_panda_moveit_config (ros2, moveit2 layout) with robot 'panda' "
         f"from {good.path / 'config/panda.urdf.xacro'} (config/<robot>.urdf.xacro), SRDF "
         "config/panda_arm_hand.srdf.xacro (chosen by its name); planned 4 pose pairs; "
-        "launch files: static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)"
+        "launch files: static rules only (MARM_SETUP_ROS2_PYTHON is empty)"
     )
     assert text[-1] == "1 error, 3 warnings"
     doc = json.loads(runner.invoke(app, [*args, "--format", "json", "--no-plan"]).stdout)
@@ -47,7 +47,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         "urdf_origin": "config/<robot>.urdf.xacro",
         "robot": "panda",
         "planned_pairs": None,
-        "launched_by": "static rules only (no ROS 2 launch_ros and rclpy: source ROS 2)",
+        "launched_by": "static rules only (MARM_SETUP_ROS2_PYTHON is empty)",
         "srdf": "config/panda_arm_hand.srdf.xacro",
         "srdf_origin": "chosen by its name",
         "xacro_args": {},
@@ -172,20 +172,47 @@ def test_a_stale_setup_assistant_urdf_is_not_what_move_group_loads(tmp_path):
 
 
 def test_marm_package_moved_away_from_its_urdf(tmp_path):
-    """marm_setup.yaml's relative robot.urdf no longer resolves after a move: one finding on it."""
+    """marm_setup.yaml names the description by package (package://marm_description/...): moved
+    where no package path holds that package, validate says which package it needs (MoveIt finds
+    it where ROS has it installed: a warning), the rules needing the robot skipped."""
     pkg = generate_marm(tmp_path, "ros1")
     moved = tmp_path / "deeper" / "still" / "pkg"
     moved.parent.mkdir(parents=True)
     pkg.rename(moved)
     result = runner.invoke(app, ["validate", str(moved), "--format", "json"])
-    assert result.exit_code == 1
+    assert result.exit_code == 0, result.output
     (finding,) = json.loads(result.stdout)["findings"]
     assert (finding["rule"], finding["file"], finding["element"]) == (
-        "urdf.missing",
+        "urdf.package-missing",
         "marm_setup.yaml",
         "robot.urdf",
     )
-    assert "--urdf" in finding["hint"]
+    assert "'marm_description'" in finding["message"] and "--package-path" in finding["hint"]
+    assert "package:/" not in result.stdout
+
+
+def test_a_generated_package_copied_to_another_depth_validates_with_its_package_path(tmp_path):
+    """Issue 31: init the marm description (a ROS package) into a/b/pkg, copy the package to x/pkg:
+    its robot.urdf (package://marm_description/...) is found through --package-path, whatever the
+    relative robot.package_paths written at a/b/pkg now point at."""
+    import shutil
+
+    fixtures = tmp_path / "fixtures"
+    shutil.copytree(MARM_URDF.parents[2], fixtures)
+    urdf = fixtures / MARM_URDF.relative_to(MARM_URDF.parents[2])
+    made = tmp_path / "a" / "b" / "pkg"
+    result = runner.invoke(app, ["init", str(urdf), "--out", str(made), "--trials", "200", "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    assert "urdf: package://marm_description/urdf/marm.urdf.xacro" in (made / "marm_setup.yaml").read_text()
+    copy = tmp_path / "x" / "pkg"
+    shutil.copytree(made, copy)
+    shutil.rmtree(tmp_path / "a")
+    args = ["validate", str(copy), "--package-path", str(fixtures), "--format", "json", "--no-plan"]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.stdout)
+    assert [f for f in doc["findings"] if f["rule"].startswith("urdf.")] == []
+    assert doc["validated"]["urdf"] == str(urdf)
 
 
 def test_a_package_with_one_pose_per_group_says_why_nothing_was_planned(tmp_path):

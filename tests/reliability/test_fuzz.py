@@ -439,3 +439,76 @@ def test_fuzz_escapes(kind, symlinked, expression, path, untrusted):
     finally:
         os.chdir(here)
         shutil.rmtree(work, ignore_errors=True)
+
+
+# -- round 4 (issue 36) --------------------------------------------------------------------------
+# Launch files that grow (args doubling, files including themselves, Python launch files past
+# their bounds), the user's environment under --untrusted, and writers aimed at a symlink: every
+# run is a clean exit, the secret never shows, the link's target is never written.
+
+ENV_SECRET = "FUZZ-ENV-SECRET-hunter3"
+
+
+def _hostile_launch(pkg: Path, family: str, ros2: bool, n: int, copies: int) -> None:
+    from tests.reliability.hostile_launch import growing_args, python_launch, self_including, with_args
+
+    if family == "args":
+        with_args(pkg, ros2, growing_args(ros2, n, copies))
+    elif family == "include":
+        self_including(pkg, ros2, copies, new_args=n % 2 == 1)
+    elif family == "env":
+        use = "optenv" if n % 2 else "env"
+        with_args(pkg, ros2, f'<arg name="fuzz_env" default="$({use} MARM_FUZZ_ENV)"/>')
+    else:
+        kind = ["sum", "unary", "negations", "string", "list", "nested list", "fstring"][n % 7]
+        size = {"sum": 20_000, "unary": 3_000, "negations": 3_000}.get(kind, 10 + 5 * copies)
+        (pkg / "launch" / "x.launch.py").write_text(python_launch(kind, size), encoding="utf-8")
+
+
+@FUZZ
+@given(
+    family=st.sampled_from(["args", "include", "env", "python"]),
+    n=st.integers(1, 40),
+    copies=st.integers(2, 6),
+    untrusted=st.booleans(),
+)
+def test_fuzz_growth_and_environment(family, n, copies, untrusted):
+    from tests.validate_helpers import generate_marm
+
+    work = _workdir()
+    os.environ["MARM_FUZZ_ENV"] = ENV_SECRET
+    try:
+        ros2 = family == "python" or n % 3 == 0
+        pkg = generate_marm(work, "ros2" if ros2 else "ros1")
+        _hostile_launch(pkg, family, ros2, n, copies)
+        result = run("validate", pkg, "--no-plan", *(["--untrusted"] if untrusted else []))
+        assert_clean_exit(result)
+        assert "internal error" not in result.output
+        STATS[f"growth {family}: exit {result.exit_code}"] += 1
+        if untrusted:
+            assert ENV_SECRET not in result.output
+    finally:
+        os.environ.pop("MARM_FUZZ_ENV", None)
+        shutil.rmtree(work, ignore_errors=True)
+
+
+@FUZZ
+@given(writer=st.sampled_from(["collisions --output", "collisions --report"]), dangling=st.booleans())
+def test_fuzz_writers_refuse_symlinks(writer, dangling):
+    work = _workdir()
+    try:
+        (work / "r.urdf").write_bytes(SAFE_ROBOT)
+        victim = work / "victim.txt"
+        if not dangling:
+            victim.write_text("keep\n", encoding="utf-8")
+        link = work / ("m.svg" if writer.endswith("report") else "m.srdf")
+        link.symlink_to(victim)
+        flag = writer.split()[1]
+        result = run("collisions", work / "r.urdf", "--trials", "10", flag, link)
+        assert_clean_exit(result, codes=(2,))
+        STATS[f"symlink {writer}: refused"] += 1
+        assert link.is_symlink() and (
+            victim.read_text(encoding="utf-8") == "keep\n" if not dangling else not victim.exists()
+        )
+    finally:
+        shutil.rmtree(work, ignore_errors=True)

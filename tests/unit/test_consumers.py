@@ -11,7 +11,16 @@ import time
 import pytest
 
 from marm_setup.package.launch_xml import parse_launch
-from marm_setup.validate.consumers import _dump_problem, _needs_args, _run, ros2_findings, ros2_python
+from marm_setup.validate.consumers import (
+    _dump_problem,
+    _needs_args,
+    _run,
+    find_ros2_python,
+    find_roslaunch,
+    ros2_findings,
+    ros2_python,
+    ros2_ran,
+)
 from tests.helpers import build_file_tree
 
 REPORT = {
@@ -81,15 +90,70 @@ def test_humbles_fake_components_count_as_mock_on_humble_only():
     assert [f.rule for f in ros2_findings(report, "jazzy")] == ["demo.real-hardware"]
 
 
-def test_no_ros_no_consumer(monkeypatch):
-    monkeypatch.delenv("MARM_SETUP_ROS2_PYTHON", raising=False)
-    monkeypatch.delenv("ROS_DISTRO", raising=False)
-    assert ros2_python() is None  # not sourced: not even probed
+def test_no_ros_no_consumer(monkeypatch, tmp_path):
     monkeypatch.setenv("MARM_SETUP_ROS2_PYTHON", "")
     monkeypatch.setenv("ROS_DISTRO", "jazzy")
-    assert ros2_python() is None  # empty: never
+    assert find_ros2_python() == (None, "MARM_SETUP_ROS2_PYTHON is empty")  # empty: never
     monkeypatch.setenv("MARM_SETUP_ROS2_PYTHON", sys.executable)  # a Python without launch_ros
     assert ros2_python() is None
+    monkeypatch.delenv("MARM_SETUP_ROS2_PYTHON")
+    monkeypatch.setenv("PATH", str(tmp_path))  # nothing on PATH
+    assert find_ros2_python() == (None, "no ros2 or python3 on PATH: source ROS 2")
+
+
+def _script(folder, name: str, body: str) -> str:
+    path = folder / name
+    path.write_text(body, encoding="utf-8")
+    path.chmod(0o755)
+    return str(path)
+
+
+def test_the_python_of_ros2_on_path_wins_over_a_venv_first_on_path(monkeypatch, tmp_path):
+    """marm-setup's own venv first on PATH: its python3 lacks launch_ros; the `ros2` command's
+    `#!` line names the Python ROS 2 runs on."""
+    venv, ros = tmp_path / "venv", tmp_path / "ros"
+    venv.mkdir(), ros.mkdir()
+    os.symlink(sys.executable, venv / "python3")
+    ros_python = _script(ros, "python3.12", "#!/bin/sh\necho 3.4.5\n")  # imports launch: prints its version
+    _script(ros, "ros2", f"#!{ros_python}\nimport ros2cli\n")
+    monkeypatch.delenv("MARM_SETUP_ROS2_PYTHON")
+    monkeypatch.setenv("PATH", os.pathsep.join([str(venv), str(ros)]))
+    assert find_ros2_python() == ((ros_python, "3.4.5"), "")
+    (ros / "ros2").unlink()
+    found, why = find_ros2_python()
+    assert found is None
+    assert why.startswith("no Python with ROS 2's launch_ros and rclpy (set MARM_SETUP_ROS2_PYTHON")
+    assert f"tried {venv / 'python3'}: ModuleNotFoundError: No module named 'launch'" in why
+
+
+def test_roslaunch_on_path_is_used_when_it_runs_without_a_sourced_ros(monkeypatch, tmp_path):
+    monkeypatch.delenv("MARM_SETUP_ROSLAUNCH")
+    monkeypatch.setenv("PATH", str(tmp_path))
+    assert find_roslaunch() == (
+        None,
+        "no roslaunch on PATH: install ROS 1 (or Debian's python3-roslaunch), or set MARM_SETUP_ROSLAUNCH",
+    )
+    roslaunch = _script(tmp_path, "roslaunch", "#!/bin/sh\nexit 0\n")
+    assert find_roslaunch() == (roslaunch, "")
+    _script(tmp_path, "roslaunch", "#!/bin/sh\necho 'ImportError: no rospkg' >&2\nexit 1\n")
+    assert find_roslaunch() == (None, f"{roslaunch} does not run (ImportError: no rospkg)")
+    monkeypatch.setenv("MARM_SETUP_ROSLAUNCH", "")
+    assert find_roslaunch() == (None, "MARM_SETUP_ROSLAUNCH is empty")
+
+
+def test_the_summary_never_says_the_ros2_launcher_ran_when_it_evaluated_nothing():
+    missing = {"code": 1, "errors": ["Caught exception: No module named 'moveit_configs_utils'"], "nodes": []}
+    unrun = {"launch": {"launch/demo.launch.py": missing, "launch/move_group.launch.py": missing}}
+    assert ros2_ran(unrun, "ROS 2 launch 3.4.5 and rcl (py)") == (
+        "static rules only (ROS 2 launch 3.4.5 and rcl (py) evaluated no launch or parameter file: "
+        "2 import modules this ROS lacks)"
+    )
+    assert ros2_ran({"launch": {}, "params": {}}, "L").startswith("static rules only (L evaluated no launch")
+    some = {"launch": {**unrun["launch"], "launch/x.launch.xml": REPORT["launch"]["launch/demo.launch.xml"]}}
+    assert ros2_ran({**some, "params": {"config/a.yaml": []}}, "L") == (
+        "L: 1 launch file evaluated, 1 parameter file parsed, 2 launch files not runnable here; "
+        "and the static rules"
+    )
 
 
 def test_a_launch_file_with_an_arg_without_value_is_an_include(tmp_path):

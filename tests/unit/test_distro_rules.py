@@ -59,7 +59,27 @@ def test_adapters_of_the_other_distro_are_errors(tmp_path):
         "- default_planning_request_adapters/ResolveConstraintFrames",
         "- default_planner_request_adapters/ResolveConstraintFrames",
     )
-    assert [f.element for f in rules(pkg)["distro.adapter"]] == ["/**.ros__parameters.ompl.request_adapters"]
+    assert [f.element for f in rules(pkg)["distro.adapter"]] == [
+        "/**.ros__parameters.ompl.request_adapters",
+        "/**.ros__parameters.pilz_industrial_motion_planner.request_adapters",
+    ]
+
+
+def test_jazzy_pipelines_validate_their_solutions(tmp_path):
+    """Every pipeline a Jazzy package writes ends its responses with ValidateSolution, as
+    MoveIt's default configs do; one without it is a warning naming the pipeline."""
+    pkg = write(tmp_path, "ros2", "jazzy")
+    text = (pkg / "config" / "moveit.yaml").read_text()
+    assert text.count("- default_planning_response_adapters/ValidateSolution") == 2  # ompl, pilz
+    assert "pipeline.no-validate-solution" not in rules(pkg)
+    edit(
+        pkg / "config" / "moveit.yaml",
+        "        - default_planning_response_adapters/ValidateSolution\n        - default_planning_response_adapters/DisplayMotionPath\n      capabilities",
+        "        - default_planning_response_adapters/DisplayMotionPath\n      capabilities",
+    )
+    (finding,) = rules(pkg)["pipeline.no-validate-solution"]
+    assert finding.element == "/**.ros__parameters.pilz_industrial_motion_planner.response_adapters"
+    assert not finding.is_error
 
 
 def test_pipeline_capabilities_on_humble_are_a_warning(tmp_path):

@@ -14,7 +14,7 @@ from marm_setup.robot.load import load_robot
 from tests.conftest import ROOT
 
 DOC = ROOT / "docs" / "setup-file.md"
-FREE_MAPPINGS = ("values", "multi_dof", "xacro_args", "options")  # their keys are joint / arg / option names
+FREE_MAPPINGS = ("values", "multi_dof", "xacro_args", "options", "move_group_parameters")  # keys: joint / arg / option / parameter names
 
 
 def _examples() -> list[tuple[str, str]]:

@@ -54,12 +54,15 @@ def collisions(
         typer.Option("--srdf", help="Update this SRDF (in place unless --output).", metavar="IN.srdf"),
     ] = None,
     output: Annotated[
-        Path | None, typer.Option("--output", help="Write the SRDF here (minimal SRDF without --srdf).")
+        Path | None, typer.Option("-o", "--output", help="Write the SRDF here (minimal SRDF without --srdf).")
     ] = None,
-    keep: Annotated[
+    keep_disabled: Annotated[
         bool,
-        typer.Option("--keep", help="With --srdf: keep every pair it already disables (User always kept)."),
+        typer.Option(
+            "--keep-disabled", help="With --srdf: keep every pair it already disables (User always kept)."
+        ),
     ] = False,
+    keep: Annotated[bool, typer.Option("--keep", hidden=True)] = False,  # --keep-disabled's old name
     default: Annotated[
         bool, typer.Option("--default/--no-default", help="Disable pairs colliding at the default state.")
     ] = True,
@@ -98,6 +101,7 @@ def collisions(
     """
     count = parse_count(trials, element="--trials")
     jobs = default_jobs(jobs)
+    keep = keep or keep_disabled
     if urdf.is_dir():  # a package made by init: its marm_setup.yaml and SRDF, together
         _check_options(min_collision_fraction, seed, padding, None, False, None)
         _refuse_unused(xacro_arg=xacro_arg, package_path=package_path)
@@ -160,7 +164,7 @@ def _check_options(
     if not 0.0 <= padding < float("inf"):  # also refuses nan, which would disable every pair
         raise InputError(f"must be >= 0 and finite, got {padding}", element="--padding")
     if keep and srdf is None:
-        raise InputError("--keep needs --srdf (the SRDF whose pairs to keep)", element="--keep")
+        raise InputError("needs --srdf (the SRDF whose pairs to keep)", element="--keep-disabled")
     if report is not None and report.suffix.lower() not in REPORT_SUFFIXES:
         raise InputError(f"unknown report type '{report.suffix}'; expected .svg or .html", path=str(report))
 

@@ -17,12 +17,17 @@ from marm_setup.cli.common import (
     XacroArgs,
     YesOption,
     default_jobs,
+    either,
     load_robot_from_cli,
     parse_count,
 )
 from marm_setup.ros import Target, distros_of
 
-OutOption = Annotated[Path, typer.Option("--out", help="Package folder to create.", metavar="DIR")]
+OutputOption = Annotated[
+    Path | None,
+    typer.Option("-o", "--output", help="Package folder to create.", metavar="DIR", show_default=False),
+]
+OldOutOption = Annotated[Path | None, typer.Option("--out", hidden=True)]  # -o/--output's old name
 NameOption = Annotated[
     str | None, typer.Option("--name", help="Package name (default: <robot>_moveit_config).", metavar="PKG")
 ]
@@ -71,8 +76,9 @@ OptionalUrdfArg = Annotated[
 
 
 def init(
-    out: OutOption,
     urdf: OptionalUrdfArg = None,
+    output: OutputOption = None,
+    out: OldOutOption = None,
     name: NameOption = None,
     target: TargetOption = None,
     ros_distro: DistroOption = None,
@@ -92,13 +98,14 @@ def init(
     ] = None,
     jobs: JobsOption = None,
     force: Annotated[bool, typer.Option("--force", help="Write into an existing non-empty DIR.")] = False,
-    keep_matrix: Annotated[
+    keep_disabled: Annotated[
         bool,
         typer.Option(
-            "--keep-matrix",
+            "--keep-disabled",
             help="Take the SPEC's collision.disabled as it is (default: compute it again, User pairs kept).",
         ),
     ] = False,
+    keep_matrix: Annotated[bool, typer.Option("--keep-matrix", hidden=True)] = False,  # the old name
     xacro_arg: XacroArgs = None,
     package_path: PackagePaths = None,
     from_package: FromPackageOption = None,
@@ -129,6 +136,14 @@ def init(
     from marm_setup.pipeline import InitRequest, run_init
     from marm_setup.render import check_output_dir
 
+    if urdf is None and from_package is None:
+        raise InputError(
+            "missing: the robot's URDF (marm-setup init URDF -o DIR), or --from-package PKG", element="URDF"
+        )
+    out = either(output, out, name="-o/--output", old_name="--out")
+    if out is None:
+        raise InputError("missing: the package folder to write (-o DIR)", element="-o/--output")
+    keep_matrix = keep_disabled or keep_matrix
     if from_package is not None:
         given = [o for o, v in (("--setup", setup), ("--from-srdf", from_srdf)) if v]
         if given:
@@ -157,8 +172,7 @@ def init(
         raise InputError(
             "--untrusted goes with --from-package (init URDF runs the xacro you give)", element="--untrusted"
         )
-    if urdf is None:
-        raise InputError("give the robot's URDF, or --from-package PKG", element="URDF")
+    assert urdf is not None  # checked above
     if seed is not None and seed < 0:
         raise InputError(f"must be >= 0, got {seed}", element="--seed")
 

@@ -25,7 +25,7 @@ def plan(
     output: Annotated[
         Path | None,
         typer.Option(
-            "--output", help="Write the trajectory (JointTrajectory YAML) here.", metavar="TRAJ.yaml"
+            "-o", "--output", help="Write the trajectory (JointTrajectory YAML) here.", metavar="TRAJ.yaml"
         ),
     ] = None,
     seed: Annotated[int, typer.Option("--seed", help="Planner random seed.", metavar="S")] = 0,

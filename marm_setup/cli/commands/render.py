@@ -7,6 +7,8 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from marm_setup.cli.common import PackagePaths, XacroArgs
+
 if TYPE_CHECKING:
     from marm_setup.render import FileChange
 DirArg = Annotated[Path, typer.Argument(help="Config package folder holding marm_setup.yaml.", metavar="DIR")]
@@ -24,17 +26,33 @@ def render(
             "--urdf", help="The robot description, instead of the one marm_setup.yaml names.", metavar="URDF"
         ),
     ] = None,
+    xacro_arg: XacroArgs = None,
+    package_path: PackagePaths = None,
 ) -> None:
-    """Re-render every generated file of DIR from DIR/marm_setup.yaml (create / update / unchanged / conflict)."""
+    """Re-render every generated file of DIR from DIR/marm_setup.yaml (create / update / unchanged / conflict).
+
+    --xacro-arg and --package-path load the robot (over marm_setup.yaml's robot.xacro_args, after
+    its robot.package_paths); the files rendered say what marm_setup.yaml says."""
     from marm_setup.pipeline import run_render
     from marm_setup.render import format_change
+    from marm_setup.robot import parse_xacro_args
 
-    result = run_render(dir, urdf, force=force, dry_run=dry_run)
+    result = run_render(
+        dir,
+        urdf,
+        force=force,
+        dry_run=dry_run,
+        xacro_args=parse_xacro_args(xacro_arg or []),
+        package_paths=tuple(package_path or ()),
+    )
     for line in result.warnings:
         typer.echo(line)
     stale = [f"{'stale':<10}{path} (no longer generated; left in place)" for path in result.stale]
     # nothing written (a dry run, or refused): the plan; else what was written
-    for line in [*(format_change(c, forced=force and result.written) for c in result.changes), *stale]:
+    lines = [format_change(c, forced=force and result.written) for c in result.changes]
+    if result.refused is not None:  # say of each file that it was not written, and why
+        lines = [_refused_line(line, c.status) for line, c in zip(lines, result.changes, strict=True)]
+    for line in [*lines, *stale]:
         typer.echo(line)
     if result.refused is not None:
         raise result.refused
@@ -42,6 +60,15 @@ def render(
         typer.echo(f"dry run: nothing written ({_summary(result.changes)})")
     else:
         typer.echo(_summary(result.changes))
+
+
+def _refused_line(line: str, status: str) -> str:
+    """A file's status line when a hand-edited file kept render from writing anything."""
+    if status == "conflict":
+        return f"{line} (edited by hand: not overwritten)"
+    if status in ("new", "update"):
+        return f"{line} (not written: a hand-edited file stopped the render)"
+    return line
 
 
 def _summary(changes: tuple[FileChange, ...]) -> str:

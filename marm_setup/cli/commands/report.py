@@ -35,7 +35,7 @@ def report(
         str | None,
         typer.Option(
             "--trials",
-            help="Random states for the matrix's hit counts [default: the package's, else 10000].",
+            help="Random states for the matrix's hit counts [default: 10000; never the package's own setting].",
             metavar="N",
         ),
     ] = None,

@@ -10,6 +10,9 @@ import yaml
 
 from marm_setup.names import did_you_mean
 
+# our own data files: libyaml's safe loader where PyYAML has it (10x faster than the Python one)
+SAFE_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
 SEVERITY_SETS = ("error", "warning", "error|warning")
 FIELDS = ("id", "severity", "moveit_does", "source")
 
@@ -51,7 +54,7 @@ class Table:
 @functools.cache
 def _table() -> Table:
     text = resources.files(__package__).joinpath("rules.yaml").read_text(encoding="utf-8")
-    return parse_table(yaml.safe_load(text))
+    return parse_table(yaml.load(text, Loader=SAFE_LOADER))
 
 
 def parse_table(data: dict) -> Table:

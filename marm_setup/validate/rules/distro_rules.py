@@ -125,7 +125,24 @@ def _jazzy_format(name: str, data: dict, file: str, where: Callable[..., str]) -
                 out.append(
                     error("distro.adapter", file, where(key), msg, "use default_planning_*_adapters/...")
                 )
-    return out
+    return out + _unvalidated(data, file, where)
+
+
+VALIDATE_SOLUTION = "default_planning_response_adapters/ValidateSolution"
+
+
+def _unvalidated(data: dict, file: str, where: Callable[..., str]) -> list[Finding]:
+    """Jazzy+: a pipeline whose responses skip ValidateSolution hands its path to execution
+    without a collision check (validate_path.cpp jazzy l.101 checks `isPathValid`); MoveIt's own
+    default configs end every planner's responses with it (moveit_configs_utils/default_configs/
+    ompl_planning.yaml l.11, chomp_planning.yaml l.12, pilz_industrial_motion_planner_planning.yaml
+    l.10, stomp_planning.yaml l.10)."""
+    value = data.get("response_adapters")
+    if not isinstance(value, list | type(None)) or VALIDATE_SOLUTION in (value or []):
+        return []
+    msg = "response_adapters lack ValidateSolution: a path reaches execution without a collision check"
+    hint = f"add {VALIDATE_SOLUTION}, as MoveIt's default configs do"
+    return [warning("pipeline.no-validate-solution", file, where("response_adapters"), msg, hint)]
 
 
 def check_publish_flags(params: tuple[Param, ...], file: str, prefix: str) -> list[Finding]:

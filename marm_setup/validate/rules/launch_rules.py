@@ -11,7 +11,14 @@ from pathlib import Path
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package import LaunchXml, Scope, condition
+from marm_setup.package import (
+    LaunchXml,
+    Scope,
+    SubstitutionError,
+    SubstitutionTooLarge,
+    condition,
+    substitute,
+)
 from marm_setup.ros import Target
 
 FIND = re.compile(r"\$\((find|find-pkg-share)\s+([^\s)]+)\)|\$\((dirname)\)")
@@ -33,6 +40,7 @@ def check_launch_files(
     for rel, tree in parsed.items():
         out += check_paths(tree, rel, root, package, target == Target.ROS2)
         out += check_args(tree, rel, _defined_args(tree) | shared_args | passed.get(rel, set()))
+        out += check_arg_growth(tree, rel, root / rel, target == Target.ROS2)
         if target == Target.ROS2:
             out += check_description_types(tree, rel)
     return out
@@ -123,6 +131,26 @@ def _consequence(elem, attr: str) -> str:
     if elem.tag == "rosparam":
         return "roslaunch stops ('error loading <rosparam> tag: file does not exist')"
     return "the launch fails"
+
+
+def check_arg_growth(tree, rel: str, path: Path, ros2: bool) -> list[Finding]:
+    """The first arg whose default, built from the args before it (`$(arg a)$(arg a)` doubling
+    each time), grows past the substitution bound: roslaunch and ros2 launch build it whole (a
+    string of 2**n characters: out of memory); validate stops there (one finding, no value)."""
+    args: dict[str, str] = {}
+    for elem in _elements(tree):
+        name, value = elem.get("name"), elem.get("default", elem.get("value"))
+        if elem.tag not in ("arg", "let") or not name or value is None or "$(eval" in value:
+            continue
+        if getattr(elem.getparent(), "tag", None) == "include":
+            continue
+        try:
+            args[name] = substitute(value, Scope(args, dirname=str(path.parent), ros2=ros2))
+        except SubstitutionTooLarge as exc:
+            return [error("launch.substitution-bound", rel, _where(elem), f"arg '{name}': {exc}")]
+        except SubstitutionError:
+            continue
+    return []
 
 
 def _default_scope(tree, launch_dir: Path, ros2: bool) -> Scope:
