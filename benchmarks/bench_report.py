@@ -50,6 +50,7 @@ def measure(name: str, package: Path, package_paths: tuple[Path, ...] = ()) -> N
 
 
 def main() -> None:
+    os.environ["MARM_SETUP_CACHE"] = "off"  # every run proves from scratch, the user's cache untouched
     with tempfile.TemporaryDirectory() as tmp:
         measure(
             "marm",

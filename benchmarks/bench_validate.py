@@ -1,6 +1,7 @@
 """`validate` timings: each stage, in one process, for the shared panda packages, and marm and
-the panda as init writes them (their marm_setup.yaml records the matrix's proofs: the matrix
-check skips the proved Never pairs; the figure beside it resamples them all).
+the panda as init writes them (init fills a proof cache, in a temporary folder here: the matrix
+check skips the Never pairs the cache proves, never those a package says it proved; the figure
+beside it resamples them all).
 
 Run: .venv/bin/python benchmarks/bench_validate.py
 (The command-line figure adds interpreter start-up and imports, about 0.5 s.)
@@ -13,7 +14,7 @@ import time
 from pathlib import Path
 
 from marm_setup.package.read import read_package
-from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing, proved_pairs
+from marm_setup.validate.rules.matrix_rules import cached_proved, check_matrix_fresh, check_matrix_missing
 from marm_setup.validate.runner import check_static, load_package_robot, run_runtime_checks, validate
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -34,8 +35,7 @@ def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
     (robot, _), t_robot = timed(lambda: load_package_robot(pkg))
     _, t_static = timed(lambda: check_static(pkg, robot))
     scene, t_scene = timed(lambda: CollisionScene(robot))
-    proofs = pkg.marm_setup.proofs if pkg.marm_setup is not None else None
-    proved, t_key = timed(lambda: proved_pairs(proofs, robot))
+    proved, t_key = timed(lambda: cached_proved(pkg.srdf, scene))
     _, t_every = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path))
     _, t_matrix = timed(lambda: check_matrix_fresh(pkg.srdf, robot, scene, pkg.srdf_path, proved=proved))
     _, t_missing = timed(lambda: check_matrix_missing(pkg.srdf, robot, scene, pkg.srdf_path))
@@ -45,7 +45,7 @@ def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
     print(
         f"{path.parent.name}/{path.name}: discover+SRDF {t_discover:.2f} s, robot {t_robot:.2f} s, "
         f"static rules {t_static:.3f} s, scene {t_scene:.2f} s, matrix (1000 states) {t_matrix:.2f} s "
-        f"({len(proved)} proved pairs skipped, proof key checked in {t_key:.3f} s; all resampled {t_every:.2f} s), "
+        f"({len(proved)} pairs the cache proves skipped, cache read in {t_key:.3f} s; all resampled {t_every:.2f} s), "
         f"enabled pairs (200 states) {t_missing:.2f} s, "
         f"runtime {t_runtime:.2f} s | whole (warm) {t_total:.2f} s, --no-plan {t_noplan:.2f} s, "
         f"{len(found)} findings"
@@ -53,7 +53,11 @@ def stages(path: Path, package_paths: tuple[Path, ...]) -> None:
 
 
 def main() -> None:
+    import os
+
     from typer.testing import CliRunner
+
+    os.environ["MARM_SETUP_CACHE"] = tempfile.mkdtemp(prefix="marm-proof-cache-")  # not the user's
 
     from marm_setup.cli.app import app
 

@@ -148,6 +148,22 @@ def no_sourced_ros(monkeypatch):
         monkeypatch.setenv(name, "")
 
 
+@pytest.fixture(autouse=True, scope="session")
+def session_proof_cache(tmp_path_factory):
+    """Fixtures of any scope use a proof cache of the session's (collision/proof_cache.py),
+    never the user's."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("MARM_SETUP_CACHE", str(tmp_path_factory.mktemp("proof-cache")))
+        patch.delenv("XDG_CACHE_HOME", raising=False)
+        yield
+
+
+@pytest.fixture(autouse=True)
+def own_proof_cache(monkeypatch, tmp_path_factory, session_proof_cache):
+    """Each test gets its own empty proof cache."""
+    monkeypatch.setenv("MARM_SETUP_CACHE", str(tmp_path_factory.mktemp("proof-cache")))
+
+
 @pytest.fixture(scope="session")
 def ros2_packages(tmp_path_factory):
     """Every ROS 2 package the tests generate, made once per session (tests/generated_packages.py)."""

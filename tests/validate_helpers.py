@@ -80,3 +80,37 @@ def errors(findings: list[Finding]) -> set[tuple[str, str]]:
 
 def rules(findings: list[Finding], severity: str | None = None) -> set[str]:
     return {f.rule for f in findings if severity is None or f.severity == severity}
+
+
+def vouching_package(root: Path, marm) -> tuple[Path, tuple[str, str]]:
+    """The marm package with its most often colliding enabled pair disabled as Never, and a
+    marm_setup.yaml that vouches for it: listed as proved under a proof key recomputed with the
+    public API, `trials: 0`, and another seed."""
+    import numpy as np
+
+    from marm_setup.collision import CollisionScene, proof_key, trial_samples
+    from marm_setup.robot import robot_fingerprint
+    from marm_setup.setup.srdf import allowed_pairs, read_srdf
+
+    pkg = generate_marm(root, "ros1")
+    srdf_file = pkg / "config" / "marm.srdf"
+    scene = CollisionScene(marm)
+    checked = scene.enabled_pairs(allowed_pairs(read_srdf(srdf_file), scene.candidate_pairs))
+    q = trial_samples(marm, 0, 1000)
+    counts = scene.collision_counts(scene.link_poses(q), scene.pair_ids(checked))
+    assert counts.max() >= 50, "the pair collides often"
+    a, b = checked[int(np.argmax(counts))]
+    text = srdf_file.read_text(encoding="utf-8")
+    srdf_file.write_text(
+        text.replace("</robot>", f'  <disable_collisions link1="{a}" link2="{b}" reason="Never"/>\n</robot>'),
+        encoding="utf-8",
+    )
+    setup_file = pkg / "marm_setup.yaml"
+    data = yaml.safe_load(setup_file.read_text(encoding="utf-8"))
+    collision = data["collision"]
+    collision["disabled"].append({"link1": a, "link2": b, "reason": "Never"})
+    collision.update(trials=0, seed=12345, unproved=[])
+    never = [(d["link1"], d["link2"]) for d in collision["disabled"] if d["reason"] == "Never"]
+    collision["proof_key"] = proof_key(robot_fingerprint(marm), collision["prove"], never, [])
+    setup_file.write_text(yaml.safe_dump(data, sort_keys=False), encoding="utf-8")
+    return pkg, (a, b)

@@ -1,5 +1,5 @@
-"""Progress on stderr: the sampling bar of `collisions` and `init` with the estimate of a long
-run (said up front, and past a bound run only with --yes) and what a denser run would cost,
+"""Progress on stderr: the sampling bar of `collisions` and `init` (and the proofs: pairs
+proved, in contact, left) with the estimate of a long run (said up front, and past a bound run only with --yes) and what a denser run would cost,
 and the staged bar of validate's planning."""
 
 from __future__ import annotations
@@ -42,6 +42,8 @@ class SamplingProgress:
         self._say = say
         self._bar: Progress | None = None
         self._task: TaskID | None = None
+        self._proof_task: TaskID | None = None
+        self.proof_counts: tuple[int, int, int] | None = None  # the last proofs(...) told
 
     def __enter__(self) -> SamplingProgress:
         self.started = time.perf_counter()
@@ -61,6 +63,19 @@ class SamplingProgress:
             self._start_bar()
         if self._bar is not None and self._task is not None:
             self._bar.update(self._task, completed=done, total=total)
+
+    def proofs(self, proved: int, in_contact: int, left: int) -> None:
+        """The proofs so far (compute_collision_matrix's `proof_progress`), as a second line
+        of the bar: pairs proved collision-free, found in contact, left in the current stage."""
+        self.proof_counts = (proved, in_contact, left)
+        if self._bar is None and self.enabled and sys.stderr.isatty():
+            self._start_bar()
+        if self._bar is None:
+            return
+        text = f"proving: {proved} proved, {in_contact} in contact, {left} left"
+        if self._proof_task is None:
+            self._proof_task = self._bar.add_task(text, total=None)
+        self._bar.update(self._proof_task, description=text)
 
     def _estimate(self, done: int, total: int) -> None:
         """Say how long the whole sampling will take, and stop a run past CONFIRM_SECONDS

@@ -11,6 +11,8 @@ from marm_setup.exports import lazy_api
 API = {
     "pairs": "DisabledPair DisabledReason link_pair PROVE_MODES UnprovedPair",
     "proof": "PairProof",
+    "proof_cache": "CachedProof cache_dir known_proofs remember_proofs",
+    "proof_keys": "pair_keys run_context",
     "proof_report": "proof_key unproved_notes unproved_pairs",
     "scene": "CollisionScene",
     "matrix": "CollisionMatrix compute_collision_matrix Progress ROUND trial_samples",
@@ -31,6 +33,12 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.pairs import UnprovedPair as UnprovedPair
     from marm_setup.collision.pairs import link_pair as link_pair
     from marm_setup.collision.proof import PairProof as PairProof
+    from marm_setup.collision.proof_cache import CachedProof as CachedProof
+    from marm_setup.collision.proof_cache import cache_dir as cache_dir
+    from marm_setup.collision.proof_cache import known_proofs as known_proofs
+    from marm_setup.collision.proof_cache import remember_proofs as remember_proofs
+    from marm_setup.collision.proof_keys import pair_keys as pair_keys
+    from marm_setup.collision.proof_keys import run_context as run_context
     from marm_setup.collision.proof_report import proof_key as proof_key
     from marm_setup.collision.proof_report import unproved_notes as unproved_notes
     from marm_setup.collision.proof_report import unproved_pairs as unproved_pairs

@@ -47,8 +47,9 @@ def merged_levers(points: np.ndarray, radii: np.ndarray, most: int = 32) -> Leve
     if len(points) <= most:
         return LeverPoints(points, radii, points, radii)
     parts = [_part_ball(points, radii, np.arange(len(points)))]
+    widths = [_width(parts[0])]  # per part: its radius, -1 for a single ball (not split)
     while len(parts) < most:
-        widest = max(range(len(parts)), key=lambda i: (parts[i][2] if len(parts[i][0]) > 1 else -1.0, -i))
+        widest = widths.index(max(widths))  # the first of the widest
         rows = parts[widest][0]
         if len(rows) < 2:
             break
@@ -58,8 +59,13 @@ def merged_levers(points: np.ndarray, radii: np.ndarray, most: int = 32) -> Leve
             _part_ball(points, radii, half) for half in (order[: len(order) // 2], order[len(order) // 2 :])
         ]
         parts[widest : widest + 1] = halves
+        widths[widest : widest + 1] = [_width(half) for half in halves]
     centers, out_radii = np.array([p[1] for p in parts]), np.array([p[2] for p in parts])
     return LeverPoints(centers, out_radii, centers, out_radii)
+
+
+def _width(part: tuple[np.ndarray, np.ndarray, float]) -> float:
+    return part[2] if len(part[0]) > 1 else -1.0
 
 
 def _part_ball(

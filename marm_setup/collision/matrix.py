@@ -13,6 +13,13 @@ as MoveIt's rule says. Those the trials never saw in collision are then settled 
 proof and a witness search: `collides` enables them, else they are Never, `proved` or
 `unproved`. "off" is MoveIt's sampling alone, byte for byte.
 
+Known proofs (`known`: proofs from the user's cache, collision/proof_cache.py) are taken as
+they are, before the trials: such a pair is neither screened nor sampled nor settled again (a
+known screen of a pair the same run's trials saw in collision, outcome SEEN, spares its screen
+only). The other pairs get the very budgets they would get without them (a known pair still
+counts where it would have shared a pool), so for the same robot and settings the matrix is
+the same, byte for byte, with or without the cache.
+
 Randomness: the Always rounds draw from `SeedSequence(seed, spawn_key=(0,))`; the trials come
 in fixed chunks (`collision/trials.py`), streamed, the same whoever checks them (`--jobs`).
 
@@ -23,8 +30,9 @@ they prove would say "no collision", so `shortcuts=False` gives the same bytes.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +41,9 @@ from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED, PairProof
 from marm_setup.collision.trials import CHUNK, Work, trial_samples
 from marm_setup.collision.workers import Workers
 from marm_setup.robot import RobotModel, default_configuration, sample_configurations
+
+if TYPE_CHECKING:
+    from marm_setup.collision.proof_cache import CachedProof
 
 __all__ = ["CHUNK", "CollisionMatrix", "PairStats", "compute_collision_matrix", "trial_samples"]
 
@@ -77,6 +88,8 @@ class CollisionMatrix:
     padding: float
     work: Work = field(default=Work(), compare=False)
     prove: str = "off"
+    screened: dict[Pair, tuple[str, int]] = field(default_factory=dict, compare=False)  # the screen's
+    # (outcome, units) per pair it screened or knew (what the proof cache keeps with a proof)
 
     @property
     def narrow_calls(self) -> int:
@@ -102,6 +115,8 @@ def compute_collision_matrix(
     shortcuts: bool = True,
     distances: bool = True,
     prove: str = "off",
+    known: Mapping[Pair, CachedProof] | None = None,
+    proof_progress: Callable[[int, int, int], None] | None = None,
 ) -> CollisionMatrix:
     """MoveIt's matrix for `robot` (scene: a CollisionScene, built when None).
 
@@ -110,6 +125,8 @@ def compute_collision_matrix(
     `distances=False` leaves each Never pair's `min_distance` None (only the json and report
     outputs show it; measuring it costs a distance query per pair and closest state).
     `prove`: "off" (MoveIt's rule), "on" or "exhaustive" (the proof budget; see the module doc).
+    `known`: finished proofs of pairs, taken as they are (see the module doc; ignored when off).
+    `proof_progress(proved, in_contact, left)`: told as each proof ends.
     """
     if scene is None:
         from marm_setup.collision.scene import CollisionScene
@@ -126,19 +143,28 @@ def compute_collision_matrix(
     counts = always.counts if always else {}
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
-    screened = _screen(scene, tuple(p for p in remaining if p not in seen), prove, seed, jobs)
-    proofs = {p: proof for p, proof in screened.items() if proof.outcome != UNPROVED}
-    proved = tuple(p for p in remaining if p in proofs and proofs[p].outcome == PROVED)
+    unseen_pairs = tuple(p for p in remaining if p not in seen)
+    screens = {p: known[p] for p in unseen_pairs if p in known} if known and prove != "off" else {}
+    cached = {p: c for p, c in screens.items() if c.outcome != "seen"}  # "seen": its screen only
+    tally = _tally(proof_progress, cached, prove)
+    screened = _screen(scene, unseen_pairs, prove, seed, jobs, frozenset(screens), tally)
+    screened.update({p: PairProof(c.screen[0], 0.0, units=c.screen[1]) for p, c in screens.items()})
+    proofs = {p: proof for p, proof in screened.items() if proof.outcome != UNPROVED and p not in screens}
+    proofs.update(
+        {p: PairProof(c.outcome, c.fraction, c.witness, c.units, second=c.second) for p, c in cached.items()}
+    )
     trial_pairs = tuple(p for p in remaining if p not in seen and p not in proofs)
     costs = always.costs(trials) if always else {p: PAIR_OVERHEAD * trials for p in trial_pairs}
-    shards = _with_tracked(plan_shards(trial_pairs, costs, jobs), proved if distances else ())
+    followed = _followed(remaining, proofs, cached) if distances else ()
+    shards = _with_tracked(plan_shards(trial_pairs, costs, jobs), followed)
     nearest = prove != "off"
     closest, rows, work = _never_phase(
         scene, shards, seen, (seed, trials), shortcuts, (distances, nearest), progress
     )
     unseen = {p: screened[p] for p in trial_pairs if p not in seen and p in screened}
     spent = sum(p.units for p in screened.values())
-    proofs.update(_settle(scene, unseen, prove, (seed, trials), jobs, spent, rows))
+    settled = {p: c.second for p, c in cached.items() if c.settled}
+    proofs.update(_settle(scene, unseen, prove, (seed, trials), jobs, (spent, settled), rows, tally))
     enabled = seen | {p for p, proof in proofs.items() if proof.outcome == COLLIDES}
     reasons.update(dict.fromkeys((p for p in remaining if p not in enabled), DisabledReason.NEVER))
     stats = tuple(
@@ -158,23 +184,64 @@ def compute_collision_matrix(
         padding=scene.padding,
         work=Work.of(scene) - before + work + Work(proof_units=units),
         prove=prove,
+        screened={p: (proof.outcome, proof.units) for p, proof in screened.items()},
     )
 
 
-def _screen(scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int) -> dict[Pair, PairProof]:
-    """The branch and bound of `pairs` before the trials; none when `prove` is "off"."""
-    if prove == "off":
+def _followed(
+    remaining: tuple[Pair, ...], proofs: dict[Pair, PairProof], cached: Mapping[Pair, CachedProof]
+) -> tuple[Pair, ...]:
+    """The pairs proved before the trials, followed through them for their Never distance, and
+    the known pairs a run without them would have sampled (settled after the trials)."""
+    return tuple(
+        p
+        for p in remaining
+        if (
+            (cached[p].settled or cached[p].outcome == PROVED)
+            if p in cached
+            else (p in proofs and proofs[p].outcome == PROVED)
+        )
+    )
+
+
+def _tally(report, cached: Mapping[Pair, CachedProof], prove: str):
+    """A ProofTally for `report` (None without one), counting the `cached` proofs first."""
+    if report is None or prove == "off":
+        return None
+    from marm_setup.collision.proving import ProofTally
+
+    tally = ProofTally(report)
+    outcomes = [c.outcome for c in cached.values()]
+    tally.start(outcomes.count(PROVED), outcomes.count(COLLIDES), 0)
+    return tally
+
+
+def _screen(
+    scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int, known: frozenset[Pair], tally
+) -> dict[Pair, PairProof]:
+    """The branch and bound of `pairs` before the trials (but of the `known` ones, which count
+    for the budgets only); none when `prove` is "off"."""
+    if prove == "off" or all(p in known for p in pairs):  # nothing to prove: no budget to share
         return {}
     from marm_setup.collision.proving import screen_pairs
 
-    return screen_pairs(scene, pairs, prove, seed, jobs)
+    return screen_pairs(scene, pairs, prove, seed, jobs, known, tally)
 
 
 def _settle(
-    scene, priors: dict[Pair, PairProof], prove: str, draw: tuple[int, int], jobs: int, spent: int, rows
+    scene,
+    priors: dict[Pair, PairProof],
+    prove: str,
+    draw: tuple[int, int],
+    jobs: int,
+    spent: tuple[int, Mapping[Pair, float | None]],
+    rows,
+    tally=None,
 ) -> dict[Pair, PairProof]:
     """The rest of the proof of the unproved pairs the trials never saw in collision (`spent`:
-    the screen's units; `rows`: each pair's closest trial states, of `draw` (seed, trials))."""
+    the screen's units, and the known pairs that would have been settled too, with where their
+    first round ended when a second settled them; `rows`: each pair's closest trial states, of
+    `draw` (seed, trials))."""
     if prove == "off" or not priors:
         return {}
     from marm_setup.collision.proving import settle_pairs
@@ -183,7 +250,7 @@ def _settle(
     wanted = sorted({i for p in priors for i in rows.get(p, ())})
     states = dict(zip(wanted, trial_states(scene.robot, *draw, wanted), strict=True))
     starts = {p: np.array([states[i] for i in rows.get(p, ())]) for p in priors}
-    return settle_pairs(scene, priors, prove, draw[0], jobs, spent, starts)
+    return settle_pairs(scene, priors, prove, draw[0], jobs, spent[0], starts, spent[1], tally)
 
 
 def _with_tracked(shards: list[tuple[Pair, ...]], tracked: tuple[Pair, ...]) -> list:

@@ -115,6 +115,8 @@ class PairProof:
     closest: tuple[tuple[float, ...], ...] = field(default=(), compare=False, repr=False)  # centres
     state: SearchState | None = field(default=None, compare=False, repr=False)
     near: tuple = field(default=(), compare=False, repr=False)  # witness search: (distance, order, state)
+    second: float | None = field(default=None, compare=False, repr=False)  # left open by the first
+    # round of the witness search: where that round ended [m] (proving.settle_pairs)
 
     @property
     def reached(self) -> float:

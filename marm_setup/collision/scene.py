@@ -91,6 +91,8 @@ class CollisionScene:
         self._hull_request.break_distance = 0.0
         self._result = coal.CollisionResult()
         self._distance_request = coal.DistanceRequest()
+        for request in (self._request, self._hull_request, self._distance_request):
+            _same_start(request, coal)
         self._distance_result = coal.DistanceResult()
         self._distance_solvers: dict[tuple[int, int], object] = {}  # keyed by the geometries' ids
         self._hulls: dict[int, tuple | None] = {}  # link row -> hull shapes (None: no mesh)
@@ -379,6 +381,7 @@ class CollisionScene:
             _set(tf_a, pose_a, la)
             _set(tf_b, pose_b, lb)
             result.clear()
+            request.cached_gjk_guess, request.cached_support_func_guess = _GUESS, _HINT  # _same_start
             self._distance_solver(ga, gb)(tf_a, tf_b, request, result)
             distance = float(result.min_distance)
             if distance < best[0]:
@@ -404,6 +407,22 @@ class CollisionScene:
             solver = self._coal.ComputeCollision(self._shapes[a][ia][0], self._shapes[b][ib][0])
             self._solvers[key] = solver
         return solver
+
+
+_GUESS = np.array([1.0, 0.0, 0.0])  # coal's default first direction
+_HINT = np.zeros(2, dtype=np.int32)
+
+
+def _same_start(request, coal) -> None:
+    """Every GJK run of `request` starts from the same guess and support hint: left at its
+    default, a coal functor starts from where its previous query ended, so a distance (within
+    coal's tolerance, 1e-8 m on the PR2's hulls) and what a proof decides from it would depend
+    on which pairs and states the process measured before (its --jobs share, the proof cache);
+    a distance functor changes the guess and hint as it runs, so distance queries set those two
+    again before each run."""
+    request.gjk_initial_guess = coal.GJKInitialGuess.CachedGuess
+    request.cached_gjk_guess = _GUESS
+    request.cached_support_func_guess = _HINT
 
 
 def _set(tf, pose: np.ndarray, local: np.ndarray | None) -> None:

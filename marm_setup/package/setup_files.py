@@ -108,7 +108,8 @@ Pair = tuple[str, str]
 class RecordedProofs:
     """What a marm_setup.yaml records of its matrix's proofs (`collision.prove` on or
     exhaustive): its Never pairs and its unproved ones (with the share of the joint range
-    proved) as written, and the proof key that ties them to one robot (validate checks it)."""
+    proved) as written, and the proof key that ties them to one robot: claims, for information
+    (validate trusts no proof a package records)."""
 
     prove: str
     never: tuple[Pair, ...]

@@ -53,12 +53,8 @@ def run_collisions(
     request: CollisionsRequest, robot: RobotModel, progress: Progress | None = None
 ) -> CollisionsResult:
     """Compute the matrix; update or write the SRDF and the report the request names."""
-    from marm_setup.collision import (
-        CollisionScene,
-        compute_collision_matrix,
-        load_srdf_text,
-        read_srdf_entries,
-    )
+    from marm_setup.collision import CollisionScene, load_srdf_text, read_srdf_entries
+    from marm_setup.pipeline.write import compute_matrix
 
     srdf, srdf_text = request.srdf, None
     if srdf is not None:
@@ -69,7 +65,7 @@ def run_collisions(
     default_q = None
     if request.default_pose is not None and srdf_text is not None:
         default_q = pose_configuration(robot, srdf_text, request.default_pose, str(srdf))
-    matrix = compute_collision_matrix(
+    matrix = compute_matrix(
         robot,
         CollisionScene(robot, request.padding),
         trials=request.trials,
@@ -227,13 +223,13 @@ def run_package_collisions(
     """Recompute a generated package's matrix into its marm_setup.yaml and SRDF together (its
     User pairs kept), so the next `render` has nothing to disagree with; with `force` a
     hand-edited file is overwritten (kept as `.orig`, as render does)."""
-    from marm_setup.collision import DisabledReason, compute_collision_matrix
+    from marm_setup.collision import DisabledReason
     from marm_setup.pipeline.render import load_package_setup
-    from marm_setup.pipeline.write import collision_settings
+    from marm_setup.pipeline.write import collision_settings, compute_matrix
     from marm_setup.render import apply_writes, format_change, plan_writes, render_package
 
     model, robot = load_package_setup(pkg)
-    matrix = compute_collision_matrix(
+    matrix = compute_matrix(
         robot,
         trials=trials,
         seed=seed,

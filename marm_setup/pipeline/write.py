@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
@@ -29,11 +29,9 @@ def with_collision_matrix(
     prove: str = "on",
 ) -> SetupModel:
     """Compute the matrix unless the setup already has pairs (from an SRDF or the SPEC)."""
-    from marm_setup.collision import compute_collision_matrix
-
     if model.collision.disabled:
         return model
-    matrix = compute_collision_matrix(
+    matrix = compute_matrix(
         robot,
         scene,
         trials=trials,
@@ -45,6 +43,45 @@ def with_collision_matrix(
         prove=prove,
     )
     return dataclasses.replace(model, collision=collision_settings(matrix, matrix.disabled, robot))
+
+
+def compute_matrix(robot: RobotModel, scene: CollisionScene | None = None, **options: Any) -> CollisionMatrix:
+    """compute_collision_matrix(robot, scene, **options) with the proofs of the user's proof
+    cache (collision/proof_cache.py), its new finished proofs kept there: the same matrix as
+    without the cache, for less work. A `progress` with a `proofs(proved, in_contact, left)`
+    method (cli/progress.py) is told of the proofs too."""
+    from marm_setup.collision import (
+        CollisionScene,
+        cache_dir,
+        compute_collision_matrix,
+        known_proofs,
+        remember_proofs,
+        run_context,
+    )
+
+    scene = CollisionScene(robot) if scene is None else scene
+    if options.get("prove", "off") == "off":
+        return compute_collision_matrix(robot, scene, **options)
+    told = getattr(options.get("progress"), "proofs", None)  # a progress that shows the proofs
+    if cache_dir() is None:
+        return compute_collision_matrix(robot, scene, proof_progress=told, **options)
+    context = run_context(scene, {name: options.get(name, value) for name, value in RUN_SETTINGS.items()})
+    known = known_proofs(scene, context=context)
+    matrix = compute_collision_matrix(robot, scene, known=known, proof_progress=told, **options)
+    remember_proofs(scene, matrix, context)
+    return matrix
+
+
+# compute_collision_matrix's options an unproved proof depends on, with their defaults
+RUN_SETTINGS = {
+    "trials": 10000,
+    "seed": 0,
+    "min_collision_fraction": 0.95,
+    "check_default": True,
+    "check_always": True,
+    "default_q": None,
+    "prove": "off",
+}
 
 
 def collision_settings(

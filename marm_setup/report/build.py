@@ -4,9 +4,9 @@ validate (through its public API) gives the findings, the package's SRDF and rob
 trajectories its runtime checks planned; the collision scene gives the contacts of each state;
 the collision matrix is recomputed (seed 0, `--trials` or DEFAULT_TRIALS: never the package's
 own `collision` settings, a claim that may ask for 1e12 trials) for each pair's hits and
-closest distance, the reasons staying the SRDF's. Each pair's proof status is the one the
-package's marm_setup.yaml records where its proof key matches this robot (proved, unproved);
-else the matrix is proved as `collisions` proves it (--prove on), and a pair the SRDF disables
+closest distance, the reasons staying the SRDF's. Each pair's proof status is the report's own:
+the matrix is proved as `collisions` proves it (--prove on, reusing the user's proof cache),
+never taken from what the package's marm_setup.yaml says of itself; a pair the SRDF disables
 that a proof finds in contact is drawn at its witness state, as a stale pair's finding is.
 """
 
@@ -142,36 +142,25 @@ def _matrix_section(
     progress: Callable[[int, int], None],
 ) -> tuple[MatrixSection, CollisionMatrix] | None:
     """The matrix picture and pairs (reasons from the SRDF, counts and proofs from a fresh
-    computation, or the proofs the package records; see the module doc), and the matrix."""
-    from marm_setup.collision import compute_collision_matrix, describe_matrix, render_matrix_svg
-    from marm_setup.validate import matrix_proofs
+    computation; see the module doc), and the matrix."""
+    from marm_setup.collision import (
+        compute_collision_matrix,
+        describe_matrix,
+        known_proofs,
+        remember_proofs,
+        render_matrix_svg,
+    )
 
     if not scene.candidate_pairs:
         return None
-    seed, count = 0, trials or DEFAULT_TRIALS  # the command's own, whatever the package says
-    recorded = matrix_proofs(validated.package, robot)
-    prove = "on" if recorded is None else "off"
+    count = trials or DEFAULT_TRIALS  # the command's own, whatever the package says
     matrix = compute_collision_matrix(
-        robot, scene, trials=count, seed=seed, jobs=jobs, progress=progress, prove=prove
+        robot, scene, trials=count, jobs=jobs, progress=progress, prove="on", known=known_proofs(scene)
     )
-    if recorded is not None:
-        matrix = _with_recorded(matrix, *recorded)
+    remember_proofs(scene, matrix)
     links = [name for name in robot.links_in_tree_order if robot.link(name).has_geometry]
     svg = render_matrix_svg(matrix, robot.name, links, srdf.disabled)
     return MatrixSection(svg, describe_matrix(matrix, robot.name, srdf.disabled)), matrix
-
-
-def _with_recorded(matrix: CollisionMatrix, mode: str, recorded: Mapping) -> CollisionMatrix:
-    """`matrix` with the proofs a setup file records (pair -> (outcome, proved share))."""
-    import dataclasses
-
-    from marm_setup.collision import PairProof
-
-    stats = tuple(
-        dataclasses.replace(s, proof=PairProof(*recorded[s.pair])) if s.pair in recorded else s
-        for s in matrix.stats
-    )
-    return dataclasses.replace(matrix, stats=stats, prove=mode)
 
 
 def _relative(content: dict, validated: ValidatedPackage) -> dict:

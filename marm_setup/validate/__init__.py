@@ -10,7 +10,7 @@ from marm_setup.exports import lazy_api
 
 API = {
     "runner": (
-        "check_given_xacro_args load_package_robot matrix_proofs matrix_settings validate validate_package "
+        "check_given_xacro_args load_package_robot validate validate_package "
         "validate_read ValidatedPackage Validation"
     ),
     "runtime": "check_runtime PlannedPair",
@@ -39,8 +39,6 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.validate.runner import Validation as Validation
     from marm_setup.validate.runner import check_given_xacro_args as check_given_xacro_args
     from marm_setup.validate.runner import load_package_robot as load_package_robot
-    from marm_setup.validate.runner import matrix_proofs as matrix_proofs
-    from marm_setup.validate.runner import matrix_settings as matrix_settings
     from marm_setup.validate.runner import validate as validate
     from marm_setup.validate.runner import validate_package as validate_package
     from marm_setup.validate.runner import validate_read as validate_read

@@ -515,7 +515,7 @@ def check_with_scene(
     """Pose collisions, matrix freshness and (when `plan`) the runtime checks, on one scene;
     with the pose pairs the runtime checks planned (None when they did not run)."""
     from marm_setup.collision import CollisionScene
-    from marm_setup.validate.rules.matrix_rules import check_matrix_fresh, check_matrix_missing, proved_pairs
+    from marm_setup.validate.rules.matrix_rules import cached_proved, check_matrix_fresh, check_matrix_missing
     from marm_setup.validate.rules.pose_rules import check_pose_collisions, check_start_state
 
     try:
@@ -529,48 +529,18 @@ def check_with_scene(
     ):  # ros1 starts at named poses, checked above
         file = pkg.initial_positions.where.file
         out += guarded("pose", check_start_state, pkg.srdf, robot, scene, file, start)
-    seed, computed = matrix_settings(pkg)
-    trials = matrix_trials if computed is None else min(matrix_trials, computed)
+    # validate's own trial count and seed, never the package's (a package cannot vouch for itself)
+    trials = matrix_trials
+    out += guarded("matrix", check_matrix_missing, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials)
+    proved = cached_proved(pkg.srdf, scene) if pkg.srdf is not None else frozenset()
     out += guarded(
-        "matrix", check_matrix_missing, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, seed=seed
-    )
-    proved = proved_pairs(pkg.marm_setup.proofs if pkg.marm_setup is not None else None, robot)
-    out += guarded(
-        "matrix",
-        check_matrix_fresh,
-        pkg.srdf,
-        robot,
-        scene,
-        pkg.srdf_path,
-        trials=trials,
-        seed=seed,
-        proved=proved,
+        "matrix", check_matrix_fresh, pkg.srdf, robot, scene, pkg.srdf_path, trials=trials, proved=proved
     )
     if not plan:
         return out, None
     planned: list[PlannedPair] = []
     out += guarded("runtime", run_runtime_checks, pkg, robot, scene, planned, progress)
     return out, planned
-
-
-def matrix_proofs(pkg: MoveItPackage, robot: RobotModel) -> tuple[str, dict] | None:
-    """(prove mode, Never pair -> (outcome, proved share)) as the package's marm_setup.yaml
-    records its matrix's proofs, when they were made for this very robot and matrix (its proof
-    key); else None."""
-    from marm_setup.validate.rules.matrix_rules import recorded_proofs
-
-    recorded = pkg.marm_setup.proofs if pkg.marm_setup is not None else None
-    found = recorded_proofs(recorded, robot)
-    return None if found is None or recorded is None else (recorded.prove, found)
-
-
-def matrix_settings(pkg: MoveItPackage) -> tuple[int, int | None]:
-    """(seed, trials) the package's matrix was computed with (marm_setup.yaml `collision`), else
-    (0, None). Resampling no more than those trials keeps an unchanged URDF's matrix fresh."""
-    marm = pkg.marm_setup
-    if marm is None:
-        return 0, None
-    return marm.collision_seed or 0, marm.collision_trials
 
 
 def run_runtime_checks(

@@ -412,3 +412,34 @@ def test_exhaustive_proves_what_on_leaves_open_on_a_small_robot(tmp_path):
     assert data["prove"] == "exhaustive" and data["proofs"]["unproved"] == 0
     assert pairs[("nub", "pointer")]["proof"] == "collides" and pairs[("nub", "pointer")]["reason"] is None
     assert set(pairs[("follower", "stop")]["witness"]) == {"slide"}
+
+
+def test_a_rerun_reuses_the_proof_cache_and_prints_the_same_bytes(tmp_path, monkeypatch):
+    """The second run takes every proof from the user's cache (the folder MARM_SETUP_CACHE
+    names; tests never touch the real one): the same JSON, byte for byte, as the first and
+    as a run with the cache off."""
+    cache = tmp_path / "cache"
+    monkeypatch.setenv("MARM_SETUP_CACHE", str(cache))
+    args = (str(MARM_URDF), "--trials", "1000", "--format", "json")
+    first = _run(*args)
+    assert first.exit_code == 0 and (cache / "proofs.sqlite").is_file()
+    again = _run(*args)
+    monkeypatch.setenv("MARM_SETUP_CACHE", "off")
+    uncached = _run(*args)
+    assert first.stdout == again.stdout == uncached.stdout
+    assert json.loads(first.stdout)["proofs"]["proved"] > 0
+
+
+def test_the_sampling_progress_hears_of_the_proofs():
+    """The progress `collisions` and `init` draw is told the proofs as they end: at the end
+    its counts are the matrix's (pairs proved, found in contact; none left)."""
+    from marm_setup.cli.progress import SamplingProgress
+    from marm_setup.pipeline.collisions import CollisionsRequest, run_collisions
+    from marm_setup.robot.load import load_robot
+
+    robot = load_robot(MARM_URDF)
+    with SamplingProgress(enabled=False) as progress:
+        result = run_collisions(CollisionsRequest(trials=500), robot, progress)
+    outcomes = [s.proof.outcome for s in result.matrix.stats if s.proof is not None]
+    assert progress.proof_counts == (outcomes.count("proved"), outcomes.count("collides"), 0)
+    assert outcomes.count("proved") > 0

@@ -1,6 +1,6 @@
 """Proofs in a setup: marm_setup.yaml keeps the prove mode, the unproved pairs and the proof key;
-the package SRDF notes the unproved pairs; validate trusts the proved pairs only for the robot
-(and pairs) the key was made for."""
+the package SRDF notes the unproved pairs; validate trusts no proof a package records about
+itself, only the user's own proof cache."""
 
 from __future__ import annotations
 
@@ -11,13 +11,11 @@ import yaml
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason, UnprovedPair
 from marm_setup.errors import InputError
-from marm_setup.package.setup_files import read_proofs
 from marm_setup.pipeline import with_collision_matrix
 from marm_setup.render.package import render_package
 from marm_setup.setup.infer import infer_setup as infer
 from marm_setup.setup.model import RobotSource
 from marm_setup.setup.yaml_io import dump_setup, setup_from_dict
-from marm_setup.validate.rules import matrix_rules
 
 N = DisabledReason.NEVER
 
@@ -68,27 +66,44 @@ def test_the_package_srdf_notes_each_unproved_pair(proved_setup, marm):
     assert srdf.count("unproved Never:") == len(proved_setup.collision.unproved)
 
 
-def proved_pairs(section, robot):
-    """What validate skips for a `collision` section as the package model reads it."""
-    return matrix_rules.proved_pairs(read_proofs(section) if isinstance(section, dict) else None, robot)
+def test_a_package_cannot_vouch_for_itself(tmp_path, marm, monkeypatch):
+    """Neither a recorded proof with a matching key, nor `trials: 0`, nor the package's seed
+    hides a Never pair that collides; with or without the user's proof cache."""
+    from tests.validate_helpers import validate_package, vouching_package
+
+    pkg, pair = vouching_package(tmp_path, marm)
+    element = f"disable_collisions[{pair[0]} {pair[1]}]"
+    for cache in ("warm", "cold"):
+        if cache == "cold":
+            monkeypatch.setenv("MARM_SETUP_CACHE", str(tmp_path / "empty-cache"))
+        stale = [f for f in validate_package(pkg, plan=False) if f.rule == "matrix.stale"]
+        assert [f.element for f in stale] == [element], cache
 
 
-def test_validate_trusts_the_proved_pairs_only_for_their_robot(proved_setup, marm):
-    section = yaml.safe_load(dump_setup(proved_setup))["collision"]
-    collision = proved_setup.collision
-    never = {p.pair for p in collision.disabled if p.reason is N}
-    assert proved_pairs(section, marm) == never - {u.pair for u in collision.unproved}
+def test_validate_skips_only_the_pairs_the_users_cache_proves(tmp_path, marm, monkeypatch):
+    """The pairs not resampled are exactly the SRDF's Never pairs the user's own cache holds as
+    proved (init filled it); an empty cache or another robot's geometry trusts none."""
+    from marm_setup.collision import CollisionScene
+    from marm_setup.package import read_package
+    from marm_setup.validate.rules.matrix_rules import cached_proved
+    from tests.validate_helpers import generate_marm
+
+    pkg = read_package(generate_marm(tmp_path, "ros1"))
+    scene = CollisionScene(marm)
+    setup = yaml.safe_load((pkg.root / "marm_setup.yaml").read_text(encoding="utf-8"))["collision"]
+    never = {(d["link1"], d["link2"]) for d in setup["disabled"] if d["reason"] == "Never"}
+    unproved = {(u["link1"], u["link2"]) for u in setup["unproved"]}
+    assert cached_proved(pkg.srdf, scene) == never - unproved and never - unproved
     joint = next(j for j in marm.joints if j.type == "revolute")
     wider = dataclasses.replace(joint, upper=joint.upper + 0.5)
     changed = dataclasses.replace(marm, joints=tuple(wider if j is joint else j for j in marm.joints))
-    assert proved_pairs(section, changed) == frozenset()  # another robot: resample everything
-    edited = dict(section, unproved=section["unproved"][1:])
-    assert proved_pairs(edited, marm) == frozenset()  # pairs edited by hand: the key no longer fits
-    assert proved_pairs(dict(section, prove="off"), marm) == frozenset()
-    assert (
-        proved_pairs(None, marm) == frozenset()
-        and proved_pairs({"prove": "on", "disabled": 3}, marm) == frozenset()
-    )
+    moved = cached_proved(pkg.srdf, CollisionScene(changed))
+    assert moved < never - unproved  # the pairs whose joint box grew are no longer trusted
+    assert all(joint.child not in pair for pair in moved)
+    monkeypatch.setenv("MARM_SETUP_CACHE", str(tmp_path / "empty-cache"))
+    assert cached_proved(pkg.srdf, scene) == frozenset()
+    monkeypatch.setenv("MARM_SETUP_CACHE", "off")
+    assert cached_proved(pkg.srdf, scene) == frozenset()
 
 
 def test_notes_round_down_so_a_nearly_proved_pair_never_reads_100():
@@ -102,7 +117,3 @@ def test_prove_off_records_no_proofs(marm):
     model = infer(marm, package_name="marm_moveit_config", source=source).model
     off = with_collision_matrix(model, marm, trials=300, seed=0, prove="off").collision
     assert off.prove == "off" and off.unproved == () and off.proof_key is None
-    assert (
-        proved_pairs(yaml.safe_load(dump_setup(dataclasses.replace(model, collision=off)))["collision"], marm)
-        == frozenset()
-    )

@@ -5,11 +5,12 @@ Assistant's Always, compute_default_collisions.cpp, `min_collision_fraction` 0.9
 SRDF written for a URDF whose links were renamed since) is an ERROR: MoveIt checks it, finds
 the whole robot in collision almost everywhere, and no plan of any group can start or end.
 
-Stale: a pair the SRDF marks Never should not collide in the resample. Pairs a setup file
-(marm_setup.yaml) records as proved collision-free over their whole joint range are not
-resampled while its proof key matches this very robot (`proved_pairs`; any change to the
-robot's joints or collision geometry, or to the file's pairs, breaks the key): no state could
-show them in collision, so the findings are the resample's, found with less work.
+Stale: a pair the SRDF marks Never should not collide in the resample. Nothing a package says
+about itself replaces this check (a package could disable a pair colliding in 22 % of states
+and record it as "proved", with a proof key anyone can recompute): the only pairs not
+resampled are those the user's own proof cache (collision/proof_cache.py, written by the
+user's own `init` and `collisions` runs) holds as proved, keyed by every byte their geometry
+and joints depend on (`cached_proved`); no state could show those in collision.
 
 A hit is a WARNING with its evidence (hit rate, one colliding configuration, the command that
 recomputes the matrix), never an error: MoveIt never checks a disabled pair whatever its reason
@@ -18,11 +19,12 @@ collision matrix; the reason is informational), authors disable touching pairs o
 gripper linkage), and a pair that collides at the default state is what the Setup Assistant
 itself would label Default (compute_default_collisions.cpp, phase "default state").
 
-The resample uses the matrix computation's own sampler (`collision.trials.trial_samples`) and
-the seed in marm_setup.yaml (else 0), so its states are a prefix of the ones `init`/`collisions`
-drew: a matrix we computed for an unchanged URDF can never fail it, while a URDF change (new
-geometry, wider limits) shows up at once. For a matrix from the Setup Assistant (another
-sampler) a hit is still a real, observed collision.
+The resample uses the matrix computation's own sampler (`collision.trials.trial_samples`)
+with validate's own seed and trial count (DEFAULT_SEED, or what the caller chooses), never the
+package's `collision.seed` or `collision.trials` (a package could choose the seed whose states
+miss its pair, or `trials: 0`). With init's default seed its states are a prefix of the ones
+`init`/`collisions` drew, so a matrix we computed for an unchanged URDF passes; a hit is always
+a real, observed collision, whatever made the matrix.
 """
 
 from __future__ import annotations
@@ -37,7 +39,6 @@ from marm_setup.robot import RobotModel
 
 if TYPE_CHECKING:
     from marm_setup.collision import CollisionScene
-    from marm_setup.package import RecordedProofs
     from marm_setup.setup import Srdf
 
 DEFAULT_TRIALS = 1000
@@ -92,18 +93,10 @@ def check_matrix_fresh(
     proved: frozenset[tuple[str, str]] = frozenset(),
 ) -> list[Finding]:
     """Resample `trials` random states; every Never pair seen colliding means a stale matrix
-    (`proved`: pairs proved collision-free for this robot, not resampled)."""
+    (`proved`: pairs the user's proof cache proves collision-free, not resampled)."""
     from marm_setup.collision import trial_samples
 
-    geometry = set(scene.links)
-    never = [
-        p.pair
-        for p in srdf.disabled
-        if p.reason is DisabledReason.NEVER
-        and p.pair[0] != p.pair[1]
-        and set(p.pair) <= geometry
-        and p.pair not in proved
-    ]  # a self-pair (link1 == link2) is accepted by srdfdom and means nothing to check
+    never = [pair for pair in never_pairs(srdf, scene) if pair not in proved]
     if not never or trials <= 0:
         return []
     q = trial_samples(robot, seed, trials)
@@ -115,32 +108,26 @@ def check_matrix_fresh(
     return out
 
 
-def proved_pairs(recorded: RecordedProofs | None, robot: RobotModel) -> frozenset[tuple[str, str]]:
-    """The Never pairs a setup file records as proved, when its proof key matches `robot`;
-    else none."""
-    found = recorded_proofs(recorded, robot) or {}
-    return frozenset(pair for pair, (outcome, _) in found.items() if outcome == "proved")
+def never_pairs(srdf: Srdf, scene: CollisionScene) -> list[tuple[str, str]]:
+    """The SRDF's Never pairs of two links with geometry (a self-pair, link1 == link2, is
+    accepted by srdfdom and means nothing to check)."""
+    geometry = set(scene.links)
+    return [
+        p.pair
+        for p in srdf.disabled
+        if p.reason is DisabledReason.NEVER and p.pair[0] != p.pair[1] and set(p.pair) <= geometry
+    ]
 
 
-def recorded_proofs(
-    recorded: RecordedProofs | None, robot: RobotModel
-) -> dict[tuple[str, str], tuple[str, float]] | None:
-    """Never pair -> ("proved" or "unproved", the share of its joint range proved) as a setup
-    file records them (the package model's `RecordedProofs`), when its proof key matches
-    `robot`; None when it records no proofs or they were made for another robot or matrix."""
-    from marm_setup.collision import link_pair, proof_key
-    from marm_setup.robot import robot_fingerprint
+def cached_proved(srdf: Srdf, scene: CollisionScene) -> frozenset[tuple[str, str]]:
+    """The SRDF's Never pairs the user's proof cache holds as proved for this very geometry
+    and these joints (never what a package records about itself)."""
+    from marm_setup.collision import known_proofs, link_pair
 
-    if recorded is None:
-        return None
-    unproved = [pair for pair, _ in recorded.unproved]
-    if recorded.key != proof_key(robot_fingerprint(robot), recorded.prove, recorded.never, unproved):
-        return None
-    shares = {link_pair(*pair): share for pair, share in recorded.unproved}
-    return {
-        link_pair(*p): ("unproved", shares[link_pair(*p)]) if link_pair(*p) in shares else ("proved", 1.0)
-        for p in recorded.never
-    }
+    pairs = {link_pair(*pair) for pair in never_pairs(srdf, scene)}
+    return frozenset(
+        pair for pair, proof in known_proofs(scene, sorted(pairs)).items() if proof.outcome == "proved"
+    )
 
 
 def _stale(

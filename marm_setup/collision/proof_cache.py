@@ -1,0 +1,190 @@
+"""The user's proof cache: finished pair proofs by their key (collision/proof_keys.py).
+
+One SQLite file, `$XDG_CACHE_HOME/marm-setup/proofs.sqlite` (else `~/.cache/marm-setup/`),
+written only by the user's own runs of `init` and `collisions`: a package never supplies a
+proof, so this is the only place proofs are trusted from (validate skips the resample of a
+Never pair only when this cache holds its proof). `MARM_SETUP_CACHE=off` turns it off;
+`MARM_SETUP_CACHE=DIR` puts it in DIR. Finished proofs ("proved": no state of the pair's box
+is in contact; "collides": a state that is) are kept by their pair's key, for any robot that
+has the pair; an unproved one (the outcome of the budget its whole run gave it) by its pair's
+key within that run (proof_keys.run_context), for the very same run only, as is the screen of
+a pair that run's trials then saw in collision (SEEN). Each keeps what the
+matrix needs to account for it as a run without the cache would (its units, the screen's
+outcome and units, where its first witness-search round ended). A cache that cannot be read
+or written is skipped: it only ever saves work.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import os
+import sqlite3
+from collections.abc import Iterable, Mapping
+from contextlib import closing
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from marm_setup.collision.matrix import CollisionMatrix, PairStats
+    from marm_setup.collision.scene import CollisionScene
+
+Pair = tuple[str, str]
+LOG = logging.getLogger(__name__)
+FILE = "proofs.sqlite"
+OUTCOMES = ("proved", "collides")
+SEEN = "seen"  # within one run: screened unproved, then seen in collision by the trials
+
+
+@dataclass(frozen=True, slots=True)
+class CachedProof:
+    """A finished proof as the cache keeps it: `screen` is (outcome, units) of the screen
+    before the trials ("unproved": the proof went on after them); `second` where the first
+    round of its witness search ended, when that round left it open."""
+
+    outcome: str
+    fraction: float
+    witness: tuple[tuple[str, float], ...]
+    units: int
+    screen: tuple[str, int]
+    second: float | None = None  # left open by the first witness-search round: where it ended [m]
+
+    @property
+    def settled(self) -> bool:
+        """Finished after the trials (the pair went through them in a run without cache)."""
+        return self.screen[0] not in OUTCOMES
+
+
+def cache_dir() -> Path | None:
+    """The cache folder, or None when MARM_SETUP_CACHE is "off"."""
+    setting = os.environ.get("MARM_SETUP_CACHE", "")
+    if setting.lower() in ("off", "0", "no", "false"):
+        return None
+    if setting:
+        return Path(setting)
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "marm-setup"
+
+
+def known_proofs(
+    scene: CollisionScene, pairs: Iterable[Pair] | None = None, context: str | None = None
+) -> dict[Pair, CachedProof]:
+    """Pair -> its finished proof in the cache, for `pairs` (default: every candidate pair of
+    `scene`); with `context` (proof_keys.run_context) also the unproved ones that very run left."""
+    if cache_dir() is None:
+        return {}
+    from marm_setup.collision.proof_keys import pair_keys
+
+    keys = pair_keys(scene, scene.candidate_pairs if pairs is None else pairs)
+    runs = {pair: _in_run(key, context) for pair, key in keys.items()} if context else {}
+    found = load_proofs([*keys.values(), *runs.values()])
+    out = {pair: found[key] for pair, key in runs.items() if key in found}
+    out.update(
+        {pair: found[key] for pair, key in keys.items() if key in found and found[key].outcome in OUTCOMES}
+    )
+    return out
+
+
+def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix, context: str | None = None) -> None:
+    """Keep the finished proofs of `matrix` (computed on `scene`) in the cache, and with
+    `context` the unproved ones and the screens of the pairs its trials saw in collision (SEEN),
+    for that very run only."""
+    from marm_setup.collision.proof_keys import pair_keys
+
+    kept: dict[Pair, CachedProof] = {}
+    for stats in matrix.stats:
+        proof = _kept(stats, matrix.screened)
+        if proof is not None and (proof.outcome in OUTCOMES or context):
+            kept[stats.pair] = proof
+    if cache_dir() is None or not kept:
+        return
+    keys = pair_keys(scene, kept)
+    dump_proofs(
+        {
+            keys[pair] if proof.outcome in OUTCOMES else _in_run(keys[pair], context or ""): proof
+            for pair, proof in kept.items()
+        }
+    )
+
+
+def _kept(stats: PairStats, screened: Mapping[Pair, tuple[str, int]]) -> CachedProof | None:
+    """What the cache keeps of one pair: its proof, or the screen of a pair seen after it."""
+    proof, screen = stats.proof, screened.get(stats.pair, ("unproved", 0))
+    if proof is None:
+        return CachedProof(SEEN, 0.0, (), 0, screen) if stats.pair in screened else None
+    return CachedProof(proof.outcome, proof.proved_fraction, proof.witness, proof.units, screen, proof.second)
+
+
+def _in_run(key: str, context: str) -> str:
+    """The key of an unproved proof: its pair's key within one run's context."""
+    return hashlib.sha256(f"{key} {context}".encode()).hexdigest()[:32]
+
+
+def load_proofs(keys: Iterable[str]) -> dict[str, CachedProof]:
+    """Key -> its cached proof, for the keys the cache holds (none when it is off or unreadable)."""
+    folder = cache_dir()
+    wanted = sorted(set(keys))
+    if folder is None or not wanted or not (folder / FILE).is_file():
+        return {}
+    found: dict[str, CachedProof] = {}
+    try:
+        with closing(_connect(folder)) as db:
+            for start in range(0, len(wanted), 500):
+                part = wanted[start : start + 500]
+                marks = ",".join("?" * len(part))
+                rows = db.execute(f"SELECT key, value FROM proofs WHERE key IN ({marks})", part)
+                found.update((key, proof) for key, value in rows if (proof := _parsed(value)) is not None)
+    except sqlite3.Error as exc:
+        LOG.debug("proof cache not read: %s", exc)
+        return {}
+    return found
+
+
+def dump_proofs(proofs: Mapping[str, CachedProof]) -> None:
+    """Add `proofs` (key -> finished proof) to the cache (nothing when it is off or unwritable)."""
+    folder = cache_dir()
+    if folder is None or not proofs:
+        return
+    rows = [(key, json.dumps(_fields(proof))) for key, proof in sorted(proofs.items())]
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with closing(_connect(folder)) as db, db:
+            db.executemany("INSERT OR REPLACE INTO proofs (key, value) VALUES (?, ?)", rows)
+    except (OSError, sqlite3.Error) as exc:
+        LOG.debug("proof cache not written: %s", exc)
+
+
+def _connect(folder: Path) -> sqlite3.Connection:
+    db = sqlite3.connect(folder / FILE, timeout=10.0)
+    db.execute("CREATE TABLE IF NOT EXISTS proofs (key TEXT PRIMARY KEY, value TEXT NOT NULL)")
+    return db
+
+
+def _fields(proof: CachedProof) -> dict:
+    return {
+        "outcome": proof.outcome,
+        "fraction": proof.fraction,
+        "witness": [list(item) for item in proof.witness],
+        "units": proof.units,
+        "screen": list(proof.screen),
+        "second": proof.second,
+    }
+
+
+def _parsed(value: str) -> CachedProof | None:
+    """A cached proof from its JSON, or None when it is not one."""
+    try:
+        data = json.loads(value)
+        proof = CachedProof(
+            str(data["outcome"]),
+            float(data["fraction"]),
+            tuple((str(joint), float(v)) for joint, v in data["witness"]),
+            int(data["units"]),
+            (str(data["screen"][0]), int(data["screen"][1])),
+            None if data.get("second") is None else float(data["second"]),
+        )
+    except (ValueError, TypeError, KeyError, IndexError):
+        return None
+    return proof if proof.outcome in (*OUTCOMES, "unproved", SEEN) else None

@@ -1,0 +1,163 @@
+"""The proof cache (collision/proof_cache.py, proof_keys.py): a re-run reuses every finished
+proof whose key matches and gives the same matrix; the key follows every byte and joint a proof
+depends on, and nothing else; progress tells the proofs as they end."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from marm_setup.collision import (
+    CollisionScene,
+    compute_collision_matrix,
+    known_proofs,
+    pair_keys,
+    remember_proofs,
+)
+from marm_setup.robot.load import load_robot
+from tests.conftest import realworld
+
+PANDA = realworld("ros1", "panda_description", "urdf", "panda_arm_hand.urdf.xacro")
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_cached_run_gives_the_same_matrix_with_no_proof_redone(marm, jobs):
+    cold = compute_collision_matrix(marm, CollisionScene(marm), trials=2000, prove="on", jobs=jobs)
+    remember_proofs(CollisionScene(marm), cold)
+    scene = CollisionScene(marm)
+    known = known_proofs(scene)
+    finished = {s.pair for s in cold.stats if s.proof is not None and s.proof.outcome != "unproved"}
+    assert set(known) == finished and finished
+    warm = compute_collision_matrix(marm, scene, trials=2000, prove="on", jobs=jobs, known=known)
+    assert warm == cold
+    unproved = [s for s in cold.stats if s.proof is not None and s.proof.outcome == "unproved"]
+    assert warm.work.exact_checks <= cold.work.exact_checks
+    assert warm.work.proof_units - sum(k.units for k in known.values()) <= sum(
+        s.proof.units for s in unproved
+    )
+
+
+def test_the_same_run_reuses_its_unproved_pairs_too_and_proves_nothing(marm):
+    """Within one run's context the unproved proofs come back as well: nothing is proved again
+    and the matrix is the same; another seed's context reuses the finished proofs only."""
+    from marm_setup.collision import run_context
+
+    def context(seed):
+        return run_context(CollisionScene(marm), {"trials": 2000, "seed": seed, "prove": "on"})
+
+    cold = compute_collision_matrix(marm, CollisionScene(marm), trials=2000, prove="on")
+    assert any(s.proof is not None and s.proof.outcome == "unproved" for s in cold.stats)
+    remember_proofs(CollisionScene(marm), cold, context(0))
+    known = known_proofs(CollisionScene(marm), context=context(0))
+    assert {p for p, k in known.items() if k.outcome != "seen"} == {s.pair for s in cold.stats if s.proof}
+    assert {p for p, k in known.items() if k.outcome == "seen"} <= {
+        s.pair for s in cold.stats if s.seen_colliding
+    }
+    warm = compute_collision_matrix(marm, CollisionScene(marm), trials=2000, prove="on", known=known)
+    assert warm == cold and warm.work.proof_units == sum(k.units for k in known.values())
+    other = known_proofs(CollisionScene(marm), context=context(1))
+    assert {k.outcome for k in other.values()} == {"proved", "collides"} and set(other) < set(known)
+
+
+@pytest.mark.skipif(not PANDA.exists(), reason="../shared/realworld absent")
+def test_the_panda_cached_with_distances_is_the_same_matrix():
+    robot = load_robot(PANDA)
+    cold = compute_collision_matrix(robot, CollisionScene(robot), prove="on", distances=True)
+    remember_proofs(CollisionScene(robot), cold)
+    scene = CollisionScene(robot)
+    warm = compute_collision_matrix(robot, scene, prove="on", distances=True, known=known_proofs(scene))
+    assert warm == cold and [s.min_distance for s in warm.stats] == [s.min_distance for s in cold.stats]
+
+
+def test_prove_off_and_a_cache_that_is_off_or_broken_change_nothing(marm, monkeypatch, tmp_path):
+    cold = compute_collision_matrix(marm, CollisionScene(marm), trials=500, prove="on")
+    monkeypatch.setenv("MARM_SETUP_CACHE", "off")
+    remember_proofs(CollisionScene(marm), cold)
+    assert known_proofs(CollisionScene(marm)) == {}
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    (broken / "proofs.sqlite").write_bytes(b"not a database" * 100)
+    monkeypatch.setenv("MARM_SETUP_CACHE", str(broken))
+    remember_proofs(CollisionScene(marm), cold)  # skipped, no error
+    assert known_proofs(CollisionScene(marm)) == {}
+
+
+TETRA = np.array([[0.0, 0.0, 0.0], [0.05, 0.0, 0.0], [0.0, 0.05, 0.0], [0.0, 0.0, 0.05]])
+
+
+def _gltf_robot(folder, tool_size: float, upper: float):
+    """Base, an arm link (a glTF tetrahedron, its vertices in the .bin buffer) on a revolute
+    joint up to `upper`, and a tool box of `tool_size` on another joint; the robot and the
+    mesh's file names."""
+    import trimesh
+
+    files = trimesh.Trimesh(TETRA, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]).export(file_type="gltf")
+    for name, data in files.items():
+        (folder / name).write_bytes(data)
+    urdf = f"""<robot name="r">
+  <link name="base"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="arm"><collision><geometry><mesh filename="model.gltf"/></geometry></collision></link>
+  <link name="tool"><collision><geometry><box size="{tool_size} 0.02 0.02"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.2"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="{upper}" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="arm"/><child link="tool"/><origin xyz="0.1 0 0"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+    (folder / "r.urdf").write_text(urdf, encoding="utf-8")
+    robot = load_robot(folder / "r.urdf")
+    return robot, sorted(files)
+
+
+def test_the_key_follows_every_byte_and_joint_the_proof_depends_on(tmp_path):
+    """Base/arm's key: the same with another tool; another when the joint's range changes, or
+    when only the glTF's .bin buffer (not the file the URDF names) does."""
+    keys = {}
+    for case, (tool, upper) in {
+        "first": (0.05, 1.0),
+        "other tool": (0.09, 1.0),
+        "wider joint": (0.05, 1.5),
+    }.items():
+        folder = tmp_path / case.replace(" ", "_")
+        folder.mkdir()
+        robot, _ = _gltf_robot(folder, tool, upper)
+        keys[case] = pair_keys(CollisionScene(robot), [("arm", "base"), ("base", "tool")])
+    folder = tmp_path / "other_buffer"
+    folder.mkdir()
+    robot, files = _gltf_robot(folder, 0.05, 1.0)
+    vertices = TETRA.astype(np.float32).tobytes()
+    buffer = next(folder / name for name in files if vertices in (folder / name).read_bytes())
+    assert buffer.suffix == ".bin"
+    data = buffer.read_bytes()
+    buffer.write_bytes(data.replace(vertices, (TETRA * 0.9).astype(np.float32).tobytes()))
+    keys["other buffer"] = pair_keys(CollisionScene(load_robot(folder / "r.urdf")), [("arm", "base")])
+    base_arm = {case: k[("arm", "base")] for case, k in keys.items()}
+    assert base_arm["other tool"] == base_arm["first"]
+    assert base_arm["wider joint"] != base_arm["first"] and base_arm["other buffer"] != base_arm["first"]
+    assert keys["other tool"][("base", "tool")] != keys["first"][("base", "tool")]
+
+
+def test_a_variant_reuses_the_proofs_of_its_unchanged_pairs(marm):
+    """The marm with a wider last joint: pairs away from that joint keep their cached proofs."""
+    cold = compute_collision_matrix(marm, CollisionScene(marm), trials=500, prove="on")
+    remember_proofs(CollisionScene(marm), cold)
+    joint = marm.active_joints[-1]
+    wider = dataclasses.replace(joint, upper=joint.upper + 0.1)
+    variant = dataclasses.replace(marm, joints=tuple(wider if j is joint else j for j in marm.joints))
+    known = known_proofs(CollisionScene(variant))
+    driven = [j for j in variant.joints if j.name == joint.name or (j.mimic and j.mimic.joint == joint.name)]
+    moved = {link for j in driven for link in variant.subtree_links(j.child)}
+    finished = {s.pair for s in cold.stats if s.proof is not None and s.proof.outcome != "unproved"}
+    assert set(known) == {p for p in finished if not moved & set(p)}
+    assert known and set(known) < finished
+
+
+def test_progress_tells_the_proofs_as_they_end(marm):
+    told: list[tuple[int, int, int]] = []
+    matrix = compute_collision_matrix(
+        marm, CollisionScene(marm), trials=500, prove="on", proof_progress=lambda *c: told.append(c)
+    )
+    outcomes = [s.proof.outcome for s in matrix.stats if s.proof is not None]
+    assert told and told[-1][:2] == (outcomes.count("proved"), outcomes.count("collides"))
+    assert all(b[0] >= a[0] and b[1] >= a[1] for a, b in zip(told, told[1:], strict=False))
