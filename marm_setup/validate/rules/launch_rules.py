@@ -143,7 +143,7 @@ def check_rosparam_mappings(tree, rel: str, root: Path, package: str) -> list[Fi
     ros/ros_comm tools/roslaunch/src/roslaunch/loader.py l.432-434 at 845f746). An error on the
     branch the file's arg defaults take, else a warning; YAML that does not parse is left to the
     rules of the file's kind."""
-    from marm_setup.package.rosparam import RosparamLoader
+    from marm_setup.package import RosparamLoader
     from marm_setup.safe_yaml import load_yaml
 
     out = []
