@@ -273,3 +273,26 @@ def test_groups_whose_servo_files_differ_only_in_case_are_refused(tmp_path, firs
         return
     assert_one_line_error(result, f"servo[{second}]", "differs from", "only in case")
     assert not (tmp_path / "pkg").exists()
+
+
+@pytest.mark.parametrize("size", [400, 10_000, 100_000])
+@pytest.mark.parametrize(
+    ("where", "reason"),
+    [("group", "is longer than 200 characters"), ("controller", "missing key 'action_ns'")],
+)
+def test_a_huge_name_is_excerpted_and_the_reason_kept(tmp_path, size, where, reason):
+    """The name is cut in its middle, not the error line at its end (cli/common.py one_line)."""
+    from marm_setup.cli.common import MAX_LINE
+
+    huge = "g" * (size - 1) + "Z"
+
+    def edit(data: dict) -> None:
+        if where == "group":
+            data["groups"].append({"name": huge, "joints": ["joint1"]})
+        else:
+            data["controllers"] = [{"name": huge, "type": "FollowJointTrajectory", "joints": ["nojoint"]}]
+
+    result = _init(tmp_path, _spec(tmp_path, edit))
+    assert_one_line_error(result)
+    line = result.stderr.strip()
+    assert len(line) <= MAX_LINE and line.endswith(reason) and "...g" in line and "gZ]" in line
