@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import enum
+import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, TypeVar
 
@@ -90,11 +91,25 @@ def load_robot_from_cli(
 MAX_LINE = 4000  # characters of one error line (a name from a file can be any size)
 
 
+LONG_WORD = 300  # characters of one name or path quoted whole; a longer one is excerpted
+
+
 def one_line(text: str) -> str:
     """`text` with control characters (newlines too) escaped, so a message stays one line, of at
-    most MAX_LINE characters."""
-    line = "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text[: MAX_LINE + 1])
-    return line if len(line) <= MAX_LINE else line[: MAX_LINE - 3] + "..."
+    most MAX_LINE characters: each word (a name, a path) longer than LONG_WORD is cut in its
+    middle first, so the reason after a 10,000-character name still shows; a line still too
+    long loses its middle, never its end."""
+    line = "".join(c if c.isprintable() or c == " " else repr(c)[1:-1] for c in text)
+    line = re.sub(rf"\S{{{LONG_WORD + 1},}}", lambda m: _cut(m[0], LONG_WORD), line)
+    return _cut(line, MAX_LINE)
+
+
+def _cut(text: str, limit: int) -> str:
+    """`text` within `limit` characters, its middle replaced by `...` when longer."""
+    if len(text) <= limit:
+        return text
+    head = (limit - 3) * 2 // 3
+    return text[:head] + "..." + text[len(text) - (limit - 3 - head) :]
 
 
 COUNT_SUFFIXES = {"k": 1_000, "m": 1_000_000}

@@ -3,7 +3,7 @@ integer an integer, and refuses it for a double (a declared parameter: node_para
 declare_parameter throws InvalidParameterTypeException; one read through get_parameter<double>:
 ParameterValue::get throws ParameterTypeException "expected [double] got [integer]"); and the
 generate_parameter_library validators a row carries (gt, gt_eq, lt, lt_eq, bounds, one_of,
-not_empty, subset_of, element_bounds; others, e.g. moveit_servo's own, are not checked)."""
+not_empty, subset_of, element_bounds, lower/upper_element_bounds; others, e.g. moveit_servo's own, are not checked)."""
 
 from __future__ import annotations
 
@@ -69,4 +69,13 @@ _VALIDATORS: dict[str, Callable[[object, tuple], bool]] = {
     "element_bounds": lambda v, a: (
         not isinstance(v, list | tuple) or all(a[0] <= x <= a[1] for x in v if is_number(x))
     ),
+    "lower_element_bounds": lambda v, a: (
+        not isinstance(v, list | tuple) or all(x >= a[0] for x in v if is_number(x))
+    ),
+    "upper_element_bounds": lambda v, a: (
+        not isinstance(v, list | tuple) or all(x <= a[0] for x in v if is_number(x))
+    ),
 }
+# NaN fails every comparison above (each asks that the value lie inside its bound), as it fails
+# generate_parameter_library's gt / gt_eq / lt / lt_eq (parameter_traits: OK only when the
+# comparison holds).

@@ -29,6 +29,7 @@ API = {
     "setup_files": "read_package_xml RecordedProofs",
     "launch_ros1": "LaunchParam launch_nodes",
     "launch_python": "undefined_unread_arg",
+    "rosparam": "RosparamLoader",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -64,6 +65,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.planning_file import GroupPlanning as GroupPlanning
     from marm_setup.package.planning_file import PlanningPipeline as PlanningPipeline
     from marm_setup.package.read import read_package as read_package
+    from marm_setup.package.rosparam import RosparamLoader as RosparamLoader
     from marm_setup.package.setup_files import RecordedProofs as RecordedProofs
     from marm_setup.package.setup_files import read_package_xml as read_package_xml
     from marm_setup.package.srdf_file import SrdfFile as SrdfFile

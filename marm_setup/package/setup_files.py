@@ -174,8 +174,8 @@ def read_marm_setup(doc: Located | None, shown: str = "marm_setup.yaml") -> Marm
         robot.get("urdf") if isinstance(robot.get("urdf"), str) else None,
         xacro_pairs(robot.get("xacro_args")),
         tuple(p for p in paths if isinstance(p, str)) if isinstance(paths, list) else (),
-        _integer(collision.get("seed")),
-        _integer(collision.get("trials")),
+        _count(collision.get("seed")),
+        _count(collision.get("trials")),
         (str(author["name"]), str(author["email"])) if author.get("name") and author.get("email") else None,
         kept_keys,
         kept,
@@ -196,6 +196,13 @@ def _kept(data: dict, keys: tuple[str, ...], shown: str) -> tuple[SetupModel | N
 
 def _integer(value: Any) -> int | None:
     return value if isinstance(value, int) and not isinstance(value, bool) else None
+
+
+def _count(value: Any) -> int | None:
+    """A seed or trial count: a non-negative integer (a negative seed is one numpy's SeedSequence
+    refuses: read as absent, as any broken key is here; the strict reader names it)."""
+    found = _integer(value)
+    return found if found is not None and found >= 0 else None
 
 
 @dataclass(frozen=True, slots=True)

@@ -68,6 +68,7 @@ def check_setup(
     _check_ros2_control(c)
     _check_pipelines(c)
     check_servos(model, robot, path)
+    _check_file_names(c)
     check_sensors(model, path)
 
 
@@ -241,6 +242,26 @@ def _check_duplicates(c: _Checker) -> None:
                 where = f" in group '{group}'" if group else ""
                 raise c.fail(f"duplicate name '{short}'{where}", f"{key}[{short}]")
             seen.add(name)
+
+
+def per_item_files(model: SetupModel) -> list[tuple[str, str]]:
+    """(element, path) of each file named after an item of the setup: a servo group's config
+    (render/package.py servo_and_sensor_templates)."""
+    return [(f"servo[{s.group}]", f"config/{s.group}_servo.yaml") for s in model.servo or ()]
+
+
+def _check_file_names(c: _Checker) -> None:
+    """Two generated files whose paths differ only in case (groups `arm` and `Arm`): on a
+    case-insensitive file system (macOS, Windows) the second overwrites the first."""
+    seen: dict[str, str] = {}
+    for where, path in per_item_files(c.model):
+        other = seen.setdefault(path.casefold(), path)
+        if other != path:
+            raise c.fail(
+                f"writes {path}, which differs from {other} only in case (one would overwrite "
+                "the other on a case-insensitive file system); rename one of the groups",
+                where,
+            )
 
 
 def _check_joint_lists(c: _Checker) -> None:

@@ -55,6 +55,11 @@ CHOICES: dict[tuple[type, str], tuple[str, ...]] = {
     (Sensor, "type"): tuple(SENSOR_TYPES),
     (CollisionSettings, "prove"): PROVE_MODES,
 }
+# Integer fields with a least value: (class, field) -> minimum. A seed seeds numpy's
+# SeedSequence, which refuses a negative one ("expected non-negative integer").
+MINIMUMS: dict[tuple[type, str], int] = {
+    (CollisionSettings, "seed"): 0,
+}
 # Keys that name a list item in key paths (`groups[arm]`), tried in order.
 ITEM_KEYS = ("name", "group", "joint", "link")
 
@@ -211,6 +216,7 @@ def _load_dataclass(cls, data, ctx: _Ctx, where: str):
         if f.name in data:
             kwargs[f.name] = _load_value(hints[f.name], data[f.name], ctx, _join(where, f.name))
             _check_choice(cls, f.name, kwargs[f.name], ctx, _join(where, f.name))
+            _check_minimum(cls, f.name, kwargs[f.name], ctx, _join(where, f.name))
         elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
             raise ctx.fail(f"missing key '{f.name}'", where)
     if cls is DisabledPair:
@@ -311,6 +317,12 @@ def _check_choice(cls, name: str, value, ctx: _Ctx, where: str) -> None:
     if allowed is not None and value is not None and value not in allowed:
         message = f"'{value}' is not one of: {', '.join(allowed)}"
         raise ctx.fail(with_hint(message, did_you_mean(str(value), allowed, few=0)), where)
+
+
+def _check_minimum(cls, name: str, value, ctx: _Ctx, where: str) -> None:
+    least = MINIMUMS.get((cls, name))
+    if least is not None and isinstance(value, int) and value < least:
+        raise ctx.fail(f"must be >= {least}, got {value}", where)
 
 
 # -- helpers -------------------------------------------------------------------------------------

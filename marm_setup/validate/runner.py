@@ -42,7 +42,7 @@ from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
 from marm_setup.validate.rules.kinematics_rules import check_kinematics
 from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml
-from marm_setup.validate.rules.limits_rules import check_joint_limits
+from marm_setup.validate.rules.limits_rules import check_cartesian_limits, check_joint_limits, uses_pilz
 from marm_setup.validate.rules.name_rules import check_controller_names, check_srdf_names
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.perception_rules import check_sensors, check_servos
@@ -425,6 +425,8 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
         out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot)
     if pkg.joint_limits is not None:
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
+        if uses_pilz(pkg.pipelines):
+            out += guarded("limits", check_cartesian_limits, pkg.joint_limits)
     if pkg.ompl is not None:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf)
     return out

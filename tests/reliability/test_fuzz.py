@@ -512,3 +512,70 @@ def test_fuzz_writers_refuse_symlinks(writer, dangling):
         )
     finally:
         shutil.rmtree(work, ignore_errors=True)
+
+
+# Values MoveIt rejects or uses wrongly (issue 36, wrong results with exit 0): Pilz's Cartesian
+# rates, servo's scale namespace, move_group's lists. Oracle: a rate that is not a positive
+# finite double, or a list that is not a list, exits 1; a scale that is not a mapping is named.
+WRONG_TARGETS = {
+    "rate": ("config/moveit.yaml", ("robot_description_planning", "cartesian_limits", "max_trans_vel")),
+    "rot": ("config/moveit.yaml", ("robot_description_planning", "cartesian_limits", "max_rot_vel")),
+    "scale": ("config/arm_servo.yaml", ("moveit_servo", "scale")),
+    "pipelines": ("config/moveit.yaml", ("planning_pipelines",)),
+    "sensors": ("config/moveit.yaml", ("sensors",)),
+}
+wrong_values = st.one_of(
+    numbers,
+    st.integers(-5, 5),
+    st.sampled_from(["fast", "", "1.0", True, None, [], [1.0], {"x": 1.0}, ["ompl"]]),
+)
+
+
+def _jazzy_package(work: Path) -> Path:
+    if "jazzy" not in _PACKAGE:
+        base = Path(tempfile.mkdtemp(prefix="marm-fuzz-jazzy-"))
+        atexit.register(shutil.rmtree, base, True)
+        from tests.conftest import MARM_URDF
+
+        args = ("--target", "ros2", "--ros-distro", "jazzy", "--trials", "10")
+        assert_clean_exit(run("init", MARM_URDF, "--out", base / "pkg", *args), codes=(0,))
+        _PACKAGE["jazzy"] = base / "pkg"
+    return Path(shutil.copytree(_PACKAGE["jazzy"], work / "pkg"))
+
+
+def _rejected(kind: str, value) -> bool | None:
+    """Whether validate must exit 1 for `value` at `kind` (None: no exit claimed)."""
+    if kind in ("rate", "rot"):
+        return value is not None and not (isinstance(value, float) and 0 < value < math.inf)
+    if kind in ("pipelines", "sensors") and isinstance(value, list):
+        return None if all(isinstance(v, str) for v in value) else True  # names: other rules'
+    if kind in ("pipelines", "sensors"):
+        return value is not None and not isinstance(value, dict)
+    return None
+
+
+@FUZZ
+@given(kind=st.sampled_from(sorted(WRONG_TARGETS)), value=wrong_values)
+def test_fuzz_values_moveit_rejects(kind, value):
+    work = _workdir()
+    try:
+        pkg = _jazzy_package(work)
+        rel, keys = WRONG_TARGETS[kind]
+        file = pkg / rel
+        data = yaml.safe_load(file.read_text(encoding="utf-8"))
+        parent = data["/**"]["ros__parameters"]
+        for key in keys[:-1]:
+            parent = parent[key]
+        parent[keys[-1]] = value
+        file.write_text(yaml.safe_dump(data), encoding="utf-8")
+        result = run("validate", pkg, "--no-plan")
+        assert_clean_exit(result, codes=(0, 1))
+        assert "internal" not in result.output
+        expected = _rejected(kind, value)
+        if expected is not None and value not in ([], {}):
+            assert (result.exit_code == 1) == expected, (kind, value, result.output)
+        if kind == "scale" and value is not None and not isinstance(value, dict | list):
+            assert "moveit_servo.scale" in result.output, (value, result.output)
+        STATS[f"wrong value {kind}: exit {result.exit_code}"] += 1
+    finally:
+        shutil.rmtree(work, ignore_errors=True)

@@ -243,3 +243,56 @@ def test_hardware_parameters_reach_xacro_as_text(tmp_path):
     shutil.rmtree(tmp_path / "pkg")
     bad = _init(tmp_path, _spec(tmp_path, hardware("$(env X)/Y")))
     assert_one_line_error(bad, "ros2_control.plugin")
+
+
+def _twin_servo_groups(first: str, second: str):
+    """Two copies of the arm group named `first` and `second`, each with IK and a servo."""
+
+    def edit(data: dict) -> None:
+        data.update(target="ros2", ros_distro="jazzy")
+        data.pop("driver", None)
+        arm = next(g for g in data["groups"] if g["name"] == "arm")
+        data["groups"] = [g for g in data["groups"] if g["name"] != "arm"]
+        data["groups"] += [{**arm, "name": first}, {**arm, "name": second}]
+        for key in ("group_states", "end_effectors"):
+            data[key] = [i for i in data.get(key, []) if i.get("group") != "arm"]
+        solver = "kdl_kinematics_plugin/KDLKinematicsPlugin"
+        data["kinematics"] = [{"group": g, "solver": solver} for g in (first, second)]
+        data["servo"] = [{"group": first}, {"group": second}]
+
+    return edit
+
+
+@pytest.mark.parametrize(("first", "second"), [("arm", "Arm"), ("left_arm", "LEFT_ARM"), ("arm", "arm_2")])
+def test_groups_whose_servo_files_differ_only_in_case_are_refused(tmp_path, first, second):
+    """config/<group>_servo.yaml of `arm` and `Arm` are one file on macOS and Windows."""
+    result = _init(tmp_path, _spec(tmp_path, _twin_servo_groups(first, second)))
+    if first.casefold() != second.casefold():
+        assert_clean_exit(result, codes=(0,))
+        assert (tmp_path / "pkg" / f"config/{second}_servo.yaml").is_file()
+        return
+    assert_one_line_error(result, f"servo[{second}]", "differs from", "only in case")
+    assert not (tmp_path / "pkg").exists()
+
+
+@pytest.mark.parametrize("size", [400, 10_000, 100_000])
+@pytest.mark.parametrize(
+    ("where", "reason"),
+    [("group", "is longer than 200 characters"), ("controller", "missing key 'action_ns'")],
+)
+def test_a_huge_name_is_excerpted_and_the_reason_kept(tmp_path, size, where, reason):
+    """The name is cut in its middle, not the error line at its end (cli/common.py one_line)."""
+    from marm_setup.cli.common import MAX_LINE
+
+    huge = "g" * (size - 1) + "Z"
+
+    def edit(data: dict) -> None:
+        if where == "group":
+            data["groups"].append({"name": huge, "joints": ["joint1"]})
+        else:
+            data["controllers"] = [{"name": huge, "type": "FollowJointTrajectory", "joints": ["nojoint"]}]
+
+    result = _init(tmp_path, _spec(tmp_path, edit))
+    assert_one_line_error(result)
+    line = result.stderr.strip()
+    assert len(line) <= MAX_LINE and line.endswith(reason) and "...g" in line and "gZ]" in line

@@ -8,14 +8,12 @@ import pytest
 import yaml
 
 from tests.conftest import MARM_URDF
-from tests.reliability.checks import assert_clean_exit, run
+from tests.reliability.checks import assert_clean_exit, assert_one_line_error, run
 from tests.validate_helpers import generate_marm, replace_text
 
 
 @pytest.mark.parametrize("trials", [1_000_000_000_000, 10**30, 1e12, "y"])
 def test_report_takes_no_trial_count_from_the_package(tmp_path, trials):
-    """(A negative package seed still crashes validate's own matrix rules inside the report: the
-    matrix settings are issue 36 deliverable 1's, another branch's.)"""
     pkg = generate_marm(tmp_path, "ros1")
     data = yaml.safe_load((pkg / "marm_setup.yaml").read_text(encoding="utf-8"))
     data["collision"].update(trials=trials)
@@ -59,3 +57,27 @@ def test_a_setup_file_with_an_infinite_pipeline_setting_is_one_line(tmp_path, va
     result = run("init", MARM_URDF, "--out", tmp_path / "o", "--setup", spec, "--trials", "10")
     assert_clean_exit(result, codes=(2,))
     assert "finite" in result.stderr
+
+
+@pytest.mark.parametrize("seed", [-1, -(2**70)])
+@pytest.mark.parametrize("command", ["validate", "report"])
+def test_a_negative_package_seed_is_no_internal_error(tmp_path, seed, command):
+    """numpy's SeedSequence refuses a negative seed: validate and report read it as absent."""
+    pkg = generate_marm(tmp_path, "ros2")
+    setup = pkg / "marm_setup.yaml"
+    data = yaml.safe_load(setup.read_text(encoding="utf-8"))
+    data["collision"].update(seed=seed)
+    setup.write_text(yaml.safe_dump(data), encoding="utf-8")
+    extra = ["-o", tmp_path / "r.html", "--trials", "20"] if command == "report" else []
+    result = run(command, pkg, "--no-plan", *extra)
+    assert_clean_exit(result, codes=(0,))
+    assert "internal" not in result.output
+
+
+@pytest.mark.parametrize(("key", "value"), [("seed", -1), ("seed", -(2**64))])
+def test_a_setup_file_with_a_negative_count_is_one_line(tmp_path, key, value):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(f"collision:\n  {key}: {value}\n", encoding="utf-8")
+    result = run("init", MARM_URDF, "--out", tmp_path / "o", "--setup", spec, "--trials", "10")
+    assert_one_line_error(result, f"collision.{key}: must be >= 0")
+    assert not (tmp_path / "o").exists()

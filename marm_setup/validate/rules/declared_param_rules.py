@@ -149,10 +149,14 @@ def _row(r: Received, table: Table, instances: dict[str, set[str]]) -> ParamRow 
     """The most specific row `r` is an instance of (placeholders bound to known names)."""
     fitting = []
     for row in table.rows(r.node):
-        bound = row.bindings(r.name)
-        if bound is not None and all(v in instances.get(k, {v}) for k, v in bound.items()):
-            fitting.append((len(bound), row))
+        if _binds(row, r.name, instances):
+            fitting.append((len(row.bindings(r.name) or {}), row))
     return min(fitting, key=lambda f: f[0])[1] if fitting else None
+
+
+def _binds(row: ParamRow, name: str, instances: dict[str, set[str]]) -> bool:
+    bound = row.bindings(name)
+    return bound is not None and all(v in instances.get(k, {v}) for k, v in bound.items())
 
 
 def _check_one(r: Received, table: Table, instances: dict[str, set[str]]) -> list[Finding]:
@@ -197,8 +201,37 @@ def _cite(row: ParamRow, table: Table) -> str:
     return f"declared as {row.type} at {repo}@{sha[:8]} ({ref}) {row.source}{note}"
 
 
+def _not_a_mapping(r: Received, table: Table) -> list[Finding]:
+    """A value where MoveIt declares a namespace (servo's `scale: 5` for scale.linear, ...): the
+    node declares only the names inside it, so rclcpp never hands it this one (an override of an
+    undeclared parameter is ignored: servo_node does not declare parameters from overrides) and
+    each inside keeps its default."""
+    inside = [row for row in table.rows(r.node) if row.name.startswith(r.name + ".")]
+    if not inside:
+        return []
+    defaults = ", ".join(f"{row.name.rsplit('.', 1)[-1]} {row.default!r}" for row in inside)
+    msg = f"expected a mapping, got {r.value!r}: MoveIt never reads it and keeps its defaults ({defaults})"
+    return [warning("params.type", r.file, r.element, msg, _cite(inside[0], table))]
+
+
+def _under_a_value(r: Received, table: Table, instances: dict[str, set[str]]) -> list[Finding]:
+    """A mapping where MoveIt declares one value (`max_trans_vel: {x: 1.0}`): rcl flattens it
+    into names below the declared one, so the declared parameter itself is never given."""
+    parts = r.name.split(".")
+    for end in range(len(parts) - 1, 0, -1):
+        head = ".".join(parts[:end])
+        row = next((row for row in table.rows(r.node) if _binds(row, head, instances)), None)
+        if row is not None:
+            make = warning if row.on_wrong == LOGS else error
+            msg = f"expected {row.type.replace('_', ' ')} at {head}, got a mapping: {_consequence(row)}"
+            return [make("params.type", r.file, r.element, msg, _cite(row, table))]
+    return []
+
+
 def _unknown(r: Received, table: Table, instances: dict[str, set[str]]) -> list[Finding]:
     """A key MoveIt never reads in a namespace it owns, with the nearest name it reads."""
+    if found := _not_a_mapping(r, table) or _under_a_value(r, table, instances):
+        return found
     for prefix, source in table.owned:
         bound = re.compile(ParamRow("", prefix + "<rest>", "", "", "").pattern.pattern)
         match = bound.fullmatch(r.name)

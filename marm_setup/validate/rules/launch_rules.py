@@ -8,6 +8,8 @@ import re
 import shlex
 from pathlib import Path
 
+import yaml
+
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.findings import Finding, error, warning
@@ -43,6 +45,8 @@ def check_launch_files(
         out += check_arg_growth(tree, rel, root / rel, target == Target.ROS2)
         if target == Target.ROS2:
             out += check_description_types(tree, rel)
+        else:
+            out += check_rosparam_mappings(tree, rel, root, package)
     return out
 
 
@@ -131,6 +135,41 @@ def _consequence(elem, attr: str) -> str:
     if elem.tag == "rosparam":
         return "roslaunch stops ('error loading <rosparam> tag: file does not exist')"
     return "the launch fails"
+
+
+def check_rosparam_mappings(tree, rel: str, root: Path, package: str) -> list[Finding]:
+    """A `<rosparam command="load">` without `param` whose YAML is not a mapping (a top-level list
+    or scalar): roslaunch stops ("'param' attribute must be set for non-dictionary values",
+    ros/ros_comm tools/roslaunch/src/roslaunch/loader.py l.432-434 at 845f746). An error on the
+    branch the file's arg defaults take, else a warning; YAML that does not parse is left to the
+    rules of the file's kind."""
+    from marm_setup.package import RosparamLoader
+    from marm_setup.safe_yaml import load_yaml
+
+    out = []
+    launch_dir = (root / rel).parent
+    scope = _default_scope(tree, launch_dir, ros2=False)
+    for elem in tree.iter("rosparam"):
+        if (elem.get("command") or "load") != "load" or elem.get("param"):
+            continue
+        targets = list(_referenced("file", elem.get("file") or "", root, launch_dir, package))
+        try:
+            texts = [bounded_read.read_text(t, bounded_read.YAML_BYTES) for t, _ in targets[:1]]
+            data = load_yaml(texts[0] if texts else (elem.text or ""), RosparamLoader)
+        except (OSError, UnicodeDecodeError, FileTooLarge, yaml.YAMLError):
+            continue
+        if data is None or isinstance(data, dict) or (not targets and elem.get("file")):
+            continue
+        what = f"'{targets[0][1]}'" if targets else "its text"
+        kind = "a list" if isinstance(data, list) else f"the {type(data).__name__} {data!r:.40}"
+        msg = (
+            f"{what} holds {kind}, not a mapping, and no param attribute names where it goes: "
+            "roslaunch stops ('param' attribute must be set for non-dictionary values)"
+        )
+        make = error if _taken(elem, scope) else warning
+        hint = 'add param="NAME" or make the YAML a mapping'
+        out.append(make("launch.rosparam-not-mapping", rel, _where(elem), msg, hint))
+    return out
 
 
 def check_arg_growth(tree, rel: str, path: Path, ros2: bool) -> list[Finding]:

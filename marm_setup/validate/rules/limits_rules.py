@@ -19,6 +19,7 @@ true` (l.169-176, l.196-208). Values may be written in rosparam's `!degrees` (pa
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from numbers import Real
 from typing import TYPE_CHECKING, TypeGuard
 
@@ -29,6 +30,7 @@ from marm_setup.ros import Target
 from marm_setup.setup import planning_joints, timing_problem
 
 if TYPE_CHECKING:
+    from marm_setup.package import PlanningPipeline
     from marm_setup.setup import Srdf
 
 FLAGS = {
@@ -214,3 +216,38 @@ _SCALARS = (
     "max_trans_dec",
     "max_rot_vel",
 )
+
+# Pilz's Cartesian limits that time LIN and CIRC motions (max_trans_dec, max_rot_acc and
+# max_rot_dec are only logged: limits_container.cpp jazzy l.69-75)
+CARTESIAN_RATES = ("max_trans_vel", "max_trans_acc", "max_rot_vel")
+
+
+def uses_pilz(pipelines: Iterable[PlanningPipeline]) -> bool:
+    """Whether a pipeline loads Pilz's planner (planning_plugin(s) naming its CommandPlanner)."""
+    return any(
+        "pilz_industrial_motion_planner" in str(p.value)
+        for pipeline in pipelines
+        for p in pipeline.settings
+        if p.key in ("planning_plugin", "planning_plugins")
+    )
+
+
+def check_cartesian_limits(limits: JointLimitsFile) -> list[Finding]:
+    """Pilz's `cartesian_limits` rates as its LIN and CIRC generators use them: the translational
+    velocity and acceleration make the motion's trapezoidal profile (trajectory_generator.cpp
+    jazzy l.284-287, KDL::VelocityProfile_Trap) and max_trans_vel / max_rot_vel the path's
+    equivalent radius (trajectory_generator_lin.cpp l.183-184, _circ.cpp l.244-245; the same in
+    humble and noetic). Pilz checks none of them: NaN times every motion with NaN, zero divides
+    by zero, a negative rate makes a profile that ignores the limit. Non-numbers are params.type's."""
+    out = []
+    for key in CARTESIAN_RATES:
+        param = limits.setting(f"cartesian_limits.{key}")
+        if param is None or not _number(param.value) or 0 < param.value < math.inf:
+            continue
+        msg = (
+            f"{key} must be a positive finite number, got {param.value!r}: Pilz times every LIN "
+            "and CIRC motion with it and checks nothing (NaN or 0: no valid trajectory; negative: "
+            "the limit is not kept)"
+        )
+        out.append(error("limits.cartesian", limits.where.file, param.where.element, msg))
+    return out
