@@ -50,7 +50,7 @@ def test_force_keeps_a_hand_edit_as_orig(pkg):
     srdf.write_text(srdf.read_text() + "<!-- mine -->\n")
     edited = srdf.read_text()
     edit_setup(pkg)
-    assert_one_line_error(run("render", pkg), "hand-edited")
+    assert_one_line_error(run("render", pkg), "edited by hand")
     result = run("render", pkg, "--force")
     assert_clean_exit(result, codes=(0,))
     assert "yours kept as config/marm.srdf.orig" in result.stdout
