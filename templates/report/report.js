@@ -184,7 +184,7 @@
     const red = new Set(contactsNow().flat());
     const pair = new Set(shown.pair || []);
     const lit = new Set(shown.group === null ? [] : groups.get(shown.group).links);
-    const focus = pair.size > 0 || lit.size > 0;
+    const focus = pair.size > 0 || lit.size > 0 || red.size > 0; // the rest fades: a contact behind a link shows
     for (const [name, material] of materials) {
       const color = red.has(name) ? COLORS.contact : pair.has(name) ? COLORS.pair : lit.has(name) ? COLORS.group : COLORS.base;
       const strong = red.has(name) || pair.has(name) || lit.has(name) || !focus;
