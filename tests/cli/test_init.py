@@ -532,7 +532,7 @@ def test_jobs_and_suffixed_trials_reach_the_matrix_and_do_not_change_it(tmp_path
 
 
 def test_run_init_reports_matrix_progress(tmp_path):
-    from marm_setup.pipeline import InitRequest, run_init
+    from marm_setup.flows import InitRequest, run_init
     from marm_setup.robot.load import load_robot
 
     calls = []

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from marm_setup.pipeline import InitRequest, build_setup, with_collision_matrix
+from marm_setup.flows import InitRequest, build_setup, with_collision_matrix
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.robot.load import load_robot

@@ -144,7 +144,7 @@ def test_check_urdf_accepts_our_ros2_urdf(tmp_path):
 
 def write_panda_package(tmp_path: Path, target: str) -> tuple[Path, Path]:
     """Our package for the shared panda (inferred setup); returns (package, description root)."""
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, build_setup
     from marm_setup.robot.load import load_robot
 
     root = realworld(target)
@@ -208,7 +208,7 @@ def test_roslaunch_keys_match_the_setup_assistants_panda_demo(tmp_path):
     import dataclasses
     import re
 
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, build_setup
     from marm_setup.robot.load import load_robot
 
     root = realworld("ros1")

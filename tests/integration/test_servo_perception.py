@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from marm_setup.pipeline import InitRequest, build_setup
+from marm_setup.flows import InitRequest, build_setup
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from tests.conftest import FIXTURES, MARM_URDF

@@ -412,7 +412,7 @@ SHIPPED = {
 def test_from_srdf_rerender_keeps_every_semantic_element(tmp_path, name):
     from pathlib import Path
 
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, build_setup
     from marm_setup.render.package import render_package
     from marm_setup.setup.srdf import parse_srdf_string
 

@@ -133,7 +133,7 @@ def test_each_vendor_style_gets_its_proven_switch_or_a_replacement(vendors, styl
 
 
 def _write(vendor, distro: str, out: Path) -> Path:
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, build_setup
 
     robot = load_robot(vendor.urdf, parse_xacro_args(vendor.xacro_args), [vendor.root])
     request = InitRequest(

@@ -10,7 +10,7 @@ import yaml
 from lxml import etree
 
 from marm_setup.errors import InputError
-from marm_setup.pipeline import InitRequest, build_setup
+from marm_setup.flows import InitRequest, build_setup
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
 from marm_setup.setup.model import Controller, Kinematics, Ros2ControlHardware, Servo, ServoScale

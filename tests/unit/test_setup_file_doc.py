@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from marm_setup.pipeline import InitRequest, build_setup
+from marm_setup.flows import InitRequest, build_setup
 from marm_setup.robot.load import load_robot
 from tests.conftest import ROOT
 

@@ -106,7 +106,7 @@ def collisions(
         _check_options(min_collision_fraction, seed, padding, None, False, None)
         _refuse_unused(xacro_arg=xacro_arg, package_path=package_path)
         from marm_setup.cli.progress import SamplingProgress
-        from marm_setup.pipeline import run_package_collisions
+        from marm_setup.flows import run_package_collisions
 
         with SamplingProgress(confirmed=yes) as progress:
             done = run_package_collisions(
@@ -126,7 +126,7 @@ def collisions(
     if default_pose is not None and srdf is None:
         raise InputError("needs --srdf (the SRDF holding the pose)", element="--default-pose")
     from marm_setup.cli.progress import SamplingProgress
-    from marm_setup.pipeline import CollisionsRequest, run_collisions
+    from marm_setup.flows import CollisionsRequest, run_collisions
 
     request = CollisionsRequest(
         trials=count,

@@ -133,7 +133,7 @@ def init(
     examples, in docs/setup-file.md."""
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.errors import InputError
-    from marm_setup.pipeline import InitRequest, run_init
+    from marm_setup.flows import InitRequest, run_init
     from marm_setup.render import check_output_dir
 
     if urdf is None and from_package is None:
@@ -231,7 +231,7 @@ def _port(
     from marm_setup.cli.port_report import closing_line, format_port_json, format_port_text
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.findings import count, format_text
-    from marm_setup.pipeline import PortInitRequest, run_port
+    from marm_setup.flows import PortInitRequest, run_port
 
     request = PortInitRequest(
         package=package,

@@ -35,7 +35,7 @@ def plan(
     package_path: PackagePaths = None,
 ) -> None:
     """Plan a collision-free, time-parameterised joint trajectory between named poses."""
-    from marm_setup.pipeline import PlanRequest, run_plan
+    from marm_setup.flows import PlanRequest, run_plan
 
     request = PlanRequest(
         package_dir, group, from_pose, to_pose, output, seed, urdf, tuple(package_path or ())

@@ -33,7 +33,7 @@ def render(
 
     --xacro-arg and --package-path load the robot (over marm_setup.yaml's robot.xacro_args, after
     its robot.package_paths); the files rendered say what marm_setup.yaml says."""
-    from marm_setup.pipeline import run_render
+    from marm_setup.flows import run_render
     from marm_setup.render import format_change
     from marm_setup.robot import parse_xacro_args
 

@@ -49,7 +49,7 @@ def report(
     written either way), 2 when it cannot be read."""
     from marm_setup.cli.progress import StageProgress
     from marm_setup.findings import INTERNAL, count
-    from marm_setup.pipeline import ReportRequest, run_report
+    from marm_setup.flows import ReportRequest, run_report
     from marm_setup.robot import parse_xacro_args
 
     request = ReportRequest(

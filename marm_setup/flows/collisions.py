@@ -54,7 +54,7 @@ def run_collisions(
 ) -> CollisionsResult:
     """Compute the matrix; update or write the SRDF and the report the request names."""
     from marm_setup.collision import CollisionScene, load_srdf_text, read_srdf_entries
-    from marm_setup.pipeline.write import compute_matrix
+    from marm_setup.flows.write import compute_matrix
 
     srdf, srdf_text = request.srdf, None
     if srdf is not None:
@@ -224,8 +224,8 @@ def run_package_collisions(
     User pairs kept), so the next `render` has nothing to disagree with; with `force` a
     hand-edited file is overwritten (kept as `.orig`, as render does)."""
     from marm_setup.collision import DisabledReason
-    from marm_setup.pipeline.render import load_package_setup
-    from marm_setup.pipeline.write import collision_settings, compute_matrix
+    from marm_setup.flows.render import load_package_setup
+    from marm_setup.flows.write import collision_settings, compute_matrix
     from marm_setup.render import apply_writes, format_change, plan_writes, render_package
 
     model, robot = load_package_setup(pkg)

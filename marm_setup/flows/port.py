@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, Location
-from marm_setup.pipeline.build import InitRequest, choose_distro, target_of
-from marm_setup.pipeline.write import with_collision_matrix, write_package
+from marm_setup.flows.build import InitRequest, choose_distro, target_of
+from marm_setup.flows.write import with_collision_matrix, write_package
 from marm_setup.robot import RobotModel, parse_xacro_args
 from marm_setup.setup import Partial, SetupModel
 from marm_setup.untrusted import no_package_code

@@ -7,8 +7,8 @@ import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from marm_setup.pipeline.build import InitRequest, build
-from marm_setup.pipeline.write import describe, reused_ros2_control, with_collision_matrix, write_package
+from marm_setup.flows.build import InitRequest, build
+from marm_setup.flows.write import describe, reused_ros2_control, with_collision_matrix, write_package
 from marm_setup.robot import RobotModel
 from marm_setup.setup import SetupModel
 
