@@ -18,6 +18,7 @@ API = {
     "collisions": "CollisionsRequest CollisionsResult run_collisions run_package_collisions",
     "plan": "PlanRequest PlanResult run_plan",
     "report": "ReportRequest run_report",
+    "settings": "DEFAULT_TRIALS MatrixSettings RobotInput",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -42,6 +43,9 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.flows.render import run_render as run_render
     from marm_setup.flows.report import ReportRequest as ReportRequest
     from marm_setup.flows.report import run_report as run_report
+    from marm_setup.flows.settings import DEFAULT_TRIALS as DEFAULT_TRIALS
+    from marm_setup.flows.settings import MatrixSettings as MatrixSettings
+    from marm_setup.flows.settings import RobotInput as RobotInput
     from marm_setup.flows.write import describe as describe
     from marm_setup.flows.write import reused_ros2_control as reused_ros2_control
     from marm_setup.flows.write import with_collision_matrix as with_collision_matrix
