@@ -83,7 +83,8 @@ def build(request: InitRequest, robot: RobotModel) -> Built:
         model, notes, srdf_args = _import_srdf(request, model, notes, robot)
     _check_xacro_args(request, robot, srdf_args)
     model = _with_spec(model, spec, request, robot, inferred_groups)
-    model = dataclasses.replace(model, ros_distro=choose_distro(request, spec, model.target))
+    distro = choose_distro(model.target, request.ros_distro, request.env_distro, spec, request.spec)
+    model = dataclasses.replace(model, ros_distro=distro)
     if not model.groups:
         raise InputError(
             f"no planning groups: no limb to infer, and the SPEC / SRDF gives none (see {REFERENCE})",
@@ -224,26 +225,30 @@ def target_of(given: object, path: str | None, element: str) -> Target:
     return Target(given)
 
 
-def choose_distro(request: InitRequest, spec: Partial, target: Target) -> Distro:
+def choose_distro(
+    target: Target,
+    ros_distro: str | None,
+    env_distro: str | None,
+    spec: Partial | None = None,
+    spec_path: Path | None = None,
+) -> Distro:
     """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
     else the target's default (noetic for ros1, humble for ros2)."""
     from marm_setup.setup import distro_problem
 
     distros = distros_of(target)
-    from_spec = spec.get("ros_distro")
+    from_spec = spec.get("ros_distro") if spec is not None else None
     for given, where in (
-        (request.ros_distro, "--ros-distro"),
+        (ros_distro, "--ros-distro"),
         (str(from_spec) if from_spec else None, "ros_distro"),
     ):
         if given is None:
             continue
         problem = distro_problem(target, given)
         if problem:
-            raise InputError(
-                problem, path=None if where == "--ros-distro" else str(request.spec), element=where
-            )
+            raise InputError(problem, path=None if where == "--ros-distro" else str(spec_path), element=where)
         return given
-    return request.env_distro if request.env_distro in distros else default_distro(target)
+    return env_distro if env_distro in distros else default_distro(target)
 
 
 def _source(request: InitRequest) -> RobotSource:

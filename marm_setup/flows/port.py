@@ -11,11 +11,11 @@ from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, Location
-from marm_setup.flows.build import InitRequest, choose_distro, target_of
+from marm_setup.flows.build import choose_distro, target_of
 from marm_setup.flows.settings import RobotInput
 from marm_setup.flows.write import with_collision_matrix, write_package
 from marm_setup.robot import RobotModel
-from marm_setup.setup import Partial, SetupModel
+from marm_setup.setup import SetupModel
 from marm_setup.untrusted import no_package_code
 
 if TYPE_CHECKING:
@@ -67,11 +67,7 @@ def _run_port(request: PortInitRequest, progress: Progress | None) -> PortResult
     pkg, notes = _discover_for_port(request)
     robot = _package_robot(pkg, request.robot.xacro_mapping)
     target = target_of(request.target, None, "--target")
-    distro = choose_distro(
-        InitRequest(RobotInput(), request.out, ros_distro=request.ros_distro, env_distro=request.env_distro),
-        Partial(SetupModel, ()),
-        target,
-    )
+    distro = choose_distro(target, request.ros_distro, request.env_distro)
     ported = port_package(
         pkg,
         robot,
