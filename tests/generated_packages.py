@@ -155,8 +155,8 @@ class GeneratedPackages:
         return vendor.urdf, [vendor.root], list(vendor.xacro_args), []
 
     def _rerender(self, humble: Generated, distro: str, out: Path) -> Generated:
-        from marm_setup.pipeline import write_package
-        from marm_setup.pipeline.render import load_package_setup
+        from marm_setup.flows import write_package
+        from marm_setup.flows.render import load_package_setup
 
         model, robot = load_package_setup(humble.out)
         write_package(dataclasses.replace(model, ros_distro=distro), robot, out, force=False)

@@ -25,10 +25,12 @@ def inferred_marm(target: str, out: Path, distro: str | None = None) -> tuple[Se
 
 @functools.lru_cache(maxsize=8)
 def _inferred(target: str, out: str, distro: str | None) -> tuple[SetupModel, RobotModel]:
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, RobotInput, build_setup
 
     robot = marm_robot()
-    request = InitRequest(urdf=MARM_URDF, out=Path(out), target=target, ros_distro=distro, spec=MARM_SPEC)
+    request = InitRequest(
+        RobotInput.parse(MARM_URDF), out=Path(out), target=target, ros_distro=distro, spec=MARM_SPEC
+    )
     return build_setup(request, robot), robot
 
 

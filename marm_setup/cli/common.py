@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import enum
+import inspect
 import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, TypeVar
 
 import typer
+
+from marm_setup.cli.option_groups import OptionGroup
+from marm_setup.flows import DEFAULT_TRIALS, MatrixSettings, RobotInput
 
 if TYPE_CHECKING:
     from marm_setup.robot import RobotModel
@@ -73,18 +77,16 @@ ProveOption = Annotated[
 ]
 
 
-def load_robot_from_cli(
-    urdf: Path, xacro_args: list[str] | None, package_paths: list[Path] | None, *, check_args: bool = True
-) -> RobotModel:
-    """Load a robot from command-line options (the import stays out of --help); a `--xacro-arg`
+def load_robot_from_cli(given: RobotInput, *, check_args: bool = True) -> RobotModel:
+    """Load the robot a command's options name (the import stays out of --help); a `--xacro-arg`
     the description does not take is an InputError, unless `check_args` is false (the caller
     checks it against more files: init's SRDF xacro)."""
-    from marm_setup.robot import check_xacro_args, load_robot, parse_xacro_args
+    from marm_setup.robot import check_xacro_args, load_robot
 
-    args = parse_xacro_args(xacro_args or [])
-    robot = load_robot(urdf, args, package_paths or [])
+    assert given.urdf is not None  # the URDF argument of the commands that load it here
+    robot = load_robot(given.urdf, given.xacro_mapping, given.package_paths)
     if check_args:
-        check_xacro_args(args, robot.xacro_args, path=str(urdf))
+        check_xacro_args(given.xacro_mapping, robot.xacro_args, path=str(given.urdf))
     return robot
 
 
@@ -177,6 +179,75 @@ def default_jobs(jobs: int | None) -> int:
     if jobs < 1:
         raise InputError(f"must be >= 1, got {jobs}", element="--jobs")
     return jobs
+
+
+def _robot_input(
+    urdf: Path | None = None,
+    srdf: Path | None = None,
+    xacro_arg: list[str] | None = None,
+    package_path: list[Path] | None = None,
+    untrusted: bool = False,
+) -> RobotInput:
+    return RobotInput.parse(urdf, srdf, xacro_arg, package_path, untrusted)
+
+
+# Where the robot comes from: each command takes the options that apply to it (ROBOT.of(...)).
+ROBOT = OptionGroup(
+    {
+        "urdf": (UrdfArg, inspect.Parameter.empty),
+        "srdf": (PackageSrdf, None),
+        "xacro_arg": (XacroArgs, None),
+        "package_path": (PackagePaths, None),
+        "untrusted": (UntrustedOption, False),
+    },
+    _robot_input,
+)
+
+
+def _matrix_settings(**options: object) -> MatrixSettings:
+    """The matrix settings from the options given (None: not given, the default), --keep and
+    --keep-matrix the old names of --keep-disabled."""
+    given = {name: value for name, value in options.items() if value is not None}
+    keep = bool(given.pop("keep", False)) | bool(given.pop("keep_matrix", False))
+    if "trials" in given:
+        given["trials"] = parse_count(str(given["trials"]), element="--trials")
+    prove = given.get("prove")
+    if isinstance(prove, ProveMode):
+        given["prove"] = prove.value
+    given["jobs"] = default_jobs(given.get("jobs"))  # type: ignore[arg-type]
+    given["keep_disabled"] = bool(given.get("keep_disabled")) or keep
+    return MatrixSettings(**given, given=frozenset(given))  # type: ignore[arg-type]
+
+
+SeedOption = Annotated[int, typer.Option("--seed", help="Random seed (same seed, same output).")]
+FractionOption = Annotated[
+    float,
+    typer.Option("--min-collision-fraction", help="Always: in collision in at least this share of samples."),
+]
+PaddingOption = Annotated[
+    float, typer.Option("--padding", help="Treat pairs closer than this [m] as colliding.")
+]
+KeepDisabledOption = Annotated[
+    bool,
+    typer.Option(
+        "--keep-disabled", help="With --srdf: keep every pair it already disables (User always kept)."
+    ),
+]
+
+# How the collision matrix is computed: each command takes the options that apply to it (MATRIX.of(...)).
+MATRIX = OptionGroup(
+    {
+        "trials": (TrialsText, str(DEFAULT_TRIALS)),
+        "min_collision_fraction": (FractionOption, MatrixSettings.min_collision_fraction),
+        "seed": (SeedOption, MatrixSettings.seed),
+        "jobs": (JobsOption, None),
+        "padding": (PaddingOption, MatrixSettings.padding),
+        "keep_disabled": (KeepDisabledOption, False),
+        "keep": (Annotated[bool, typer.Option("--keep", hidden=True)], False),  # --keep-disabled's old name
+        "prove": (ProveOption, ProveMode(MatrixSettings.prove)),
+    },
+    _matrix_settings,
+)
 
 
 def echo_err(message: str) -> None:

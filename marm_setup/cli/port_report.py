@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 from marm_setup.cli.common import one_line
 
 if TYPE_CHECKING:
-    from marm_setup.pipeline import PortResult
+    from marm_setup.flows import PortResult
     from marm_setup.port import PortItem
 
 HEADINGS = {

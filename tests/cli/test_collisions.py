@@ -263,7 +263,7 @@ def test_bad_default_pose_is_one_line(tmp_path, extra, expected):
 def test_default_pose_of_a_composite_group_with_a_floating_base_value():
     """A humanoid's `half_sitting` names the whole body (a composite group) and gives the
     floating virtual joint seven numbers; poses of one name in several groups all apply."""
-    from marm_setup.pipeline.collisions import pose_configuration as _pose_configuration
+    from marm_setup.flows.collisions import pose_configuration as _pose_configuration
     from marm_setup.robot.load import load_robot
     from tests.conftest import FIXTURES
 
@@ -434,12 +434,12 @@ def test_the_sampling_progress_hears_of_the_proofs():
     """The progress `collisions` and `init` draw is told the proofs as they end: at the end
     its counts are the matrix's (pairs proved, found in contact; none left)."""
     from marm_setup.cli.progress import SamplingProgress
-    from marm_setup.pipeline.collisions import CollisionsRequest, run_collisions
+    from marm_setup.flows import CollisionsRequest, MatrixSettings, run_collisions
     from marm_setup.robot.load import load_robot
 
     robot = load_robot(MARM_URDF)
     with SamplingProgress(enabled=False) as progress:
-        result = run_collisions(CollisionsRequest(trials=500), robot, progress)
+        result = run_collisions(CollisionsRequest(MatrixSettings(trials=500)), robot, progress)
     outcomes = [s.proof.outcome for s in result.matrix.stats if s.proof is not None]
     assert progress.proof_counts == (outcomes.count("proved"), outcomes.count("collides"), 0)
     assert outcomes.count("proved") > 0

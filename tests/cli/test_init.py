@@ -532,11 +532,13 @@ def test_jobs_and_suffixed_trials_reach_the_matrix_and_do_not_change_it(tmp_path
 
 
 def test_run_init_reports_matrix_progress(tmp_path):
-    from marm_setup.pipeline import InitRequest, run_init
+    from marm_setup.flows import InitRequest, MatrixSettings, RobotInput, run_init
     from marm_setup.robot.load import load_robot
 
     calls = []
-    request = InitRequest(urdf=MARM_URDF, out=tmp_path / "o", trials=2500, jobs=2)
+    request = InitRequest(
+        RobotInput.parse(MARM_URDF), out=tmp_path / "o", matrix=MatrixSettings(trials=2500, jobs=2)
+    )
     run_init(request, load_robot(MARM_URDF), lambda done, total: calls.append((done, total)))
     assert calls[0] == (0, 2500) and calls[-1] == (2500, 2500)
     assert [d for d, _ in calls] == sorted(d for d, _ in calls)

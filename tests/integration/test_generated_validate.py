@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from marm_setup.pipeline import InitRequest, build_setup, with_collision_matrix
+from marm_setup.flows import InitRequest, RobotInput, build_setup, with_collision_matrix
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.robot.load import load_robot
@@ -42,7 +42,7 @@ def test_generated_packages_validate_without_errors(tmp_path, robot_name, target
     robot = load_robot(urdf, {}, [root])
     out = tmp_path / f"{robot_name}_moveit_config"
     request = InitRequest(
-        urdf=urdf, out=out, target=target, ros_distro=distro, spec=spec, package_paths=(root,)
+        RobotInput.parse(urdf, package_paths=(root,)), out=out, target=target, ros_distro=distro, spec=spec
     )
     model = with_collision_matrix(build_setup(request, robot), robot, trials=300, seed=0)
     apply_writes(plan_writes(render_package(model, robot), out), out)

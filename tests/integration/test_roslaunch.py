@@ -144,7 +144,7 @@ def test_check_urdf_accepts_our_ros2_urdf(tmp_path):
 
 def write_panda_package(tmp_path: Path, target: str) -> tuple[Path, Path]:
     """Our package for the shared panda (inferred setup); returns (package, description root)."""
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, RobotInput, build_setup
     from marm_setup.robot.load import load_robot
 
     root = realworld(target)
@@ -156,7 +156,9 @@ def write_panda_package(tmp_path: Path, target: str) -> tuple[Path, Path]:
     )
     out = tmp_path / "panda_moveit_config"
     robot = load_robot(urdf, {}, [root])
-    model = build_setup(InitRequest(urdf=urdf, out=out, target=target, package_paths=(root,)), robot)
+    model = build_setup(
+        InitRequest(RobotInput.parse(urdf, package_paths=(root,)), out=out, target=target), robot
+    )
     apply_writes(plan_writes(render_package(model, robot), out), out)
     return out, root / "panda_description"
 
@@ -208,7 +210,7 @@ def test_roslaunch_keys_match_the_setup_assistants_panda_demo(tmp_path):
     import dataclasses
     import re
 
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, RobotInput, build_setup
     from marm_setup.robot.load import load_robot
 
     root = realworld("ros1")
@@ -217,7 +219,9 @@ def test_roslaunch_keys_match_the_setup_assistants_panda_demo(tmp_path):
     robot = load_robot(urdf, {}, [root])
     out = tmp_path / "panda_moveit_config"
     srdf = root / "panda_moveit_config" / "config" / "panda.srdf"
-    request = InitRequest(urdf=urdf, out=out, target="ros1", from_srdf=srdf, package_paths=(root,))
+    request = InitRequest(
+        RobotInput.parse(urdf, package_paths=(root,)), out=out, target="ros1", from_srdf=srdf
+    )
     model = dataclasses.replace(build_setup(request, robot), planning_pipelines=("ompl", "chomp", "pilz"))
     apply_writes(plan_writes(render_package(model, robot), out), out)
     ours = dump_params(out / "launch" / "demo.launch", [root / "panda_description", out], tmp_path)

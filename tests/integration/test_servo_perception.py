@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from marm_setup.pipeline import InitRequest, build_setup
+from marm_setup.flows import InitRequest, RobotInput, build_setup
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from tests.conftest import FIXTURES, MARM_URDF
@@ -31,7 +31,7 @@ def write_marm(tmp_path: Path, target: str, distro: str, extra: str = "") -> Pat
     spec.write_text(f"{text}\ntarget: {target}\nros_distro: {distro}\nsensors:\n- {CAMERA}\n{extra}")
     out = tmp_path / "marm_moveit_config"
     robot = marm_robot()
-    model = build_setup(InitRequest(urdf=MARM_URDF, out=out, spec=spec), robot)
+    model = build_setup(InitRequest(RobotInput.parse(MARM_URDF), out=out, spec=spec), robot)
     apply_writes(plan_writes(render_package(model, robot), out), out)
     return out
 

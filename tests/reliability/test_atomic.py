@@ -406,7 +406,7 @@ class _Killed(BaseException):
 def test_a_killed_in_place_switch_is_completed_by_the_next_render(pkg, tmp_path, monkeypatch, moved):
     """Killed after its commit record, `moved` files in: the next render plans against the
     package as the roll-forward leaves it (no false conflict, no 'run again') and completes it."""
-    from marm_setup.pipeline.render import load_package_setup
+    from marm_setup.flows.render import load_package_setup
     from marm_setup.render.package import SETUP_FILE, render_package
 
     edit_setup(pkg)

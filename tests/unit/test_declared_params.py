@@ -11,9 +11,9 @@ from pathlib import Path
 
 import pytest
 
+from marm_setup.flows import with_collision_matrix
 from marm_setup.moveit_params import FAMILIES, load_table
 from marm_setup.package import read_package
-from marm_setup.pipeline import with_collision_matrix
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.validate.rules.declared_param_rules import check_declared_parameters, drop_superseded

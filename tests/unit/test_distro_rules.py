@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 import yaml
 
-from marm_setup.pipeline import with_collision_matrix
+from marm_setup.flows import with_collision_matrix
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from tests.conftest import FIXTURES

@@ -412,7 +412,7 @@ SHIPPED = {
 def test_from_srdf_rerender_keeps_every_semantic_element(tmp_path, name):
     from pathlib import Path
 
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, RobotInput, build_setup
     from marm_setup.render.package import render_package
     from marm_setup.setup.srdf import parse_srdf_string
 
@@ -423,11 +423,13 @@ def test_from_srdf_rerender_keeps_every_semantic_element(tmp_path, name):
     urdf_path, srdf_path = _shared(rel_urdf), _shared(rel_srdf)
     robot = load_robot(urdf_path, args, packages)
     request = InitRequest(
-        urdf=urdf_path,
+        RobotInput.parse(
+            urdf_path,
+            xacro_args=tuple(f"{k}:={v}" for k, v in args.items()),
+            package_paths=tuple(Path(p) for p in packages),
+        ),
         out=tmp_path / "pkg",
         from_srdf=srdf_path,
-        xacro_args=tuple(f"{k}:={v}" for k, v in args.items()),
-        package_paths=tuple(Path(p) for p in packages),
     )
     model = build_setup(request, robot)
     files = {f.path: f.content for f in render_package(model, robot)}

@@ -133,16 +133,14 @@ def test_each_vendor_style_gets_its_proven_switch_or_a_replacement(vendors, styl
 
 
 def _write(vendor, distro: str, out: Path) -> Path:
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, RobotInput, build_setup
 
     robot = load_robot(vendor.urdf, parse_xacro_args(vendor.xacro_args), [vendor.root])
     request = InitRequest(
-        urdf=vendor.urdf,
+        RobotInput.parse(vendor.urdf, xacro_args=vendor.xacro_args, package_paths=(vendor.root,)),
         out=out,
         target="ros2",
         ros_distro=distro,
-        xacro_args=vendor.xacro_args,
-        package_paths=(vendor.root,),
     )
     apply_writes(plan_writes(render_package(build_setup(request, robot), robot), out), out)
     return out

@@ -19,7 +19,7 @@ PACKAGES = (
     "validate",
     "port",
     "report",
-    "pipeline",
+    "flows",
 )
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from marm_setup.pipeline import with_collision_matrix
+from marm_setup.flows import with_collision_matrix
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.setup.checks import check_setup, setup_warnings

@@ -66,13 +66,13 @@ def test_every_actuated_joint_is_in_exactly_one_system(tmp_path):
 
 @pytest.mark.parametrize("covered", [["joint1", "joint2", "joint3"], [f"joint{i}" for i in range(1, 7)]])
 def test_a_description_with_its_own_ros2_control_gets_no_duplicate(tmp_path, covered):
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, RobotInput, build_setup
 
     urdf = vendor_description(tmp_path, covered)
     robot = load_robot(urdf, {}, [FIXTURES / "marm"])
     spec = FIXTURES / "marm" / "marm_setup.yaml"
     request = InitRequest(
-        urdf=urdf, out=tmp_path / "pkg", target="ros2", spec=spec, package_paths=(FIXTURES,)
+        RobotInput.parse(urdf, package_paths=(FIXTURES,)), out=tmp_path / "pkg", target="ros2", spec=spec
     )
     pkg = write(build_setup(request, robot), robot, tmp_path / "pkg")
     systems = expanded_systems(pkg, "marm", [tmp_path, FIXTURES / "marm"])
@@ -85,7 +85,7 @@ def test_a_description_with_its_own_ros2_control_gets_no_duplicate(tmp_path, cov
 
 def test_a_real_vendor_description_keeps_its_system(tmp_path):
     """Kinova's gen3 + Robotiq 2F-85 description declares its own ros2_control system."""
-    from marm_setup.pipeline import InitRequest, build_setup
+    from marm_setup.flows import InitRequest, RobotInput, build_setup
 
     roots = [realworld2("ros2_kortex"), realworld2("ros2_robotiq_gripper")]
     urdf = roots[0] / "kortex_description" / "robots" / "gen3.xacro"
@@ -93,7 +93,9 @@ def test_a_real_vendor_description_keeps_its_system(tmp_path):
     robot = load_robot(urdf, args, roots)
     xacro_args = tuple(f"{k}:={v}" for k, v in args.items())
     request = InitRequest(
-        urdf=urdf, out=tmp_path / "pkg", target="ros2", xacro_args=xacro_args, package_paths=tuple(roots)
+        RobotInput.parse(urdf, xacro_args=xacro_args, package_paths=tuple(roots)),
+        out=tmp_path / "pkg",
+        target="ros2",
     )
     pkg = write(build_setup(request, robot), robot, tmp_path / "pkg")
     real = expanded_systems(pkg, "gen3", roots, use_mock_hardware="false")
@@ -138,7 +140,7 @@ def test_hardware_keys_and_use_mock_hardware(tmp_path):
 def test_init_says_it_reuses_the_descriptions_system(tmp_path):
     """...and what use_mock_hardware does to each system: a plain URDF has no switch, so the
     launch files replace its hardware; marm-setup's own system has no real plugin to switch to."""
-    from marm_setup.pipeline import reused_ros2_control
+    from marm_setup.flows import reused_ros2_control
 
     urdf = vendor_description(tmp_path, ["joint1"])
     robot = load_robot(urdf, {}, [FIXTURES / "marm"])

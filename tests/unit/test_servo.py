@@ -10,7 +10,7 @@ import yaml
 from lxml import etree
 
 from marm_setup.errors import InputError
-from marm_setup.pipeline import InitRequest, build_setup
+from marm_setup.flows import InitRequest, RobotInput, build_setup
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
 from marm_setup.setup.model import Controller, Kinematics, Ros2ControlHardware, Servo, ServoScale
@@ -47,7 +47,7 @@ def test_the_marm_arm_gets_a_servo_by_default():
 def test_default_servos_are_the_arms(urdf, expected, tmp_path):
     path = FIXTURES / "synthetic" / urdf
     robot = load_robot(path)
-    model = build_setup(InitRequest(urdf=path, out=tmp_path / "pkg"), robot)
+    model = build_setup(InitRequest(RobotInput.parse(path), out=tmp_path / "pkg"), robot)
     assert [s.group for s in default_servos(model, robot)] == expected
 
 

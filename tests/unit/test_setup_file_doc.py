@@ -9,12 +9,18 @@ from pathlib import Path
 import pytest
 import yaml
 
-from marm_setup.pipeline import InitRequest, build_setup
+from marm_setup.flows import InitRequest, RobotInput, build_setup
 from marm_setup.robot.load import load_robot
 from tests.conftest import ROOT
 
 DOC = ROOT / "docs" / "setup-file.md"
-FREE_MAPPINGS = ("values", "multi_dof", "xacro_args", "options", "move_group_parameters")  # keys: joint / arg / option / parameter names
+FREE_MAPPINGS = (
+    "values",
+    "multi_dof",
+    "xacro_args",
+    "options",
+    "move_group_parameters",
+)  # keys: joint / arg / option / parameter names
 
 
 def _examples() -> list[tuple[str, str]]:
@@ -53,7 +59,7 @@ def test_each_example_is_a_spec_init_accepts(tmp_path, robot, text):
     spec = tmp_path / "spec.yaml"
     spec.write_text(text, encoding="utf-8")
     urdf = ROOT / robot
-    request = InitRequest(urdf=urdf, out=tmp_path / "pkg", spec=spec)
+    request = InitRequest(RobotInput.parse(urdf), out=tmp_path / "pkg", spec=spec)
     model = build_setup(request, load_robot(urdf))
     data = yaml.safe_load(text)
     assert {g["name"] for g in data.get("groups", [])} <= {g.name for g in model.groups}

@@ -29,7 +29,7 @@ FORWARD = (
 
 @pytest.fixture(scope="module")
 def marm_model(marm):
-    from marm_setup.pipeline import with_collision_matrix
+    from marm_setup.flows import with_collision_matrix
 
     model = infer(marm, package_name="p", source=RobotSource("x"), target="ros1").model
     model = dataclasses.replace(

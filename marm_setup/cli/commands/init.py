@@ -9,18 +9,16 @@ from typing import Annotated
 import typer
 
 from marm_setup.cli.common import (
-    JobsOption,
+    MATRIX,
+    ROBOT,
     OutputFormat,
-    PackagePaths,
     ProveMode,
-    UntrustedOption,
-    XacroArgs,
     YesOption,
-    default_jobs,
     either,
     load_robot_from_cli,
-    parse_count,
 )
+from marm_setup.cli.option_groups import takes
+from marm_setup.flows import MatrixSettings, RobotInput
 from marm_setup.ros import Target, distros_of
 
 OutputOption = Annotated[
@@ -75,8 +73,53 @@ OptionalUrdfArg = Annotated[
 ]
 
 
+TrialsOption = Annotated[
+    str | None,
+    typer.Option(
+        "--trials",
+        help="Random states for the Never pairs (10000, 100k, 1M) [default: SPEC's, else 10000].",
+        metavar="N",
+    ),
+]
+SeedOption = Annotated[
+    int | None,
+    typer.Option("--seed", help="Seed of the collision sampling [default: SPEC's, else 0].", metavar="S"),
+]
+KeepDisabledOption = Annotated[
+    bool,
+    typer.Option(
+        "--keep-disabled",
+        help="Take the SPEC's collision.disabled as it is (default: compute it again, User pairs kept).",
+    ),
+]
+ProveOption = Annotated[
+    ProveMode | None,
+    typer.Option(
+        "--prove",
+        help="Prove Never pairs collision-free over their whole joint range (off: MoveIt's sampling "
+        "alone; exhaustive: a far larger budget) [default: SPEC's, else on].",
+    ),
+]
+
+
+@takes("robot", ROBOT.of("urdf", "xacro_arg", "package_path", "untrusted", urdf=(OptionalUrdfArg, None)))
+@takes(
+    "matrix",
+    MATRIX.of(
+        "trials",
+        "seed",
+        "jobs",
+        "keep_disabled",
+        "keep_matrix",
+        "prove",
+        trials=(TrialsOption, None),
+        seed=(SeedOption, None),
+        keep_disabled=(KeepDisabledOption, False),
+        keep_matrix=(Annotated[bool, typer.Option("--keep-matrix", hidden=True)], False),  # the old name
+        prove=(ProveOption, None),
+    ),
+)
 def init(
-    urdf: OptionalUrdfArg = None,
     output: OutputOption = None,
     out: OldOutOption = None,
     name: NameOption = None,
@@ -84,30 +127,9 @@ def init(
     ros_distro: DistroOption = None,
     setup: SetupOption = None,
     from_srdf: FromSrdfOption = None,
-    trials: Annotated[
-        str | None,
-        typer.Option(
-            "--trials",
-            help="Random states for the Never pairs (10000, 100k, 1M) [default: SPEC's, else 10000].",
-            metavar="N",
-        ),
-    ] = None,
-    seed: Annotated[
-        int | None,
-        typer.Option("--seed", help="Seed of the collision sampling [default: SPEC's, else 0].", metavar="S"),
-    ] = None,
-    jobs: JobsOption = None,
+    robot: RobotInput = RobotInput(),
+    matrix: MatrixSettings = MatrixSettings(),
     force: Annotated[bool, typer.Option("--force", help="Write into an existing non-empty DIR.")] = False,
-    keep_disabled: Annotated[
-        bool,
-        typer.Option(
-            "--keep-disabled",
-            help="Take the SPEC's collision.disabled as it is (default: compute it again, User pairs kept).",
-        ),
-    ] = False,
-    keep_matrix: Annotated[bool, typer.Option("--keep-matrix", hidden=True)] = False,  # the old name
-    xacro_arg: XacroArgs = None,
-    package_path: PackagePaths = None,
     from_package: FromPackageOption = None,
     no_plan: Annotated[
         bool, typer.Option("--no-plan", help="With --from-package: validate without the planning checks.")
@@ -116,15 +138,6 @@ def init(
         OutputFormat, typer.Option("--format", help="With --from-package: the port report as text or json.")
     ] = OutputFormat.text,
     yes: YesOption = False,
-    untrusted: UntrustedOption = False,
-    prove: Annotated[
-        ProveMode | None,
-        typer.Option(
-            "--prove",
-            help="Prove Never pairs collision-free over their whole joint range (off: MoveIt's sampling "
-            "alone; exhaustive: a far larger budget) [default: SPEC's, else on].",
-        ),
-    ] = None,
 ) -> None:
     """Infer a MoveIt setup for a robot (or take SPEC / an SRDF) and write the config package;
     or, with --from-package, port an existing config package and report every setting.
@@ -133,17 +146,16 @@ def init(
     examples, in docs/setup-file.md."""
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.errors import InputError
-    from marm_setup.pipeline import InitRequest, run_init
+    from marm_setup.flows import InitRequest, run_init
     from marm_setup.render import check_output_dir
 
-    if urdf is None and from_package is None:
+    if robot.urdf is None and from_package is None:
         raise InputError(
             "missing: the robot's URDF (marm-setup init URDF -o DIR), or --from-package PKG", element="URDF"
         )
     out = either(output, out, name="-o/--output", old_name="--out")
     if out is None:
         raise InputError("missing: the package folder to write (-o DIR)", element="-o/--output")
-    keep_matrix = keep_disabled or keep_matrix
     if from_package is not None:
         given = [o for o, v in (("--setup", setup), ("--from-srdf", from_srdf)) if v]
         if given:
@@ -159,25 +171,18 @@ def init(
             ros_distro,
             format,
             force=force,
-            package_path=package_path,
-            urdf=urdf,
-            xacro_arg=xacro_arg,
-            jobs=jobs,
+            robot=robot,
+            jobs=matrix.jobs,
             plan=not no_plan,
             yes=yes,
-            untrusted=untrusted,
         )
         return
-    if untrusted:
+    if robot.untrusted:
         raise InputError(
             "--untrusted goes with --from-package (init URDF runs the xacro you give)", element="--untrusted"
         )
-    assert urdf is not None  # checked above
-    if seed is not None and seed < 0:
-        raise InputError(f"must be >= 0, got {seed}", element="--seed")
-
     request = InitRequest(
-        urdf=urdf,
+        robot=robot,
         out=out,
         name=name,
         target=target.value if target else None,
@@ -185,22 +190,16 @@ def init(
         env_distro=os.environ.get("ROS_DISTRO") or None,
         spec=setup,
         from_srdf=from_srdf,
-        trials=None if trials is None else parse_count(trials, element="--trials"),
-        seed=seed,
-        jobs=default_jobs(jobs),
+        matrix=matrix,
         force=force,
-        keep_matrix=keep_matrix,
-        xacro_args=tuple(xacro_arg or ()),
-        package_paths=tuple(package_path or ()),
-        prove=prove.value if prove else None,
     )
     check_output_dir(out, force=force, shown=str(out))
-    robot = load_robot_from_cli(urdf, xacro_arg, package_path, check_args=False)  # run_init checks them
+    model = load_robot_from_cli(robot, check_args=False)  # run_init checks them
     with SamplingProgress(confirmed=yes) as progress:
-        result = run_init(request, robot, progress)
+        result = run_init(request, model, progress)
     sources = ["inferred", *(f"{o} {p}" for o, p in (("SRDF", from_srdf), ("SPEC", setup)) if p)]
     typer.echo(
-        f"setup for robot {robot.name} ({' + '.join(sources)}), target {result.model.target} ({result.model.distro}):"
+        f"setup for robot {model.name} ({' + '.join(sources)}), target {result.model.target} ({result.model.distro}):"
     )
     for line in result.inferred:
         typer.echo(f"  {line}")
@@ -219,19 +218,16 @@ def _port(
     format: OutputFormat,
     *,
     force: bool,
-    package_path: list[Path] | None,
-    urdf: Path | None,
-    xacro_arg: list[str] | None,
-    jobs: int | None,
+    robot: RobotInput,
+    jobs: int,
     plan: bool,
     yes: bool = False,
-    untrusted: bool = False,
 ) -> None:
     """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
     from marm_setup.cli.port_report import closing_line, format_port_json, format_port_text
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.findings import count, format_text
-    from marm_setup.pipeline import PortInitRequest, run_port
+    from marm_setup.flows import PortInitRequest, run_port
 
     request = PortInitRequest(
         package=package,
@@ -241,12 +237,9 @@ def _port(
         ros_distro=ros_distro,
         env_distro=os.environ.get("ROS_DISTRO") or None,
         force=force,
-        package_paths=tuple(package_path or ()),
-        urdf=urdf,
-        xacro_args=tuple(xacro_arg or ()),
+        robot=robot,
         plan=plan,
-        jobs=default_jobs(jobs),
-        untrusted=untrusted,
+        jobs=jobs,
     )
     with SamplingProgress(enabled=format is OutputFormat.text, confirmed=yes) as progress:
         result = run_port(request, progress)

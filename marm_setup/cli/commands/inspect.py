@@ -7,26 +7,21 @@ from typing import Annotated
 
 import typer
 
-from marm_setup.cli.common import (
-    OutputFormat,
-    PackagePaths,
-    UrdfArg,
-    XacroArgs,
-    load_robot_from_cli,
-)
+from marm_setup.cli.common import ROBOT, OutputFormat, load_robot_from_cli
+from marm_setup.cli.option_groups import takes
+from marm_setup.flows import RobotInput
 
 
+@takes("robot", ROBOT.of("urdf", "xacro_arg", "package_path"))
 def inspect(
-    urdf: UrdfArg,
-    xacro_arg: XacroArgs = None,
-    package_path: PackagePaths = None,
+    robot: RobotInput,
     format: Annotated[OutputFormat, typer.Option("--format", help="text or json.")] = OutputFormat.text,
 ) -> None:
     """Print the kinematic tree: joints (type, limits, mimic) and links (with/without geometry)."""
     from marm_setup.robot import describe_robot, format_tree
 
-    robot = load_robot_from_cli(urdf, xacro_arg, package_path)
+    model = load_robot_from_cli(robot)
     if format is OutputFormat.json:
-        typer.echo(json.dumps(describe_robot(robot), indent=2))
+        typer.echo(json.dumps(describe_robot(model), indent=2))
     else:
-        typer.echo(format_tree(robot))
+        typer.echo(format_tree(model))

@@ -7,7 +7,9 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from marm_setup.cli.common import PackagePaths
+from marm_setup.cli.common import ROBOT
+from marm_setup.cli.option_groups import takes
+from marm_setup.flows import RobotInput
 
 if TYPE_CHECKING:
     from marm_setup.plan import Executed, PlanningProblem
@@ -17,6 +19,12 @@ PackageDir = Annotated[
 ]
 
 
+UrdfOption = Annotated[
+    Path | None, typer.Option("--urdf", help="Robot description, if not the package's.", metavar="URDF")
+]
+
+
+@takes("robot", ROBOT.of("urdf", "package_path", urdf=(UrdfOption, None)))
 def plan(
     package_dir: PackageDir,
     group: Annotated[str, typer.Option("--group", help="Planning group (SRDF).", metavar="G")],
@@ -29,17 +37,12 @@ def plan(
         ),
     ] = None,
     seed: Annotated[int, typer.Option("--seed", help="Planner random seed.", metavar="S")] = 0,
-    urdf: Annotated[
-        Path | None, typer.Option("--urdf", help="Robot description, if not the package's.", metavar="URDF")
-    ] = None,
-    package_path: PackagePaths = None,
+    robot: RobotInput = RobotInput(),
 ) -> None:
     """Plan a collision-free, time-parameterised joint trajectory between named poses."""
-    from marm_setup.pipeline import PlanRequest, run_plan
+    from marm_setup.flows import PlanRequest, run_plan
 
-    request = PlanRequest(
-        package_dir, group, from_pose, to_pose, output, seed, urdf, tuple(package_path or ())
-    )
+    request = PlanRequest(package_dir, group, from_pose, to_pose, output, seed, robot)
     result = run_plan(request)
     typer.echo(f"planned {group}: {from_pose} -> {to_pose} ({', '.join(result.problem.joint_names)})")
     typer.echo(_summary(result.problem, result.outcome))

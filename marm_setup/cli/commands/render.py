@@ -7,44 +7,40 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from marm_setup.cli.common import PackagePaths, XacroArgs
+from marm_setup.cli.common import ROBOT
+from marm_setup.cli.option_groups import takes
+from marm_setup.flows import RobotInput
 
 if TYPE_CHECKING:
     from marm_setup.render import FileChange
 DirArg = Annotated[Path, typer.Argument(help="Config package folder holding marm_setup.yaml.", metavar="DIR")]
 
 
+UrdfOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--urdf", help="The robot description, instead of the one marm_setup.yaml names.", metavar="URDF"
+    ),
+]
+
+
+@takes("robot", ROBOT.of("urdf", "xacro_arg", "package_path", urdf=(UrdfOption, None)))
 def render(
     dir: DirArg,
     force: Annotated[bool, typer.Option("--force", help="Overwrite hand-edited files.")] = False,
     dry_run: Annotated[
         bool, typer.Option("--dry-run", help="Print what would change; write nothing.")
     ] = False,
-    urdf: Annotated[
-        Path | None,
-        typer.Option(
-            "--urdf", help="The robot description, instead of the one marm_setup.yaml names.", metavar="URDF"
-        ),
-    ] = None,
-    xacro_arg: XacroArgs = None,
-    package_path: PackagePaths = None,
+    robot: RobotInput = RobotInput(),
 ) -> None:
     """Re-render every generated file of DIR from DIR/marm_setup.yaml (create / update / unchanged / conflict).
 
     --xacro-arg and --package-path load the robot (over marm_setup.yaml's robot.xacro_args, after
     its robot.package_paths); the files rendered say what marm_setup.yaml says."""
-    from marm_setup.pipeline import run_render
+    from marm_setup.flows import run_render
     from marm_setup.render import format_change
-    from marm_setup.robot import parse_xacro_args
 
-    result = run_render(
-        dir,
-        urdf,
-        force=force,
-        dry_run=dry_run,
-        xacro_args=parse_xacro_args(xacro_arg or []),
-        package_paths=tuple(package_path or ()),
-    )
+    result = run_render(dir, robot, force=force, dry_run=dry_run)
     for line in result.warnings:
         typer.echo(line)
     stale = [f"{'stale':<10}{path} (no longer generated; left in place)" for path in result.stale]

@@ -7,40 +7,32 @@ from typing import Annotated
 
 import typer
 
-from marm_setup.cli.common import (
-    JobsOption,
-    PackagePaths,
-    PackageSrdf,
-    PackageUrdf,
-    UntrustedOption,
-    XacroArgs,
-    default_jobs,
-    parse_count,
-)
+from marm_setup.cli.common import MATRIX, ROBOT, PackageUrdf
+from marm_setup.cli.option_groups import takes
+from marm_setup.flows import MatrixSettings, RobotInput
+
+TrialsOption = Annotated[
+    str | None,
+    typer.Option(
+        "--trials",
+        help="Random states for the matrix's hit counts [default: 10000; never the package's own setting].",
+        metavar="N",
+    ),
+]
 
 
+@takes("robot", ROBOT.of("urdf", "srdf", "xacro_arg", "package_path", "untrusted", urdf=(PackageUrdf, None)))
+@takes("matrix", MATRIX.of("trials", "jobs", trials=(TrialsOption, None)))
 def report(
     package: Annotated[Path, typer.Argument(help="The MoveIt config package folder.", metavar="PKG")],
     output: Annotated[
         Path, typer.Option("--output", "-o", help="The HTML file to write.", metavar="report.html")
     ] = Path("report.html"),
-    urdf: PackageUrdf = None,
-    srdf: PackageSrdf = None,
-    xacro_arg: XacroArgs = None,
-    package_path: PackagePaths = None,
+    robot: RobotInput = RobotInput(),
     no_plan: Annotated[
         bool, typer.Option("--no-plan", help="Skip planning between named poses (no trajectories).")
     ] = False,
-    trials: Annotated[
-        str | None,
-        typer.Option(
-            "--trials",
-            help="Random states for the matrix's hit counts [default: 10000; never the package's own setting].",
-            metavar="N",
-        ),
-    ] = None,
-    jobs: JobsOption = None,
-    untrusted: UntrustedOption = False,
+    matrix: MatrixSettings = MatrixSettings(),
 ) -> None:
     """Write one self-contained HTML page (works offline): the robot in 3D at each named pose,
     groups lit, contacts in red, end effectors and the virtual joint's frame, every validate
@@ -49,21 +41,9 @@ def report(
     written either way), 2 when it cannot be read."""
     from marm_setup.cli.progress import StageProgress
     from marm_setup.findings import INTERNAL, count
-    from marm_setup.pipeline import ReportRequest, run_report
-    from marm_setup.robot import parse_xacro_args
+    from marm_setup.flows import ReportRequest, run_report
 
-    request = ReportRequest(
-        package,
-        output,
-        urdf=urdf,
-        srdf=srdf,
-        xacro_args=parse_xacro_args(xacro_arg or []),
-        package_paths=tuple(package_path or ()),
-        plan=not no_plan,
-        trials=None if trials is None else parse_count(trials, element="--trials"),
-        jobs=default_jobs(jobs),
-        untrusted=untrusted,
-    )
+    request = ReportRequest(package, output, robot, matrix, plan=not no_plan)
     with StageProgress() as progress:
         result = run_report(request, progress)
     findings = result.validated.validation.findings

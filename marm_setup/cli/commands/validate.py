@@ -10,14 +10,9 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from marm_setup.cli.common import (
-    PackagePaths,
-    PackageSrdf,
-    PackageUrdf,
-    UntrustedOption,
-    XacroArgs,
-    echo_err,
-)
+from marm_setup.cli.common import ROBOT, PackageUrdf, echo_err
+from marm_setup.cli.option_groups import takes
+from marm_setup.flows import RobotInput
 from marm_setup.ros import Target, distros_of
 
 if TYPE_CHECKING:
@@ -44,6 +39,7 @@ class Outcome:
     code: int
 
 
+@takes("robot", ROBOT.of("urdf", "srdf", "xacro_arg", "package_path", "untrusted", urdf=(PackageUrdf, None)))
 def validate(
     packages: Annotated[
         list[Path],
@@ -53,10 +49,7 @@ def validate(
             show_default=False,
         ),
     ],
-    urdf: PackageUrdf = None,
-    srdf: PackageSrdf = None,
-    xacro_arg: XacroArgs = None,
-    package_path: PackagePaths = None,
+    robot: RobotInput = RobotInput(),
     no_plan: Annotated[
         bool, typer.Option("--no-plan", help="Skip the runtime checks (planning between named poses).")
     ] = False,
@@ -77,7 +70,6 @@ def validate(
             "packages holding them, nothing when none does.",
         ),
     ] = False,
-    untrusted: UntrustedOption = False,
     ros_distro: Annotated[
         str | None,
         typer.Option(
@@ -92,19 +84,18 @@ def validate(
     controllers, OMPL, launch files. Exit 0 clean, 1 with errors (or warnings with --strict),
     2 when a package cannot be read."""
     from marm_setup.cli.changed_packages import changed_packages
-    from marm_setup.robot import parse_xacro_args
 
     folders = changed_packages(packages) if changed_files else packages
     if not folders:
         echo_err(f"no MoveIt config package holds the {len(packages)} changed file(s): nothing to validate")
         return
     options = dict(
-        urdf=urdf,
-        srdf=srdf,
-        xacro_args=parse_xacro_args(xacro_arg or []),
-        package_paths=package_path or [],
+        urdf=robot.urdf,
+        srdf=robot.srdf,
+        xacro_args=robot.xacro_mapping,
+        package_paths=list(robot.package_paths),
         plan=not no_plan,
-        untrusted=untrusted,
+        untrusted=robot.untrusted,
         ros_distro=ros_distro,
     )
     machine = format is not ValidateFormat.text

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError, PlanningFailed
+from marm_setup.flows.settings import RobotInput
 
 if TYPE_CHECKING:
     from marm_setup.plan import Executed, PlanningProblem
@@ -20,9 +21,8 @@ class PlanRequest:
     from_pose: str
     to_pose: str
     output: Path | None = None  # the JointTrajectory YAML to write
-    seed: int = 0
-    urdf: Path | None = None
-    package_paths: tuple[Path, ...] = ()
+    seed: int = 0  # the planner's
+    robot: RobotInput = RobotInput()  # --urdf, --package-path over the package's
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,7 +40,8 @@ def run_plan(request: PlanRequest) -> PlanResult:
 
     if request.seed < 0:
         raise InputError(f"must be >= 0, got {request.seed}", element="--seed")
-    package = read_package(request.package, urdf=request.urdf, package_paths=request.package_paths)
+    given = request.robot
+    package = read_package(request.package, urdf=given.urdf, package_paths=given.package_paths)
     robot = load_robot(package.description_file, dict(package.xacro_args), list(package.package_paths))
     problem = planning_problem(package, robot, CollisionScene(robot), request.group)
     srdf_shown = package.user_path(package.srdf_path)

@@ -11,10 +11,11 @@ from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, Location
-from marm_setup.pipeline.build import InitRequest, choose_distro, target_of
-from marm_setup.pipeline.write import with_collision_matrix, write_package
-from marm_setup.robot import RobotModel, parse_xacro_args
-from marm_setup.setup import Partial, SetupModel
+from marm_setup.flows.build import choose_distro, target_of
+from marm_setup.flows.settings import RobotInput
+from marm_setup.flows.write import with_collision_matrix, write_package
+from marm_setup.robot import RobotModel
+from marm_setup.setup import SetupModel
 from marm_setup.untrusted import no_package_code
 
 if TYPE_CHECKING:
@@ -35,12 +36,9 @@ class PortInitRequest:
     ros_distro: str | None = None  # None: env_distro if it fits the target, else the default
     env_distro: str | None = None
     force: bool = False
-    package_paths: tuple[Path, ...] = ()
-    urdf: Path | None = None  # the robot description, instead of the one the package names
-    xacro_args: tuple[str, ...] = ()  # NAME:=VALUE, instead of the ones the package passes
+    robot: RobotInput = RobotInput()  # --urdf, --xacro-arg over the package's; --untrusted
     plan: bool = True  # validate's runtime checks on the new package
     jobs: int = 1
-    untrusted: bool = False  # run none of the package's code (marm_setup.untrusted)
 
 
 @dataclass(frozen=True)
@@ -55,7 +53,7 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
     """Read the package, port it, check the setup, render and write it, then validate the result;
     with `untrusted`, none of the package's code runs (a xacro description is then an InputError
     saying so)."""
-    with no_package_code() if request.untrusted else nullcontext():
+    with no_package_code() if request.robot.untrusted else nullcontext():
         return _run_port(request, progress)
 
 
@@ -67,17 +65,13 @@ def _run_port(request: PortInitRequest, progress: Progress | None) -> PortResult
 
     check_output_dir(request.out, force=request.force, shown=str(request.out))
     pkg, notes = _discover_for_port(request)
-    robot = _package_robot(pkg, request.xacro_args)
+    robot = _package_robot(pkg, request.robot.xacro_mapping)
     target = target_of(request.target, None, "--target")
-    distro = choose_distro(
-        InitRequest(Path(), request.out, ros_distro=request.ros_distro, env_distro=request.env_distro),
-        Partial(SetupModel, ()),
-        target,
-    )
+    distro = choose_distro(target, request.ros_distro, request.env_distro)
     ported = port_package(
         pkg,
         robot,
-        PortRequest(request.out, target, distro, request.name, tuple(request.package_paths), notes),
+        PortRequest(request.out, target, distro, request.name, request.robot.package_paths, notes),
     )
     check_setup(ported.model, robot, pkg.user_path(pkg.srdf_path))
     model = with_collision_matrix(
@@ -132,10 +126,9 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
     from marm_setup.package import read_package, setup_assistant_description
     from marm_setup.port import PortItem
 
-    args = parse_xacro_args(list(request.xacro_args)) or None
-    pkg = read_package(
-        request.package, urdf=request.urdf, package_paths=request.package_paths, xacro_args=args
-    )
+    args = request.robot.xacro_mapping or None
+    paths = request.robot.package_paths
+    pkg = read_package(request.package, urdf=request.robot.urdf, package_paths=paths, xacro_args=args)
     urdf = pkg.description_file
     sa = pkg.setup_assistant
     convention = pkg.urdf_origin == "config/<robot>.urdf.xacro"
@@ -156,9 +149,7 @@ def _discover_for_port(request: PortInitRequest) -> tuple[MoveItPackage, tuple[P
         )
     path, sa_args = found.urdf, sa.urdf_xacro_args if sa is not None else ()
     wrapper = urdf.relative_to(pkg.root).as_posix()
-    pkg = read_package(
-        request.package, urdf=path, package_paths=request.package_paths, xacro_args=args or dict(sa_args)
-    )
+    pkg = read_package(request.package, urdf=path, package_paths=paths, xacro_args=args or dict(sa_args))
     note = PortItem(
         "changed",
         "robot.urdf",
@@ -194,7 +185,7 @@ def _own_wrapper(pkg: MoveItPackage) -> bool:
     return pkg.urdf.resolve().parent == (pkg.root / "config").resolve()
 
 
-def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> RobotModel:
+def _package_robot(pkg: MoveItPackage, xacro_args: dict[str, str] | None = None) -> RobotModel:
     """The package's robot; its load failure is the one error line, and so is a `--xacro-arg`
     (`xacro_args`) that neither its description nor its SRDF xacro takes."""
     from marm_setup.validate import check_given_xacro_args, load_package_robot
@@ -212,5 +203,5 @@ def _package_robot(pkg: MoveItPackage, xacro_args: tuple[str, ...] = ()) -> Robo
             raise InputError(found.message, path=found.file, element=found.element or None, needs="--urdf")
         raise as_input_error(found)
     if xacro_args:
-        check_given_xacro_args(pkg, robot, parse_xacro_args(list(xacro_args)))
+        check_given_xacro_args(pkg, robot, xacro_args)
     return robot

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
+from marm_setup.flows.settings import MatrixSettings
 from marm_setup.names import did_you_mean, with_hint
 
 if TYPE_CHECKING:
@@ -24,22 +25,16 @@ if TYPE_CHECKING:
 class CollisionsRequest:
     """What `collisions URDF` computes and writes (see its options)."""
 
-    trials: int
-    seed: int = 0
-    min_collision_fraction: float = 0.95
-    jobs: int = 1
-    padding: float = 0.0
+    matrix: MatrixSettings = MatrixSettings()  # its keep_disabled: keep the SRDF's pairs
     check_default: bool = True
     check_always: bool = True
     default_pose: str | None = None  # a pose of `srdf` as the default state
     srdf: Path | None = None  # updated (in place unless `output`)
     output: Path | None = None
-    keep: bool = False
     force: bool = False  # update an SRDF of another robot anyway
     report: Path | None = None  # .svg or .html
     distances: bool = False  # the closest distance of each Never pair (json, report)
     verbose: bool = False  # list each pair the SRDF update adds and removes
-    prove: str = "on"  # how the Never pairs are proved (collision/proof.py): off, on, exhaustive
 
 
 @dataclass(frozen=True)
@@ -54,7 +49,7 @@ def run_collisions(
 ) -> CollisionsResult:
     """Compute the matrix; update or write the SRDF and the report the request names."""
     from marm_setup.collision import CollisionScene, load_srdf_text, read_srdf_entries
-    from marm_setup.pipeline.write import compute_matrix
+    from marm_setup.flows.write import compute_matrix
 
     srdf, srdf_text = request.srdf, None
     if srdf is not None:
@@ -67,17 +62,13 @@ def run_collisions(
         default_q = pose_configuration(robot, srdf_text, request.default_pose, str(srdf))
     matrix = compute_matrix(
         robot,
-        CollisionScene(robot, request.padding),
-        trials=request.trials,
-        seed=request.seed,
-        min_collision_fraction=request.min_collision_fraction,
+        CollisionScene(robot, request.matrix.padding),
+        **request.matrix.matrix_options(),
         check_default=request.check_default,
         check_always=request.check_always,
         default_q=default_q,
-        jobs=request.jobs,
         progress=progress,
         distances=request.distances,
-        prove=request.prove,
     )
     messages: list[str] = []
     disabled = _write_srdf(robot.name, matrix, request, srdf_text, messages)
@@ -131,7 +122,9 @@ def _write_srdf(
             write_text_atomic(output, text, shown=str(output))
             messages.append(f"wrote {output}")
         return matrix.disabled
-    text, disabled = update_srdf(srdf_text, matrix.disabled, keep=request.keep, shown=str(srdf), notes=notes)
+    text, disabled = update_srdf(
+        srdf_text, matrix.disabled, keep=request.matrix.keep_disabled, shown=str(srdf), notes=notes
+    )
     target = output or srdf
     write_text_atomic(target, text, shown=str(target), follow_symlink=output is None)  # --srdf in place
     messages.append(f"wrote {target}")
@@ -210,35 +203,18 @@ class PackageCollisionsResult:
 
 
 def run_package_collisions(
-    pkg: Path,
-    trials: int,
-    seed: int,
-    fraction: float,
-    jobs: int,
-    *,
-    prove: str = "on",
-    force: bool,
-    progress: Progress | None = None,
+    pkg: Path, settings: MatrixSettings, *, force: bool, progress: Progress | None = None
 ) -> PackageCollisionsResult:
     """Recompute a generated package's matrix into its marm_setup.yaml and SRDF together (its
     User pairs kept), so the next `render` has nothing to disagree with; with `force` a
     hand-edited file is overwritten (kept as `.orig`, as render does)."""
     from marm_setup.collision import DisabledReason
-    from marm_setup.pipeline.render import load_package_setup
-    from marm_setup.pipeline.write import collision_settings, compute_matrix
+    from marm_setup.flows.render import load_package_setup
+    from marm_setup.flows.write import collision_settings, compute_matrix
     from marm_setup.render import apply_writes, format_change, plan_writes, render_package
 
     model, robot = load_package_setup(pkg)
-    matrix = compute_matrix(
-        robot,
-        trials=trials,
-        seed=seed,
-        min_collision_fraction=fraction,
-        jobs=jobs,
-        progress=progress,
-        distances=False,
-        prove=prove,
-    )
+    matrix = compute_matrix(robot, **settings.matrix_options(), progress=progress, distances=False)
     computed = {p.pair for p in matrix.disabled}
     user = [p for p in model.collision.disabled if p.reason is DisabledReason.USER and p.pair not in computed]
     disabled = tuple(sorted((*matrix.disabled, *user)))

@@ -7,8 +7,8 @@ import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from marm_setup.pipeline.build import InitRequest, build
-from marm_setup.pipeline.write import describe, reused_ros2_control, with_collision_matrix, write_package
+from marm_setup.flows.build import InitRequest, build
+from marm_setup.flows.write import describe, reused_ros2_control, with_collision_matrix, write_package
 from marm_setup.robot import RobotModel
 from marm_setup.setup import SetupModel
 
@@ -31,18 +31,18 @@ def run_init(request: InitRequest, robot: RobotModel, progress: Progress | None 
     built = build(request, robot)
     model, user = _matrix_to_compute(built.model, request)
     given = bool(model.collision.disabled)
-    trials = model.collision.trials if request.trials is None else request.trials
-    seed = model.collision.seed if request.seed is None else request.seed
+    settings = request.matrix.over(model.collision)
+    seed = settings.seed
     scene = CollisionScene(robot)
     model = with_collision_matrix(
         model,
         robot,
-        trials=trials,
+        trials=settings.trials,
         seed=seed,
-        jobs=request.jobs,
+        jobs=settings.jobs,
         progress=progress,
         scene=scene,
-        prove=request.prove or model.collision.prove or "on",
+        prove=settings.prove,
     )
     model = _with_user_pairs(model, user)
     notes = built.notes
@@ -85,10 +85,10 @@ def _matrix_to_compute(
     model: SetupModel, request: InitRequest
 ) -> tuple[SetupModel, tuple[DisabledPair, ...]]:
     """A SPEC's matrix (an old marm_setup.yaml's, maybe stale) is computed again unless
-    `keep_matrix`, its User pairs kept; an imported SRDF's matrix is the import: kept."""
+    --keep-disabled, its User pairs kept; an imported SRDF's matrix is the import: kept."""
     from marm_setup.collision import DisabledReason
 
-    if request.from_srdf is not None or request.keep_matrix or not model.collision.disabled:
+    if request.from_srdf is not None or request.matrix.keep_disabled or not model.collision.disabled:
         return model, ()
     user = tuple(p for p in model.collision.disabled if p.reason is DisabledReason.USER)
     return dataclasses.replace(model, collision=dataclasses.replace(model.collision, disabled=())), user

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from contextlib import nullcontext
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
+from marm_setup.flows.settings import MatrixSettings, RobotInput
 from marm_setup.untrusted import no_package_code
 
 if TYPE_CHECKING:
@@ -19,14 +20,9 @@ if TYPE_CHECKING:
 class ReportRequest:
     package: Path
     output: Path  # .html or .htm
-    urdf: Path | None = None
-    srdf: Path | None = None
-    xacro_args: dict[str, str] = field(default_factory=dict)
-    package_paths: tuple[Path, ...] = ()
+    robot: RobotInput = RobotInput()  # --urdf, --srdf, --xacro-arg over the package's; --untrusted
+    matrix: MatrixSettings = MatrixSettings()  # its trials and jobs (never the package's trials)
     plan: bool = True
-    trials: int | None = None  # the matrix's; None: report.build.DEFAULT_TRIALS (never the package's)
-    jobs: int = 1
-    untrusted: bool = False  # run none of the package's code (marm_setup.untrusted)
 
 
 def run_report(request: ReportRequest, progress: Callable[[str, int, int], None] | None = None) -> Report:
@@ -36,7 +32,7 @@ def run_report(request: ReportRequest, progress: Callable[[str, int, int], None]
     output = request.output
     if output.suffix.lower() not in (".html", ".htm"):
         raise InputError(f"expected an .html file, got '{output.name}'", path=str(output), element="--output")
-    with no_package_code() if request.untrusted else nullcontext():
+    with no_package_code() if request.robot.untrusted else nullcontext():
         result = _build(request, progress)
     write_text_atomic(output, result.html, shown=str(output))
     return result
@@ -47,12 +43,12 @@ def _build(request: ReportRequest, progress: Callable[[str, int, int], None] | N
 
     return build_report(
         request.package,
-        urdf=request.urdf,
-        srdf=request.srdf,
-        xacro_args=request.xacro_args,
-        package_paths=request.package_paths,
+        urdf=request.robot.urdf,
+        srdf=request.robot.srdf,
+        xacro_args=request.robot.xacro_mapping,
+        package_paths=request.robot.package_paths,
         plan=request.plan,
-        trials=request.trials,
-        jobs=request.jobs,
+        trials=request.matrix.trials,
+        jobs=request.matrix.jobs,
         progress=progress,
     )

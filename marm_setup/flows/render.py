@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.errors import ConflictError, InputError
+from marm_setup.flows.settings import RobotInput
 
 if TYPE_CHECKING:
     from marm_setup.render import FileChange
@@ -32,17 +33,12 @@ class RenderResult:
 
 
 def run_render(
-    pkg_dir: Path,
-    urdf: Path | None = None,
-    *,
-    force: bool = False,
-    dry_run: bool = False,
-    xacro_args: dict[str, str] | None = None,
-    package_paths: tuple[Path, ...] = (),
+    pkg_dir: Path, robot_input: RobotInput = RobotInput(), *, force: bool = False, dry_run: bool = False
 ) -> RenderResult:
     """Render DIR from DIR/marm_setup.yaml (which render never rewrites) and, unless `dry_run`,
     write it; nothing is written when a hand-edited file would be overwritten without `force`
-    (`refused` says which). `xacro_args` and `package_paths` load the robot (load_package_setup)."""
+    (`refused` says which). `robot_input`'s urdf, xacro args and package paths load the robot
+    (load_package_setup)."""
     from marm_setup.render import (
         SETUP_FILE,
         apply_writes,
@@ -53,9 +49,10 @@ def run_render(
     )
     from marm_setup.setup import setup_warnings
 
+    urdf = robot_input.urdf
     if urdf is not None and not urdf.is_file():
         raise InputError("file not found", path=str(urdf), element="--urdf")
-    model, robot = load_package_setup(pkg_dir, urdf, xacro_args, package_paths)
+    model, robot = load_package_setup(pkg_dir, urdf, robot_input.xacro_mapping, robot_input.package_paths)
     warnings = tuple(setup_warnings(model))
     rendered = [f for f in render_package(model, robot) if f.path != SETUP_FILE]
     changes = plan_writes(rendered, pkg_dir)

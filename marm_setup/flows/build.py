@@ -11,7 +11,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
-from marm_setup.robot import RobotModel, parse_xacro_args
+from marm_setup.flows.settings import MatrixSettings, RobotInput
+from marm_setup.robot import RobotModel
 from marm_setup.ros import TARGETS, Distro, Target, default_distro, distros_of
 from marm_setup.setup import RobotSource, SetupModel
 
@@ -21,7 +22,7 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class InitRequest:
-    urdf: Path
+    robot: RobotInput  # its urdf: the description to load
     out: Path
     name: str | None = None
     target: str | None = None
@@ -29,14 +30,17 @@ class InitRequest:
     env_distro: str | None = None  # $ROS_DISTRO of the caller
     spec: Path | None = None
     from_srdf: Path | None = None
-    trials: int | None = None  # None: the SPEC's collision.trials, else 10000
-    seed: int | None = None  # None: the SPEC's collision.seed, else 0
-    jobs: int = 1  # worker processes of the collision matrix (the result does not depend on it)
+    matrix: MatrixSettings = MatrixSettings()  # trials, seed, prove not given: the SPEC's
     force: bool = False
-    keep_matrix: bool = False  # take a SPEC's collision.disabled as it is (else recompute, User pairs kept)
-    prove: str | None = None  # None: the SPEC's collision.prove, else on (collision/proof.py)
-    xacro_args: tuple[str, ...] = ()
-    package_paths: tuple[Path, ...] = ()
+
+    @property
+    def urdf(self) -> Path:
+        assert self.robot.urdf is not None  # init loads the URDF argument
+        return self.robot.urdf
+
+    @property
+    def package_paths(self) -> tuple[Path, ...]:
+        return self.robot.package_paths
 
 
 @dataclass(frozen=True)
@@ -79,7 +83,8 @@ def build(request: InitRequest, robot: RobotModel) -> Built:
         model, notes, srdf_args = _import_srdf(request, model, notes, robot)
     _check_xacro_args(request, robot, srdf_args)
     model = _with_spec(model, spec, request, robot, inferred_groups)
-    model = dataclasses.replace(model, ros_distro=choose_distro(request, spec, model.target))
+    distro = choose_distro(model.target, request.ros_distro, request.env_distro, spec, request.spec)
+    model = dataclasses.replace(model, ros_distro=distro)
     if not model.groups:
         raise InputError(
             f"no planning groups: no limb to infer, and the SPEC / SRDF gives none (see {REFERENCE})",
@@ -132,7 +137,7 @@ def _import_srdf(
     path = request.from_srdf
     assert path is not None
     skipped: list[InputError] = []
-    args = parse_xacro_args(list(request.xacro_args))
+    args = request.robot.xacro_mapping
     raw, declared = load_srdf(path, skipped, xacro_args=args, package_paths=request.package_paths)
     srdf, dropped = as_moveit_loads(raw, robot)
     lines = [f"{e.element}: {e.message}" if e.element else e.message for e in skipped] + list(dropped)
@@ -157,7 +162,7 @@ def _check_xacro_args(request: InitRequest, robot: RobotModel, srdf_args: frozen
     """Every `--xacro-arg` must be an argument of the robot's xacro or of the SRDF xacro."""
     from marm_setup.robot import check_xacro_args
 
-    given = parse_xacro_args(list(request.xacro_args))
+    given = request.robot.xacro_mapping
     if srdf_args is None:
         check_xacro_args(given, robot.xacro_args, path=str(request.urdf))
         return
@@ -220,26 +225,30 @@ def target_of(given: object, path: str | None, element: str) -> Target:
     return Target(given)
 
 
-def choose_distro(request: InitRequest, spec: Partial, target: Target) -> Distro:
+def choose_distro(
+    target: Target,
+    ros_distro: str | None,
+    env_distro: str | None,
+    spec: Partial | None = None,
+    spec_path: Path | None = None,
+) -> Distro:
     """--ros-distro, else the SPEC's ros_distro, else $ROS_DISTRO when it is one of the target's,
     else the target's default (noetic for ros1, humble for ros2)."""
     from marm_setup.setup import distro_problem
 
     distros = distros_of(target)
-    from_spec = spec.get("ros_distro")
+    from_spec = spec.get("ros_distro") if spec is not None else None
     for given, where in (
-        (request.ros_distro, "--ros-distro"),
+        (ros_distro, "--ros-distro"),
         (str(from_spec) if from_spec else None, "ros_distro"),
     ):
         if given is None:
             continue
         problem = distro_problem(target, given)
         if problem:
-            raise InputError(
-                problem, path=None if where == "--ros-distro" else str(request.spec), element=where
-            )
+            raise InputError(problem, path=None if where == "--ros-distro" else str(spec_path), element=where)
         return given
-    return request.env_distro if request.env_distro in distros else default_distro(target)
+    return env_distro if env_distro in distros else default_distro(target)
 
 
 def _source(request: InitRequest) -> RobotSource:
@@ -251,7 +260,7 @@ def _source(request: InitRequest) -> RobotSource:
     urdf, paths = robot_reference(Path(request.urdf), out, paths)
     return RobotSource(
         urdf=urdf,
-        xacro_args=tuple(sorted(parse_xacro_args(list(request.xacro_args)).items())),
+        xacro_args=tuple(sorted(request.robot.xacro_args)),
         package_paths=tuple(paths),
     )
 
