@@ -11,6 +11,7 @@ URDF element that uses it.
 from __future__ import annotations
 
 import io
+import json
 import math
 import re
 from dataclasses import dataclass
@@ -96,9 +97,10 @@ def _read_with_trimesh(data: bytes, path: Path) -> tuple[np.ndarray, np.ndarray]
     such as an OBJ's materials, are looked up next to it)."""
     import trimesh
 
+    kind = path.suffix.lower().lstrip(".")
+    _check_gltf(data, kind)
     try:
         resolver = trimesh.resolvers.FilePathResolver(str(path))
-        kind = path.suffix.lower().lstrip(".")
         mesh = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh", process=False, resolver=resolver)
         if isinstance(mesh, trimesh.Trimesh) and mesh.units is not None:  # Collada <unit>; never guessed
             _check_units(mesh.units)
@@ -106,7 +108,7 @@ def _read_with_trimesh(data: bytes, path: Path) -> tuple[np.ndarray, np.ndarray]
     except _MeshReadError:
         raise
     except Exception as exc:  # trimesh raises many types for unreadable files
-        raise _MeshReadError(" ".join(str(exc).split()) or type(exc).__name__) from None
+        raise _MeshReadError(_trimesh_reason(exc, kind)) from None
     if not isinstance(mesh, trimesh.Trimesh):
         raise _MeshReadError("no triangles")
     vertices = np.asarray(mesh.vertices, dtype=float).reshape(-1, 3)
@@ -114,6 +116,36 @@ def _read_with_trimesh(data: bytes, path: Path) -> tuple[np.ndarray, np.ndarray]
     if len(vertices) == 0 or len(faces) == 0:
         raise _MeshReadError("no triangles")
     return vertices.copy(), faces.copy()
+
+
+def _check_gltf(data: bytes, kind: str) -> None:
+    """A .gltf must be a JSON object and a .glb start with the `glTF` magic (glTF 2.0 spec,
+    sections 3 and 4.4): trimesh reads any other .gltf as a folder's `model.gltf` and reports
+    only that name."""
+    if kind == "glb" and data[:4] != b"glTF":
+        raise _MeshReadError("not a binary glTF (.glb): it does not start with the bytes 'glTF'")
+    if kind != "gltf":
+        return
+    try:
+        tree = json.loads(data)
+    except ValueError as exc:  # UnicodeDecodeError and JSONDecodeError alike
+        raise _MeshReadError(f"not a glTF file: not JSON ({' '.join(str(exc).split())})") from None
+    if not isinstance(tree, dict):
+        raise _MeshReadError(f"not a glTF file: its JSON is {type(tree).__name__}, not an object")
+
+
+def _trimesh_reason(exc: Exception, kind: str) -> str:
+    """trimesh's reason for refusing a file, one line: a file it names that is missing, else the
+    exception's type and words (an internal one, such as KeyError or AssertionError, says the
+    file is not what its format requires)."""
+    text = " ".join(str(exc).split())
+    if isinstance(exc, FileNotFoundError):
+        return f"a file it refers to is missing: {text or '?'}"
+    name = type(exc).__name__
+    said = text if text.startswith(name) else f"{name}: {text}" if text else name
+    if isinstance(exc, (AttributeError, AssertionError, IndexError, KeyError, NameError, TypeError)):
+        return f"not a valid .{kind} file (trimesh: {said})"
+    return text or name
 
 
 def _check_triangles(count: int) -> None:
