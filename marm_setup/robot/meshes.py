@@ -1,11 +1,13 @@
-"""Mesh files -> vertex/face arrays in [m], cached per file and scale.
+"""Mesh files -> vertex/face arrays in [m]: each file read once (cached by path and its stat),
+its scale applied after, so one file used by many links at several scales is parsed once.
 
 STL (binary and ASCII) is read with numpy: triangle soup, one vertex per corner, as trimesh
 gives with `process=False`; other formats (DAE, OBJ, ...) go through trimesh, imported only
 then (it costs most of a second of start-up). Collada files carry a `<unit meter="...">` that
 trimesh records (`mesh.units`) but does not apply; we convert to meters with trimesh, as
 MoveIt's assimp loader applies the unit. Every unreadable mesh is an InputError naming the
-URDF element that uses it.
+URDF element that uses it. A robot's collision meshes are bounded in all
+(`check_robot_triangles`, MAX_ROBOT_TRIANGLES), not only one by one.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ import numpy as np
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError, MeshNotFound
-from marm_setup.robot.model import Vec3
+from marm_setup.robot.model import Mesh, RobotModel, Vec3
 
 
 @dataclass(frozen=True, eq=False)
@@ -40,27 +42,84 @@ def load_mesh(path: str, scale: Vec3 = (1.0, 1.0, 1.0), *, shown: str = "", elem
         message = f"cannot read mesh '{path}': file not found"
         raise MeshNotFound(message, uri=str(path), path=shown or path, element=element)
     try:
-        return _load_cached(str(path), tuple(float(s) for s in scale))
+        return _scaled(_file_mesh(str(path)), tuple(float(s) for s in scale))
     except _MeshReadError as exc:
         raise InputError(f"cannot read mesh '{path}': {exc}", path=shown or path, element=element) from None
 
 
 MAX_VERTEX_M = 1e6  # [m] after units and scale: no robot part is larger
+# collision mesh triangles of a whole robot, each file counted once per scale it is used at
+# (each is a BVH of its own): 2M cost about 350 MB and 20 s to build and check
+MAX_ROBOT_TRIANGLES = 2_000_000
 
 
 class _MeshReadError(Exception):
     pass
 
 
-@lru_cache(maxsize=256)
-def _load_cached(path: str, scale: tuple[float, float, float]) -> MeshData:
+def _file_mesh(path: str) -> MeshData:
+    """The file's mesh unscaled, read once while the file stays the same (path and stat)."""
+    try:
+        info = Path(path).stat()
+    except OSError as exc:
+        raise _MeshReadError(exc.strerror or str(exc)) from None
+    return _read_cached(path, (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns))
+
+
+@lru_cache(maxsize=64)
+def _read_cached(path: str, _identity: tuple[int, ...]) -> MeshData:
     vertices, faces = _read(Path(path))
-    vertices = vertices * np.asarray(scale)
-    if not np.all(np.isfinite(vertices)) or np.abs(vertices).max() > MAX_VERTEX_M:
-        raise _MeshReadError(f"vertex coordinates must be finite and within {MAX_VERTEX_M:g} m")
+    vertices = np.asarray(vertices, dtype=float)
     vertices.setflags(write=False)
     faces.setflags(write=False)
     return MeshData(vertices, faces)
+
+
+def _scaled(mesh: MeshData, scale: tuple[float, ...]) -> MeshData:
+    """`mesh` scaled (`mesh` itself at scale 1; the faces always shared), its coordinates
+    finite and within MAX_VERTEX_M."""
+    unscaled = scale == (1.0, 1.0, 1.0)
+    vertices = mesh.vertices if unscaled else mesh.vertices * np.asarray(scale)
+    if not np.all(np.isfinite(vertices)) or np.abs(vertices).max() > MAX_VERTEX_M:
+        raise _MeshReadError(f"vertex coordinates must be finite and within {MAX_VERTEX_M:g} m")
+    if unscaled:
+        return mesh
+    vertices.setflags(write=False)
+    return MeshData(vertices, mesh.faces)
+
+
+def check_robot_triangles(robot: RobotModel) -> None:
+    """Raise one InputError when the robot's collision meshes hold more than MAX_ROBOT_TRIANGLES
+    triangles in all (a file counted once per scale it is used at), naming the largest; reads
+    each file once (an unreadable one is its own InputError)."""
+    uses: dict[tuple[str, tuple[float, ...]], str] = {}  # (file, scale) -> the first element using it
+    triangles: dict[str, int] = {}
+    for link in robot.links:
+        for k, shape in enumerate(link.collisions):
+            mesh = shape.geometry
+            if not isinstance(mesh, Mesh) or (mesh.path, tuple(mesh.scale)) in uses:
+                continue
+            element = f"link[{link.name}]/collision[{k}]/mesh"
+            uses[(mesh.path, tuple(mesh.scale))] = element
+            if mesh.path not in triangles:
+                found = load_mesh(mesh.path, shown=robot.source, element=element)
+                triangles[mesh.path] = len(found.faces)
+    total = sum(triangles[path] for path, _ in uses)
+    if total <= MAX_ROBOT_TRIANGLES:
+        return
+    scales = {path: sum(1 for p, _ in uses if p == path) for path in triangles}
+    largest = sorted(triangles, key=lambda p: (-triangles[p] * scales[p], p))
+    said = ", ".join(
+        f"'{p}' {triangles[p]:,}" + (f" x {scales[p]} scales" if scales[p] > 1 else "") for p in largest[:3]
+    )
+    element = next(e for (p, _), e in uses.items() if p == largest[0])
+    raise InputError(
+        f"the collision meshes hold {total:,} triangles in all (a file once per scale it is used at), "
+        f"more than the {MAX_ROBOT_TRIANGLES:,} a robot may have; largest: {said} "
+        "(simplify them, e.g. to their convex hulls)",
+        path=robot.source or None,
+        element=element,
+    )
 
 
 def _check_units(units: str) -> None:
