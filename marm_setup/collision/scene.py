@@ -31,6 +31,7 @@ from marm_setup.robot import (
     Mesh,
     RobotModel,
     Sphere,
+    check_robot_triangles,
     forward_kinematics,
     link_index,
     load_mesh,
@@ -73,6 +74,7 @@ class CollisionScene:
         self._pair_b = np.array([row[b] for _, b in self.candidate_pairs], dtype=np.intp)
         fk_index = link_index(robot)
         self._fk_rows = np.array([fk_index[name] for name in self.links], dtype=np.intp)
+        check_robot_triangles(robot)  # the whole robot's meshes bounded before any BVH is built
         bvh_cache: dict = {}  # one BVH per mesh file and scale
         built = [_link_shapes(robot, name, coal, bvh_cache) for name in self.links]
         self._shapes: tuple[tuple[tuple[object, np.ndarray], ...], ...] = tuple(s for s, _ in built)

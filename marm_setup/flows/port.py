@@ -58,7 +58,7 @@ def run_port(request: PortInitRequest, progress: Progress | None = None) -> Port
 
 
 def _run_port(request: PortInitRequest, progress: Progress | None) -> PortResult:
-    from marm_setup.port import PortRequest, port_package
+    from marm_setup.port import PortRequest, blamed_on_source, port_package
     from marm_setup.render import check_output_dir, format_change
     from marm_setup.setup import check_setup
     from marm_setup.validate import validate
@@ -73,7 +73,10 @@ def _run_port(request: PortInitRequest, progress: Progress | None) -> PortResult
         robot,
         PortRequest(request.out, target, distro, request.name, request.robot.package_paths, notes),
     )
-    check_setup(ported.model, robot, pkg.user_path(pkg.srdf_path))
+    try:
+        check_setup(ported.model, robot, pkg.user_path(pkg.srdf_path))
+    except InputError as exc:  # named where the source package says the value
+        raise blamed_on_source(exc, ported.items, pkg.user_path) from None
     model = with_collision_matrix(
         ported.model,
         robot,

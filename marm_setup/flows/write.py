@@ -151,12 +151,13 @@ def reused_ros2_control(model: SetupModel, robot: RobotModel) -> list[str]:
 
 
 def write_package(model: SetupModel, robot: RobotModel, out: Path, *, force: bool) -> list[FileChange]:
-    """Render every file and write them atomically; returns the file changes."""
+    """Render every file and write them atomically; returns the file changes (with --force, the
+    files an earlier init wrote that are no longer generated: removed when unchanged, else listed)."""
     from marm_setup.render import apply_writes, check_output_dir, plan_writes
 
     check_output_dir(out, force=force)
     rendered = _render(model, robot)
-    changes = plan_writes(rendered, out)
+    changes = plan_writes(rendered, out, remove_stale=force)  # --force: the old package's leftovers
     apply_writes(changes, out, force=force, require_fresh=not force)
     return changes
 

@@ -92,7 +92,22 @@ def read_package(
     xacro_args: Mapping[str, str] | None = None,
     package_paths: Iterable[str | Path] = (),
 ) -> MoveItPackage:
-    """Read the config package at `path`; InputError when it is not one."""
+    """Read the config package at `path`; InputError when it is not one. Its `$(eval)`s run in
+    one child process (package/eval_child.py), killed once it is read."""
+    from marm_setup.package.eval_child import eval_session
+
+    with eval_session():
+        return _read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
+
+
+def _read_package(
+    path: str | Path,
+    *,
+    urdf: str | Path | None,
+    srdf: str | Path | None,
+    xacro_args: Mapping[str, str] | None,
+    package_paths: Iterable[str | Path],
+) -> MoveItPackage:
     shown, root = str(path), Path(path).resolve()
     if not root.is_dir():
         raise InputError("not a folder", path=shown)

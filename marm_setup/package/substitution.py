@@ -13,7 +13,7 @@ unknown arg, package or variable) raises SubstitutionError naming it.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -149,10 +149,12 @@ def _resolve(command: str, rest: str, scope: Scope, environ: Mapping[str, str]) 
 
 def evaluate(expression: str, scope: Scope, environ: Mapping[str, str] | None = None) -> str:
     """`$(eval ...)` (roslaunch substitution_args.py `_eval` :324-347; ROS 2 launch's
-    PythonExpression) by the restricted evaluator (package/eval_expr.py), in a child process
-    bounded in time and memory as xacro is; under `--untrusted` not at all. SubstitutionError
-    names the expression (an excerpt) and why."""
-    from marm_setup.robot import ChildDied, TimeLimitExceeded, run_limited
+    PythonExpression) by the restricted evaluator (package/eval_expr.py), in the package read's
+    one child process (package/eval_child.py), bounded in time and memory as xacro is; under
+    `--untrusted` not at all. SubstitutionError names the expression (an excerpt) and why; a
+    value over SUBSTITUTED_CHARS is SubstitutionTooLarge."""
+    from marm_setup.package.eval_child import evaluate_in_child
+    from marm_setup.robot import ChildDied, TimeLimitExceeded
 
     shown = excerpt(expression.strip())
     try:
@@ -161,33 +163,115 @@ def evaluate(expression: str, scope: Scope, environ: Mapping[str, str] | None = 
         raise SubstitutionError(
             f"$(eval {shown}): not evaluated (--untrusted runs no package code)"
         ) from None
-    env = dict(os.environ if environ is None else environ)
-    key = _memo_key(expression, scope, env)
-    if key not in _MEMO:  # the same expression over the same args: one child (an include read twice)
+    env = dict(os.environ if environ is None else environ) if "env" in expression else {}
+    base = (expression, scope.dirname, scope.ros2, scope.find, tuple(sorted(env.items())))
+    found = _remembered(base, scope.args)
+    if found is None:  # the same expression over the same args: evaluated once (an include read twice)
         if len(_MEMO) >= MEMO_SIZE:
             _MEMO.clear()
+            _READ.clear()
+        used: dict[str, str | None] = {}
         try:
-            _MEMO[key] = run_limited(
-                lambda: _evaluate_here(expression, scope, env), seconds=EVAL_SECONDS, memory_bytes=EVAL_MEMORY
+            found = evaluate_in_child(
+                _evaluate_request,
+                (expression, scope.dirname, scope.ros2, env),
+                lambda what, name: _answer(scope, used, what, name),
+                seconds=EVAL_SECONDS,
+                memory_bytes=EVAL_MEMORY,
             )
-        except (TimeLimitExceeded, ChildDied) as exc:
-            _MEMO[key] = SubstitutionError(f"$(eval {shown}): stopped ({exc})")
+        except (TimeLimitExceeded, ChildDied, OSError) as exc:
+            found = SubstitutionError(f"$(eval {shown}): stopped ({exc})")
         except SubstitutionError as exc:
-            _MEMO[key] = exc
-    found = _MEMO[key]
+            found = exc
+        except Exception as exc:  # the child's own failure (MemoryError under its limit, ...)
+            found = SubstitutionError(f"$(eval {shown}): stopped ({type(exc).__name__}: {exc})")
+        names = tuple(sorted(used))
+        _READ.setdefault(base, set()).add(names)
+        _MEMO[(base, tuple((n, used[n]) for n in names))] = found
     if isinstance(found, SubstitutionError):
-        raise SubstitutionError(str(found))
+        raise type(found)(str(found))  # SubstitutionTooLarge stays one
     return found
 
 
 MEMO_SIZE = 4096
+# (expression and what it depends on besides args, (arg, value or None) it read) -> its value
 _MEMO: dict[tuple, str | SubstitutionError] = {}
+_READ: dict[tuple, set[tuple[str, ...]]] = {}  # the arg names each evaluation of it read
 
 
-def _memo_key(expression: str, scope: Scope, environ: Mapping[str, str]) -> tuple:
-    """What an evaluation depends on (the environment only when the expression may read it)."""
-    env = tuple(sorted(environ.items())) if "env" in expression else ()
-    return (expression, tuple(sorted(scope.args.items())), scope.dirname, scope.ros2, scope.find, env)
+def _remembered(base: tuple, args: Mapping[str, str]) -> str | SubstitutionError | None:
+    """The value of an evaluation of `base` that read the args `args` holds as they are now."""
+    for names in _READ.get(base, ()):
+        found = _MEMO.get((base, tuple((n, args.get(n)) for n in names)))
+        if found is not None:
+            return found
+    return None
+
+
+def _answer(scope: Scope, used: dict[str, str | None], what: str, name: str) -> Any:
+    """The child's question answered from `scope`: an arg's value (None: no such arg, recorded
+    in `used`) or a package's folder."""
+    if what == "arg":
+        used[name] = scope.args.get(name)
+        return used[name]
+    return scope.find(name)
+
+
+def _evaluate_request(request: tuple, ask: Callable[[str, str], Any]) -> str:
+    """One request of `evaluate` in the child: (expression, dirname, ros2, environment); each
+    arg and package it reads asked of the parent (`ask`), so a request is as large as its
+    expression, not as the launch file's args; a value past SUBSTITUTED_CHARS refused here."""
+    expression, dirname, ros2, environ = request
+    scope = Scope(_AskedArgs(ask), lambda name: ask("find", name), dirname, ros2)
+    value = _evaluate_here(expression, scope, environ)
+    _bounded(len(value))  # before it is sent back
+    return value
+
+
+class _AskedArgs(Mapping[str, str]):
+    """The launch file's args as the child sees them: each asked of the parent once."""
+
+    def __init__(self, ask: Callable[[str, str], Any]):
+        self._ask, self._known = ask, dict[str, Any]()
+
+    def _get(self, name: str) -> str | None:
+        if name not in self._known:
+            self._known[name] = self._ask("arg", name)
+        return self._known[name]
+
+    def __contains__(self, name: object) -> bool:
+        return isinstance(name, str) and self._get(name) is not None
+
+    def __getitem__(self, name: str) -> str:
+        value = self._get(name)
+        if value is None:
+            raise KeyError(name)
+        return value
+
+    def __iter__(self) -> Iterator[str]:  # the evaluator only looks names up
+        return iter(())
+
+    def __len__(self) -> int:
+        return 0
+
+
+class _Converted(Mapping[str, Any]):
+    """`args` as `$(eval)` names them: each converted (auto_value) when it is read."""
+
+    def __init__(self, args: Mapping[str, str]):
+        self._args = args
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._args
+
+    def __getitem__(self, name: str) -> Any:
+        return auto_value(self._args[name])
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._args)
+
+    def __len__(self) -> int:
+        return len(self._args)
 
 
 def _evaluate_here(expression: str, scope: Scope, environ: Mapping[str, str]) -> str:
@@ -210,7 +294,7 @@ def _evaluate_here(expression: str, scope: Scope, environ: Mapping[str, str]) ->
         "anon": lambda name: _resolve("anon", str(name), scope, environ),
         "dirname": lambda: scope.dirname,
     }
-    names = {name: auto_value(value) for name, value in args.items()}
+    names = _Converted(args)
     try:
         return str(evaluate_expression(expression, names, functions))
     except EvalRefused as exc:

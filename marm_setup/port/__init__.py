@@ -9,12 +9,14 @@ from typing import TYPE_CHECKING
 from marm_setup.exports import lazy_api
 
 API = {
+    "blame": "blamed_on_source",
     "importer": "port_package Ported PortRequest",
     "report": "counts PortItem STATUSES summary",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.port.blame import blamed_on_source as blamed_on_source
     from marm_setup.port.importer import Ported as Ported
     from marm_setup.port.importer import PortRequest as PortRequest
     from marm_setup.port.importer import port_package as port_package

@@ -1,7 +1,8 @@
 """The commit record of an in-place switch (`.marm_setup/commit.json`): written before staged
 files move in, so a killed write is completed by the next one. A record is replayed only when it
 is one the writer could have written: its stage a real `.marm_setup/stage-*` folder on the
-package's file system, its files plain relative paths with no symlink or mount point on the way."""
+package's file system, its files (and those it removes) plain relative paths with no symlink or
+mount point on the way."""
 
 from __future__ import annotations
 
@@ -34,9 +35,10 @@ def refuse_linked_state(real: Path, shown: str) -> None:
         )
 
 
-def read_commit(real: Path, shown: str) -> tuple[Path, list[str]] | None:
-    """(stage, files) of the package's commit record, None when there is none; a record whose
-    stage is not one of our staging folders or whose files leave the package is an InputError."""
+def read_commit(real: Path, shown: str) -> tuple[Path, list[str], list[str]] | None:
+    """(stage, files, files to remove) of the package's commit record, None when there is none;
+    a record whose stage is not one of our staging folders or whose files leave the package is an
+    InputError."""
     refuse_linked_state(real, shown)
     commit = real / COMMIT
     if not os.path.lexists(commit):
@@ -51,7 +53,7 @@ def read_commit(real: Path, shown: str) -> tuple[Path, list[str]] | None:
             path=f"{shown}/{COMMIT}",
             element=element,
         )
-    return real / record["stage"], record["files"]
+    return real / record["stage"], record["files"], record.get("remove", [])
 
 
 def pending_files(real: Path) -> dict[str, Path]:
@@ -63,7 +65,7 @@ def pending_files(real: Path) -> dict[str, Path]:
         return {}
     if record is None:
         return {}
-    stage, moves = record
+    stage, moves, _removals = record
     return {rel: stage / rel for rel in moves if os.path.lexists(stage / rel)}
 
 
@@ -83,6 +85,9 @@ def _parse_record(commit: Path) -> tuple[dict, Problem | None]:
     moves = record.get("files")
     if not isinstance(moves, list) or not all(isinstance(m, str) for m in moves):
         return {}, ("files", "missing or not a list of paths")
+    removals = record.get("remove", [])
+    if not isinstance(removals, list) or not all(isinstance(m, str) for m in removals):
+        return {}, ("remove", "not a list of paths")
     return record, None
 
 
@@ -96,6 +101,10 @@ def _record_problem(real: Path, record: dict) -> Problem | None:
         why = _bad_move(rel) or unsafe_path(real, rel, mounts) or _bad_source(stage, rel, mounts)
         if why:
             return "files", f"'{rel}': {why}"
+    for rel in record.get("remove", []):
+        why = _bad_move(rel) or unsafe_path(real, rel, mounts)
+        if why:
+            return "remove", f"'{rel}': {why}"
     return None
 
 

@@ -19,9 +19,10 @@ import json
 import os
 import re
 import shutil
+import stat
 import tempfile
 import time
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 
 from marm_setup.errors import ConflictError, InputError
@@ -72,35 +73,57 @@ def package_lock(real: Path, shown: str) -> Iterator[None]:
         os.close(fd)
 
 
-def switch_package(real: Path, files: dict[str, str | None], keep: dict[str, str], shown: str) -> None:
-    """Make `real` hold `files` ({relative path: new text}) and everything else it held.
+def switch_package(
+    real: Path, files: dict[str, str | None], keep: dict[str, str], shown: str, remove: Sequence[str] = ()
+) -> None:
+    """Make `real` hold `files` ({relative path: new text}) and everything else it held but the
+    files `remove` names (a folder they leave empty goes with them).
 
     `keep` maps a hand-edited path (--force) to the free name its current content is kept as.
     """
     mounts, pinned = mount_points_below(real), pinned_paths(real)
-    for rel in [*files, *keep.values()]:
+    for rel in [*files, *keep.values(), *remove]:
         reason = unsafe_path(real, rel, mounts) or _pinned_reason(rel, pinned)
         if reason:
             raise InputError(reason, path=shown, element=rel)
     if mounts or pinned or holds_a_working_folder(real):  # the old tree stays: a mount, a flag, a shell
-        _switch_in_place(real, files, keep, shown)
+        _switch_in_place(real, files, keep, shown, remove)
         return
     try:
         stage = new_stage(real)
     except OSError:
-        _switch_in_place(real, files, keep, shown)
+        _switch_in_place(real, files, keep, shown, remove)
         return
     try:
         _copy_tree(real, stage)
         _write_all(stage, files, keep, shown, real)
+        remove_files(stage, remove)
         _exchange(stage, real)
     except BaseException as exc:
         drop_stage(stage)
         if isinstance(exc, OSError) and exc.errno in _NO_EXCHANGE:
-            _switch_in_place(real, files, keep, shown)
+            _switch_in_place(real, files, keep, shown, remove)
             return
         raise
     drop_stage(stage)  # the old package now
+
+
+def remove_files(root: Path, remove: Iterable[str]) -> None:
+    """Unlink each regular file `remove` names below `root` (a link or a folder there is left
+    alone), then each folder on its way that this left empty (never `root`, nor a shell's folder)."""
+    for rel in remove:
+        path = root / rel
+        with contextlib.suppress(OSError):
+            if not stat.S_ISREG(os.lstat(path).st_mode):
+                continue
+            path.unlink()
+        for folder in path.parents:
+            if folder == root or root not in folder.parents or holds_a_working_folder(folder):
+                break
+            try:
+                folder.rmdir()  # only an empty folder
+            except OSError:
+                break
 
 
 def _pinned_reason(rel: str, pinned: set[str]) -> str | None:
@@ -187,8 +210,11 @@ def _exchange(a: Path, b: Path) -> None:
         raise OSError(code, os.strerror(code))
 
 
-def _switch_in_place(real: Path, files: dict[str, str | None], keep: dict[str, str], shown: str) -> None:
-    """Stage inside the package, record the commit, move each file in, drop the record."""
+def _switch_in_place(
+    real: Path, files: dict[str, str | None], keep: dict[str, str], shown: str, remove: Sequence[str] = ()
+) -> None:
+    """Stage inside the package, record the commit (with the files to remove), move each file
+    in, remove those, drop the record."""
     (real / STATE_DIR).mkdir(exist_ok=True)
     refuse_linked_state(real, shown)
     stage = Path(tempfile.mkdtemp(prefix=STAGE_PREFIX, dir=real / STATE_DIR))
@@ -198,7 +224,7 @@ def _switch_in_place(real: Path, files: dict[str, str | None], keep: dict[str, s
             if (real / rel).exists():
                 os.link(real / rel, stage / kept, follow_symlinks=False)
         moves = sorted(str(p.relative_to(stage)) for p in stage.rglob("*") if p.is_file())
-        record = {"stage": str(stage.relative_to(real)), "files": moves}
+        record = {"stage": str(stage.relative_to(real)), "files": moves, "remove": sorted(remove)}
         tmp = real / (COMMIT + ".tmp")
         write_new_file(tmp, json.dumps(record))  # a new file: never written through a link
         os.replace(tmp, real / COMMIT)
@@ -216,12 +242,13 @@ def finish_interrupted(real: Path, shown: str | None = None) -> None:
     shown = shown or str(real)
     record = read_commit(real, shown)
     if record is not None:
-        stage, moves = record
+        stage, moves, removals = record
         for rel in moves:
             source = stage / rel
             if os.path.lexists(source):
                 (real / rel).parent.mkdir(parents=True, exist_ok=True)
                 os.replace(source, real / rel)
+        remove_files(real, removals)
         (real / COMMIT).unlink()
         remove_tree(stage)
     _drop_leftovers(real / STATE_DIR, STAGE_PREFIX + TEMP_NAME)

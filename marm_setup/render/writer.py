@@ -4,6 +4,8 @@
 A file we wrote and the user did not touch since (its disk hash equals the manifest's) may be
 updated; a file that differs from what we last wrote is a `conflict` and needs `force`, which
 keeps the user's version under a free name (`<path>.orig`, else `.orig.1`, `.orig.2`, ...).
+A file we wrote that this render no longer produces (init --force switching ros1 <-> ros2) is
+removed when it is still as we wrote it (`remove`), else left in place and listed (`stale`).
 """
 
 from __future__ import annotations
@@ -15,25 +17,26 @@ import stat
 import tempfile
 from collections.abc import Iterable
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 from typing import Literal
 
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import ConflictError, InputError
-from marm_setup.render.commit_record import COMMIT, pending_files
+from marm_setup.render.commit_record import COMMIT, STATE_DIR, pending_files
 from marm_setup.render.safe_fs import relative_path_problem
 from marm_setup.render.switch import package_lock, switch_package
 from marm_setup.templating import RenderedFile
 from marm_setup.untrusted import excerpt
 
 MANIFEST = ".marm_setup/manifest.json"
-Status = Literal["new", "identical", "update", "conflict"]
+Status = Literal["new", "identical", "update", "conflict", "remove", "stale"]
 
 
 @dataclass(frozen=True, slots=True)
 class FileChange:
-    """What writing one rendered file would do: status is new | identical | update | conflict.
+    """What writing one rendered file would do: status is new | identical | update | conflict,
+    or for a file we wrote that is no longer rendered: remove (unchanged since) | stale (edited).
 
     `kept_as`: for a conflict, where --force keeps the file on disk (a name no file has).
     """
@@ -45,7 +48,7 @@ class FileChange:
 
     @property
     def writes(self) -> bool:
-        return self.status != "identical"
+        return self.status not in ("identical", "stale")
 
 
 def sha256(data: bytes) -> str:
@@ -114,9 +117,13 @@ def _check_path(rel: str) -> None:
         raise InputError("rendered path escapes the package", element=rel)
 
 
-def plan_writes(rendered: Iterable[RenderedFile], out_dir: Path) -> list[FileChange]:
+def plan_writes(
+    rendered: Iterable[RenderedFile], out_dir: Path, *, remove_stale: bool = False
+) -> list[FileChange]:
     """Compare each rendered file with disk and the manifest; sorted by path. A package an
-    interrupted in-place switch left is compared as that switch leaves it."""
+    interrupted in-place switch left is compared as that switch leaves it. With `remove_stale`
+    (init --force), each file the manifest records that is no longer rendered follows, as
+    `remove` or `stale` (_leftover_status); a file the manifest does not record is never one."""
     disk = _Disk.of(out_dir)
     manifest = _read_manifest(disk.path(MANIFEST))
     changes = []
@@ -125,7 +132,34 @@ def plan_writes(rendered: Iterable[RenderedFile], out_dir: Path) -> list[FileCha
         status = _status(disk.path(item.path), _encode(item.content), manifest.get(item.path))
         kept = _free_orig_name(disk, item.path) if status == "conflict" else None
         changes.append(FileChange(item.path, status, item.content, kept))
+    if remove_stale:
+        done = {c.path for c in changes}
+        for rel in sorted(p for p in manifest if p not in done and _may_remove(p)):
+            leftover = _leftover_status(disk.path(rel), manifest[rel])
+            if leftover is not None:
+                changes.append(FileChange(rel, leftover, ""))
     return changes
+
+
+def _may_remove(rel: str) -> bool:
+    """A manifest path a removal may name: plain, inside the package, not the writer's state."""
+    return relative_path_problem(rel) is None and PurePosixPath(rel).parts[0] != STATE_DIR
+
+
+def _leftover_status(path: Path, recorded: str | None) -> Status | None:
+    """`remove` for a regular file (not a link) whose bytes are what the manifest records we
+    wrote, `stale` for any other file there, None when nothing is there."""
+    try:
+        info = os.lstat(path)
+    except OSError:
+        return None
+    if not stat.S_ISREG(info.st_mode) or info.st_size > bounded_read.XML_BYTES:
+        return "stale"
+    try:
+        data = bounded_read.read_bytes(path, bounded_read.XML_BYTES)
+    except (OSError, FileTooLarge):
+        return "stale"
+    return "remove" if recorded is not None and sha256(data) == recorded else "stale"
 
 
 def _free_orig_name(disk: _Disk, rel: str) -> str:
@@ -186,7 +220,8 @@ def apply_writes(
             keep = {
                 c.path: c.kept_as or _free_orig_name(disk, c.path) for c in changes if c.status == "conflict"
             }
-            switch_package(real, _files_to_write(changes, manifest), keep, shown)
+            remove = [c.path for c in changes if c.status == "remove"]
+            switch_package(real, _files_to_write(changes, manifest), keep, shown, remove)
     except OSError as exc:
         raise _write_error(exc, out_dir) from None
     return [c for c in changes if c.writes]
@@ -194,10 +229,14 @@ def apply_writes(
 
 def _files_to_write(changes: list[FileChange], manifest: dict[str, str]) -> dict[str, str | None]:
     """{relative path: text} of the changed files and of the manifest (`manifest`, the one on
-    disk, updated) recording every one."""
+    disk, updated) recording every one (a removed file no longer, a stale one still)."""
     manifest = dict(manifest)
     files: dict[str, str | None] = {}
     for change in changes:
+        if change.status in ("remove", "stale"):
+            if change.status == "remove":
+                manifest.pop(change.path, None)
+            continue
         manifest[change.path] = sha256(_encode(change.content))
         if change.writes:
             files[change.path] = change.content
@@ -208,7 +247,11 @@ def _files_to_write(changes: list[FileChange], manifest: dict[str, str]) -> dict
 def _recheck(changes: list[FileChange], real: Path, manifest: dict[str, str], shown: str) -> None:
     """The disk still is what the changes were planned from (no other run wrote meanwhile)."""
     for change in changes:
-        now = _status(real / change.path, _encode(change.content), manifest.get(change.path))
+        recorded = manifest.get(change.path)
+        if change.status in ("remove", "stale"):
+            now = _leftover_status(real / change.path, recorded)
+        else:
+            now = _status(real / change.path, _encode(change.content), recorded)
         taken = change.kept_as is not None and os.path.lexists(real / change.kept_as)
         if now != change.status or taken:
             raise ConflictError(
@@ -232,7 +275,7 @@ def _nothing_to_do(changes: list[FileChange], out_dir: Path) -> bool:
     ):
         return False
     manifest = load_manifest(out_dir)
-    return all(manifest.get(c.path) == sha256(_encode(c.content)) for c in changes)
+    return all(manifest.get(c.path) == sha256(_encode(c.content)) for c in changes if c.status != "stale")
 
 
 def check_output_dir(out_dir: Path, *, force: bool, shown: str | None = None) -> None:
@@ -249,11 +292,18 @@ def check_output_dir(out_dir: Path, *, force: bool, shown: str | None = None) ->
 
 # The word each status prints as in `render` / `init` output (one line per file).
 STATUS_WORDS = {"new": "create", "identical": "unchanged", "update": "update", "conflict": "conflict"}
+# What a file we wrote that is no longer generated prints after its path (init --force)
+LEFTOVER_LINES = {
+    "remove": "no longer generated; unchanged since written: removed",
+    "stale": "no longer generated; edited by hand since written: left in place",
+}
 
 
 def format_change(change: FileChange, *, forced: bool = False) -> str:
     """`create    config/marm.srdf`: one status line for the CLI; `forced` (a --force write) adds
     where a conflict's hand edit is kept."""
+    if change.status in LEFTOVER_LINES:
+        return f"{change.status:<10}{change.path} ({LEFTOVER_LINES[change.status]})"
     line = f"{STATUS_WORDS[change.status]:<10}{change.path}"
     if forced and change.status == "conflict" and change.kept_as:
         line += f" (overwritten: --force; yours kept as {change.kept_as})"

@@ -8,6 +8,8 @@ closest distance, the reasons staying the SRDF's. Each pair's proof status is th
 the matrix is proved as `collisions` proves it (--prove on, reusing the user's proof cache),
 never taken from what the package's marm_setup.yaml says of itself; a pair the SRDF disables
 that a proof finds in contact is drawn at its witness state, as a stale pair's finding is.
+A collision mesh that cannot be read is left out of the view and the matrix, and the page says
+so (report/readable.py): the page is written whatever the package holds.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.report.content import Drawing, MatrixSection, drawn_links, page_content
 from marm_setup.report.geometry import MAX_FACES, MeshArrays, RobotGeometry, robot_geometry
+from marm_setup.report.readable import NotDrawn, drawable_robot, not_drawn_note
 
 if TYPE_CHECKING:
     from marm_setup.collision import CollisionMatrix, CollisionScene
@@ -32,11 +35,13 @@ DEFAULT_TRIALS = 10000  # the Setup Assistant's default sampling density
 
 @dataclass(frozen=True)
 class Report:
-    """The page, and what went into it (`drawing` None when the robot or SRDF did not load)."""
+    """The page, and what went into it (`drawing` None when the robot or SRDF did not load;
+    `not_drawn` the collision meshes left out, unreadable)."""
 
     html: str
     validated: ValidatedPackage
     drawing: Drawing | None
+    not_drawn: tuple[NotDrawn, ...] = ()
 
     @property
     def meshes(self) -> tuple[MeshArrays, ...]:
@@ -75,17 +80,19 @@ def build_report(
     )
     checking(1, 1)
     robot, srdf_model = validated.robot, validated.package.srdf
-    drawing = None
+    drawing, left_out = None, tuple[NotDrawn, ...]()
     if robot is not None and srdf_model is not None:
+        robot, left_out = drawable_robot(robot)
         geometry = robot_geometry(robot, max_faces, step("meshes") if progress else None)
         drawing = _drawing(validated, robot, srdf_model, geometry, trials, jobs, step)
     name = robot.name if robot is not None else validated.validation.package
     writing = step("writing the page")
     writing(0, 0)
-    content = page_content(name, drawing, validated.validation.findings, _summary(validated))
+    summary = {**_summary(validated), "not_drawn": not_drawn_note(left_out)}
+    content = page_content(name, drawing, validated.validation.findings, summary)
     html = render_page(_relative(content, validated))
     writing(1, 1)
-    return Report(html, validated, drawing)
+    return Report(html, validated, drawing, left_out)
 
 
 def _stages(progress: Progress | None) -> Callable[[str], Callable[[int, int], None]]:

@@ -59,6 +59,9 @@ def robot_geometry(
 ) -> RobotGeometry:
     """The collision shapes of every link that has any, meshes decimated to `max_faces`;
     `progress(done, total)` after each mesh file."""
+    from marm_setup.robot import check_robot_triangles
+
+    check_robot_triangles(robot)
     mesh_ids: dict[tuple[str, tuple[float, ...]], int] = {}
     meshes: list[MeshArrays] = []
     links = []

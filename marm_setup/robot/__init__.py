@@ -20,7 +20,7 @@ API = {
         "bounds default_configuration forward_kinematics link_index origin_matrix sample_configurations "
         "wrap_continuous"
     ),
-    "meshes": "load_mesh",
+    "meshes": "check_robot_triangles load_mesh MAX_ROBOT_TRIANGLES",
     "ros_packages": (
         "description_file find_package find_packages package_name PackageIndex PackageMap resolve_uri"
     ),
@@ -49,6 +49,8 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.load import load_robot as load_robot
     from marm_setup.robot.load import parse_xacro_args as parse_xacro_args
     from marm_setup.robot.load import xml_syntax_message as xml_syntax_message
+    from marm_setup.robot.meshes import MAX_ROBOT_TRIANGLES as MAX_ROBOT_TRIANGLES
+    from marm_setup.robot.meshes import check_robot_triangles as check_robot_triangles
     from marm_setup.robot.meshes import load_mesh as load_mesh
     from marm_setup.robot.model import LIMIT_TOLERANCE as LIMIT_TOLERANCE
     from marm_setup.robot.model import MIN_RATE as MIN_RATE

@@ -1,16 +1,19 @@
-"""Mesh files -> vertex/face arrays in [m], cached per file and scale.
+"""Mesh files -> vertex/face arrays in [m]: each file read once (cached by path and its stat),
+its scale applied after, so one file used by many links at several scales is parsed once.
 
 STL (binary and ASCII) is read with numpy: triangle soup, one vertex per corner, as trimesh
 gives with `process=False`; other formats (DAE, OBJ, ...) go through trimesh, imported only
 then (it costs most of a second of start-up). Collada files carry a `<unit meter="...">` that
 trimesh records (`mesh.units`) but does not apply; we convert to meters with trimesh, as
 MoveIt's assimp loader applies the unit. Every unreadable mesh is an InputError naming the
-URDF element that uses it.
+URDF element that uses it. A robot's collision meshes are bounded in all
+(`check_robot_triangles`, MAX_ROBOT_TRIANGLES), not only one by one.
 """
 
 from __future__ import annotations
 
 import io
+import json
 import math
 import re
 from dataclasses import dataclass
@@ -22,7 +25,7 @@ import numpy as np
 from marm_setup import bounded_read
 from marm_setup.bounded_read import FileTooLarge
 from marm_setup.errors import InputError, MeshNotFound
-from marm_setup.robot.model import Vec3
+from marm_setup.robot.model import Mesh, RobotModel, Vec3
 
 
 @dataclass(frozen=True, eq=False)
@@ -39,27 +42,84 @@ def load_mesh(path: str, scale: Vec3 = (1.0, 1.0, 1.0), *, shown: str = "", elem
         message = f"cannot read mesh '{path}': file not found"
         raise MeshNotFound(message, uri=str(path), path=shown or path, element=element)
     try:
-        return _load_cached(str(path), tuple(float(s) for s in scale))
+        return _scaled(_file_mesh(str(path)), tuple(float(s) for s in scale))
     except _MeshReadError as exc:
         raise InputError(f"cannot read mesh '{path}': {exc}", path=shown or path, element=element) from None
 
 
 MAX_VERTEX_M = 1e6  # [m] after units and scale: no robot part is larger
+# collision mesh triangles of a whole robot, each file counted once per scale it is used at
+# (each is a BVH of its own): 2M cost about 350 MB and 20 s to build and check
+MAX_ROBOT_TRIANGLES = 2_000_000
 
 
 class _MeshReadError(Exception):
     pass
 
 
-@lru_cache(maxsize=256)
-def _load_cached(path: str, scale: tuple[float, float, float]) -> MeshData:
+def _file_mesh(path: str) -> MeshData:
+    """The file's mesh unscaled, read once while the file stays the same (path and stat)."""
+    try:
+        info = Path(path).stat()
+    except OSError as exc:
+        raise _MeshReadError(exc.strerror or str(exc)) from None
+    return _read_cached(path, (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns))
+
+
+@lru_cache(maxsize=64)
+def _read_cached(path: str, _identity: tuple[int, ...]) -> MeshData:
     vertices, faces = _read(Path(path))
-    vertices = vertices * np.asarray(scale)
-    if not np.all(np.isfinite(vertices)) or np.abs(vertices).max() > MAX_VERTEX_M:
-        raise _MeshReadError(f"vertex coordinates must be finite and within {MAX_VERTEX_M:g} m")
+    vertices = np.asarray(vertices, dtype=float)
     vertices.setflags(write=False)
     faces.setflags(write=False)
     return MeshData(vertices, faces)
+
+
+def _scaled(mesh: MeshData, scale: tuple[float, ...]) -> MeshData:
+    """`mesh` scaled (`mesh` itself at scale 1; the faces always shared), its coordinates
+    finite and within MAX_VERTEX_M."""
+    unscaled = scale == (1.0, 1.0, 1.0)
+    vertices = mesh.vertices if unscaled else mesh.vertices * np.asarray(scale)
+    if not np.all(np.isfinite(vertices)) or np.abs(vertices).max() > MAX_VERTEX_M:
+        raise _MeshReadError(f"vertex coordinates must be finite and within {MAX_VERTEX_M:g} m")
+    if unscaled:
+        return mesh
+    vertices.setflags(write=False)
+    return MeshData(vertices, mesh.faces)
+
+
+def check_robot_triangles(robot: RobotModel) -> None:
+    """Raise one InputError when the robot's collision meshes hold more than MAX_ROBOT_TRIANGLES
+    triangles in all (a file counted once per scale it is used at), naming the largest; reads
+    each file once (an unreadable one is its own InputError)."""
+    uses: dict[tuple[str, tuple[float, ...]], str] = {}  # (file, scale) -> the first element using it
+    triangles: dict[str, int] = {}
+    for link in robot.links:
+        for k, shape in enumerate(link.collisions):
+            mesh = shape.geometry
+            if not isinstance(mesh, Mesh) or (mesh.path, tuple(mesh.scale)) in uses:
+                continue
+            element = f"link[{link.name}]/collision[{k}]/mesh"
+            uses[(mesh.path, tuple(mesh.scale))] = element
+            if mesh.path not in triangles:
+                found = load_mesh(mesh.path, shown=robot.source, element=element)
+                triangles[mesh.path] = len(found.faces)
+    total = sum(triangles[path] for path, _ in uses)
+    if total <= MAX_ROBOT_TRIANGLES:
+        return
+    scales = {path: sum(1 for p, _ in uses if p == path) for path in triangles}
+    largest = sorted(triangles, key=lambda p: (-triangles[p] * scales[p], p))
+    said = ", ".join(
+        f"'{p}' {triangles[p]:,}" + (f" x {scales[p]} scales" if scales[p] > 1 else "") for p in largest[:3]
+    )
+    element = next(e for (p, _), e in uses.items() if p == largest[0])
+    raise InputError(
+        f"the collision meshes hold {total:,} triangles in all (a file once per scale it is used at), "
+        f"more than the {MAX_ROBOT_TRIANGLES:,} a robot may have; largest: {said} "
+        "(simplify them, e.g. to their convex hulls)",
+        path=robot.source or None,
+        element=element,
+    )
 
 
 def _check_units(units: str) -> None:
@@ -96,9 +156,10 @@ def _read_with_trimesh(data: bytes, path: Path) -> tuple[np.ndarray, np.ndarray]
     such as an OBJ's materials, are looked up next to it)."""
     import trimesh
 
+    kind = path.suffix.lower().lstrip(".")
+    _check_gltf(data, kind)
     try:
         resolver = trimesh.resolvers.FilePathResolver(str(path))
-        kind = path.suffix.lower().lstrip(".")
         mesh = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh", process=False, resolver=resolver)
         if isinstance(mesh, trimesh.Trimesh) and mesh.units is not None:  # Collada <unit>; never guessed
             _check_units(mesh.units)
@@ -106,7 +167,7 @@ def _read_with_trimesh(data: bytes, path: Path) -> tuple[np.ndarray, np.ndarray]
     except _MeshReadError:
         raise
     except Exception as exc:  # trimesh raises many types for unreadable files
-        raise _MeshReadError(" ".join(str(exc).split()) or type(exc).__name__) from None
+        raise _MeshReadError(_trimesh_reason(exc, kind)) from None
     if not isinstance(mesh, trimesh.Trimesh):
         raise _MeshReadError("no triangles")
     vertices = np.asarray(mesh.vertices, dtype=float).reshape(-1, 3)
@@ -114,6 +175,36 @@ def _read_with_trimesh(data: bytes, path: Path) -> tuple[np.ndarray, np.ndarray]
     if len(vertices) == 0 or len(faces) == 0:
         raise _MeshReadError("no triangles")
     return vertices.copy(), faces.copy()
+
+
+def _check_gltf(data: bytes, kind: str) -> None:
+    """A .gltf must be a JSON object and a .glb start with the `glTF` magic (glTF 2.0 spec,
+    sections 3 and 4.4): trimesh reads any other .gltf as a folder's `model.gltf` and reports
+    only that name."""
+    if kind == "glb" and data[:4] != b"glTF":
+        raise _MeshReadError("not a binary glTF (.glb): it does not start with the bytes 'glTF'")
+    if kind != "gltf":
+        return
+    try:
+        tree = json.loads(data)
+    except ValueError as exc:  # UnicodeDecodeError and JSONDecodeError alike
+        raise _MeshReadError(f"not a glTF file: not JSON ({' '.join(str(exc).split())})") from None
+    if not isinstance(tree, dict):
+        raise _MeshReadError(f"not a glTF file: its JSON is {type(tree).__name__}, not an object")
+
+
+def _trimesh_reason(exc: Exception, kind: str) -> str:
+    """trimesh's reason for refusing a file, one line: a file it names that is missing, else the
+    exception's type and words (an internal one, such as KeyError or AssertionError, says the
+    file is not what its format requires)."""
+    text = " ".join(str(exc).split())
+    if isinstance(exc, FileNotFoundError):
+        return f"a file it refers to is missing: {text or '?'}"
+    name = type(exc).__name__
+    said = text if text.startswith(name) else f"{name}: {text}" if text else name
+    if isinstance(exc, (AttributeError, AssertionError, IndexError, KeyError, NameError, TypeError)):
+        return f"not a valid .{kind} file (trimesh: {said})"
+    return text or name
 
 
 def _check_triangles(count: int) -> None:

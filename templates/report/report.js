@@ -299,6 +299,7 @@
     const s = data.summary;
     head.append(el("h1", {}, `${data.robot} — ${s.package}`));
     head.append(el("div", { class: "meta" }, s.validated));
+    if (s.not_drawn) head.append(el("div", { class: "meta warning" }, s.not_drawn));
     const counts = el("div", { class: "counts" });
     counts.append(el("span", { class: s.errors ? "error" : "ok" }, `${s.errors} error${s.errors === 1 ? "" : "s"}`), ", ");
     counts.append(el("span", { class: s.warnings ? "warning" : "ok" }, `${s.warnings} warning${s.warnings === 1 ? "" : "s"}`));

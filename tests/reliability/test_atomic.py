@@ -317,10 +317,10 @@ def test_init_checks_again_under_the_lock_that_its_folder_is_new(tmp_path, monke
     out = tmp_path / "pkg"
     plan_writes = writer.plan_writes
 
-    def other_run_first(rendered, out_dir):
+    def other_run_first(rendered, out_dir, **options):
         cmd = [sys.executable, "-m", "marm_setup", "init", str(MARM_URDF), "--out", str(out), *TRIALS]
         subprocess.run([*cmd, "--target", "ros1"], check=True, capture_output=True)
-        return plan_writes(rendered, out_dir)
+        return plan_writes(rendered, out_dir, **options)
 
     monkeypatch.setattr(writer, "plan_writes", other_run_first)
     result = run("init", MARM_URDF, "--out", out, "--target", "ros2", *TRIALS)

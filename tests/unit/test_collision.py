@@ -121,6 +121,7 @@ def test_mesh_cache_and_scale(tmp_path):
     assert load_mesh(str(path), (1.0, 1.0, 1.0)) is first
     scaled = load_mesh(str(path), (2.0, 1.0, 0.5))
     np.testing.assert_allclose(np.ptp(scaled.vertices, axis=0), [2.0, 1.0, 0.5])
+    assert scaled.faces is first.faces  # one file read for every scale
 
 
 @pytest.mark.parametrize(

@@ -56,6 +56,8 @@ def report(
         f"{warnings} warning{'' if warnings == 1 else 's'}; {len(result.meshes)} meshes, "
         f"{faces} triangles (of {before})"
     )
+    for shape in result.not_drawn:  # the page says so too
+        typer.echo(f"warning: {shape.line()} (not drawn: the page shows the robot without it)", err=True)
     if any(f.rule == INTERNAL for f in findings):
         raise typer.Exit(2)
     if errors:

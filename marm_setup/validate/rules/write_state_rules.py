@@ -28,7 +28,7 @@ def check_pending_write(root: Path) -> list[Finding]:
         return [warning("package.half-written", COMMIT, exc.element or "", message)]
     if record is None:
         return []
-    stage, files = record
+    stage, files, _removals = record
     pending = [rel for rel in files if (stage / rel).exists()]
     shown = ", ".join(pending[:5]) + (f" and {len(pending) - 5} more" if len(pending) > 5 else "")
     what = f"{len(pending)} file{'' if len(pending) == 1 else 's'} staged but not moved in ({shown})"
