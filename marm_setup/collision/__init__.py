@@ -11,7 +11,8 @@ from marm_setup.exports import lazy_api
 API = {
     "pairs": "DisabledPair DisabledReason link_pair PROVE_MODES UnprovedPair",
     "proof": "PairProof",
-    "proof_cache": "CachedProof cache_dir known_proofs remember_proofs",
+    "cached_proof": "CachedProof",
+    "proof_cache": "cache_dir known_proofs remember_proofs",
     "proof_keys": "pair_keys run_context",
     "proof_report": "proof_key unproved_notes unproved_pairs",
     "scene": "CollisionScene",
@@ -22,6 +23,7 @@ API = {
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.collision.cached_proof import CachedProof as CachedProof
     from marm_setup.collision.matrix import ROUND as ROUND
     from marm_setup.collision.matrix import CollisionMatrix as CollisionMatrix
     from marm_setup.collision.matrix import Progress as Progress
@@ -33,7 +35,6 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.pairs import UnprovedPair as UnprovedPair
     from marm_setup.collision.pairs import link_pair as link_pair
     from marm_setup.collision.proof import PairProof as PairProof
-    from marm_setup.collision.proof_cache import CachedProof as CachedProof
     from marm_setup.collision.proof_cache import cache_dir as cache_dir
     from marm_setup.collision.proof_cache import known_proofs as known_proofs
     from marm_setup.collision.proof_cache import remember_proofs as remember_proofs

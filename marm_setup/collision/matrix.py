@@ -43,7 +43,7 @@ from marm_setup.collision.workers import Workers
 from marm_setup.robot import RobotModel, default_configuration, sample_configurations
 
 if TYPE_CHECKING:
-    from marm_setup.collision.proof_cache import CachedProof
+    from marm_setup.collision.cached_proof import CachedProof
 
 __all__ = ["CHUNK", "CollisionMatrix", "PairStats", "compute_collision_matrix", "trial_samples"]
 

@@ -23,9 +23,10 @@ import os
 import sqlite3
 from collections.abc import Iterable, Mapping
 from contextlib import closing
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
+
+from marm_setup.collision.cached_proof import OUTCOMES, CachedProof
 
 if TYPE_CHECKING:
     from marm_setup.collision.matrix import CollisionMatrix, PairStats
@@ -34,27 +35,7 @@ if TYPE_CHECKING:
 Pair = tuple[str, str]
 LOG = logging.getLogger(__name__)
 FILE = "proofs.sqlite"
-OUTCOMES = ("proved", "collides")
 SEEN = "seen"  # within one run: screened unproved, then seen in collision by the trials
-
-
-@dataclass(frozen=True, slots=True)
-class CachedProof:
-    """A finished proof as the cache keeps it: `screen` is (outcome, units) of the screen
-    before the trials ("unproved": the proof went on after them); `second` where the first
-    round of its witness search ended, when that round left it open."""
-
-    outcome: str
-    fraction: float
-    witness: tuple[tuple[str, float], ...]
-    units: int
-    screen: tuple[str, int]
-    second: float | None = None  # left open by the first witness-search round: where it ended [m]
-
-    @property
-    def settled(self) -> bool:
-        """Finished after the trials (the pair went through them in a run without cache)."""
-        return self.screen[0] not in OUTCOMES
 
 
 def cache_dir() -> Path | None:
