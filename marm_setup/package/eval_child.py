@@ -15,7 +15,6 @@ from __future__ import annotations
 import contextlib
 import os
 import pickle
-import resource
 import select
 import signal
 import struct
@@ -23,7 +22,7 @@ import time
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from marm_setup.robot import ChildDied, TimeLimitExceeded
+from marm_setup.robot import ChildDied, TimeLimitExceeded, kill, limit_memory, picklable
 
 Ask = Callable[[str, str], Any]  # (what, name) -> the parent's answer: ("find", pkg), ("arg", name)
 Handler = Callable[[Any, Ask], str]  # (request, ask) -> the value, in the child
@@ -65,9 +64,7 @@ class EvalChild:
         for fd in (self._send, self._receive):
             with contextlib.suppress(OSError):
                 os.close(fd)
-        with contextlib.suppress(ProcessLookupError, ChildProcessError):
-            os.kill(self.pid, signal.SIGKILL)
-            os.waitpid(self.pid, 0)
+        kill(self.pid)
 
 
 _child: EvalChild | None = None
@@ -119,9 +116,7 @@ def _serve(handler: Handler, receive: int, send: int, memory_bytes: int) -> None
     code = 0
     try:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
-        soft, hard = resource.getrlimit(resource.RLIMIT_AS)
-        limit = memory_bytes if hard == resource.RLIM_INFINITY else min(memory_bytes, hard)
-        resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+        limit_memory(memory_bytes)
 
         def ask(what: str, name: str) -> Any:
             _write_frame(send, pickle.dumps(("ask", what, name)))
@@ -135,20 +130,12 @@ def _serve(handler: Handler, receive: int, send: int, memory_bytes: int) -> None
             try:
                 reply: tuple = ("done", True, handler(request, ask))
             except Exception as exc:  # the parent decides what it means
-                reply = ("done", False, _picklable(exc))
+                reply = ("done", False, picklable(exc))
             _write_frame(send, pickle.dumps(reply))
     except BaseException:
         code = 1
     finally:
         os._exit(code)
-
-
-def _picklable(exc: BaseException) -> BaseException:
-    try:
-        pickle.loads(pickle.dumps(exc))
-        return exc
-    except Exception:
-        return RuntimeError(f"{type(exc).__name__}: {exc}")
 
 
 def _write_frame(fd: int, data: bytes) -> None:

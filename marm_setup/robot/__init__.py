@@ -30,7 +30,7 @@ API = {
         "ANY_MOCK HardwareArg MOCK_PLUGIN MOCK_PLUGINS on_mock_hardware Ros2ControlSystem systems_in_urdf"
     ),
     "urdf": "strict_float",
-    "sandbox": "ChildDied run_limited TimeLimitExceeded",
+    "sandbox": "ChildDied kill limit_memory picklable run_limited TimeLimitExceeded",
     "xacro_cli": "parse_xacro_argv parse_xacro_command split_command XacroCall",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
@@ -81,6 +81,9 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.ros_packages import resolve_uri as resolve_uri
     from marm_setup.robot.sandbox import ChildDied as ChildDied
     from marm_setup.robot.sandbox import TimeLimitExceeded as TimeLimitExceeded
+    from marm_setup.robot.sandbox import kill as kill
+    from marm_setup.robot.sandbox import limit_memory as limit_memory
+    from marm_setup.robot.sandbox import picklable as picklable
     from marm_setup.robot.sandbox import run_limited as run_limited
     from marm_setup.robot.tinyxml import tinyxml_comments as tinyxml_comments
     from marm_setup.robot.urdf import strict_float as strict_float

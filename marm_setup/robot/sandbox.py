@@ -42,7 +42,7 @@ def run_limited(fn: Callable[[], T], *, seconds: float, memory_bytes: int) -> T:
     try:
         data = _read_all(read_fd, pid, seconds)
     except BaseException:
-        _kill(pid)
+        kill(pid)
         raise
     finally:
         os.close(read_fd)
@@ -57,13 +57,11 @@ def run_limited(fn: Callable[[], T], *, seconds: float, memory_bytes: int) -> T:
 def _child(fn: Callable, write_fd: int, memory_bytes: int) -> None:
     code = 0
     try:
-        soft, hard = resource.getrlimit(resource.RLIMIT_AS)
-        limit = memory_bytes if hard == resource.RLIM_INFINITY else min(memory_bytes, hard)
-        resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+        limit_memory(memory_bytes)
         try:
             payload = pickle.dumps((True, fn()))
         except BaseException as exc:  # everything goes back to the parent, which decides
-            payload = pickle.dumps((False, _picklable(exc)))
+            payload = pickle.dumps((False, picklable(exc)))
         with os.fdopen(write_fd, "wb") as out:
             out.write(payload)
     except BaseException:
@@ -72,7 +70,15 @@ def _child(fn: Callable, write_fd: int, memory_bytes: int) -> None:
         os._exit(code)
 
 
-def _picklable(exc: BaseException) -> BaseException:
+def limit_memory(memory_bytes: int) -> None:
+    """This process's address space at most `memory_bytes` (never above its hard limit)."""
+    _soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    limit = memory_bytes if hard == resource.RLIM_INFINITY else min(memory_bytes, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+
+
+def picklable(exc: BaseException) -> BaseException:
+    """`exc` when it survives pickling (to go back to the parent), else a RuntimeError saying it."""
     try:
         pickle.loads(pickle.dumps(exc))
         return exc
@@ -87,7 +93,7 @@ def _read_all(fd: int, pid: int, seconds: float) -> bytes:
         left = deadline - time.monotonic()
         ready, _, _ = select.select([fd], [], [], max(left, 0))
         if not ready:
-            _kill(pid)
+            kill(pid)
             raise TimeLimitExceeded(f"did not finish within {seconds:g} s")
         chunk = os.read(fd, 1 << 16)
         if not chunk:
@@ -96,7 +102,8 @@ def _read_all(fd: int, pid: int, seconds: float) -> bytes:
         chunks.append(chunk)
 
 
-def _kill(pid: int) -> None:
+def kill(pid: int) -> None:
+    """SIGKILL the child `pid` and reap it (gone already: nothing)."""
     try:
         os.kill(pid, signal.SIGKILL)
         os.waitpid(pid, 0)
