@@ -27,12 +27,13 @@ MARM_MOVEIT_YAML = "config/moveit.yaml"
 
 @dataclass(frozen=True, slots=True)
 class Description:
-    """The robot description: its file (None when only the run time gives it: `origin` says
-    why), where that choice came from, its xacro args."""
+    """The robot description: its file (None when only the run time gives it, or when the file
+    named cannot be read: `origin` says why), where that choice came from, its xacro args."""
 
     urdf: Path | None
     origin: str
     xacro_args: tuple[tuple[str, str], ...]
+    unreadable: bool = False  # named, but its package or file is not there (a finding says so)
 
 
 def detect_target(root: Path, package_xml: PackageXml | None, marm: MarmSetupFile | None) -> Target:

@@ -62,9 +62,6 @@ class DescriptionLoad:
     missing_package: str | None = None  # the `$(find pkg)` no package path holds
 
 
-SemanticLoad = DescriptionLoad
-
-
 @dataclass(frozen=True, slots=True)
 class LaunchParam:
     """A `<param name value>` a launch file sets (name with its namespace, no leading /)."""

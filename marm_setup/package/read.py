@@ -136,6 +136,7 @@ def _read_package(
         layout=kinds.values.pop("layout", "moveit2" if found.target == Target.ROS2 else "moveit1"),  # type: ignore[arg-type]
         urdf=description.urdf,
         urdf_origin=description.origin,
+        description_unreadable=description.unreadable,
         xacro_args=description.xacro_args,
         unread_xacro_args=launched.unread_args("robot_description") if urdf is None else (),
         package_paths=found.paths,
@@ -445,7 +446,7 @@ def _missing_package(files: PackageFiles, exc: PackageNotFound) -> Description:
     )
     hint = f"pass --package-path DIR (the folder holding {exc.package}), or --urdf FILE"
     files.problems.append(warning("urdf.package-missing", file, exc.element or "", msg, hint))
-    return Description(None, f"{file}, from package '{exc.package}' not found", ())
+    return Description(None, f"{file}, from package '{exc.package}' not found", (), unreadable=True)
 
 
 def _launch_description(
@@ -458,10 +459,14 @@ def _launch_description(
     origin = f"robot_description in {load.launch}"
     if load.missing_package is not None:
         files.problems.append(missing_package(load, "robot_description"))
-        return Description(None, f"{origin}, from package '{load.missing_package}' not found", ())
+        return Description(
+            None, f"{origin}, from package '{load.missing_package}' not found", (), unreadable=True
+        )
     chosen = _launched_file(files, load, "robot_description", paths)
     if chosen is None:
-        return Description(None, f"{origin}: not found", ()) if load.file is not None else None
+        return (
+            Description(None, f"{origin}: not found", (), unreadable=True) if load.file is not None else None
+        )
     merged = tuple(sorted({**dict(load.xacro_args), **dict(args)}.items()))
     return Description((files.root / chosen[0]).resolve(), origin, merged)
 

@@ -367,15 +367,12 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
 
 
 RUNTIME_RULES = ("urdf.runtime-only", "urdf.runtime-arg")
-UNREADABLE_DESCRIPTION = ("urdf.missing", "urdf.package-missing")
-DESCRIPTION_NOT_FOUND = "not found"  # package.read's origin for a launched description that is not there
 
 
 def description_unreadable(pkg: MoveItPackage) -> bool:
-    """The description the launch files (or .setup_assistant) name is in a package no package
-    path holds, or does not exist: reading the package said so."""
-    missing = pkg.urdf_origin.endswith(DESCRIPTION_NOT_FOUND)  # launch.missing-file names it
-    return pkg.urdf is None and (missing or any(f.rule in UNREADABLE_DESCRIPTION for f in pkg.problems))
+    """The description the launch files (or .setup_assistant, marm_setup.yaml) name is in a
+    package no package path holds, or does not exist: reading the package said so."""
+    return pkg.urdf is None and pkg.description_unreadable
 
 
 RUNTIME_ONLY_SKIPPED = (

@@ -118,10 +118,15 @@ def allows(rule_id: str, severity: str) -> bool:
 def rule_family(name: str) -> Family:
     """The family `name` (`srdf`); KeyError (naming close ones) when there is none: what the
     runner's `guarded(family, ...)` should check its names against."""
-    by_name = {f.name: f for f in rule_families()}
-    if name not in by_name:
-        raise KeyError(_unknown(f"no rule family '{name}'", did_you_mean(name, by_name)))
-    return by_name[name]
+    found = _families_by_name().get(name)
+    if found is None:
+        raise KeyError(_unknown(f"no rule family '{name}'", did_you_mean(name, _families_by_name())))
+    return found
+
+
+@functools.cache
+def _families_by_name() -> dict[str, Family]:
+    return {f.name: f for f in rule_families()}
 
 
 def _unknown(message: str, hint: str) -> str:
