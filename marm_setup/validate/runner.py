@@ -37,7 +37,7 @@ from marm_setup.validate.rules.controller_rules import (
     check_ros_control_coverage,
     uses_ros_control_interface,
 )
-from marm_setup.validate.rules.declared_param_rules import check_declared_parameters, drop_superseded
+from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
 from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
 from marm_setup.validate.rules.kinematics_rules import check_kinematics
@@ -215,7 +215,6 @@ def validate_read(
         findings += scene_findings
     elif robot is None and any(f.rule in RUNTIME_RULES for f in problems):
         findings += without_skipped_group_cascade(check_without_robot(pkg), pkg)
-    findings = drop_superseded(findings)
     validation = _validation(pkg, robot, findings, planned, launched_by)
     return ValidatedPackage(validation, pkg, robot, tuple(planned or ()))
 
@@ -419,7 +418,8 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
     srdf, file = pkg.srdf, pkg.srdf_file.path
     out = guarded("names", check_srdf_names, srdf, file)
     if pkg.kinematics is not None:
-        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot)
+        ros1 = pkg.target == Target.ROS1  # a ROS 2 solver's class is declared_param_rules'
+        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot, solver_names=ros1)
     if pkg.joint_limits is not None:
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
         if uses_pilz(pkg.pipelines):

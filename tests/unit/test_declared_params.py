@@ -16,7 +16,7 @@ from marm_setup.moveit_params import FAMILIES, load_table
 from marm_setup.package import read_package
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
-from marm_setup.validate.rules.declared_param_rules import check_declared_parameters, drop_superseded
+from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
 from tests.conftest import FIXTURES
 from tests.render_helpers import inferred_marm
 from tests.validate_helpers import validate_package
@@ -153,7 +153,7 @@ def test_a_wrong_type_moveit_only_logs_is_a_warning(fresh, tmp_path):
 def test_the_kinematics_rules_unknown_solver_warning_gives_way_to_params_plugin(fresh, tmp_path):
     pkg = edited(fresh, tmp_path, "jazzy", MOVEIT_YAML, "KDLKinematicsPlugin", "KDLKinematicPlugin")
     found = validate_package(pkg, package_paths=[FIXTURES / "marm"], plan=False)
-    kept = drop_superseded(found)  # the runner checks declared parameters and drops what they supersede
+    kept = found  # kinematics_rules leaves a ROS 2 solver's class to the declared parameters
     assert [f.rule for f in kept if f.element.endswith("kinematics_solver")] == ["params.plugin"]
 
 
@@ -185,3 +185,21 @@ def test_regenerating_from_moveit_reproduces_the_committed_tables():
     rendered = render_all(Path(os.environ["MARM_MOVEIT2_CHECKOUT"]), Path(moveit) if moveit else None)
     for family, text in rendered.items():
         assert text == (DATA / f"{family}.yaml").read_text(encoding="utf-8"), family
+
+
+def test_a_plugin_of_a_package_on_the_package_path_is_a_warning(fresh, tmp_path):
+    """pluginlib loads another package's class once that package is built: not an error."""
+    old, new = "kdl_kinematics_plugin/KDLKinematicsPlugin", "zeta_arm_kinematics/ZetaSolver"
+    pkg = edited(fresh, tmp_path, "jazzy", MOVEIT_YAML, old, new)
+    element = f"{PARAMS}robot_description_kinematics.arm.kinematics_solver"
+    assert only(findings(pkg)) == (
+        "params.plugin",
+        "error",
+        MOVEIT_YAML,
+        element,
+    )  # no zeta_arm_kinematics anywhere
+    (tmp_path / "zeta_arm_kinematics").mkdir()
+    (tmp_path / "zeta_arm_kinematics" / "package.xml").write_text(
+        "<package><name>zeta_arm_kinematics</name></package>\n"
+    )
+    assert only(findings(pkg)) == ("params.plugin", "warning", MOVEIT_YAML, element)

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
@@ -57,7 +58,6 @@ CHECKED_ELSEWHERE = (  # controller_rules, perception_rules, distro_rules (movei
 )  # fmt: skip
 # kinematics_rules' warning on a solver it does not know, which params.plugin replaces (an
 # error, with the class meant) wherever this rule runs
-SUPERSEDED = "kinematics.unknown-solver"
 IKFAST = re.compile(r"\w+/IKFastKinematicsPlugin")
 PLUGIN_KEYS = (  # (name pattern, plugin kind)
     (re.compile(r"[^.]+\.planning_plugins?"), "planner"),
@@ -74,10 +74,11 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
     """The findings on every parameter move_group and servo receive from a ROS 2 package; with
     no known distro, the family its format shows, else only what Jazzy's and Humble's agree on."""
     received = [r for r in received_parameters(pkg) if not _unread_group(r, pkg)]
+    built = _package_finder(pkg)
     family = family_of(distro) or inferred_family(received)
     if family is not None:
-        return _check_all(received, load_table(family))
-    found = [_check_all(received, load_table(f)) for f in ("jazzy", "humble")]
+        return _check_all(received, load_table(family), built)
+    found = [_check_all(received, load_table(f), built) for f in ("jazzy", "humble")]
     agreed = {(f.rule, f.file, f.element) for f in found[1]}
     return [f for f in found[0] if (f.rule, f.file, f.element) in agreed]
 
@@ -93,13 +94,6 @@ def _unread_group(r: Received, pkg: MoveItPackage) -> bool:
     return parts[1] not in {g.name for g in srdf.groups}
 
 
-def drop_superseded(findings: list[Finding]) -> list[Finding]:
-    """`findings` without the kinematics.unknown-solver warnings a params.plugin error at the
-    same file and element replaces (one finding per defect)."""
-    plugins = {(f.file, f.element) for f in findings if f.rule == "params.plugin"}
-    return [f for f in findings if f.rule != SUPERSEDED or (f.file, f.element) not in plugins]
-
-
 def inferred_family(received: list[Received]) -> str | None:
     """jazzy when a pipeline is written as Jazzy writes it (planning_plugins, response_adapters),
     humble for Humble's planning_plugin string; None when neither shows."""
@@ -109,11 +103,19 @@ def inferred_family(received: list[Received]) -> str | None:
     return "humble" if "planning_plugin" in tails else None
 
 
-def _check_all(received: list[Received], table: Table) -> list[Finding]:
+def _package_finder(pkg: MoveItPackage) -> Callable[[str], bool]:
+    """Whether a ROS package of that name is on the package paths (it may export a plugin)."""
+    from marm_setup.robot import find_packages
+
+    packages = find_packages(pkg.package_paths)
+    return lambda name: name in packages
+
+
+def _check_all(received: list[Received], table: Table, built: Callable[[str], bool]) -> list[Finding]:
     instances = _instances(received)
     out: list[Finding] = []
     for r in received:
-        out += _check_plugins(r, table)
+        out += _check_plugins(r, table, built)
         if not _elsewhere(r, instances):
             out += _check_one(r, table, instances)
     return out
@@ -257,8 +259,9 @@ def _short(names: list[str]) -> str:
     return ", ".join(tails[:12]) + (", ..." if len(tails) > 12 else "")
 
 
-def _check_plugins(r: Received, table: Table) -> list[Finding]:
-    """Plugin class names pluginlib cannot load in this family."""
+def _check_plugins(r: Received, table: Table, built: Callable[[str], bool]) -> list[Finding]:
+    """Plugin class names pluginlib cannot load in this family: an error, but a warning for a
+    class of another package the package paths hold (pluginlib loads it once that is built)."""
     kind = next((k for pattern, k in PLUGIN_KEYS if pattern.fullmatch(r.name)), None)
     if kind is None:
         return []
@@ -273,8 +276,16 @@ def _check_plugins(r: Received, table: Table) -> list[Finding]:
             continue
         close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
         hint = f"did you mean {close[0]}?" if close else f"known: {', '.join(known[:8])}"
-        msg = f"no {kind.replace('_', ' ')} plugin '{name}' in MoveIt ({table.family}) nor a known third-party one: pluginlib cannot load it"
-        out.append(error("params.plugin", r.file, r.element, msg, hint))
+        owner = name.split("/", 1)[0]
+        label = f"{kind.replace('_', ' ')} plugin '{name}'"
+        if close or owner in {c.split("/", 1)[0] for c in known} or not built(owner):
+            msg = (
+                f"no {label} in MoveIt ({table.family}) nor a known third-party one: pluginlib cannot load it"
+            )
+            out.append(error("params.plugin", r.file, r.element, msg, hint))
+        else:
+            msg = f"{label} is not MoveIt's ({table.family}): package '{owner}' must export it (pluginlib)"
+            out.append(warning("params.plugin", r.file, r.element, msg, hint))
     return out
 
 

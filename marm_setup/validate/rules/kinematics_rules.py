@@ -28,9 +28,13 @@ if TYPE_CHECKING:
 POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
 
 
-def check_kinematics(kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel | None) -> list[Finding]:
+def check_kinematics(
+    kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel | None, *, solver_names: bool = True
+) -> list[Finding]:
     """Every rule on a kinematics file (`{group: {kinematics_solver: ..., ...}}`); without the
-    robot (a description only the run time gives) whether a group is a chain is not checked."""
+    robot (a description only the run time gives) whether a group is a chain is not checked.
+    `solver_names`: whether the solver's class name is this rule's to check (a ROS 2 package's
+    is declared_param_rules', against MoveIt's plugin description files)."""
     file = kinematics.where.file
     if kinematics.groups is None:
         return [error("kinematics.malformed", file, kinematics.where.element, "expected a mapping of groups")]
@@ -47,7 +51,7 @@ def check_kinematics(kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel |
         elif entry.params is None:
             out.append(error("kinematics.malformed", file, where, "expected a mapping"))
         else:
-            out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot)
+            out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, solver_names)
     return out
 
 
@@ -58,13 +62,14 @@ def _check_entry(
     by_name: Mapping[str, Group],
     srdf: Srdf,
     robot: RobotModel | None,
+    solver_names: bool = True,
 ) -> list[Finding]:
     out: list[Finding] = []
     where = entry.where.element
     solver = entry.solver
     if solver is None:
         out.append(error("kinematics.missing-solver", file, where, "no kinematics_solver"))
-    elif solver not in KINEMATICS_PLUGINS and not solver.endswith(IKFAST_PLUGIN_SUFFIX):
+    elif solver_names and solver not in KINEMATICS_PLUGINS and not solver.endswith(IKFAST_PLUGIN_SUFFIX):
         msg = f"unknown solver plugin '{solver}'"
         out.append(
             warning("kinematics.unknown-solver", file, f"{where}.kinematics_solver", msg, _solver_hint())
