@@ -56,8 +56,7 @@ CHECKED_ELSEWHERE = (  # controller_rules, perception_rules, distro_rules (movei
     "moveit_simple_controller_manager.<controller>.type", "command_out_type",
     "publish_planning_scene", "publish_geometry_updates", "publish_state_updates", "publish_transforms_updates",
 )  # fmt: skip
-# kinematics_rules' warning on a solver it does not know, which params.plugin replaces (an
-# error, with the class meant) wherever this rule runs
+# IKFast solvers are generated per robot (<robot>_<group>_ikfast_plugin/IKFastKinematicsPlugin)
 IKFAST = re.compile(r"\w+/IKFastKinematicsPlugin")
 PLUGIN_KEYS = (  # (name pattern, plugin kind)
     (re.compile(r"[^.]+\.planning_plugins?"), "planner"),
