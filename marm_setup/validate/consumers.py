@@ -23,6 +23,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import sysconfig
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -113,6 +114,15 @@ def _xacro_fallback(home: str) -> str:
         out.write(XACRO_SCRIPT.format(python=sys.executable))
     os.chmod(script, 0o755)
     return folder
+
+
+def _ros1_path(fallback: str) -> str:
+    """PATH for roslaunch: the user's without marm-setup's own scripts folder, whose `xacro` is
+    PyPI's (ROS 2's, needing ament_index: `$(find pkg)` fails in a ROS 1 launch when an activated
+    venv puts it first), then the fallback xacro (robot/xacro_command.py) last."""
+    own = os.path.realpath(sysconfig.get_path("scripts"))
+    kept = [p for p in os.environ.get("PATH", "").split(os.pathsep) if p and os.path.realpath(p) != own]
+    return os.pathsep.join([*kept, fallback])
 
 
 def _run(argv: list[str], env: dict[str, str], seconds: float) -> subprocess.CompletedProcess | None:
@@ -312,7 +322,7 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
         env = {
             **_environment(home),
             "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r),
-            "PATH": os.pathsep.join(p for p in (os.environ.get("PATH", ""), xacro) if p),
+            "PATH": _ros1_path(xacro),
         }
         files = [
             launch.file

@@ -205,3 +205,15 @@ def test_a_launcher_that_does_not_finish_is_killed_with_its_children(tmp_path):
         for _ in range(50):  # reaped by init shortly after the kill
             os.kill(child, 0)
             time.sleep(0.1)
+
+
+def test_roslaunch_never_runs_marm_setups_own_pip_xacro(monkeypatch, tmp_path):
+    """An activated venv puts PyPI's (ROS 2) xacro first on PATH: a ROS 1 launch's `xacro` must not
+    be it (`$(find pkg)` needs ament there), the fallback comes last instead."""
+    import sysconfig
+
+    from marm_setup.validate.consumers import _ros1_path
+
+    own = sysconfig.get_path("scripts")
+    monkeypatch.setenv("PATH", os.pathsep.join([own, "/usr/bin", "/bin"]))
+    assert _ros1_path(str(tmp_path)).split(os.pathsep) == ["/usr/bin", "/bin", str(tmp_path)]
