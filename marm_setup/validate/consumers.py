@@ -19,12 +19,14 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
 import sys
 import sysconfig
 import tempfile
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
@@ -330,6 +332,7 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
             if launch.file.endswith(".launch") and launch.root is not None and not _needs_args(launch.root)
         ]
         argvs = [[roslaunch, "--dump-params", str(pkg.path(rel))] for rel in files]
+        known = _package_finder(pkg)
         with ThreadPoolExecutor(max_workers=max(1, min(len(files), os.cpu_count() or 1))) as pool:
             runs = list(pool.map(lambda argv: _run(argv, env, seconds), argvs))  # each a process
         for rel, done in zip(files, runs, strict=True):
@@ -339,7 +342,7 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
                 continue
             problem = _dump_problem(done)
             if problem:
-                out.append(error("ros1.launch", rel, "launch", f"roslaunch fails: {problem}"[:MESSAGE_CHARS]))
+                out.append(_launch_failure(rel, problem, known))
     if not evaluated:
         why = "did not finish" if out else "no top-level launch file runs without args"
         return ConsumerRun(tuple(out), f"static rules only (roslaunch {roslaunch}: {why})")
@@ -350,6 +353,30 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
 def _needs_args(root: etree._Element) -> bool:
     """The file declares an arg with neither default nor value: it is meant to be included."""
     return any(a.get("default") is None and a.get("value") is None for a in root.findall("arg"))
+
+
+MISSING_RESOURCE = re.compile(
+    r"(?:ResourceNotFound|[Rr]esource not found|Unable to load file [^:]+): ([A-Za-z][\w]*)$"
+)
+
+
+def _launch_failure(rel: str, problem: str, known: Callable[[str], bool]) -> Finding:
+    """A roslaunch failure: an error, but a warning when it only lacks a package that no package
+    path validate was given holds either (roslaunch's ResourceNotFound: the user's environment,
+    not the package; package.read names the package and the --package-path to pass)."""
+    msg = f"roslaunch fails: {problem}"[:MESSAGE_CHARS]
+    missing = MISSING_RESOURCE.search(problem)
+    if missing is None or known(missing.group(1)):
+        return error("ros1.launch", rel, "launch", msg)
+    hint = f"pass --package-path DIR (the folder holding {missing.group(1)})"
+    return warning("ros1.launch", rel, "launch", msg, hint)
+
+
+def _package_finder(pkg: MoveItPackage) -> Callable[[str], bool]:
+    from marm_setup.robot import find_packages
+
+    packages = find_packages(pkg.package_paths)
+    return lambda name: name in packages
 
 
 def _dump_problem(done: subprocess.CompletedProcess) -> str:

@@ -217,3 +217,16 @@ def test_roslaunch_never_runs_marm_setups_own_pip_xacro(monkeypatch, tmp_path):
     own = sysconfig.get_path("scripts")
     monkeypatch.setenv("PATH", os.pathsep.join([own, "/usr/bin", "/bin"]))
     assert _ros1_path(str(tmp_path)).split(os.pathsep) == ["/usr/bin", "/bin", str(tmp_path)]
+
+
+def test_a_roslaunch_failure_for_want_of_a_package_nobody_passed_is_a_warning():
+    from marm_setup.validate.consumers import _launch_failure
+
+    problem = "Unable to load file /ws/x_moveit_config/launch/demo.launch: x_description"
+    lacking = _launch_failure("launch/demo.launch", problem, lambda name: False)
+    assert (lacking.rule, lacking.severity) == ("ros1.launch", "warning")
+    assert "--package-path DIR (the folder holding x_description)" in lacking.hint
+    held = _launch_failure("launch/demo.launch", problem, lambda name: name == "x_description")
+    assert held.severity == "error"  # roslaunch has the package and still fails: the package's fault
+    other = _launch_failure("launch/demo.launch", "unused args [controller_manager]", lambda name: False)
+    assert other.severity == "error"
