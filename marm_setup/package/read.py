@@ -15,7 +15,7 @@ from typing import Any
 
 from marm_setup.bounded_read import XML_BYTES
 from marm_setup.errors import InputError, PackageNotFound
-from marm_setup.findings import Finding, error, warning
+from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package.builder import BuilderFiles, builder_files, chosen_file
 from marm_setup.package.description import (
     MARM_MOVEIT_YAML,
@@ -366,7 +366,8 @@ def missing_package(load: DescriptionLoad, param: str) -> Finding:
         f"'{load.missing_package}', which no package path holds: the rules needing it are skipped"
     )
     hint = f"pass --package-path DIR (the folder holding {load.missing_package})"
-    return warning(f"{_kind(param)}.package-missing", load.launch, param, msg, hint)
+    at = Location("package", str(load.missing_package))
+    return warning(f"{_kind(param)}.package-missing", load.launch, param, msg, hint, at=at)
 
 
 def _description(
@@ -445,7 +446,8 @@ def _missing_package(files: PackageFiles, exc: PackageNotFound) -> Description:
         "rules needing the robot are skipped"
     )
     hint = f"pass --package-path DIR (the folder holding {exc.package}), or --urdf FILE"
-    files.problems.append(warning("urdf.package-missing", file, exc.element or "", msg, hint))
+    at = Location("package", exc.package)
+    files.problems.append(warning("urdf.package-missing", file, exc.element or "", msg, hint, at=at))
     return Description(None, f"{file}, from package '{exc.package}' not found", (), unreadable=True)
 
 

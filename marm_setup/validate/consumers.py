@@ -332,7 +332,7 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
             if launch.file.endswith(".launch") and launch.root is not None and not _needs_args(launch.root)
         ]
         argvs = [[roslaunch, "--dump-params", str(pkg.path(rel))] for rel in files]
-        known = _package_finder(pkg)
+        unheld = _unheld_description_packages(pkg)
         with ThreadPoolExecutor(max_workers=max(1, min(len(files), os.cpu_count() or 1))) as pool:
             runs = list(pool.map(lambda argv: _run(argv, env, seconds), argvs))  # each a process
         for rel, done in zip(files, runs, strict=True):
@@ -342,7 +342,7 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
                 continue
             problem = _dump_problem(done)
             if problem:
-                out.append(_launch_failure(rel, problem, known))
+                out.append(_launch_failure(rel, problem, unheld))
     if not evaluated:
         why = "did not finish" if out else "no top-level launch file runs without args"
         return ConsumerRun(tuple(out), f"static rules only (roslaunch {roslaunch}: {why})")
@@ -360,23 +360,23 @@ MISSING_RESOURCE = re.compile(
 )
 
 
-def _launch_failure(rel: str, problem: str, known: Callable[[str], bool]) -> Finding:
-    """A roslaunch failure: an error, but a warning when it only lacks a package that no package
-    path validate was given holds either (roslaunch's ResourceNotFound: the user's environment,
-    not the package; package.read names the package and the --package-path to pass)."""
+def _launch_failure(rel: str, problem: str, unheld: Callable[[str], bool]) -> Finding:
+    """A roslaunch failure: an error, but a warning when it only lacks the package the robot
+    description lives in, which no package path validate was given holds either (the user's
+    environment, not the package: package.read's urdf/srdf.package-missing names the package
+    and the --package-path to pass)."""
     msg = f"roslaunch fails: {problem}"[:MESSAGE_CHARS]
     missing = MISSING_RESOURCE.search(problem)
-    if missing is None or known(missing.group(1)):
+    if missing is None or not unheld(missing.group(1)):
         return error("ros1.launch", rel, "launch", msg)
     hint = f"pass --package-path DIR (the folder holding {missing.group(1)})"
     return warning("ros1.launch", rel, "launch", msg, hint)
 
 
-def _package_finder(pkg: MoveItPackage) -> Callable[[str], bool]:
-    from marm_setup.robot import find_packages
-
-    packages = find_packages(pkg.package_paths)
-    return lambda name: name in packages
+def _unheld_description_packages(pkg: MoveItPackage) -> Callable[[str], bool]:
+    """Whether a package is one the robot description lives in that no package path holds."""
+    names = {f.location.name for f in pkg.problems if f.rule.endswith(".package-missing")}
+    return lambda name: name in names
 
 
 def _dump_problem(done: subprocess.CompletedProcess) -> str:

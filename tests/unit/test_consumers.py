@@ -219,14 +219,15 @@ def test_roslaunch_never_runs_marm_setups_own_pip_xacro(monkeypatch, tmp_path):
     assert _ros1_path(str(tmp_path)).split(os.pathsep) == ["/usr/bin", "/bin", str(tmp_path)]
 
 
-def test_a_roslaunch_failure_for_want_of_a_package_nobody_passed_is_a_warning():
+def test_a_roslaunch_failure_for_want_of_the_description_package_is_a_warning():
     from marm_setup.validate.consumers import _launch_failure
 
     problem = "Unable to load file /ws/x_moveit_config/launch/demo.launch: x_description"
-    lacking = _launch_failure("launch/demo.launch", problem, lambda name: False)
+    unheld = lambda name: name == "x_description"  # noqa: E731 - the description's package, not passed
+    lacking = _launch_failure("launch/demo.launch", problem, unheld)
     assert (lacking.rule, lacking.severity) == ("ros1.launch", "warning")
     assert "--package-path DIR (the folder holding x_description)" in lacking.hint
-    held = _launch_failure("launch/demo.launch", problem, lambda name: name == "x_description")
-    assert held.severity == "error"  # roslaunch has the package and still fails: the package's fault
-    other = _launch_failure("launch/demo.launch", "unused args [controller_manager]", lambda name: False)
+    typo = problem.replace("x_description", "no_such_package")  # a package nobody has: the launch's fault
+    assert _launch_failure("launch/demo.launch", typo, unheld).severity == "error"
+    other = _launch_failure("launch/demo.launch", "unused args [controller_manager]", unheld)
     assert other.severity == "error"
