@@ -32,7 +32,13 @@ P = ParamSpec("P")
 R = TypeVar("R")
 
 
-_DEBUG = {"on": False}  # set by the global --debug option
+def debugging() -> bool:
+    """Whether the running command line has the global `--debug` (its root context's option;
+    False outside a command line)."""
+    from typer.main import get_current_context
+
+    ctx = get_current_context(silent=True)
+    return bool(ctx and ctx.find_root().params.get("debug"))
 
 
 def handle_errors(fn: Callable[P, R], command: str | None = None) -> Callable[P, R]:
@@ -56,7 +62,7 @@ def handle_errors(fn: Callable[P, R], command: str | None = None) -> Callable[P,
             echo_err(interrupted_line(command))
             raise typer.Exit(INTERRUPTED) from None
         except Exception as exc:
-            if _DEBUG["on"]:
+            if debugging():
                 if getattr(exc, "detail", ""):  # e.g. the traceback a worker process sent
                     typer.echo(exc.detail, err=True)  # type: ignore[attr-defined]
                 raise
@@ -119,8 +125,7 @@ def _root(
         bool, typer.Option("--debug", help="Show the traceback of an internal error (for bug reports).")
     ] = False,
 ) -> None:
-    """Headless MoveIt Setup Assistant."""
-    _DEBUG["on"] = debug
+    """Headless MoveIt Setup Assistant. (`--debug` is read from the context: `debugging`.)"""
 
 
 def _register() -> None:

@@ -39,17 +39,18 @@ def test_an_unexpected_exception_is_one_internal_error_line(capsys):
     assert "please report" in err
 
 
-def test_debug_shows_the_traceback():
-    def broken():
+def test_debug_shows_the_traceback(monkeypatch):
+    import marm_setup.robot as robot_api
+
+    def broken(*_args, **_kwargs):
         raise RuntimeError("boom")
 
-    result = run("--debug", "inspect", "--help")
-    assert result.exit_code == 0
-    try:
-        with pytest.raises(RuntimeError):
-            app_module.handle_errors(broken)()
-    finally:
-        app_module._DEBUG["on"] = False
+    monkeypatch.setattr(robot_api, "format_tree", broken)  # a bug inside a real command
+    with_debug = run("--debug", "inspect", MARM_URDF)
+    assert isinstance(with_debug.exception, RuntimeError)  # raised on to the caller: its traceback
+    without = run("inspect", MARM_URDF)
+    assert_one_line_error(without)
+    assert without.exit_code == 2 and "internal error: RuntimeError: boom" in without.stderr
 
 
 def test_a_thousand_link_chain(tmp_path):
