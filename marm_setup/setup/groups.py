@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from types import MappingProxyType
+from collections.abc import Iterator, Mapping
 
 from marm_setup.robot import RobotModel
 from marm_setup.setup.model import Group
@@ -12,30 +11,48 @@ from marm_setup.setup.model import Group
 def _expand(group: Group, groups: Mapping[str, Group], robot: RobotModel) -> tuple[list[str], list[str]]:
     """(joints, links) of a group and its subgroups (callers order them and drop repeats).
 
-    Every group of `groups` is expanded once per mapping (`_members_of_all`, cached by identity:
-    `groups_by_name` mappings are read-only), whatever the shape (a diamond of subgroups is not
-    exponential, a 3000-deep chain not quadratic) or depth; cycles end where they close. A group
-    that is not the mapping's own (an edited copy) is expanded with it in the mapping's place."""
-    if groups.get(group.name) is group:
-        members = _members_of_all(groups, robot)
-    else:
+    Every group is expanded together with all of `groups`, whatever the shape (a diamond of
+    subgroups is not exponential, a 3000-deep chain not quadratic) or depth; cycles end where
+    they close. A GroupIndex (`groups_by_name`) keeps that expansion per robot, so asking it for
+    every group costs one expansion. A group that is not the mapping's own (an edited copy) is
+    expanded with it in the mapping's place."""
+    if groups.get(group.name) is not group:
         members = _expand_all({**groups, group.name: group}, robot)
+    elif isinstance(groups, GroupIndex):
+        members = groups.members(robot)
+    else:
+        members = _expand_all(groups, robot)
     return list(members[group.name][0]), list(members[group.name][1])
 
 
 Members = dict[str, tuple[tuple[str, ...], tuple[str, ...]]]
-_CACHE: list[tuple[Mapping[str, Group], RobotModel, Members]] = []  # by identity, newest first
 
 
-def _members_of_all(groups: Mapping[str, Group], robot: RobotModel) -> Members:
-    """(joints, links) of every group with its subgroups, for this mapping (computed once)."""
-    for cached_groups, cached_robot, members in _CACHE:
-        if cached_groups is groups and cached_robot is robot:
-            return members
-    members = _expand_all(groups, robot)
-    _CACHE.insert(0, (groups, robot, members))
-    del _CACHE[8:]
-    return members
+class GroupIndex(Mapping[str, Group]):
+    """Groups by name (the last of a repeated name), read-only, with each robot's expansion of
+    them (`members`) computed once and kept here, as long as the index lives."""
+
+    def __init__(self, groups: tuple[Group, ...]) -> None:
+        self._by_name = {g.name: g for g in groups}
+        self._members: list[tuple[RobotModel, Members]] = []  # by robot identity
+
+    def __getitem__(self, name: str) -> Group:
+        return self._by_name[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._by_name)
+
+    def __len__(self) -> int:
+        return len(self._by_name)
+
+    def members(self, robot: RobotModel) -> Members:
+        """(joints, links) of every group with its subgroups, on `robot`."""
+        for known, members in self._members:
+            if known is robot:
+                return members
+        members = _expand_all(self._by_name, robot)
+        self._members.append((robot, members))
+        return members
 
 
 def _expand_all(groups: Mapping[str, Group], robot: RobotModel) -> Members:
@@ -207,6 +224,6 @@ def planning_joints(
     return tuple(sorted(names))
 
 
-def groups_by_name(groups: tuple[Group, ...]) -> Mapping[str, Group]:
-    """Groups by name (the last of a repeated name), read-only: expansions are cached per mapping."""
-    return MappingProxyType({g.name: g for g in groups})
+def groups_by_name(groups: tuple[Group, ...]) -> GroupIndex:
+    """Groups by name (the last of a repeated name), read-only; it keeps their expansions."""
+    return GroupIndex(groups)
