@@ -107,6 +107,9 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--robot", choices=sorted(ROBOTS), action="append")
     args = parser.parse_args()
+    # bytecode as an installed package has it (an editable install in a PYTHONDONTWRITEBYTECODE
+    # shell would compile marm_setup in every process measured)
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "marm_setup")], check=True)
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs")
     with tempfile.TemporaryDirectory(prefix="bench-proofs-") as tmp:
         for name in args.robot or ["panda", "xarm7", "pr2"]:
