@@ -24,7 +24,7 @@ from marm_setup.package import (
     MoveItPackage,
     SkippedController,
 )
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
 from marm_setup.setup import ArbotixJoint, Controller, SetupModel, active_group_joints, groups_by_name

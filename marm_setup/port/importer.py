@@ -28,7 +28,7 @@ from marm_setup.port.package import (
 from marm_setup.port.perception import port_perception
 from marm_setup.port.pipelines import port_pipelines
 from marm_setup.port.planners import port_planners
-from marm_setup.port.report import PortItem, PortLog, where
+from marm_setup.port.port_log import PortItem, PortLog, where
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Distro, Target
 from marm_setup.setup import (

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from marm_setup.moveit_params import BY_ROS1_NAME, MOVE_GROUP_PARAMS, parameter, written_values
 from marm_setup.package import MoveItPackage
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.ros import Target
 from marm_setup.setup import SetupModel
 

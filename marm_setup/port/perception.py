@@ -13,7 +13,7 @@ from marm_setup.moveit_params import SENSOR_TYPES, SERVO_POSITION, SERVO_TRAJECT
 from marm_setup.package import MoveItPackage, Param, ServoConfig
 from marm_setup.package import Sensor as SourceSensor
 from marm_setup.port.kinematics import short
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
 from marm_setup.setup import Sensor, Servo, ServoScale, SetupModel

@@ -26,7 +26,7 @@ from marm_setup.moveit_params import (
 )
 from marm_setup.package import FrozenMapping, MoveItPackage, Param, PlanningPipeline, Where
 from marm_setup.port.kinematics import short
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.ros import Target, distro_row
 from marm_setup.setup import SetupModel
 

@@ -102,7 +102,7 @@ class CollisionSettings:
     """How the self-collision matrix was computed, and its disabled pairs (sorted). `prove`:
     how its Never pairs were proved (off, on, exhaustive; None: not recorded); `unproved`: the
     Never pairs whose proof did not finish (each one's SRDF entry carries a note); `proof_key`:
-    ties the proofs to the robot they were made for (collision/proof_report.py proof_key)."""
+    ties the proofs to the robot they were made for (collision/proof_summary.py proof_key)."""
 
     seed: int = 0
     trials: int = 10000

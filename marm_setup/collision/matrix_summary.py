@@ -52,7 +52,7 @@ def describe_matrix(
     matrix: CollisionMatrix, robot_name: str, disabled: Sequence[DisabledPair] | None = None
 ) -> dict:
     """Everything about the matrix as plain data (for `--format json`), pairs sorted."""
-    from marm_setup.collision.proof_report import outcome_counts
+    from marm_setup.collision.proof_summary import outcome_counts
 
     reasons = final_reasons(matrix, disabled)
     counts = reason_counts(reasons)
@@ -101,7 +101,7 @@ def never_bound(trials: int) -> float | None:
 
 
 def _pair_dict(stats: PairStats, reason: DisabledReason | None, trials: int) -> dict:
-    from marm_setup.collision.proof_report import proof_fields
+    from marm_setup.collision.proof_summary import proof_fields
 
     distance = None if stats.min_distance is None else round(stats.min_distance, 6)
     sampled = stats.samples > 0 or stats.reason in (None, DisabledReason.NEVER)  # else never checked
@@ -199,7 +199,7 @@ def _proof_cell(x, y, pair, reason, st, rate) -> Cell | None:
     if reason is None:
         if proof.outcome != COLLIDES:
             return None
-        from marm_setup.collision.proof_report import witness_text
+        from marm_setup.collision.proof_summary import witness_text
 
         return Cell(
             x,
@@ -241,7 +241,7 @@ def _mix(lo, hi, share: float) -> str:
 
 
 def _summary(matrix: CollisionMatrix, reasons) -> list[str]:
-    from marm_setup.collision.proof_report import proof_lines
+    from marm_setup.collision.proof_summary import proof_lines
 
     counts = ", ".join(f"{reason} {n}" for reason, n in reason_counts(reasons).items())
     enabled = sum(1 for s in matrix.stats if reasons.get(s.pair) is None)
@@ -302,7 +302,7 @@ def format_summary(
             f"Never is statistical: with {matrix.trials} trials and no hit, a pair's collision "
             f"probability is below 3/N = {never_bound(matrix.trials):.2g} (95 % confidence)"
         )
-    from marm_setup.collision.proof_report import proof_lines
+    from marm_setup.collision.proof_summary import proof_lines
 
     lines += proof_lines(matrix, reasons)
     if denser_seconds is not None:
