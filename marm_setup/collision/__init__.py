@@ -1,5 +1,5 @@
 """Self-collision: link pairs and their reasons, the coal collision scene, MoveIt's collision
-matrix, SRDF updates and the matrix report.
+matrix, SRDF updates, the matrix's summary and heat map.
 
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
@@ -18,7 +18,8 @@ API = {
     "scene": "CollisionScene",
     "matrix": "CollisionMatrix compute_collision_matrix Progress ROUND trial_samples",
     "srdf_update": "load_srdf_text read_srdf_entries render_minimal_srdf update_srdf",
-    "matrix_summary": "describe_matrix format_summary render_matrix_html render_matrix_svg",
+    "matrix_summary": "describe_matrix format_summary",
+    "matrix_heat_map": "render_matrix_html render_matrix_svg",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -29,10 +30,10 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.matrix import Progress as Progress
     from marm_setup.collision.matrix import compute_collision_matrix as compute_collision_matrix
     from marm_setup.collision.matrix import trial_samples as trial_samples
+    from marm_setup.collision.matrix_heat_map import render_matrix_html as render_matrix_html
+    from marm_setup.collision.matrix_heat_map import render_matrix_svg as render_matrix_svg
     from marm_setup.collision.matrix_summary import describe_matrix as describe_matrix
     from marm_setup.collision.matrix_summary import format_summary as format_summary
-    from marm_setup.collision.matrix_summary import render_matrix_html as render_matrix_html
-    from marm_setup.collision.matrix_summary import render_matrix_svg as render_matrix_svg
     from marm_setup.collision.pairs import PROVE_MODES as PROVE_MODES
     from marm_setup.collision.pairs import DisabledPair as DisabledPair
     from marm_setup.collision.pairs import DisabledReason as DisabledReason
