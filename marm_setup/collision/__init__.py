@@ -1,5 +1,5 @@
 """Self-collision: link pairs and their reasons, the coal collision scene, MoveIt's collision
-matrix, SRDF updates and the matrix report.
+matrix, SRDF updates, the matrix's summary and heat map.
 
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
@@ -14,11 +14,12 @@ API = {
     "cached_proof": "CachedProof",
     "proof_cache": "cache_dir known_proofs remember_proofs",
     "proof_keys": "pair_keys run_context",
-    "proof_report": "proof_key unproved_notes unproved_pairs",
+    "proof_summary": "proof_key unproved_notes unproved_pairs",
     "scene": "CollisionScene",
     "matrix": "CollisionMatrix compute_collision_matrix Progress ROUND trial_samples",
     "srdf_update": "load_srdf_text read_srdf_entries render_minimal_srdf update_srdf",
-    "report": "describe_matrix format_summary render_matrix_html render_matrix_svg",
+    "matrix_summary": "describe_matrix format_summary",
+    "matrix_heat_map": "render_matrix_html render_matrix_svg",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -29,6 +30,10 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.matrix import Progress as Progress
     from marm_setup.collision.matrix import compute_collision_matrix as compute_collision_matrix
     from marm_setup.collision.matrix import trial_samples as trial_samples
+    from marm_setup.collision.matrix_heat_map import render_matrix_html as render_matrix_html
+    from marm_setup.collision.matrix_heat_map import render_matrix_svg as render_matrix_svg
+    from marm_setup.collision.matrix_summary import describe_matrix as describe_matrix
+    from marm_setup.collision.matrix_summary import format_summary as format_summary
     from marm_setup.collision.pairs import PROVE_MODES as PROVE_MODES
     from marm_setup.collision.pairs import DisabledPair as DisabledPair
     from marm_setup.collision.pairs import DisabledReason as DisabledReason
@@ -40,13 +45,9 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.collision.proof_cache import remember_proofs as remember_proofs
     from marm_setup.collision.proof_keys import pair_keys as pair_keys
     from marm_setup.collision.proof_keys import run_context as run_context
-    from marm_setup.collision.proof_report import proof_key as proof_key
-    from marm_setup.collision.proof_report import unproved_notes as unproved_notes
-    from marm_setup.collision.proof_report import unproved_pairs as unproved_pairs
-    from marm_setup.collision.report import describe_matrix as describe_matrix
-    from marm_setup.collision.report import format_summary as format_summary
-    from marm_setup.collision.report import render_matrix_html as render_matrix_html
-    from marm_setup.collision.report import render_matrix_svg as render_matrix_svg
+    from marm_setup.collision.proof_summary import proof_key as proof_key
+    from marm_setup.collision.proof_summary import unproved_notes as unproved_notes
+    from marm_setup.collision.proof_summary import unproved_pairs as unproved_pairs
     from marm_setup.collision.scene import CollisionScene as CollisionScene
     from marm_setup.collision.srdf_update import load_srdf_text as load_srdf_text
     from marm_setup.collision.srdf_update import read_srdf_entries as read_srdf_entries

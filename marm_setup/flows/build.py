@@ -1,5 +1,5 @@
 """init's setup: inference, then an imported SRDF, then the SPEC laid over it as a typed patch
-(setup.assemble), the distro chosen; checked once against the robot. Reads only the SPEC and the
+(inference.assemble), the distro chosen; checked once against the robot. Reads only the SPEC and the
 SRDF."""
 
 from __future__ import annotations
@@ -58,8 +58,9 @@ def build_setup(request: InitRequest, robot: RobotModel) -> SetupModel:
 def build(request: InitRequest, robot: RobotModel) -> Built:
     """The setup init writes: inferred, the SRDF imported, the SPEC laid over it as a typed
     patch, the distro chosen, then checked once against the robot."""
+    from marm_setup.inference import REFERENCE, infer_setup
     from marm_setup.names import ros_package_name
-    from marm_setup.setup import REFERENCE, infer_setup, package_name_problem, setup_warnings
+    from marm_setup.setup import package_name_problem, setup_warnings
 
     if request.name and (problem := package_name_problem(request.name)):
         raise InputError(problem, element="--name")
@@ -101,9 +102,10 @@ def build(request: InitRequest, robot: RobotModel) -> Built:
 def _with_spec(
     model: SetupModel, spec: Partial, request: InitRequest, robot: RobotModel, inferred_groups: bool
 ) -> SetupModel:
-    """`model` with the SPEC laid over it (setup.assemble), the command line's name and target
+    """`model` with the SPEC laid over it (inference.assemble), the command line's name and target
     in place of the SPEC's."""
-    from marm_setup.setup import Partial, with_spec
+    from marm_setup.inference import with_spec
+    from marm_setup.setup import Partial
 
     if not spec.keys:
         return model
@@ -117,7 +119,8 @@ def _with_spec(
 def _checked(model: SetupModel, robot: RobotModel, request: InitRequest, spec: Partial) -> SetupModel:
     """The one check of the assembled setup, its errors naming the input they come from: the
     SPEC's keys, else the SRDF's elements, else the setup's keys for the URDF."""
-    from marm_setup.setup import checked, setup_element, srdf_element
+    from marm_setup.inference import checked
+    from marm_setup.setup import setup_element, srdf_element
 
     if request.from_srdf is not None and not spec.keys:
         return checked(model, robot, str(request.from_srdf), srdf_element)
@@ -132,7 +135,8 @@ def _import_srdf(
     `.srdf.xacro` is expanded first with the `--xacro-arg`s (also returned: the arguments it
     takes). An SRDF without groups keeps the inferred ones (and their notes); one whose groups
     all fail to load is refused: MoveIt would have nothing to plan for."""
-    from marm_setup.setup import as_moveit_loads, derive_group_settings, load_srdf, srdf_to_setup
+    from marm_setup.inference import derive_group_settings
+    from marm_setup.setup import as_moveit_loads, load_srdf, srdf_to_setup
 
     path = request.from_srdf
     assert path is not None
@@ -204,7 +208,8 @@ def _empty_group_warnings(model: SetupModel) -> tuple[str, ...]:
 
 def _read_spec(path: Path | None) -> Partial:
     """The SPEC as a typed patch (none given: an empty one); its robot is the command line's."""
-    from marm_setup.setup import COMMAND_LINE_KEYS, Partial, patch_from_dict, read_yaml_mapping
+    from marm_setup.inference import COMMAND_LINE_KEYS
+    from marm_setup.setup import Partial, patch_from_dict, read_yaml_mapping
 
     if path is None:
         return Partial(SetupModel, ())

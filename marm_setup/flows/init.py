@@ -65,7 +65,7 @@ def _with_poses(
 ) -> tuple[SetupModel, tuple[str, ...]]:
     """The setup with inferred collision-free poses (home, ready), and notes on what was guessed:
     poses within the limits of a setup already checked (build), so not checked again."""
-    from marm_setup.setup import infer_poses
+    from marm_setup.inference import infer_poses
 
     poses = infer_poses(model, robot, scene, seed=seed)
     return dataclasses.replace(model, group_states=poses.states), poses.notes
@@ -74,8 +74,8 @@ def _with_poses(
 def _with_start_poses(
     model: SetupModel, robot: RobotModel, scene: CollisionScene
 ) -> tuple[SetupModel, tuple[str, ...]]:
-    """The setup with start poses the demo can start at out of collision (setup/poses.py)."""
-    from marm_setup.setup import choose_start_poses
+    """The setup with start poses the demo can start at out of collision (inference/poses.py)."""
+    from marm_setup.inference import choose_start_poses
 
     starts, notes = choose_start_poses(model, robot, scene)
     return dataclasses.replace(model, start_poses=starts), notes

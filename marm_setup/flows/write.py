@@ -113,7 +113,7 @@ def collision_settings(
 def describe(model: SetupModel, *, matrix_given: bool) -> list[str]:
     """What the setup holds; the matrix line says whether it was computed or taken as given."""
     from marm_setup.collision import DisabledReason
-    from marm_setup.setup import describe_setup
+    from marm_setup.inference import describe_setup
 
     counts = {r: sum(1 for d in model.collision.disabled if d.reason is r) for r in DisabledReason}
     summary = ", ".join(f"{n} {r.value}" for r, n in counts.items() if n)

@@ -30,6 +30,7 @@ API = {
     "launch_ros1": "LaunchParam launch_nodes",
     "launch_python": "undefined_unread_arg",
     "rosparam": "RosparamLoader",
+    "received": "Received received_parameters",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -65,6 +66,8 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.planning_file import GroupPlanning as GroupPlanning
     from marm_setup.package.planning_file import PlanningPipeline as PlanningPipeline
     from marm_setup.package.read import read_package as read_package
+    from marm_setup.package.received import Received as Received
+    from marm_setup.package.received import received_parameters as received_parameters
     from marm_setup.package.rosparam import RosparamLoader as RosparamLoader
     from marm_setup.package.setup_files import RecordedProofs as RecordedProofs
     from marm_setup.package.setup_files import read_package_xml as read_package_xml

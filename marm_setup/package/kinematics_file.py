@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from marm_setup.moveit_params import KINEMATICS_KEYS
 from marm_setup.package.where import Located, Param, Where
-from marm_setup.setup import KINEMATICS_KEYS
 
 SOLVER = "kinematics_solver"
 STANDARD_KEYS = KINEMATICS_KEYS

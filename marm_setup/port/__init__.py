@@ -11,7 +11,7 @@ from marm_setup.exports import lazy_api
 API = {
     "blame": "blamed_on_source",
     "importer": "port_package Ported PortRequest",
-    "report": "counts PortItem STATUSES summary",
+    "port_log": "counts PortItem STATUSES summary",
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -20,7 +20,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.port.importer import Ported as Ported
     from marm_setup.port.importer import PortRequest as PortRequest
     from marm_setup.port.importer import port_package as port_package
-    from marm_setup.port.report import STATUSES as STATUSES
-    from marm_setup.port.report import PortItem as PortItem
-    from marm_setup.port.report import counts as counts
-    from marm_setup.port.report import summary as summary
+    from marm_setup.port.port_log import STATUSES as STATUSES
+    from marm_setup.port.port_log import PortItem as PortItem
+    from marm_setup.port.port_log import counts as counts
+    from marm_setup.port.port_log import summary as summary

@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 from marm_setup.errors import InputError
-from marm_setup.port.report import PortItem
+from marm_setup.port.port_log import PortItem
 
 # (source file, setup key) -> the source's own field, `{}` the item's element: the author is
 # one report item ("author") read from two fields

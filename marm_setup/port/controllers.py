@@ -6,6 +6,15 @@ from __future__ import annotations
 
 import math
 
+from marm_setup.moveit_params import (
+    DRIVER_ACTION_NS,
+    DRIVER_CONTROLLERS,
+    FOLLOW_JOINT_TRAJECTORY,
+    FOLLOW_JOINT_TRAJECTORY_NS,
+    GRIPPER_COMMAND,
+    MOVEIT_CONTROLLER_TYPES,
+    ROS2_CONTROLLER_TYPES,
+)
 from marm_setup.package import (
     ArbotixFile,
     ArbotixServo,
@@ -15,23 +24,10 @@ from marm_setup.package import (
     MoveItPackage,
     SkippedController,
 )
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
-from marm_setup.setup import (
-    DRIVER_ACTION_NS,
-    DRIVER_CONTROLLERS,
-    FOLLOW_JOINT_TRAJECTORY,
-    FOLLOW_JOINT_TRAJECTORY_NS,
-    GRIPPER_COMMAND,
-    MOVEIT_CONTROLLER_TYPES,
-    ROS2_CONTROLLER_TYPES,
-    ArbotixJoint,
-    Controller,
-    SetupModel,
-    active_group_joints,
-    groups_by_name,
-)
+from marm_setup.setup import ArbotixJoint, Controller, SetupModel, active_group_joints, groups_by_name
 
 # What the new package's driver side is, per SetupModel.driver_key (ros2_control, the ros1
 # driver, or none: a ros1 package without driver files).

@@ -28,7 +28,7 @@ from marm_setup.port.package import (
 from marm_setup.port.perception import port_perception
 from marm_setup.port.pipelines import port_pipelines
 from marm_setup.port.planners import port_planners
-from marm_setup.port.report import PortItem, PortLog, where
+from marm_setup.port.port_log import PortItem, PortLog, where
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Distro, Target
 from marm_setup.setup import (
@@ -258,7 +258,8 @@ def _without_unsolvable(
 ) -> tuple[Kinematics, ...]:
     """Drop chain-only solvers (KDL, LMA, cached KDL) on groups that are no chain: MoveIt cannot
     initialise them there, so the group had no IK solver (validate's kinematics rule)."""
-    from marm_setup.setup import CHAIN_ONLY_PLUGINS, is_chain
+    from marm_setup.moveit_params import CHAIN_ONLY_PLUGINS
+    from marm_setup.setup import is_chain
 
     assert pkg.srdf is not None
     by_name = groups_by_name(pkg.srdf.groups)
@@ -295,7 +296,7 @@ def _projections(model: SetupModel, robot: RobotModel) -> Callable[[str], str | 
 
 
 def _with_controllers(pkg: MoveItPackage, model: SetupModel, robot: RobotModel, log: PortLog) -> SetupModel:
-    from marm_setup.setup import derive_group_settings
+    from marm_setup.inference import derive_group_settings
 
     derived = derive_group_settings(model, robot)
     ported = port_controllers(pkg, model, robot, log)

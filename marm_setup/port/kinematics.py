@@ -6,9 +6,10 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from marm_setup.moveit_params import MOVEIT_KINEMATICS_PLUGINS
 from marm_setup.package import GroupKinematics, KinematicsFile
-from marm_setup.port.report import PortLog
-from marm_setup.setup import MOVEIT_KINEMATICS_PLUGINS, Kinematics
+from marm_setup.port.port_log import PortLog
+from marm_setup.setup import Kinematics
 
 # MoveIt's kinematics.yaml keys per group -> Kinematics field
 KINEMATICS_KEYS = {

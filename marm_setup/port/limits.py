@@ -8,7 +8,7 @@ from collections.abc import Iterable
 
 from marm_setup.package import JointLimitEntry, JointLimitsFile, LoadedLimit, Where, effective_limits
 from marm_setup.port.kinematics import short
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.robot import RobotModel
 from marm_setup.setup import JointLimitOverride
 

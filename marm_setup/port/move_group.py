@@ -1,7 +1,7 @@
 """Porting move_group's own parameters: every `<param>` a ROS 1 package's launch files set in
 move_group's namespace (package/launch_ros1.py LaunchParam, as `roslaunch --dump-params` gives
 them), and MoveIt 1's default for a trajectory execution setting left unset, become the setup's
-`move_group_parameters` (same meaning in MoveIt 2: setup/move_group_params.py) or are reported
+`move_group_parameters` (same meaning in MoveIt 2: moveit_params/move_group_params.py) or are reported
 dropped with the reason. A ROS 2 source's move_group parameters (our moveit.yaml) are carried by
 name. Pipelines, controllers and sensors are the other ports' (their parameters are named here
 only to say so)."""
@@ -12,10 +12,11 @@ import dataclasses
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
+from marm_setup.moveit_params import BY_ROS1_NAME, MOVE_GROUP_PARAMS, parameter, written_values
 from marm_setup.package import MoveItPackage
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.ros import Target
-from marm_setup.setup import BY_ROS1_NAME, MOVE_GROUP_PARAMS, SetupModel, parameter, written_values
+from marm_setup.setup import SetupModel
 
 if TYPE_CHECKING:
     from marm_setup.package import LaunchParam
@@ -223,7 +224,7 @@ def _capabilities(key: str, text: str, source: str, model: SetupModel, log: Port
 
 
 def _from_ros2(pkg: MoveItPackage, model: SetupModel, log: PortLog) -> SetupModel:
-    from marm_setup.setup import move_group_problem
+    from marm_setup.moveit_params import move_group_problem
 
     given = {}
     for param in pkg.move_group or ():

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from marm_setup.package import MoveItPackage
 from marm_setup.port.pipelines import PIPELINE_FILE
-from marm_setup.port.report import PortLog, where
+from marm_setup.port.port_log import PortLog, where
 from marm_setup.ros import Target
 from marm_setup.setup import Author, RobotSource
 

@@ -9,21 +9,14 @@ import dataclasses
 from collections.abc import Callable
 
 from marm_setup.errors import InputError
+from marm_setup.moveit_params import SENSOR_TYPES, SERVO_POSITION, SERVO_TRAJECTORY
 from marm_setup.package import MoveItPackage, Param, ServoConfig
 from marm_setup.package import Sensor as SourceSensor
 from marm_setup.port.kinematics import short
-from marm_setup.port.report import PortLog
+from marm_setup.port.port_log import PortLog
 from marm_setup.robot import RobotModel
 from marm_setup.ros import Target
-from marm_setup.setup import (
-    SENSOR_TYPES,
-    SERVO_POSITION,
-    SERVO_TRAJECTORY,
-    Sensor,
-    Servo,
-    ServoScale,
-    SetupModel,
-)
+from marm_setup.setup import Sensor, Servo, ServoScale, SetupModel
 
 PLUGIN_TYPES = {kind.plugin: name for name, kind in SENSOR_TYPES.items()}
 SENSOR_FIELDS = {f.name for f in dataclasses.fields(Sensor)} - {"name", "type", "topic"}

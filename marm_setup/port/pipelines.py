@@ -1,6 +1,6 @@
 """Porting the planning pipelines: which planners move_group loads (the setup's
 `planning_pipelines`) and the parameters of each pipeline's namespace (`pipeline_parameters`),
-as the target distro's MoveIt reads them (setup/pipeline_params.py: names, types, defaults).
+as the target distro's MoveIt reads them (moveit_params/pipeline_params.py: names, types, defaults).
 
 A pipeline is carried when marm-setup writes its planner for the target distro; one the distro's
 binaries lack (STOMP on Humble) only from a marm-setup package, whose setup chose it (init then
@@ -17,22 +17,22 @@ from __future__ import annotations
 import dataclasses
 import re
 
-from marm_setup.package import FrozenMapping, MoveItPackage, Param, PlanningPipeline, Where
-from marm_setup.port.kinematics import short
-from marm_setup.port.report import PortLog
-from marm_setup.ros import Target, distro_row
-from marm_setup.setup import (
+from marm_setup.moveit_params import (
     PIPELINES,
-    SetupModel,
     effective_parameters,
     infinite_problem,
     parameter,
     value_problem,
 )
+from marm_setup.package import FrozenMapping, MoveItPackage, Param, PlanningPipeline, Where
+from marm_setup.port.kinematics import short
+from marm_setup.port.port_log import PortLog
+from marm_setup.ros import Target, distro_row
+from marm_setup.setup import SetupModel
 
 ADAPTER_KEYS = ("request_adapters", "response_adapters")
 STRUCTURE = frozenset({"planning_plugin", "planning_plugins", "planner_configs"})
-# Humble's AddTimeOptimalParameterization settings <-> Jazzy's (setup/pipeline_params.py)
+# Humble's AddTimeOptimalParameterization settings <-> Jazzy's (moveit_params/pipeline_params.py)
 RENAMED = {
     "path_tolerance": "totg.path_tolerance",
     "resample_dt": "totg.resample_dt",

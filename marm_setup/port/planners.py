@@ -5,10 +5,11 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
+from marm_setup.moveit_params import DEFAULT_PLANNER, OMPL_PLANNER_NAMES, OMPL_PLANNERS
 from marm_setup.package import FrozenMapping, GroupPlanning, PlanningPipeline, Value
 from marm_setup.port.kinematics import short, yaml_text
-from marm_setup.port.report import PortLog
-from marm_setup.setup import DEFAULT_PLANNER, OMPL_PLANNER_NAMES, OMPL_PLANNERS, PlannerDefaults
+from marm_setup.port.port_log import PortLog
+from marm_setup.setup import PlannerDefaults
 
 OMPL_TYPES = {ompl_type: name for name, ompl_type in OMPL_PLANNERS}
 GROUP_OMPL_KEYS = (

@@ -12,10 +12,7 @@ from dataclasses import dataclass
 from pathlib import PurePosixPath
 
 from marm_setup.errors import InputError
-from marm_setup.names import name_problem
-from marm_setup.robot import Joint, RobotModel
-from marm_setup.ros import ControllerKind, Target
-from marm_setup.setup import (
+from marm_setup.moveit_params import (
     ARBOTIX_GRIPPER_ACTION_NS,
     FOLLOW_JOINT_TRAJECTORY,
     GRIPPER_COMMAND,
@@ -23,6 +20,12 @@ from marm_setup.setup import (
     MOVEIT_CONTROLLER_TYPES,
     OMPL_PLANNERS,
     PIPELINES,
+    move_group_values,
+)
+from marm_setup.names import name_problem
+from marm_setup.robot import Joint, RobotModel
+from marm_setup.ros import ControllerKind, Target
+from marm_setup.setup import (
     Controller,
     GroupState,
     Kinematics,
@@ -35,7 +38,6 @@ from marm_setup.setup import (
     groups_by_name,
     joint_limits,
     model_start_values,
-    move_group_values,
     plan_perception,
     plan_servos,
     root_virtual_joint,

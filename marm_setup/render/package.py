@@ -96,7 +96,7 @@ def pipeline_templates(model: SetupModel) -> list[tuple[str, str, dict]]:
     """(template, path, extra context) of the files the setup's planning pipelines add (ros1: one
     launch file per pipeline, ompl_planning.yaml, chomp_planning.yaml, Pilz's cartesian_limits.yaml;
     ros2 writes every pipeline into moveit.yaml)."""
-    from marm_setup.setup import PIPELINES
+    from marm_setup.moveit_params import PIPELINES
 
     if model.target != Target.ROS1:
         return []

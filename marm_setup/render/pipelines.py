@@ -1,5 +1,5 @@
 """What config/moveit.yaml (ros2) writes for each planning pipeline: its planner plugin, request
-and response adapters and parameters as its distro reads them (setup/pipeline_params.py: names,
+and response adapters and parameters as its distro reads them (moveit_params/pipeline_params.py: names,
 types, marm-setup's defaults overlaid with the setup's `pipeline_parameters`), and the pipelines'
 capabilities, which Humble's move_group reads only from the top-level `capabilities`."""
 
@@ -7,7 +7,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from marm_setup.setup import PIPELINES, PipelineParameterValue, SetupModel, effective_parameters
+from marm_setup.moveit_params import PIPELINES, PipelineParameterValue, effective_parameters
+from marm_setup.setup import SetupModel
 
 ADAPTER_KEYS = ("request_adapters", "response_adapters")
 

@@ -1,5 +1,6 @@
 """The robot: URDF/xacro loading, ROS package lookup, meshes, the frozen RobotModel,
-batched forward kinematics, and its text description.
+batched forward kinematics, its text description, and the words its joint and link names
+say (arm, leg, hand, side: `limb_words`).
 
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
@@ -32,6 +33,10 @@ API = {
     "urdf": "strict_float",
     "sandbox": "ChildDied kill limit_memory picklable run_limited TimeLimitExceeded",
     "xacro_cli": "parse_xacro_argv parse_xacro_command split_command XacroCall",
+    "limb_words": (
+        "BASE_KINDS common_prefix FINGER_WORDS FOOT_WORDS is_kind joint_kinds KIND_WORDS MOUNT_WORDS name_kinds "
+        "name_words side_of tokens TOOL_RANKS TOOL_WORDS VISION_WORDS votes_for"
+    ),
 }
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
@@ -46,6 +51,22 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.kinematics import origin_matrix as origin_matrix
     from marm_setup.robot.kinematics import sample_configurations as sample_configurations
     from marm_setup.robot.kinematics import wrap_continuous as wrap_continuous
+    from marm_setup.robot.limb_words import BASE_KINDS as BASE_KINDS
+    from marm_setup.robot.limb_words import FINGER_WORDS as FINGER_WORDS
+    from marm_setup.robot.limb_words import FOOT_WORDS as FOOT_WORDS
+    from marm_setup.robot.limb_words import KIND_WORDS as KIND_WORDS
+    from marm_setup.robot.limb_words import MOUNT_WORDS as MOUNT_WORDS
+    from marm_setup.robot.limb_words import TOOL_RANKS as TOOL_RANKS
+    from marm_setup.robot.limb_words import TOOL_WORDS as TOOL_WORDS
+    from marm_setup.robot.limb_words import VISION_WORDS as VISION_WORDS
+    from marm_setup.robot.limb_words import common_prefix as common_prefix
+    from marm_setup.robot.limb_words import is_kind as is_kind
+    from marm_setup.robot.limb_words import joint_kinds as joint_kinds
+    from marm_setup.robot.limb_words import name_kinds as name_kinds
+    from marm_setup.robot.limb_words import name_words as name_words
+    from marm_setup.robot.limb_words import side_of as side_of
+    from marm_setup.robot.limb_words import tokens as tokens
+    from marm_setup.robot.limb_words import votes_for as votes_for
     from marm_setup.robot.load import load_robot as load_robot
     from marm_setup.robot.load import parse_xacro_args as parse_xacro_args
     from marm_setup.robot.load import xml_syntax_message as xml_syntax_message

@@ -15,10 +15,10 @@ from collections.abc import Iterable, Iterator
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding
+from marm_setup.moveit_params import KINEMATICS_KEYS
 from marm_setup.names import did_you_mean, name_problem, with_hint
 from marm_setup.robot import MIN_RATE, RobotModel
 from marm_setup.ros import DISTROS, Target, distros_of
-from marm_setup.setup.domain import KINEMATICS_KEYS
 from marm_setup.setup.limits import joint_limits, timing_problem
 from marm_setup.setup.model import Controller, SetupModel
 from marm_setup.setup.name_checks import check_setup_names
@@ -119,7 +119,7 @@ def distro_problem(target: Target, distro: str | None) -> str | None:
 def _check_pipelines(c: _Checker) -> None:
     """Known pipelines, each once, that the package's distro can run (STOMP on Humble built from
     source: a warning, `setup_warnings`); their parameters (`_check_pipeline_parameters`)."""
-    from marm_setup.setup.domain import PIPELINES
+    from marm_setup.moveit_params import PIPELINES
 
     names = c.model.planning_pipelines
     if not names:
@@ -137,7 +137,7 @@ def _check_pipelines(c: _Checker) -> None:
             raise c.fail(f"'{name}' is not in MoveIt's {row.name} binaries (only {shipped})", where)
     _check_pipeline_parameters(c)
     for name, value in c.model.move_group_parameters:
-        from marm_setup.setup.move_group_params import move_group_problem
+        from marm_setup.moveit_params import move_group_problem
 
         problem = move_group_problem(name, value)
         if problem:
@@ -147,7 +147,7 @@ def _check_pipelines(c: _Checker) -> None:
 def _check_pipeline_parameters(c: _Checker) -> None:
     """Each pipeline's parameters: one of the setup's pipelines, a name some ROS 2 distro's
     MoveIt reads there (one only the other distro reads: a warning), a value of its type."""
-    from marm_setup.setup.pipeline_params import parameter_problem
+    from marm_setup.moveit_params import parameter_problem
 
     model = c.model
     if model.pipeline_parameters and model.target != Target.ROS2:
@@ -170,8 +170,7 @@ def _check_pipeline_parameters(c: _Checker) -> None:
 def setup_warnings(model: SetupModel) -> tuple[str, ...]:
     """`warning: ...` lines for what a setup asks that its distro's MoveIt binaries cannot do
     alone (STOMP on Humble) or do not read (a parameter of the other distro: left out)."""
-    from marm_setup.setup.domain import PIPELINES
-    from marm_setup.setup.pipeline_params import other_distros_reading, parameter
+    from marm_setup.moveit_params import PIPELINES, other_distros_reading, parameter
 
     distro, out = model.distro, []
     for i, name in enumerate(model.planning_pipelines):

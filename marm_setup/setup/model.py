@@ -9,19 +9,17 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from marm_setup.collision import DisabledPair, DisabledReason, UnprovedPair
-from marm_setup.ros import Distro, DistroRow, Target, default_distro, distro_row
-from marm_setup.setup.domain import (
+from marm_setup.moveit_params import (
     DEFAULT_PIPELINES,
     DEFAULT_PLANNER,
     DRIVER_ACTION_NS,
     KDL_PLUGIN,
     MOCK_HARDWARE,
+    MoveGroupValue,
+    PipelineParameterValue,
 )
+from marm_setup.ros import Distro, DistroRow, Target, default_distro, distro_row
 
-# a value of a move_group parameter (setup.move_group_params checks its name and type)
-MoveGroupValue = bool | int | float | str
-# a value of a planning pipeline parameter (setup.pipeline_params checks it against its type)
-PipelineParameterValue = float | int | bool | str | tuple[str, ...]
 # The targets and their distros (marm_setup.ros). Humble and Jazzy differ in MoveIt's planning
 # pipeline parameters (DESIGN §4): Humble's PlanningPipeline reads one `planning_plugin` string
 # and `request_adapters` as one space-separated string (moveit2 humble, moveit_ros/planning/
@@ -104,7 +102,7 @@ class CollisionSettings:
     """How the self-collision matrix was computed, and its disabled pairs (sorted). `prove`:
     how its Never pairs were proved (off, on, exhaustive; None: not recorded); `unproved`: the
     Never pairs whose proof did not finish (each one's SRDF entry carries a note); `proof_key`:
-    ties the proofs to the robot they were made for (collision/proof_report.py proof_key)."""
+    ties the proofs to the robot they were made for (collision/proof_summary.py proof_key)."""
 
     seed: int = 0
     trials: int = 10000
@@ -313,10 +311,10 @@ class SetupModel:
     # MoveIt planning pipelines (domain.PIPELINES), the first is move_group's default
     planning_pipelines: tuple[str, ...] = DEFAULT_PIPELINES
     # per pipeline (a planning_pipelines name): parameters of its namespace over marm-setup's
-    # defaults (setup.pipeline_params: the names each distro's MoveIt reads)
+    # defaults (moveit_params.pipeline_params: the names each distro's MoveIt reads)
     pipeline_parameters: tuple[tuple[str, tuple[tuple[str, PipelineParameterValue], ...]], ...] = ()
     # move_group's own parameters over marm-setup's defaults, by MoveIt 2 name
-    # (setup.move_group_params: trajectory_execution.*, publish_*, moveit_manage_controllers, ...)
+    # (moveit_params.move_group_params: trajectory_execution.*, publish_*, moveit_manage_controllers, ...)
     move_group_parameters: tuple[tuple[str, MoveGroupValue], ...] = ()
     controllers: tuple[Controller, ...] = ()
     arbotix_joints: tuple[ArbotixJoint, ...] = ()

@@ -14,9 +14,9 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
 from marm_setup.findings import Finding, Location, error, warning
+from marm_setup.moveit_params import VIRTUAL_JOINT_TYPES
 from marm_setup.names import did_you_mean
 from marm_setup.robot import RobotModel
-from marm_setup.setup.domain import VIRTUAL_JOINT_TYPES
 from marm_setup.setup.groups import active_group_joints, group_joints, group_links, groups_by_name
 from marm_setup.setup.model import EndEffector, Group, GroupState, VirtualJoint
 from marm_setup.setup.srdf import Srdf

@@ -16,9 +16,9 @@ from __future__ import annotations
 import dataclasses
 
 from marm_setup.errors import InputError
+from marm_setup.moveit_params import DEFAULT_OCTOMAP_RESOLUTION, SENSOR_TYPES
 from marm_setup.names import name_problem
 from marm_setup.robot import RobotModel
-from marm_setup.setup.domain import DEFAULT_OCTOMAP_RESOLUTION, SENSOR_TYPES
 from marm_setup.setup.model import Sensor, SetupModel
 
 # Sensor fields that are no updater parameter of their own (the topic goes in the type's key).

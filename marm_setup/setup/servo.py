@@ -19,17 +19,16 @@ import dataclasses
 from collections.abc import Mapping
 
 from marm_setup.errors import InputError
-from marm_setup.names import did_you_mean, with_hint
-from marm_setup.robot import RobotModel
-from marm_setup.ros import ControllerKind, DistroRow, Target
-from marm_setup.setup.domain import (
+from marm_setup.moveit_params import (
     FOLLOW_JOINT_TRAJECTORY,
     FORWARD_POSITION,
     SERVO_POSITION,
     SERVO_TRAJECTORY,
 )
+from marm_setup.names import did_you_mean, with_hint
+from marm_setup.robot import RobotModel, name_kinds
+from marm_setup.ros import ControllerKind, DistroRow, Target
 from marm_setup.setup.groups import active_group_joints, group_joints, groups_by_name, is_chain
-from marm_setup.setup.limb_words import name_kinds
 from marm_setup.setup.model import Controller, Group, Servo, SetupModel
 
 # Group names that say a limb servo is not for (a leg, a head, a torso, a hand); `arm` wins.

@@ -27,8 +27,8 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
+from marm_setup.moveit_params import VIRTUAL_JOINT_TYPES
 from marm_setup.robot import RobotModel
-from marm_setup.setup.domain import VIRTUAL_JOINT_TYPES
 from marm_setup.setup.groups import group_joints, groups_by_name
 from marm_setup.setup.model import EndEffector, Group, GroupState, VirtualJoint
 from marm_setup.setup.srdf import Srdf

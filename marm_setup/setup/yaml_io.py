@@ -21,9 +21,7 @@ import yaml
 from marm_setup import bounded_read
 from marm_setup.collision import PROVE_MODES, DisabledPair, UnprovedPair, link_pair
 from marm_setup.errors import InputError
-from marm_setup.names import did_you_mean, with_hint
-from marm_setup.safe_yaml import UniqueKeyLoader, load_yaml
-from marm_setup.setup.domain import (
+from marm_setup.moveit_params import (
     DRIVERS,
     MOVEIT_CONTROLLER_TYPES,
     OMPL_PLANNER_NAMES,
@@ -32,6 +30,8 @@ from marm_setup.setup.domain import (
     SERVO_OUTPUTS,
     VIRTUAL_JOINT_TYPES,
 )
+from marm_setup.names import did_you_mean, with_hint
+from marm_setup.safe_yaml import UniqueKeyLoader, load_yaml
 from marm_setup.setup.model import (
     CollisionSettings,
     Controller,

@@ -433,7 +433,7 @@
     const m = data.matrix;
     if (!m) { box.append(el("div", { class: "meta" }, "not computed (no robot or no SRDF)")); return; }
     const picture = el("div", { class: "picture" });
-    picture.innerHTML = m.svg; // our own SVG (collision/report.py), names escaped there
+    picture.innerHTML = m.svg; // our own SVG (collision/matrix_heat_map.py), names escaped there
     picture.addEventListener("click", (event) => {
       const cell = event.target.closest("g");
       const title = cell && cell.querySelector("title");

@@ -15,9 +15,9 @@ import yaml
 from typer.testing import CliRunner
 
 from marm_setup.cli.app import app
+from marm_setup.moveit_params.move_group_params import MOVE_GROUP_PARAMS
 from marm_setup.package.read import read_package
 from marm_setup.port.move_group import ros1_value
-from marm_setup.setup.move_group_params import MOVE_GROUP_PARAMS
 from tests.conftest import REALWORLD2
 from tests.helpers import write_xacro_shim
 from tests.integration.test_roslaunch import dump_params

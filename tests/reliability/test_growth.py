@@ -75,7 +75,7 @@ def test_the_proof_summary_compares_no_pairs(outcome):
 
     from marm_setup.collision.matrix import CollisionMatrix, PairStats
     from marm_setup.collision.proof import PairProof
-    from marm_setup.collision.proof_report import proof_lines
+    from marm_setup.collision.proof_summary import proof_lines
     from marm_setup.setup.model import DisabledReason
 
     @dataclass(frozen=True, eq=False)

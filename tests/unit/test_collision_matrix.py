@@ -198,7 +198,7 @@ def _exact_and_fast(robot, trials: int, padding: float = 0.0, jobs: int = 1):
 
 
 def _same_bytes(exact: CollisionMatrix, fast: CollisionMatrix) -> None:
-    from marm_setup.collision.report import describe_matrix
+    from marm_setup.collision.matrix_summary import describe_matrix
     from marm_setup.collision.srdf_update import render_minimal_srdf
 
     assert fast == exact  # disabled, enabled, per-pair stats (hits, seen, min distance)

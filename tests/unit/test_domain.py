@@ -1,8 +1,8 @@
-"""MoveIt's tables (`setup.domain`): what we generate is what validate reads, by construction."""
+"""MoveIt's tables (`moveit_params.domain`): what we generate is what validate reads, by construction."""
 
 from __future__ import annotations
 
-from marm_setup.setup import domain
+from marm_setup.moveit_params import domain
 
 
 def test_generated_ros2_controllers_are_driver_controllers_validate_knows():

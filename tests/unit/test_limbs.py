@@ -11,12 +11,12 @@ import pytest
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.collision.scene import CollisionScene
+from marm_setup.inference.infer import infer_setup as infer
+from marm_setup.inference.poses import infer_poses
+from marm_setup.robot.limb_words import tokens
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.infer import infer_setup as infer
-from marm_setup.setup.limb_words import tokens
 from marm_setup.setup.model import Chain, CollisionSettings, Group, RobotSource
-from marm_setup.setup.poses import infer_poses
 from marm_setup.setup.srdf import read_srdf
 from tests import synthetic_robots
 from tests.conftest import FIXTURES, REALWORLD, realworld

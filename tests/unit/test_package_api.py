@@ -13,6 +13,8 @@ PACKAGES = (
     "robot",
     "collision",
     "setup",
+    "inference",
+    "moveit_params",
     "render",
     "package",
     "plan",

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from marm_setup.moveit_params import SENSOR_TYPES
 from marm_setup.package.read import read_package
-from marm_setup.setup import SENSOR_TYPES
 from marm_setup.validate.runner import validate
 from tests.helpers import ARM, build_file_tree, urdf
 

@@ -1,4 +1,4 @@
-"""Per-pipeline parameters (setup key `pipeline_parameters`, setup/pipeline_params.py): the names
+"""Per-pipeline parameters (setup key `pipeline_parameters`, moveit_params/pipeline_params.py): the names
 each distro's MoveIt reads in a pipeline's namespace, rendered in that distro's format over
 marm-setup's defaults, checked in the setup (unknown names: an error naming the valid ones) and
 by validate in any package whose distro is known."""
@@ -12,10 +12,10 @@ import pytest
 import yaml
 
 from marm_setup.flows import with_collision_matrix
+from marm_setup.moveit_params.pipeline_params import effective_parameters, known_parameters
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.setup.checks import check_setup, setup_warnings
-from marm_setup.setup.pipeline_params import effective_parameters, known_parameters
 from marm_setup.setup.yaml_io import setup_from_dict, setup_to_dict
 from tests.render_helpers import assert_check_error, marm_with, rendered_files
 from tests.unit.test_distro_rules import edit, rules

@@ -12,8 +12,8 @@ import yaml
 from marm_setup.collision.pairs import DisabledPair, DisabledReason, UnprovedPair
 from marm_setup.errors import InputError
 from marm_setup.flows import with_collision_matrix
+from marm_setup.inference.infer import infer_setup as infer
 from marm_setup.render.package import render_package
-from marm_setup.setup.infer import infer_setup as infer
 from marm_setup.setup.model import RobotSource
 from marm_setup.setup.yaml_io import dump_setup, setup_from_dict
 

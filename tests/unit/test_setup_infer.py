@@ -7,11 +7,11 @@ import dataclasses
 import pytest
 
 from marm_setup.errors import InputError
+from marm_setup.inference.infer import derive_group_settings
+from marm_setup.inference.infer import infer_setup as infer
+from marm_setup.inference.limb_tips import tool_frame
 from marm_setup.robot.load import load_robot
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import derive_group_settings
-from marm_setup.setup.infer import infer_setup as infer
-from marm_setup.setup.limb_tips import tool_frame
 from marm_setup.setup.model import Chain, Controller, EndEffector, Group, GroupState, RobotSource
 from tests.conftest import MARM_URDF, realworld
 from tests.helpers import ARM, FINGERS, build_file_tree, fixed_link, urdf
@@ -170,7 +170,7 @@ def test_robot_without_actuated_joints_is_an_input_error(tmp_path):
 def test_a_spec_patches_the_setup_by_key_and_by_item_name():
     """`collision: {trials}` keeps the other collision keys, a named item replaces the one of its
     name, a list of unnamed values replaces the list; the patch is typed as marm_setup.yaml is."""
-    from marm_setup.setup.assemble import apply_patch
+    from marm_setup.inference.assemble import apply_patch
     from marm_setup.setup.model import Author, GroupState, RobotSource, SetupModel
     from marm_setup.setup.yaml_io import patch_from_dict
 

@@ -9,7 +9,7 @@ import yaml
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
-from marm_setup.setup.infer import infer_setup as infer
+from marm_setup.inference.infer import infer_setup as infer
 from marm_setup.setup.model import (
     ArbotixJoint,
     CollisionPair,

@@ -1,16 +1,16 @@
-"""What a SPEC replaces takes along what was inferred for it (setup/spec_overlay.py): a SPEC group
+"""What a SPEC replaces takes along what was inferred for it (inference/spec_overlay.py): a SPEC group
 `manipulator` covering the inferred `arm` drops `arm` and everything inferred for it, in every
 list, also in a list the SPEC gives; an inferred controller on a joint a SPEC controller commands
 goes; what the SPEC leaves alone stays."""
 
 from __future__ import annotations
 
+from marm_setup.inference.assemble import apply_patch
+from marm_setup.inference.infer import fit_to_spec, infer_setup
+from marm_setup.inference.spec_overlay import patch_items, spec_items, without_replaced
 from marm_setup.robot.load import load_robot
-from marm_setup.setup.assemble import apply_patch
 from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import fit_to_spec, infer_setup
 from marm_setup.setup.model import RobotSource
-from marm_setup.setup.spec_overlay import patch_items, spec_items, without_replaced
 from marm_setup.setup.yaml_io import patch_from_dict
 from tests.helpers import ARM, FINGERS, build_file_tree, fixed_link, urdf
 

@@ -10,8 +10,8 @@ from lxml import etree
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.errors import InputError
+from marm_setup.inference.infer import infer_setup as infer
 from marm_setup.render.package import render_package
-from marm_setup.setup.infer import infer_setup as infer
 from marm_setup.setup.model import CollisionPair, GroupState, RobotSource, SetupModel
 from marm_setup.setup.srdf import parse_srdf_string, read_srdf, setup_to_srdf, srdf_to_setup
 from marm_setup.templating import render_template

@@ -224,7 +224,7 @@ def _port(
     yes: bool = False,
 ) -> None:
     """`init --from-package`: port, render, validate; print the report; exit 1 on validation errors."""
-    from marm_setup.cli.port_report import closing_line, format_port_json, format_port_text
+    from marm_setup.cli.port_format import closing_line, format_port_json, format_port_text
     from marm_setup.cli.progress import SamplingProgress
     from marm_setup.findings import count, format_text
     from marm_setup.flows import PortInitRequest, run_port

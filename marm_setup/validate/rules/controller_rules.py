@@ -7,6 +7,13 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
+from marm_setup.moveit_params import (
+    ARBOTIX_GRIPPER_ACTION_NS,
+    FOLLOW_JOINT_TRAJECTORY,
+    FOLLOW_JOINT_TRAJECTORY_NS,
+    GRIPPER_CMD_NS,
+    MOVEIT_HANDLE_TYPES,
+)
 from marm_setup.package import (
     ROS2_CONTROL_HANDLES,
     SIMPLE_MANAGER,
@@ -16,15 +23,7 @@ from marm_setup.package import (
     SkippedController,
 )
 from marm_setup.robot import RobotModel
-from marm_setup.setup import (
-    ARBOTIX_GRIPPER_ACTION_NS,
-    FOLLOW_JOINT_TRAJECTORY,
-    FOLLOW_JOINT_TRAJECTORY_NS,
-    GRIPPER_CMD_NS,
-    MOVEIT_HANDLE_TYPES,
-    active_group_joints,
-    groups_by_name,
-)
+from marm_setup.setup import active_group_joints, groups_by_name
 from marm_setup.validate.rules.controller_selection import select_controllers
 
 if TYPE_CHECKING:

@@ -37,14 +37,13 @@ from marm_setup.moveit_params import (
     Table,
     family_of,
     load_table,
-    received_parameters,
     type_problem,
     validator_problem,
 )
+from marm_setup.package import received_parameters
 
 if TYPE_CHECKING:
-    from marm_setup.moveit_params import Received
-    from marm_setup.package import MoveItPackage
+    from marm_setup.package import MoveItPackage, Received
 
 # the names limits_rules checks for integers (NUMERIC_KEYS, _SCALARS there)
 LIMIT_NUMBERS = frozenset(

@@ -93,7 +93,7 @@ def _built_from_source(plugin: object, file: str, where: Callable[..., str]) -> 
     """A planner Humble's binaries lack (STOMP: moveit2's humble branch has no
     moveit_planners/stomp; moveit/moveit2#2550, #2742): move_group loads it only where the user
     built it from source."""
-    from marm_setup.setup import PIPELINES
+    from marm_setup.moveit_params import PIPELINES
 
     from_source = {k for r in DISTROS.values() if r.params == "humble" for k in r.planners_from_source}
     found = next((p for k, p in PIPELINES.items() if p.plugin_ros2 == plugin and k in from_source), None)

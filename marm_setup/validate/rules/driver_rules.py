@@ -7,9 +7,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from marm_setup.findings import Finding, error
-from marm_setup.package import ArbotixFile, ControllersFile, DriverController, DriverFile, MoveItController
-from marm_setup.robot import RobotModel
-from marm_setup.setup import (
+from marm_setup.moveit_params import (
     DRIVER_CONTROLLER_TYPES,
     DRIVER_CONTROLLERS,
     FOLLOW_JOINT_TRAJECTORY,
@@ -18,6 +16,8 @@ from marm_setup.setup import (
     JOINT_DRIVER_CONTROLLERS,
     MOVEIT_HANDLE_TYPES,
 )
+from marm_setup.package import ArbotixFile, ControllersFile, DriverController, DriverFile, MoveItController
+from marm_setup.robot import RobotModel
 
 
 def check_driver_controllers(moveit: ControllersFile, driver: DriverFile, robot: RobotModel) -> list[Finding]:

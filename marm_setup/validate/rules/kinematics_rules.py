@@ -12,15 +12,10 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
+from marm_setup.moveit_params import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KINEMATICS_PLUGINS
 from marm_setup.package import GroupKinematics, KinematicsFile
 from marm_setup.robot import RobotModel
-from marm_setup.setup import (
-    CHAIN_ONLY_PLUGINS,
-    IKFAST_PLUGIN_SUFFIX,
-    KINEMATICS_PLUGINS,
-    groups_by_name,
-    is_chain,
-)
+from marm_setup.setup import groups_by_name, is_chain
 
 if TYPE_CHECKING:
     from marm_setup.setup import Group, Srdf

@@ -55,10 +55,10 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from marm_setup.findings import Finding, Location, error, warning
+from marm_setup.moveit_params import SENSOR_TYPES
 from marm_setup.package import MoveItPackage, Param, Sensor, ServoConfig
 from marm_setup.robot import RobotModel
 from marm_setup.ros import DISTROS, Target
-from marm_setup.setup import SENSOR_TYPES
 
 TRAJECTORY, FORWARD = "trajectory_msgs/JointTrajectory", "std_msgs/Float64MultiArray"
 ROS2_FORWARD = (

@@ -1,5 +1,5 @@
 """A planning pipeline's parameters as its distro's MoveIt reads them (ROS 2 packages whose
-distro is known; names, types and sources: setup/pipeline_params.py).
+distro is known; names, types and sources: moveit_params/pipeline_params.py).
 
 - A value of another type than MoveIt reads is an error: Humble's rclcpp typed getters throw
   "expected [double] got [integer]" (its adapters' getParam, planning_request_adapter.h l.99;
@@ -20,7 +20,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.setup import (
+from marm_setup.moveit_params import (
     ADAPTER_FAMILIES,
     PIPELINES,
     STRUCTURE_KEYS,

@@ -14,13 +14,14 @@ import math
 from collections import Counter
 from dataclasses import dataclass, field
 
-from marm_setup.robot import Joint, RobotModel
-from marm_setup.setup.limb_tips import limb_tip
-from marm_setup.setup.limb_words import (
+from marm_setup.inference.limb_tips import limb_tip
+from marm_setup.robot import (
     BASE_KINDS,
     KIND_WORDS,
     MOUNT_WORDS,
     VISION_WORDS,
+    Joint,
+    RobotModel,
     common_prefix,
     is_kind,
     joint_kinds,

@@ -44,7 +44,9 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from marm_setup.ros import DISTROS, distro_row
-from marm_setup.setup.model import PipelineParameterValue as ParamValue
+
+# a value of a planning pipeline parameter (`value_problem` checks it against its type)
+PipelineParameterValue = float | int | bool | str | tuple[str, ...]
 
 DOUBLE, INT, BOOL, STRING, STRINGS = "double", "int", "bool", "string", "string list"
 
@@ -134,14 +136,14 @@ STOMP_DEFAULTS = (
 )  # fmt: skip
 # What marm-setup writes where the setup gives nothing: the distro's adapter defaults (its row,
 # marm_setup.ros DISTROS `adapter_defaults`), then the planner's.
-PLANNER_DEFAULTS: dict[str, tuple[tuple[str, ParamValue], ...]] = {
+PLANNER_DEFAULTS: dict[str, tuple[tuple[str, PipelineParameterValue], ...]] = {
     "chomp": CHOMP_DEFAULTS,
     "stomp": STOMP_DEFAULTS,
     "pilz": (("capabilities", PILZ_CAPABILITIES), ("default_planner_config", "PTP")),
 }
 
 
-def defaults(pipeline: str, distro: str) -> tuple[tuple[str, ParamValue], ...]:
+def defaults(pipeline: str, distro: str) -> tuple[tuple[str, PipelineParameterValue], ...]:
     """marm-setup's parameters for `pipeline` on `distro` where the setup gives none."""
     return (*distro_row(distro).adapters(pipeline), *PLANNER_DEFAULTS.get(pipeline, ()))
 
@@ -161,8 +163,8 @@ def parameter(pipeline: str, distro: str, name: str) -> PipelineParameter | None
 
 
 def effective_parameters(
-    pipeline: str, distro: str, given: Iterable[tuple[str, ParamValue]]
-) -> tuple[tuple[str, ParamValue], ...]:
+    pipeline: str, distro: str, given: Iterable[tuple[str, PipelineParameterValue]]
+) -> tuple[tuple[str, PipelineParameterValue], ...]:
     """marm-setup's defaults for the pipeline overlaid with the setup's values that `distro`
     reads, in the order MoveIt's sources list them; each value of its parameter's type."""
     values = dict(defaults(pipeline, distro))

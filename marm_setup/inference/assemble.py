@@ -12,13 +12,10 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
+from marm_setup.inference.infer import fill_group_settings, fit_to_spec, home_poses
+from marm_setup.inference.spec_overlay import patch_items, without_replaced
 from marm_setup.robot import RobotModel
-from marm_setup.setup.checks import check_setup
-from marm_setup.setup.infer import fill_group_settings, fit_to_spec, home_poses
-from marm_setup.setup.model import SetupModel
-from marm_setup.setup.rules import Style, setup_element
-from marm_setup.setup.spec_overlay import patch_items, without_replaced
-from marm_setup.setup.yaml_io import ITEM_KEYS, Partial
+from marm_setup.setup import ITEM_KEYS, Partial, SetupModel, Style, check_setup, setup_element
 
 # What the SPEC takes from other sources: the robot's place is the command line's.
 COMMAND_LINE_KEYS = ("robot",)

@@ -1,4 +1,4 @@
-"""The port report: every setting of the source package, and what became of it.
+"""What the port report is made of: every setting of the source package, and what became of it.
 
 Each `PortItem` says what happened to one setting (`carried` as it was, `changed` on the way,
 `dropped` because the new package has no place for it) or what the user must still do by

@@ -1,11 +1,11 @@
 """Infer a setup for `init` (DESIGN.md §2) for any kinematic tree, and merge a partial SPEC over it.
 
-The limbs come from `setup.limbs`: a chain group per limb (arms to their tool frame), a hand
+The limbs come from `inference.limbs`: a chain group per limb (arms to their tool frame), a hand
 group (actuated joints after the wrist, with the links they move) and an end effector per arm
 with a hand, composite groups (`arms`, `legs`, `whole_body`) where there are several limbs, and
 a virtual joint that fits the base: none when the root is `world`, floating for a flying
 (rotors, names) or legged base, planar for a wheeled one, else fixed to `world`. Poses here are zeros clamped into the limits;
-`setup.poses` makes them collision-free once the collision matrix is known.
+`inference.poses` makes them collision-free once the collision matrix is known.
 """
 
 from __future__ import annotations
@@ -14,13 +14,11 @@ import dataclasses
 from collections.abc import Collection
 
 from marm_setup.errors import InputError
-from marm_setup.robot import RobotModel
+from marm_setup.inference.limbs import Limbs, find_limbs
+from marm_setup.moveit_params import DEFAULT_ACTION_NS, FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND
+from marm_setup.robot import RobotModel, tokens
 from marm_setup.ros import Target
-from marm_setup.setup.domain import DEFAULT_ACTION_NS, FOLLOW_JOINT_TRAJECTORY, GRIPPER_COMMAND
-from marm_setup.setup.groups import active_group_joints, groups_by_name, is_chain
-from marm_setup.setup.limb_words import tokens
-from marm_setup.setup.limbs import Limbs, find_limbs
-from marm_setup.setup.model import (
+from marm_setup.setup import (
     ArbotixJoint,
     Chain,
     Controller,
@@ -32,6 +30,9 @@ from marm_setup.setup.model import (
     RobotSource,
     SetupModel,
     VirtualJoint,
+    active_group_joints,
+    groups_by_name,
+    is_chain,
 )
 
 HOME = "home"
@@ -148,8 +149,8 @@ def _left_out(limbs: Limbs) -> list[str]:
 
 def home_poses(model: SetupModel, robot: RobotModel) -> tuple[GroupState, ...]:
     """`home` for every group without subgroups: zero for each active joint, kept off its limits
-    as `setup.poses.home_value` says (an end effector's group only within them)."""
-    from marm_setup.setup.poses import home_value
+    as `inference.poses.home_value` says (an end effector's group only within them)."""
+    from marm_setup.inference.poses import home_value
 
     by_name = groups_by_name(model.groups)
     hands = {ee.group for ee in model.end_effectors}
@@ -222,7 +223,7 @@ DERIVED_LISTS = ("controllers", "kinematics", "planners", "arbotix_joints")
 
 
 def fit_to_spec(model: SetupModel, robot: RobotModel, keys: Collection[str]) -> SetupModel:
-    """A merged setup made whole (`setup.spec_overlay.without_replaced` has taken out what the
+    """A merged setup made whole (`inference.spec_overlay.without_replaced` has taken out what the
     SPEC replaced): the lists the SPEC's `keys` do not name (controllers, kinematics, ...)
     derived again for the final groups."""
     derived = derive_group_settings(model, robot)

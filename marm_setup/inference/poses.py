@@ -17,12 +17,16 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from marm_setup.robot import RobotModel, default_configuration
-from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.model import GroupState, SetupModel, StartPose
-from marm_setup.setup.srdf import allowed_pairs, setup_to_srdf
-from marm_setup.setup.start_state import (
+from marm_setup.setup import (
+    GroupState,
+    SetupModel,
+    StartPose,
+    active_group_joints,
+    allowed_pairs,
+    groups_by_name,
     model_start_values,
     pose_configuration,
+    setup_to_srdf,
     start_configuration,
     start_pose,
 )

@@ -4,8 +4,7 @@ its last link."""
 
 from __future__ import annotations
 
-from marm_setup.robot import RobotModel
-from marm_setup.setup.limb_words import FINGER_WORDS, FOOT_WORDS, MOUNT_WORDS, TOOL_RANKS, TOOL_WORDS, tokens
+from marm_setup.robot import FINGER_WORDS, FOOT_WORDS, MOUNT_WORDS, TOOL_RANKS, TOOL_WORDS, RobotModel, tokens
 
 
 def limb_tip(robot: RobotModel, kind: str, last: str) -> str:

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from marm_setup.setup.model import MoveGroupValue
+# a value of a move_group parameter (`move_group_problem` checks its name and type)
+MoveGroupValue = bool | int | float | str
 
 
 @dataclass(frozen=True, slots=True)

@@ -16,9 +16,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from marm_setup.robot import RobotModel
-from marm_setup.setup.groups import active_group_joints, groups_by_name
-from marm_setup.setup.model import Group, SetupModel
-from marm_setup.setup.yaml_io import ITEM_KEYS, Partial
+from marm_setup.setup import ITEM_KEYS, Group, Partial, SetupModel, active_group_joints, groups_by_name
 
 # the lists whose items belong to a group, and the fields naming it
 GROUP_FIELDS = {

@@ -23,7 +23,7 @@ from marm_setup.ros import Target
 from marm_setup.safe_yaml import MAX_BYTES, load_yaml
 
 if TYPE_CHECKING:
-    from marm_setup.package import MoveItPackage
+    from marm_setup.package.model import MoveItPackage
 
 NESTED = {"kinematics": "robot_description_kinematics", "joint_limits": "robot_description_planning"}
 TOP_LEVEL = ("moveit_controllers", "sensors", "move_group")
