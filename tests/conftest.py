@@ -17,6 +17,7 @@ REALWORLD2 = ROOT.parent / "shared" / "realworld2"
 
 settings.register_profile("ci", derandomize=True, deadline=None, max_examples=25)
 settings.register_profile("dev", deadline=None, max_examples=50)
+settings.load_profile("dev")  # a plain `pytest FILE` on a loaded machine: no 200 ms deadline to trip
 
 
 def pytest_addoption(parser):
