@@ -308,7 +308,7 @@ class SetupModel:
     collision: CollisionSettings = field(default_factory=CollisionSettings)
     kinematics: tuple[Kinematics, ...] = ()
     planners: tuple[PlannerDefaults, ...] = ()
-    # MoveIt planning pipelines (domain.PIPELINES), the first is move_group's default
+    # MoveIt planning pipelines (moveit_params.vocabulary.PIPELINES), the first is move_group's default
     planning_pipelines: tuple[str, ...] = DEFAULT_PIPELINES
     # per pipeline (a planning_pipelines name): parameters of its namespace over marm-setup's
     # defaults (moveit_params.pipeline_params: the names each distro's MoveIt reads)

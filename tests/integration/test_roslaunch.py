@@ -192,7 +192,7 @@ ALLOWED_MISSING = (
     (
         r"/move_group/planning_pipelines/ompl/planner_configs/(BFMT|BiEST|BiTRRT|FMT|LBTRRT|LazyPRM|LazyPRMstar"
         r"|PDST|ProjEST|SPARS|SPARStwo|STRIDE)/type",
-        "we define the twelve common OMPL planners (domain.OMPL_PLANNERS), not all twenty-three",
+        "we define the twelve common OMPL planners (moveit_params.vocabulary.OMPL_PLANNERS), not all twenty-three",
     ),
     (r"/move_group/(sensors|octomap_resolution|max_range)", "no 3D sensors are configured (sensor_manager)"),
     (

@@ -12,7 +12,7 @@ import yaml
 from lxml import etree
 
 from marm_setup.errors import InputError
-from marm_setup.moveit_params.domain import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
+from marm_setup.moveit_params.vocabulary import ROS2_ACTION_NS, ROS2_CONTROLLER_TYPES
 from marm_setup.render.package import description_package, render_package
 from marm_setup.setup.model import ArbotixJoint, JointLimitOverride, RobotSource
 from tests.conftest import GOLDENS

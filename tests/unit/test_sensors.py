@@ -9,7 +9,7 @@ import pytest
 import yaml
 from lxml import etree
 
-from marm_setup.moveit_params.domain import SENSOR_TYPES
+from marm_setup.moveit_params.vocabulary import SENSOR_TYPES
 from marm_setup.setup.checks import check_setup
 from marm_setup.setup.model import Sensor
 from marm_setup.setup.sensors import plan_sensor
