@@ -59,6 +59,16 @@ class InitialPose:
 
 
 @dataclass(frozen=True, slots=True)
+class ListLoad:
+    """A MoveIt 1 launch file's load of a controller list file: where its `controller_list` lands
+    (`ns`, '' for the root; the list is `/<ns>/controller_list`)."""
+
+    launch: str
+    line: int
+    ns: str
+
+
+@dataclass(frozen=True, slots=True)
 class ControllersFile:
     """A controller list as its manager reads it. `where` is the list's mapping (in MoveIt 2
     the `moveit_simple_controller_manager` one when the file has it); `form` is
@@ -72,6 +82,10 @@ class ControllersFile:
     initial: tuple[InitialPose, ...] | None = None  # fake controllers; None when absent
     initial_malformed: bool = False  # `initial` is not a list
     loaded_into: str = ""  # the key a launch file puts the whole file under ('' for none)
+    # MoveIt 1: the simple manager's loads of this list when none lands in move_group's private
+    # namespace (`read_at`, the move_group nodes' full names) and MoveIt reads no list at all
+    elsewhere: tuple[ListLoad, ...] = ()
+    read_at: tuple[str, ...] = ()
 
     @property
     def namespaced(self) -> bool:

@@ -14,7 +14,10 @@ a launch may load instead, e.g. with `gazebo_sim:=true`). What it records:
   `textfile=` or a xacro `command=` read as xacro reads it (`$(find xacro)/xacro --inorder
   a:=b FILE c:=d`: robot/xacro_cli.py), with those xacro args, in this package or another one
   `$(find)` leads to (MoveIt 1 planning_context.launch; move_group reads both params);
-- `<param name value>` values (their full names).
+- `<param name value>` values (their full names), and every `moveit_controller_manager` value;
+- the full name of each `move_group` node (`<node type="move_group">` below the enclosing
+  `<group ns>` / `<include ns>` / its own `ns`): the private namespace its plugins read `~`
+  parameters from (MoveIt 1's simple controller manager reads `~controller_list` there).
 """
 
 from __future__ import annotations
@@ -34,6 +37,7 @@ if TYPE_CHECKING:
 MAX_DEPTH = 20
 MAX_VISITS = 2000  # file walks per entry point: a file that includes itself with new args each time
 MANAGER_PARAM = "moveit_controller_manager"
+MOVE_GROUP = "move_group"  # the node type of moveit_ros_move_group
 DESCRIPTION = "robot_description"
 
 
@@ -47,6 +51,8 @@ class YamlLoad:
     scope: Scope | None  # the substitutions in scope, when loaded with subst_value
     manager: str = ""  # the moveit_controller_manager param set beside it
     conditional: bool = False  # only on a branch the arg defaults do not take
+    line: int = 0  # the <rosparam>'s line in `launch`
+    entry: str = ""  # the entry point (launch file a user starts) whose walk reached it first
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,6 +84,8 @@ class Ros1Launch:
     params: tuple[LaunchParam, ...] = ()
     description: DescriptionLoad | None = None  # robot_description as a user's entry launch sets it
     stopped: tuple[str, ...] = ()  # entry points whose includes went past MAX_VISITS walks
+    move_groups: tuple[str, ...] = ()  # full names of the move_group nodes (their private namespaces)
+    managers: tuple[str, ...] = ()  # every moveit_controller_manager value a launch file sets
 
 
 @dataclass
@@ -91,6 +99,8 @@ class _Walk:
     semantic: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
     description: list[tuple[DescriptionLoad, bool]] = field(default_factory=list)
     params: list[LaunchParam] = field(default_factory=list)
+    move_groups: list[str] = field(default_factory=list)
+    managers: list[str] = field(default_factory=list)
     included: set[str] = field(default_factory=set)
     walked: set[tuple] = field(default_factory=set)  # (file, args, ns, conditional, manager) walked
     visits: int = 0
@@ -117,6 +127,8 @@ def evaluate_ros1(
     semantic: list[tuple[DescriptionLoad, bool]] = []
     description: list[tuple[DescriptionLoad, bool]] = []
     params: dict[str, LaunchParam] = {}
+    move_groups: dict[str, None] = {}
+    managers: dict[str, None] = {}
     walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
     for rel, walk in walks.items():
         _walk_file(walk, rel, {}, "", False, "", 0)
@@ -127,17 +139,21 @@ def evaluate_ros1(
         for load in walk.loads:
             known = loads.get((load.file, load.ns))
             if known is None or (known.conditional and not load.conditional):
-                loads[load.file, load.ns] = load
+                loads[load.file, load.ns] = replace(load, entry=rel)
         semantic += walk.semantic
         description += walk.description
         for p in walk.params:
             params.setdefault(p.name, p)
+        move_groups.update(dict.fromkeys(walk.move_groups))
+        managers.update(dict.fromkeys(walk.managers))
     return Ros1Launch(
         tuple(loads.values()),
         first_taken(semantic),
         tuple(params.values()),
         first_taken(description),
         stopped,
+        tuple(move_groups),
+        tuple(managers),
     )
 
 
@@ -234,6 +250,8 @@ def _node(
 ) -> None:
     name = _text(elem.get("name"), ctx) or ""
     inner = replace(ctx, ns=_ns(replace(ctx, ns=_ns(ctx, elem.get("ns"))), name))
+    if elem.get("type") == MOVE_GROUP and name:
+        walk.move_groups.append(inner.ns)  # its private namespace (`~`), on any branch
     _walk_children(walk, elem, inner, passed, set(declared))
 
 
@@ -268,7 +286,8 @@ def _rosparam(
     if elem.get("param"):
         ns = _ns(replace(ctx, ns=ns), elem.get("param"))
     scope = ctx.scope if truth(elem.get("subst_value") or "") else None
-    walk.loads.append(YamlLoad(target, ns, ctx.file, scope, ctx.manager, ctx.conditional))
+    line = elem.sourceline or 0
+    walk.loads.append(YamlLoad(target, ns, ctx.file, scope, ctx.manager, ctx.conditional, line))
 
 
 def _param(
@@ -289,7 +308,10 @@ def _param(
         return ctx
     if not ctx.conditional:
         walk.params.append(LaunchParam(full, value, ctx.file))
-    return replace(ctx, manager=value) if full.rsplit("/", 1)[-1] == MANAGER_PARAM else ctx
+    if leaf != MANAGER_PARAM:
+        return ctx
+    walk.managers.append(value)
+    return replace(ctx, manager=value)
 
 
 _HANDLERS: dict[str, Callable] = {

@@ -15,7 +15,13 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from marm_setup.package.builder import BuilderFiles, Chosen, chosen_file, controllers_file, planning_pipelines
-from marm_setup.package.controllers_file import FAKE_KEYS, SIMPLE_MANAGER, ControllersFile, read_controllers
+from marm_setup.package.controllers_file import (
+    FAKE_KEYS,
+    SIMPLE_MANAGER,
+    ControllersFile,
+    ListLoad,
+    read_controllers,
+)
 from marm_setup.package.driver_file import (
     read_arbotix,
     read_initial_positions,
@@ -85,7 +91,14 @@ def _by_preference(loads: list[YamlLoad]) -> list[YamlLoad]:
 # -- ROS 1 ------------------------------------------------------------------------------------
 
 
-def read_ros1_kinds(files: PackageFiles, loads: tuple[YamlLoad, ...]) -> Kinds:
+def read_ros1_kinds(
+    files: PackageFiles,
+    loads: tuple[YamlLoad, ...],
+    move_groups: tuple[str, ...] = (),
+    managers: tuple[str, ...] = (),
+) -> Kinds:
+    """`move_groups`: the move_group nodes' full names; `managers`: every
+    `moveit_controller_manager` value the launch files set (launch_ros1.Ros1Launch)."""
     kinds = Kinds()
     for kind, ns_suffix, base, reader in (
         ("kinematics", "_kinematics", "kinematics.yaml", read_kinematics),
@@ -96,7 +109,7 @@ def read_ros1_kinds(files: PackageFiles, loads: tuple[YamlLoad, ...]) -> Kinds:
         )
         kinds.put(kind, reader(doc) if doc is not None else None, doc, how)
     _ros1_pipelines(files, loads, kinds)
-    _ros1_controllers(files, loads, kinds)
+    _ros1_controllers(files, loads, kinds, move_groups, managers)
     _drivers(files, kinds, loads)
     doc, how = _ros1_sensors(files, loads)
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, how)
@@ -159,19 +172,34 @@ def _controller_loads(files: PackageFiles, loads: Loads, fake: bool) -> list[tup
     return out
 
 
-def _ros1_controllers(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
-    """The simple manager's list the launch files load (else the Setup Assistant's file names;
-    others they load are alternatives), and the fake manager's."""
+def _ros1_controllers(
+    files: PackageFiles, loads: Loads, kinds: Kinds, move_groups: tuple[str, ...], managers: tuple[str, ...]
+) -> None:
+    """The simple manager's list: the one loaded into move_group's private namespace, where
+    moveit_simple_controller_manager.cpp reads it (`node_handle_("~")`, `controller_list`); when
+    several are, the last on a branch the defaults take of the first launch file a user starts
+    that loads one (a later load overwrites the key; other entry points are other runs). Else
+    the first the launch files load elsewhere (what MoveIt would read, were it where it belongs:
+    `ControllersFile.elsewhere` says it is not), else the Setup Assistant's file names; others
+    they load are alternatives. And the fake manager's."""
     real = _controller_loads(files, loads, fake=False)
+    landed = [(lo, d) for lo, d in real if lo.ns in move_groups]
     if real:
-        (first, doc), others = real[0], {lo.file: d for lo, d in real[1:] if lo.file != real[0][0].file}
-        kinds.put("moveit_controllers", read_controllers(doc), doc, _loaded_by(first))
+        taken = [x for x in landed if not x[0].conditional] or landed
+        one_launch = [x for x in taken if x[0].entry == taken[0][0].entry]  # overwrites within one run
+        used, doc = one_launch[-1] if one_launch else real[0]
+        listed = read_controllers(doc)
+        if move_groups and not landed and _simple_manager(real, managers):
+            away = tuple(ListLoad(lo.launch, lo.line, lo.ns) for lo, _ in real)
+            listed = replace(listed, elsewhere=away, read_at=move_groups)
+        kinds.put("moveit_controllers", listed, doc, _loaded_by(used))
+        others = {lo.file: d for lo, d in real if lo.file != used.file}
         kinds.values["alt_moveit_controllers"] = tuple(read_controllers(d) for d in others.values())
     else:
         named = [d for rel in ROS1_MOVEIT_CONTROLLERS if (d := _named(files, rel)) is not None]
-        listed = [d for d in named if d.is_mapping and "controller_list" in d.data]
+        listed_files = [d for d in named if d.is_mapping and "controller_list" in d.data]
         fallback = [d for d in named if d.where.file in ROS1_MOVEIT_CONTROLLERS[:2]]
-        found = (listed or fallback)[0] if listed or fallback else None
+        found = (listed_files or fallback)[0] if listed_files or fallback else None
         kinds.put(
             "moveit_controllers", read_controllers(found) if found is not None else None, found, SA_NAME
         )
@@ -187,6 +215,15 @@ def _ros1_controllers(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
         fake_doc,
         how,
     )
+
+
+SIMPLE_MANAGER_CLASS = "MoveItSimpleControllerManager"
+
+
+def _simple_manager(real: list[tuple[YamlLoad, Located]], managers: tuple[str, ...]) -> bool:
+    """A launch file makes moveit_simple_controller_manager move_group's manager (beside a
+    controller list load, or anywhere: `<param name="moveit_controller_manager">`)."""
+    return any(SIMPLE_MANAGER_CLASS in m for m in (*managers, *(lo.manager for lo, _ in real)))
 
 
 def _ros1_sensors(files: PackageFiles, loads: Loads) -> tuple[Located | None, str]:

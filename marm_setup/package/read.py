@@ -59,6 +59,8 @@ class _Launched:
     named_yaml: tuple[tuple[str, str], ...] = ()  # (package-relative YAML path, Python launch naming it)
     description: DescriptionLoad | None = None  # robot_description as a ROS 1 launch sets it
     params: tuple[LaunchParam, ...] = ()  # ROS 1 `<param name value>`s
+    move_groups: tuple[str, ...] = ()  # ROS 1 move_group nodes' full names
+    managers: tuple[str, ...] = ()  # ROS 1 moveit_controller_manager values
 
     def command(self, parameter: str) -> XacroCommand | None:
         return next((c for c in self.commands if c.parameter == parameter), None)
@@ -260,7 +262,14 @@ def _launched(
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
                 files.scopes.setdefault(load.file, load.scope)
-        return _Launched(ros1.loads, ros1.semantic, description=ros1.description, params=ros1.params)
+        return _Launched(
+            ros1.loads,
+            ros1.semantic,
+            description=ros1.description,
+            params=ros1.params,
+            move_groups=ros1.move_groups,
+            managers=ros1.managers,
+        )
     xml = evaluate_ros2_xml(files.root, trees, find)
     _stopped_walks(files, xml.stopped)
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
@@ -493,7 +502,7 @@ def _command_description(
 
 def _kinds(files: PackageFiles, target: Target, launched: _Launched, problems: list[Finding]) -> Kinds:
     if target == Target.ROS1:
-        return read_ros1_kinds(files, launched.loads)
+        return read_ros1_kinds(files, launched.loads, launched.move_groups, launched.managers)
     assert launched.builder is not None
     kinds = read_ros2_kinds(
         files, launched.loads, launched.builder, launched.control_files, launched.named_yaml

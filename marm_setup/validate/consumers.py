@@ -343,11 +343,57 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
             problem = _dump_problem(done)
             if problem:
                 out.append(_launch_failure(rel, problem, unheld))
+            elif not _static_list_namespace(pkg):
+                out += dump_list_namespace(rel, done.stdout)
     if not evaluated:
         why = "did not finish" if out else "no top-level launch file runs without args"
         return ConsumerRun(tuple(out), f"static rules only (roslaunch {roslaunch}: {why})")
     ran = f"roslaunch --dump-params ({roslaunch}) on {_count(evaluated, 'top-level launch file')}, and the static rules"
     return ConsumerRun(tuple(out), ran)
+
+
+SIMPLE_MANAGER_CLASS = "MoveItSimpleControllerManager"
+MANAGER_KEY = "/moveit_controller_manager"
+LIST_KEY = "/controller_list"
+
+
+def _static_list_namespace(pkg: MoveItPackage) -> bool:
+    """The static rule already found the list outside move_group's namespace (one finding)."""
+    return pkg.moveit_controllers is not None and bool(pkg.moveit_controllers.elsewhere)
+
+
+def dump_list_namespace(rel: str, dumped: str) -> list[Finding]:
+    """The parameter tree roslaunch printed for `rel`: where it sets the simple controller
+    manager (`<ns>/moveit_controller_manager`, move_group's private namespace) but no
+    `<ns>/controller_list`, while a `controller_list` lands elsewhere: the same defect as the
+    static controller.list-namespace (validate/rules/controller_rules.py check_ros1_namespace),
+    which reports it with the line when it can; this one covers what the launch tree holds and the
+    static reader does not follow."""
+    import yaml
+
+    try:
+        tree = load_yaml(dumped)
+    except (YamlLimitError, yaml.YAMLError):  # a tree _dump_problem accepted as too large to read back
+        return []
+    if not isinstance(tree, dict):
+        return []
+    keys = [str(k) for k in tree]
+    lists = [k[: -len(LIST_KEY)] for k in keys if k.endswith(LIST_KEY)]
+    out = []
+    for key in keys:
+        ns = key[: -len(MANAGER_KEY)]
+        if not key.endswith(MANAGER_KEY) or SIMPLE_MANAGER_CLASS not in str(tree[key]) or ns in lists:
+            continue
+        away = [other for other in lists if other != ns]
+        if away:
+            msg = (
+                f"run by roslaunch, this launch sets the simple controller manager in '{ns or '/'}' but "
+                f"loads controller_list only at '{away[0]}{LIST_KEY}', not '{ns}{LIST_KEY}': MoveIt logs "
+                "'No controller_list specified.' and has no controllers to execute with"
+            )
+            hint = f"load the controller list file in move_group's namespace ('{ns or '/'}')"
+            out.append(error("controller.list-namespace", rel, "roslaunch --dump-params", msg, hint))
+    return out
 
 
 def _needs_args(root: etree._Element) -> bool:

@@ -33,6 +33,7 @@ from marm_setup.validate.rules.controller_rules import (
     check_fake_controllers,
     check_listed,
     check_moveit_controllers,
+    check_ros1_namespace,
     check_ros2_namespace,
     check_ros_control_coverage,
     uses_ros_control_interface,
@@ -439,6 +440,7 @@ def check_controller_files(pkg: MoveItPackage) -> list[Finding]:
     if moveit is None or uses_ros_control_interface(moveit):
         return out
     out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
+    out += check_ros1_namespace(moveit)
     if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
         out += check_ros2_namespace(moveit)
     return out + check_moveit_controllers(moveit, None)
@@ -484,6 +486,7 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
         out += check_ros_control_coverage(moveit, driver, pkg.srdf, robot)
         return out + (check_driver_controllers(moveit, driver, robot) if driver is not None else [])
     out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
+    out += check_ros1_namespace(moveit)
     if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
         out += check_ros2_namespace(moveit)
     out += check_moveit_controllers(moveit, robot)

@@ -90,6 +90,36 @@ def check_ros2_namespace(controllers: ControllersFile) -> list[Finding]:
     return [error("controller.no-namespace", file, "controller_names", msg, hint)]
 
 
+def check_ros1_namespace(controllers: ControllersFile) -> list[Finding]:
+    """MoveIt 1: the simple controller manager reads `controller_list` from move_group's private
+    namespace (moveit/moveit moveit_plugins/moveit_simple_controller_manager/src/
+    moveit_simple_controller_manager.cpp l.56-61 at fdb79ac: `node_handle_("~")`,
+    `hasParam("controller_list")`, else "No controller_list specified." and no controllers). A
+    list the launch files load only under another namespace (`<rosparam ns=...>`, a ros_control
+    namespace, outside move_group's) is one MoveIt never reads: one error at the first such load
+    (package/layout.py `_ros1_controllers` decides, from every load's resolved namespace)."""
+    if not controllers.elsewhere:
+        return []
+    first, others = controllers.elsewhere[0], controllers.elsewhere[1:]
+    read_at = " or ".join(f"'/{ns}/controller_list'" for ns in controllers.read_at)
+    more = f" (and {len(others)} more load(s), none there either)" if others else ""
+    msg = (
+        f"loads {controllers.where.file}'s controller_list into '/{first.ns}' ('{_list_at(first.ns)}'){more}, "
+        f"but move_group's simple controller manager reads {read_at} and no launch file loads one there: "
+        "MoveIt logs 'No controller_list specified.' and has no controllers to execute with"
+    )
+    hint = (
+        f"load {controllers.where.file} in move_group's namespace ('/{controllers.read_at[0]}'): "
+        '<rosparam file=...> without ns=, in the launch file move_group.launch includes with ns="move_group"'
+    )
+    element = f"line {first.line}: <rosparam>" if first.line else "rosparam"
+    return [error("controller.list-namespace", first.launch, element, msg, hint)]
+
+
+def _list_at(ns: str) -> str:
+    return f"/{ns}/controller_list" if ns else "/controller_list"
+
+
 def check_moveit_controllers(
     controllers: ControllersFile, robot: RobotModel | None, real: bool = True
 ) -> list[Finding]:
