@@ -86,6 +86,8 @@ class Ros1Launch:
     stopped: tuple[str, ...] = ()  # entry points whose includes went past MAX_VISITS walks
     move_groups: tuple[str, ...] = ()  # full names of the move_group nodes (their private namespaces)
     managers: tuple[str, ...] = ()  # every moveit_controller_manager value a launch file sets
+    # each moveit_controller_manager param set on a branch an entry point's defaults take
+    taken_managers: tuple[LaunchParam, ...] = ()
 
 
 @dataclass
@@ -101,6 +103,7 @@ class _Walk:
     params: list[LaunchParam] = field(default_factory=list)
     move_groups: list[str] = field(default_factory=list)
     managers: list[str] = field(default_factory=list)
+    taken_managers: list[LaunchParam] = field(default_factory=list)
     included: set[str] = field(default_factory=set)
     walked: set[tuple] = field(default_factory=set)  # (file, args, ns, conditional, manager) walked
     visits: int = 0
@@ -129,6 +132,7 @@ def evaluate_ros1(
     params: dict[str, LaunchParam] = {}
     move_groups: dict[str, None] = {}
     managers: dict[str, None] = {}
+    taken_managers: dict[LaunchParam, None] = {}
     walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
     for rel, walk in walks.items():
         _walk_file(walk, rel, {}, "", False, "", 0)
@@ -146,6 +150,7 @@ def evaluate_ros1(
             params.setdefault(p.name, p)
         move_groups.update(dict.fromkeys(walk.move_groups))
         managers.update(dict.fromkeys(walk.managers))
+        taken_managers.update(dict.fromkeys(walk.taken_managers))
     return Ros1Launch(
         tuple(loads.values()),
         first_taken(semantic),
@@ -154,6 +159,7 @@ def evaluate_ros1(
         stopped,
         tuple(move_groups),
         tuple(managers),
+        tuple(taken_managers),
     )
 
 
@@ -311,6 +317,8 @@ def _param(
     if leaf != MANAGER_PARAM:
         return ctx
     walk.managers.append(value)
+    if not ctx.conditional:
+        walk.taken_managers.append(LaunchParam(full, value, ctx.file))
     return replace(ctx, manager=value)
 
 

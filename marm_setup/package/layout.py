@@ -32,7 +32,7 @@ from marm_setup.package.files import PackageFiles
 from marm_setup.package.joint_limits_file import read_joint_limits
 from marm_setup.package.kinematics_file import read_kinematics
 from marm_setup.package.launch_python import launch_yaml_key
-from marm_setup.package.launch_ros1 import YamlLoad
+from marm_setup.package.launch_ros1 import LaunchParam, YamlLoad
 from marm_setup.package.model import Source
 from marm_setup.package.perception_files import ServoConfig, read_sensors, read_servo
 from marm_setup.package.planning_file import PlanningPipeline, read_pipeline
@@ -96,9 +96,11 @@ def read_ros1_kinds(
     loads: tuple[YamlLoad, ...],
     move_groups: tuple[str, ...] = (),
     managers: tuple[str, ...] = (),
+    taken_managers: tuple[LaunchParam, ...] = (),
 ) -> Kinds:
     """`move_groups`: the move_group nodes' full names; `managers`: every
-    `moveit_controller_manager` value the launch files set (launch_ros1.Ros1Launch)."""
+    `moveit_controller_manager` value the launch files set, `taken_managers` those set on the
+    branches an entry point's defaults take (launch_ros1.Ros1Launch)."""
     kinds = Kinds()
     for kind, ns_suffix, base, reader in (
         ("kinematics", "_kinematics", "kinematics.yaml", read_kinematics),
@@ -110,6 +112,8 @@ def read_ros1_kinds(
         kinds.put(kind, reader(doc) if doc is not None else None, doc, how)
     _ros1_pipelines(files, loads, kinds)
     _ros1_controllers(files, loads, kinds, move_groups, managers)
+    if not _controller_loads(files, loads, fake=False):  # no launch file loads a list: MoveIt reads none
+        kinds.values["controller_list_unloaded"] = _simple_set_by(taken_managers, move_groups)
     _drivers(files, kinds, loads)
     doc, how = _ros1_sensors(files, loads)
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, how)
@@ -218,6 +222,16 @@ def _ros1_controllers(
 
 
 SIMPLE_MANAGER_CLASS = "MoveItSimpleControllerManager"
+
+
+def _simple_set_by(taken_managers: tuple[LaunchParam, ...], move_groups: tuple[str, ...]) -> str:
+    """The launch file that sets a move_group node's `~moveit_controller_manager` to the simple
+    controller manager on a branch the defaults take ('' for none)."""
+    for param in taken_managers:
+        ns, _, leaf = param.name.rpartition("/")
+        if leaf == "moveit_controller_manager" and ns in move_groups and SIMPLE_MANAGER_CLASS in param.value:
+            return param.launch
+    return ""
 
 
 def _simple_manager(real: list[tuple[YamlLoad, Located]], managers: tuple[str, ...]) -> bool:

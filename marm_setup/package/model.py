@@ -66,6 +66,9 @@ class MoveItPackage:
     pipelines: tuple[PlanningPipeline, ...] = ()
     moveit_controllers: ControllersFile | None = None
     alt_moveit_controllers: tuple[ControllersFile, ...] = ()  # files a launch may load instead
+    # MoveIt 1: the launch file that makes the simple controller manager move_group's manager when
+    # no launch file loads a controller list at all ('' otherwise)
+    controller_list_unloaded: str = ""
     fake_controllers: ControllersFile | None = None
     ros2_controllers: DriverFile | None = None
     ros_controllers: DriverFile | None = None

@@ -61,6 +61,7 @@ class _Launched:
     params: tuple[LaunchParam, ...] = ()  # ROS 1 `<param name value>`s
     move_groups: tuple[str, ...] = ()  # ROS 1 move_group nodes' full names
     managers: tuple[str, ...] = ()  # ROS 1 moveit_controller_manager values
+    taken_managers: tuple[LaunchParam, ...] = ()  # ROS 1: those set on branches the defaults take
 
     def command(self, parameter: str) -> XacroCommand | None:
         return next((c for c in self.commands if c.parameter == parameter), None)
@@ -269,6 +270,7 @@ def _launched(
             params=ros1.params,
             move_groups=ros1.move_groups,
             managers=ros1.managers,
+            taken_managers=ros1.taken_managers,
         )
     xml = evaluate_ros2_xml(files.root, trees, find)
     _stopped_walks(files, xml.stopped)
@@ -502,7 +504,9 @@ def _command_description(
 
 def _kinds(files: PackageFiles, target: Target, launched: _Launched, problems: list[Finding]) -> Kinds:
     if target == Target.ROS1:
-        return read_ros1_kinds(files, launched.loads, launched.move_groups, launched.managers)
+        return read_ros1_kinds(
+            files, launched.loads, launched.move_groups, launched.managers, launched.taken_managers
+        )
     assert launched.builder is not None
     kinds = read_ros2_kinds(
         files, launched.loads, launched.builder, launched.control_files, launched.named_yaml

@@ -68,7 +68,7 @@ def test_errors_exit_1_text_grouped_by_file(tmp_path):
     assert "config/kinematics.yaml" in lines
     assert any("kinematics.non-positive" in line and line.startswith("  error") for line in lines)
     assert "\x1b[" not in result.stdout  # no colour when not a TTY
-    assert lines[-1].endswith("2 warnings")
+    assert lines[-1].endswith("3 warnings")  # launch.missing-file x2, controller.list-not-loaded
 
 
 def test_warnings_pass_unless_strict(tmp_path):
@@ -289,7 +289,8 @@ def test_a_self_pair_is_accepted_as_srdfdom_does(tmp_path):
     result = runner.invoke(app, args)
     assert result.exit_code == 1  # the panda's one real error (the transport pose)
     rules = {f["rule"] for f in json.loads(result.stdout)["findings"]}
-    assert rules == {"pose.collision", "launch.missing-file", "srdf.self-pair"}
+    # controller.list-not-loaded: the panda's simple manager has no controller list loaded anywhere
+    assert rules == {"pose.collision", "launch.missing-file", "srdf.self-pair", "controller.list-not-loaded"}
 
 
 def test_the_summary_says_what_was_skipped_and_why(tmp_path):

@@ -157,3 +157,35 @@ def test_the_last_load_in_move_groups_namespace_wins(tmp_path):
     listed = read_package(pkg).moveit_controllers
     assert listed is not None
     assert [c.name for c in listed.controllers] == ["other_controller"]
+
+
+def list_not_loaded(found) -> list:
+    return [f for f in found.findings if f.rule == "controller.list-not-loaded"]
+
+
+def test_the_simple_manager_with_no_list_loaded_anywhere_is_a_warning(tmp_path):
+    """The manager is set on move_group's namespace but no launch file loads a list (the
+    Setup Assistant's file sits unloaded in config/): MoveIt reads none. A warning, as a launch
+    file of another package may load one."""
+    found = validate(ros1_package(tmp_path / "pkg", load=""), plan=False)
+    [finding] = list_not_loaded(found)
+    assert (finding.severity, finding.file) == ("warning", "launch/trajectory_execution.launch.xml")
+    assert "config/controllers.yaml is never loaded" in finding.message
+    assert list_namespace(found) == []
+
+
+def test_no_list_warning_when_a_list_is_loaded_or_another_manager_is_set(tmp_path):
+    assert list_not_loaded(validate(ros1_package(tmp_path / "a", load=LOAD.format(ns="")), plan=False)) == []
+    pkg = ros1_package(tmp_path / "b", load="")
+    execution = pkg / "launch/trajectory_execution.launch.xml"
+    execution.write_text(
+        execution.read_text().replace(SIMPLE, "moveit_ros_control_interface::MoveItControllerManager")
+    )
+    assert list_not_loaded(validate(pkg, plan=False)) == []
+    pkg = ros1_package(tmp_path / "c", load="")  # the simple manager only on a branch the defaults skip
+    execution = pkg / "launch/trajectory_execution.launch.xml"
+    text = execution.read_text().replace(
+        "<param name=", '<arg name="simple" default="false"/>\n  <param if="$(arg simple)" name='
+    )
+    execution.write_text(text)
+    assert list_not_loaded(validate(pkg, plan=False)) == []

@@ -22,6 +22,15 @@ def test_panda_ros1_findings_are_the_known_real_ones():
     assert _summary(found) == [
         # the collision meshes of link5 and link7 overlap with joint6 at 0 (about 0.07 rad to clear)
         ("error", "pose.collision", "config/panda.srdf", "group_state[transport]"),
+        # move_group.launch's default manager is the simple one, whose launch file loads
+        # ros_controllers.yaml (no controller_list) and never simple_moveit_controllers.yaml:
+        # roslaunch --dump-params has no /move_group/controller_list
+        (
+            "warning",
+            "controller.list-not-loaded",
+            "launch/simple_moveit_controller_manager.launch.xml",
+            "moveit_controller_manager",
+        ),
         # the snapshot left out non-XML launch assets that the Setup Assistant writes
         ("warning", "launch.missing-file", "launch/demo.launch", "line 60: arg[rviz_config]"),
         ("warning", "launch.missing-file", "launch/move_group.launch", "line 7: arg[launch_prefix]"),

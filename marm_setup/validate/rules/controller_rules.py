@@ -20,6 +20,7 @@ from marm_setup.package import (
     ControllersFile,
     DriverFile,
     MoveItController,
+    MoveItPackage,
     SkippedController,
 )
 from marm_setup.robot import RobotModel
@@ -114,6 +115,26 @@ def check_ros1_namespace(controllers: ControllersFile) -> list[Finding]:
     )
     element = f"line {first.line}: <rosparam>" if first.line else "rosparam"
     return [error("controller.list-namespace", first.launch, element, msg, hint)]
+
+
+def check_ros1_list_loaded(pkg: MoveItPackage) -> list[Finding]:
+    """MoveIt 1: a launch file makes the simple controller manager move_group's manager, but no
+    launch file of the package loads a `controller_list` anywhere: MoveIt reads none ("No
+    controller_list specified.", moveit_simple_controller_manager.cpp l.56-61 at fdb79ac) unless a
+    launch file outside the package loads one into move_group's namespace (a warning: that is
+    the user's to know)."""
+    launch = pkg.controller_list_unloaded
+    if not launch:
+        return []
+    listed = pkg.moveit_controllers
+    named = f" ({listed.where.file} is never loaded)" if listed is not None else ""
+    msg = (
+        "sets move_group's moveit_controller_manager to the simple controller manager, but no launch "
+        f"file of the package loads a controller_list{named}: MoveIt logs 'No controller_list "
+        "specified.' and cannot execute, unless a launch file elsewhere loads one into move_group's namespace"
+    )
+    hint = "load the controller list (<rosparam file=.../simple_moveit_controllers.yaml/>) beside that param"
+    return [warning("controller.list-not-loaded", launch, "moveit_controller_manager", msg, hint)]
 
 
 def _list_at(ns: str) -> str:
