@@ -33,10 +33,13 @@ demo: $(DEMO_STAMP)
 	$(BIN)/marm-setup report $(DEMO_OUT) --output $(DEMO_DIR)/report.html
 	@echo "marm-setup is in $(BIN): '. $(BIN)/activate' puts it on PATH; open $(DEMO_DIR)/report.html"
 
+# compileall: the `marm-setup` subprocesses the tests start then load marm_setup's bytecode
+# instead of compiling every module from source (each run, under PYTHONDONTWRITEBYTECODE=1).
 test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/mypy
+	$(BIN)/python -m compileall -q marm_setup
 	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto
 
 # The inner loop: lint and the unit tests but the slow ones (the `slow` marker, tests/conftest.py),
@@ -44,6 +47,7 @@ test: $(STAMP)
 check: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
+	$(BIN)/python -m compileall -q marm_setup
 	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto -m "not slow" tests/unit
 
 # The reliability suite at length: a random-seeded fuzzer (FUZZ_EXAMPLES per input kind) and
