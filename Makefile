@@ -40,7 +40,7 @@ test: $(STAMP)
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/mypy
 	$(BIN)/python -m compileall -q marm_setup
-	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto
+	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto --dist loadgroup
 
 # The inner loop: lint and the unit tests but the slow ones (the `slow` marker, tests/conftest.py),
 # on every core. `make test` (and CI) runs everything.
@@ -48,7 +48,7 @@ check: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m compileall -q marm_setup
-	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto -m "not slow" tests/unit
+	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto --dist loadgroup -m "not slow" tests/unit
 
 # The reliability suite at length: a random-seeded fuzzer (FUZZ_EXAMPLES per input kind) and
 # RELIABILITY_KILLS SIGKILLs per writing command; prints its counts. Then the proofs' property
