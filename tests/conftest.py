@@ -166,7 +166,14 @@ def own_proof_cache(monkeypatch, tmp_path_factory, session_proof_cache):
 
 @pytest.fixture(scope="session")
 def ros2_packages(tmp_path_factory):
-    """Every ROS 2 package the tests generate, made once per session (tests/generated_packages.py)."""
+    """Every ROS 2 package the tests generate, made once per session and shared by the
+    pytest-xdist workers (tests/generated_packages.py)."""
+    import os
+
     from tests.generated_packages import GeneratedPackages
 
-    return GeneratedPackages(tmp_path_factory.mktemp("ros2_packages"))
+    worker = os.environ.get("PYTEST_XDIST_WORKER", "")
+    if not worker:
+        return GeneratedPackages(tmp_path_factory.mktemp("ros2_packages"))
+    # the folder all workers of this run share (each has its own basetemp below it)
+    return GeneratedPackages(tmp_path_factory.getbasetemp().parent / "ros2_packages", worker)
