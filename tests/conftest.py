@@ -61,6 +61,27 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.nodeid.startswith(SLOW):
             item.add_marker(pytest.mark.slow)
+    _xdist_groups(config, items)
+
+
+def _xdist_groups(config, items) -> None:
+    """`--dist loadgroup` on pytest >= 9.2: pytest-xdist (3.8) names a test's group by setting
+    `item._nodeid`, which pytest 9.2 no longer reads (the id is `item._id`), so every group was
+    spread over the workers. Do what it meant to: the test's id ends in `@<group>`."""
+    if not getattr(config.option, "loadgroup", False):
+        return
+    for item in items:
+        names = sorted(
+            {
+                str(m.args[0] if m.args else m.kwargs.get("name", "default"))
+                for m in item.iter_markers("xdist_group")
+            }
+        )
+        suffix = "@" + "_".join(names)
+        if names and not item.nodeid.endswith(suffix) and hasattr(item, "_id"):
+            from _pytest.nodeid import coerce_node_id
+
+            item._id = coerce_node_id(item.nodeid + suffix)
 
 
 def pytest_sessionfinish(session):
