@@ -33,18 +33,22 @@ demo: $(DEMO_STAMP)
 	$(BIN)/marm-setup report $(DEMO_OUT) --output $(DEMO_DIR)/report.html
 	@echo "marm-setup is in $(BIN): '. $(BIN)/activate' puts it on PATH; open $(DEMO_DIR)/report.html"
 
+# compileall: the `marm-setup` subprocesses the tests start then load marm_setup's bytecode
+# instead of compiling every module from source (each run, under PYTHONDONTWRITEBYTECODE=1).
 test: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
 	$(BIN)/mypy
-	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto
+	$(BIN)/python -m compileall -q marm_setup
+	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto --dist loadgroup
 
 # The inner loop: lint and the unit tests but the slow ones (the `slow` marker, tests/conftest.py),
 # on every core. `make test` (and CI) runs everything.
 check: $(STAMP)
 	$(BIN)/ruff check marm_setup tests benchmarks
 	$(BIN)/lint-imports --no-cache
-	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto -m "not slow" tests/unit
+	$(BIN)/python -m compileall -q marm_setup
+	$(BIN)/python -m pytest -q -p no:cacheprovider --hypothesis-profile=ci -n auto --dist loadgroup -m "not slow" tests/unit
 
 # The reliability suite at length: a random-seeded fuzzer (FUZZ_EXAMPLES per input kind) and
 # RELIABILITY_KILLS SIGKILLs per writing command; prints its counts. Then the proofs' property

@@ -62,6 +62,27 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.nodeid.startswith(SLOW):
             item.add_marker(pytest.mark.slow)
+    _xdist_groups(config, items)
+
+
+def _xdist_groups(config, items) -> None:
+    """`--dist loadgroup` on pytest >= 9.2: pytest-xdist (3.8) names a test's group by setting
+    `item._nodeid`, which pytest 9.2 no longer reads (the id is `item._id`), so every group was
+    spread over the workers. Do what it meant to: the test's id ends in `@<group>`."""
+    if not getattr(config.option, "loadgroup", False):
+        return
+    for item in items:
+        names = sorted(
+            {
+                str(m.args[0] if m.args else m.kwargs.get("name", "default"))
+                for m in item.iter_markers("xdist_group")
+            }
+        )
+        suffix = "@" + "_".join(names)
+        if names and not item.nodeid.endswith(suffix) and hasattr(item, "_id"):
+            from _pytest.nodeid import coerce_node_id
+
+            item._id = coerce_node_id(item.nodeid + suffix)
 
 
 def pytest_sessionfinish(session):
@@ -167,7 +188,14 @@ def own_proof_cache(monkeypatch, tmp_path_factory, session_proof_cache):
 
 @pytest.fixture(scope="session")
 def ros2_packages(tmp_path_factory):
-    """Every ROS 2 package the tests generate, made once per session (tests/generated_packages.py)."""
+    """Every ROS 2 package the tests generate, made once per session and shared by the
+    pytest-xdist workers (tests/generated_packages.py)."""
+    import os
+
     from tests.generated_packages import GeneratedPackages
 
-    return GeneratedPackages(tmp_path_factory.mktemp("ros2_packages"))
+    worker = os.environ.get("PYTEST_XDIST_WORKER", "")
+    if not worker:
+        return GeneratedPackages(tmp_path_factory.mktemp("ros2_packages"))
+    # the folder all workers of this run share (each has its own basetemp below it)
+    return GeneratedPackages(tmp_path_factory.getbasetemp().parent / "ros2_packages", worker)

@@ -6,14 +6,21 @@ and the ports of the shared config packages; each for Humble and Jazzy.
 `init` runs through the CLI for Humble (as a user types it); the Jazzy package is the same
 setup rendered for Jazzy (init's distro changes only ros_distro), in a sibling folder at the
 same depth so the setup's relative paths hold. Ports run through the CLI for each distro.
+
+Under pytest-xdist the workers share the packages: each is made by the first worker that asks
+for it (a file lock per package), the others read what it recorded. A worker's vendor
+descriptions and its copies to change are its own.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import json
+import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
+from filelock import FileLock
 from typer.testing import CliRunner
 
 from marm_setup.cli.app import app
@@ -101,21 +108,45 @@ class Generated:
 
 
 class GeneratedPackages:
-    """Packages by (key, distro), each generated on first use under `base`."""
+    """Packages by (key, distro), each generated on first use under `base` (shared by the
+    pytest-xdist workers; `worker` names this one's own folders there)."""
 
-    def __init__(self, base: Path) -> None:
+    def __init__(self, base: Path, worker: str = "") -> None:
         self.base = base
+        self.suffix = f"-{worker}" if worker else ""
         self._made: dict[tuple[str, str], Generated] = {}
         self._vendor: dict | None = None
 
     def get(self, key: str, distro: str) -> Generated:
         if (key, distro) not in self._made:
-            self._made[(key, distro)] = self._make(key, distro)
+            self._made[(key, distro)] = self._shared(key, distro)
         return self._made[(key, distro)]
+
+    def _shared(self, key: str, distro: str) -> Generated:
+        """The package made once for every worker: made here unless another worker recorded it."""
+        folder = self.base / distro / key.replace(":", "_")
+        record = folder / "generated.json"
+        folder.parent.mkdir(parents=True, exist_ok=True)
+        with FileLock(f"{folder}.lock"):
+            if record.is_file():
+                data = json.loads(record.read_text(encoding="utf-8"))
+                return Generated(
+                    key,
+                    distro,
+                    Path(data["out"]),
+                    tuple(map(Path, data["roots"])),
+                    data["output"],
+                    data["exit_code"],
+                )
+            shutil.rmtree(folder, ignore_errors=True)  # what a worker that failed here left
+            made = self._make(key, distro)
+            data = {"out": str(made.out), "roots": list(map(str, made.roots)), "output": made.output}
+            record.write_text(json.dumps({**data, "exit_code": made.exit_code}), encoding="utf-8")
+            return made
 
     def vendor(self, style: str):
         if self._vendor is None:
-            self._vendor = write_vendor_descriptions(self.base / "vendor")
+            self._vendor = write_vendor_descriptions(self.base / f"vendor{self.suffix}")
         return self._vendor[style]
 
     def _make(self, key: str, distro: str) -> Generated:
@@ -173,9 +204,7 @@ class GeneratedPackages:
 
     def copy(self, key: str, distro: str, name: str) -> Path:
         """A copy of a generated package to change, at the same depth (its setup's relative paths hold)."""
-        import shutil
-
-        out = self.base / "copies" / f"{name}-{distro}" / "pkg"
+        out = self.base / f"copies{self.suffix}" / f"{name}-{distro}" / "pkg"
         shutil.rmtree(out.parent, ignore_errors=True)
         shutil.copytree(self.get(key, distro).out, out, symlinks=True)
         return out

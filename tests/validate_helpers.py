@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import shutil
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,19 +32,76 @@ def panda(target: str) -> Good:
 
 
 def generate_marm(out_root: Path, target: str) -> Path:
-    """`marm-setup init` the marm fixture into out_root/marm_<target> (ros1 with the ArbotiX driver)."""
-    from typer.testing import CliRunner
-
-    from marm_setup.cli.app import app
-
+    """`marm-setup init` the marm fixture into out_root/marm_<target> (ros1 with the ArbotiX driver):
+    what that init leaves, the package and its proofs in the proof cache, without running it
+    each time (_built_marm)."""
     out = out_root / f"marm_{target}"
     if not out.exists():
         spec = out_root / "driver.yaml"
         spec.write_text("driver: arbotix\n", encoding="utf-8")
-        args = ["init", str(MARM_URDF), "--out", str(out), "--target", target, "--setup", str(spec)]
-        result = CliRunner().invoke(app, args)
-        assert result.exit_code == 0, result.output
+        if len(out.parts) < 5 or _TMP not in out.parents:  # no folder like it to build in
+            _init_marm(out, target, spec)
+            return out
+        built, cache = _built_marm(target, len(out.parts))
+        shutil.copytree(built, out, symlinks=True)
+        _add_proofs(cache)
     return out
+
+
+# (target, depth of the package folder) -> (the package init wrote, the proof cache it filled),
+# made once per process: init's output depends on neither the folder nor the cache it finds (its
+# setup's relative package path on the folder's depth only, as the package is under /tmp and the
+# fixtures are not).
+_BUILT: dict[tuple[str, int], tuple[Path, Path]] = {}
+_TMP = Path(tempfile.gettempdir())
+
+
+def _built_marm(target: str, depth: int) -> tuple[Path, Path]:
+    if (target, depth) not in _BUILT:
+        import atexit
+
+        import pytest
+
+        root = Path(tempfile.mkdtemp(prefix="marm-built-"))
+        atexit.register(shutil.rmtree, root, ignore_errors=True)
+        out = root.joinpath(*["d"] * (depth - len(root.parts) - 1), f"marm_{target}")
+        spec = root / "driver.yaml"
+        spec.write_text("driver: arbotix\n", encoding="utf-8")
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setenv("MARM_SETUP_CACHE", str(root / "proof-cache"))
+            _init_marm(out, target, spec)
+        assert len(out.parts) == depth
+        _BUILT[target, depth] = out, root / "proof-cache"
+    return _BUILT[target, depth]
+
+
+def _init_marm(out: Path, target: str, spec: Path) -> None:
+    from typer.testing import CliRunner
+
+    from marm_setup.cli.app import app
+
+    args = ["init", str(MARM_URDF), "--out", str(out), "--target", target, "--setup", str(spec)]
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 0, result.output
+
+
+def _add_proofs(cache: Path) -> None:
+    """Put the proofs of the proof cache in `cache` into the one in use (as init would have)."""
+    import sqlite3
+    from contextlib import closing
+
+    from marm_setup.collision.proof_cache import FILE, cache_dir
+
+    folder = cache_dir()
+    if folder is None or not (cache / FILE).is_file():
+        return
+    folder.mkdir(parents=True, exist_ok=True)
+    if not (folder / FILE).exists():
+        shutil.copyfile(cache / FILE, folder / FILE)
+        return
+    with closing(sqlite3.connect(folder / FILE, timeout=10.0)) as db, db:
+        db.execute("ATTACH DATABASE ? AS built", (str(cache / FILE),))
+        db.execute("INSERT OR REPLACE INTO proofs (key, value) SELECT key, value FROM built.proofs")
 
 
 def copy_package(good: Good, dest_root: Path) -> Path:

@@ -136,6 +136,9 @@ def _pr2_package(root: Path) -> Path:
 
 
 _BUILT: dict[tuple[Path, str], Page] = {}
+# One worker runs the module (`--dist loadgroup`): one browser, and each page (the PR2's: an init
+# and a report, half a minute) built once, not once per worker.
+pytestmark = pytest.mark.xdist_group("report_browser")
 
 
 def _page(root: Path, name: str) -> Page:
@@ -154,8 +157,8 @@ def _build_page(root: Path, name: str) -> Page:
         return _build(
             root, name, realworld("ros1", "panda_moveit_config"), "--package-path", realworld("ros1")
         )
-    if name == "pr2":
-        return _build(root, name, _pr2_package(root))
+    if name == "pr2":  # the matrix at the package's own 1000 trials: 10,000 cost 10 s more a page
+        return _build(root, name, _pr2_package(root), "--trials", "1000")
     kortex = realworld2("ros2_kortex")
     package = kortex / "kortex_moveit_config" / "kinova_gen3_6dof_robotiq_2f_85_moveit_config"
     return _build(

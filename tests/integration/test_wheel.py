@@ -27,7 +27,10 @@ MARM_SPEC = ROOT / "fixtures" / "marm" / "marm_setup.yaml"
 # Test-only distributions: none may be importable in the user's venv.
 TEST_ONLY = ("pytest", "hypothesis", "yourdfpy", "pinocchio", "scipy")
 
-pytestmark = pytest.mark.wheel
+# One worker runs the module (`--dist loadgroup`): the wheel is built and installed once, and no
+# two workers' session fixtures pip-install into the cached venv at once (a race that left it
+# without its bin/marm-setup).
+pytestmark = [pytest.mark.wheel, pytest.mark.xdist_group("wheel")]
 
 
 @pytest.fixture(scope="session")

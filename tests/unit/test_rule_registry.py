@@ -99,10 +99,16 @@ def _callee(call: ast.Call) -> str | None:
     return f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else None
 
 
+@cache
+def _walked(scope: ast.AST) -> tuple[ast.AST, ...]:
+    """ast.walk(scope), walked once (the scan asks again and again of the same functions)."""
+    return tuple(ast.walk(scope))
+
+
 def _assigned(scope: ast.AST, name: str, nested: bool = True) -> list[ast.expr]:
     """The values `name` is assigned in `scope` (`name = v`, and `a, name = x, v`)."""
     out = []
-    for node in ast.walk(scope) if nested else getattr(scope, "body", []):
+    for node in _walked(scope) if nested else getattr(scope, "body", []):
         if not isinstance(node, ast.Assign):
             continue
         for target in node.targets:
@@ -114,8 +120,9 @@ def _assigned(scope: ast.AST, name: str, nested: bool = True) -> list[ast.expr]:
     return out
 
 
-def _calls(tree: ast.AST) -> list[ast.Call]:
-    return [n for n in ast.walk(tree) if isinstance(n, ast.Call)]
+@cache
+def _calls(tree: ast.AST) -> tuple[ast.Call, ...]:
+    return tuple(n for n in _walked(tree) if isinstance(n, ast.Call))
 
 
 class Scanner:
@@ -289,25 +296,32 @@ def scanned() -> Scan:
     return Scanner(PACKAGE).scan()
 
 
+SCAN = pytest.mark.xdist_group("rule_scan")  # one worker scans (`--dist loadgroup`), once
+
+
 # -- the registry against the scan --------------------------------------------------------------
 
 
+@SCAN
 def test_scan_reads_every_rule_id():
     assert scanned().unresolved == [], "rule ids the scan cannot read (teach it the new pattern)"
     assert len(scanned().emitted) > 100  # the scan still finds the rules at all
 
 
+@SCAN
 def test_every_emitted_rule_is_registered():
     known = {r.id for r in all_rules()}
     missing = {i: scanned().sites[i] for i in sorted(set(scanned().emitted) - known)}
     assert not missing, f"add these to marm_setup/validate/registry/rules.yaml: {missing}"
 
 
+@SCAN
 def test_no_stale_entries():
     stale = sorted({r.id for r in all_rules()} - set(scanned().emitted))
     assert not stale, f"no longer emitted anywhere in marm_setup/, remove from rules.yaml: {stale}"
 
 
+@SCAN
 def test_emitted_severities_are_registered():
     known = {r.id for r in all_rules()}  # unregistered ones: test_every_emitted_rule_is_registered
     wrong = {
