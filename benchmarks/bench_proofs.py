@@ -9,6 +9,9 @@ CPU seconds (user + system, the process and its workers, from getrusage) of
   (`setup_assistant_reference.py`; panda and xarm7: it takes no continuous joints);
 - a first run into an empty proof cache against a re-run with it (MARM_SETUP_CACHE), and
   whether their outputs are the same bytes.
+With `--against-1m JSON` (the PR2's `collisions --trials 1000000 --prove off --format json`,
+about 13 min of CPU), also the PR2's default run at seeds 0, 1 and 2 against it: the Never pairs
+the 1M-state run sees in contact (misses) and the proved pairs it sees (unsound proofs).
 The panda and the PR2 come from ../shared/realworld; the xarm7 from example-robot-data
 (`pip install example-robot-data`; skipped when absent). Medians of --runs (the PR2: one run).
 """
@@ -101,11 +104,39 @@ def bench(name: str, args, folder: Path) -> None:
     )
 
 
+def against_1m(path: Path, trials: int) -> None:
+    """The PR2's default runs at seeds 0, 1, 2 against a 1M-state run's pairs seen in contact."""
+    import json
+
+    seen = {(p["link1"], p["link2"]) for p in json.loads(path.read_text())["pairs"] if p["seen_colliding"]}
+    urdf, packages = ROBOTS["pr2"]
+    env = dict(os.environ, MARM_SETUP_CACHE="off")
+    for seed in (0, 1, 2):
+        command = [
+            sys.executable,
+            "-m",
+            "marm_setup",
+            "collisions",
+            str(urdf),
+            "--package-path",
+            str(packages),
+        ]
+        command += ["--trials", str(trials), "--seed", str(seed), "--format", "json"]
+        pairs = json.loads(cpu(command, env)[1])["pairs"]
+        never = {(p["link1"], p["link2"]) for p in pairs if p["reason"] == "Never"}
+        proved = {(p["link1"], p["link2"]) for p in pairs if p["proof"] == "proved"}
+        print(
+            f"pr2 seed {seed}: {len(never)} Never, {len(proved)} proved; Never pairs the 1M-state run "
+            f"sees in contact: {len(never & seen)} {sorted(never & seen)}; proved pairs it sees: {len(proved & seen)}"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--trials", type=int, default=10000)
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--robot", choices=sorted(ROBOTS), action="append")
+    parser.add_argument("--against-1m", type=Path, metavar="JSON", help="the PR2's 1M-state run (see above)")
     args = parser.parse_args()
     # bytecode as an installed package has it (an editable install in a PYTHONDONTWRITEBYTECODE
     # shell would compile marm_setup in every process measured)
@@ -117,6 +148,8 @@ def main() -> None:
                 print(f"{name}: {ROBOTS[name][0]} not present, skipped")
                 continue
             bench(name, args, Path(tmp))
+    if args.against_1m is not None:
+        against_1m(args.against_1m, args.trials)
 
 
 if __name__ == "__main__":

@@ -82,10 +82,14 @@ def run_context(scene: CollisionScene, settings: Mapping[str, object]) -> str:
     """32 hex digits of what a whole matrix computation depends on: every candidate pair's key,
     the sampled joints (names, types, bounds, mimic) and the `settings` (seed, trials, ...). An
     unproved proof is the outcome of its budget, which the whole run decides: it is kept under
-    its pair's key and this context, and reused only by the very same run."""
+    its pair's key and this context, and reused only by the very same run: the proof budgets
+    (proof.SCREEN, proof.SETTLE) count too, so a cache an older plan filled serves its facts
+    (proved, in contact) but not its unproved outcomes."""
+    from marm_setup.collision.proof import SCREEN, SETTLE
+
     robot = scene.robot
     keys = sorted(pair_keys(scene, scene.candidate_pairs).values())
     joints = [_joint(robot, joint) for joint in robot.joints if joint.is_actuated]
     values = sorted((name, repr(v.tolist() if hasattr(v, "tolist") else v)) for name, v in settings.items())
-    text = repr((KEY_VERSION, keys, joints, values))
+    text = repr((KEY_VERSION, keys, joints, values, SCREEN, SETTLE))
     return hashlib.sha256(text.encode()).hexdigest()[:32]

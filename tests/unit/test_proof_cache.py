@@ -61,6 +61,19 @@ def test_the_same_run_reuses_its_unproved_pairs_too_and_proves_nothing(marm):
     assert {k.outcome for k in other.values()} == {"proved", "collides"} and set(other) < set(known)
 
 
+def test_another_proof_budget_is_another_run(marm, monkeypatch):
+    """An unproved outcome is its budget's: a cache filled under another plan (an older
+    marm-setup) must not serve it, so the plan is part of the run's context."""
+    import dataclasses
+
+    from marm_setup.collision import proof, run_context
+
+    settings = {"trials": 2000, "seed": 0, "prove": "on"}
+    before = run_context(CollisionScene(marm), settings)
+    monkeypatch.setitem(proof.SETTLE, "on", dataclasses.replace(proof.SETTLE["on"], second_pool=1))
+    assert run_context(CollisionScene(marm), settings) != before
+
+
 @pytest.mark.skipif(not PANDA.exists(), reason="../shared/realworld absent")
 def test_the_panda_cached_with_distances_is_the_same_matrix():
     robot = load_robot(PANDA)
