@@ -37,6 +37,7 @@ def describe_matrix(
     reasons = final_reasons(matrix, disabled)
     counts = reason_counts(reasons)
     pairs = [_pair_dict(s, reasons.get(s.pair), matrix.trials) for s in matrix.stats]
+    checked = {s.pair for s in matrix.stats}
     pairs += [
         {
             "link1": a,
@@ -52,7 +53,7 @@ def describe_matrix(
             "hit_bound": None,
         }
         for (a, b), r in sorted(reasons.items())
-        if (a, b) not in {s.pair for s in matrix.stats}
+        if (a, b) not in checked
     ]
     counts[ENABLED] = sum(1 for p in pairs if p["reason"] is None)
     return {
