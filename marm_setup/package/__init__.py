@@ -16,7 +16,7 @@ API = {
     "start": "package_start_values",
     "where": "FrozenMapping Param Value Where",
     "description": "marm_package_paths setup_assistant_description",
-    "controllers_file": "ControllersFile MoveItController SIMPLE_MANAGER SkippedController",
+    "controllers_file": "ControllersFile MoveItController SIMPLE_MANAGER SIMPLE_MANAGER_CLASS SkippedController",
     "control_manager": "ROS2_CONTROL_HANDLES",
     "driver_file": "ArbotixFile ArbotixServo DriverController DriverFile InitialPositions Ros2ControlFile",
     "kinematics_file": "GroupKinematics KinematicsFile",
@@ -37,6 +37,7 @@ __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.control_manager import ROS2_CONTROL_HANDLES as ROS2_CONTROL_HANDLES
     from marm_setup.package.controllers_file import SIMPLE_MANAGER as SIMPLE_MANAGER
+    from marm_setup.package.controllers_file import SIMPLE_MANAGER_CLASS as SIMPLE_MANAGER_CLASS
     from marm_setup.package.controllers_file import ControllersFile as ControllersFile
     from marm_setup.package.controllers_file import MoveItController as MoveItController
     from marm_setup.package.controllers_file import SkippedController as SkippedController

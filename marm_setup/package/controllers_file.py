@@ -17,6 +17,8 @@ from marm_setup.package.where import Located, Param, Where, freeze
 REQUIRED_KEYS = ("name", "joints", "action_ns", "type")
 FAKE_KEYS = ("name", "joints")
 SIMPLE_MANAGER = "moveit_simple_controller_manager"
+# the class a MoveIt 1 launch names as move_group's moveit_controller_manager for it
+SIMPLE_MANAGER_CLASS = "MoveItSimpleControllerManager"
 LIST_KEYS = ("controller_list", "controller_names", SIMPLE_MANAGER)
 
 

@@ -18,6 +18,7 @@ from marm_setup.package.builder import BuilderFiles, Chosen, chosen_file, contro
 from marm_setup.package.controllers_file import (
     FAKE_KEYS,
     SIMPLE_MANAGER,
+    SIMPLE_MANAGER_CLASS,
     ControllersFile,
     ListLoad,
     read_controllers,
@@ -32,7 +33,7 @@ from marm_setup.package.files import PackageFiles
 from marm_setup.package.joint_limits_file import read_joint_limits
 from marm_setup.package.kinematics_file import read_kinematics
 from marm_setup.package.launch_python import launch_yaml_key
-from marm_setup.package.launch_ros1 import LaunchParam, YamlLoad
+from marm_setup.package.launch_ros1 import MANAGER_PARAM, LaunchParam, YamlLoad
 from marm_setup.package.model import Source
 from marm_setup.package.perception_files import ServoConfig, read_sensors, read_servo
 from marm_setup.package.planning_file import PlanningPipeline, read_pipeline
@@ -111,9 +112,7 @@ def read_ros1_kinds(
         )
         kinds.put(kind, reader(doc) if doc is not None else None, doc, how)
     _ros1_pipelines(files, loads, kinds)
-    _ros1_controllers(files, loads, kinds, move_groups, managers)
-    if not _controller_loads(files, loads, fake=False):  # no launch file loads a list: MoveIt reads none
-        kinds.values["controller_list_unloaded"] = _simple_set_by(taken_managers, move_groups)
+    _ros1_controllers(files, loads, kinds, move_groups, (managers, taken_managers))
     _drivers(files, kinds, loads)
     doc, how = _ros1_sensors(files, loads)
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, how)
@@ -177,7 +176,11 @@ def _controller_loads(files: PackageFiles, loads: Loads, fake: bool) -> list[tup
 
 
 def _ros1_controllers(
-    files: PackageFiles, loads: Loads, kinds: Kinds, move_groups: tuple[str, ...], managers: tuple[str, ...]
+    files: PackageFiles,
+    loads: Loads,
+    kinds: Kinds,
+    move_groups: tuple[str, ...],
+    managers: tuple[tuple[str, ...], tuple[LaunchParam, ...]],
 ) -> None:
     """The simple manager's list: the one loaded into move_group's private namespace, where
     moveit_simple_controller_manager.cpp reads it (`node_handle_("~")`, `controller_list`); when
@@ -185,7 +188,10 @@ def _ros1_controllers(
     that loads one (a later load overwrites the key; other entry points are other runs). Else
     the first the launch files load elsewhere (what MoveIt would read, were it where it belongs:
     `ControllersFile.elsewhere` says it is not), else the Setup Assistant's file names; others
-    they load are alternatives. And the fake manager's."""
+    they load are alternatives; when no launch file loads one at all, the launch file that makes
+    the simple manager move_group's (`controller_list_unloaded`). And the fake manager's.
+    `managers`: every moveit_controller_manager value, and those set on default branches."""
+    every_manager, taken_managers = managers
     real = _controller_loads(files, loads, fake=False)
     landed = [(lo, d) for lo, d in real if lo.ns in move_groups]
     if real:
@@ -193,7 +199,7 @@ def _ros1_controllers(
         one_launch = [x for x in taken if x[0].entry == taken[0][0].entry]  # overwrites within one run
         used, doc = one_launch[-1] if one_launch else real[0]
         listed = read_controllers(doc)
-        if move_groups and not landed and _simple_manager(real, managers):
+        if move_groups and not landed and _simple_manager(real, every_manager):
             away = tuple(ListLoad(lo.launch, lo.line, lo.ns) for lo, _ in real)
             listed = replace(listed, elsewhere=away, read_at=move_groups)
         kinds.put("moveit_controllers", listed, doc, _loaded_by(used))
@@ -207,6 +213,7 @@ def _ros1_controllers(
         kinds.put(
             "moveit_controllers", read_controllers(found) if found is not None else None, found, SA_NAME
         )
+        kinds.values["controller_list_unloaded"] = _simple_set_by(taken_managers, move_groups)
     fake = _controller_loads(files, loads, fake=True)
     fake_doc, how = (
         (fake[0][1], _loaded_by(fake[0][0]))
@@ -221,15 +228,12 @@ def _ros1_controllers(
     )
 
 
-SIMPLE_MANAGER_CLASS = "MoveItSimpleControllerManager"
-
-
 def _simple_set_by(taken_managers: tuple[LaunchParam, ...], move_groups: tuple[str, ...]) -> str:
     """The launch file that sets a move_group node's `~moveit_controller_manager` to the simple
     controller manager on a branch the defaults take ('' for none)."""
     for param in taken_managers:
         ns, _, leaf = param.name.rpartition("/")
-        if leaf == "moveit_controller_manager" and ns in move_groups and SIMPLE_MANAGER_CLASS in param.value:
+        if leaf == MANAGER_PARAM and ns in move_groups and SIMPLE_MANAGER_CLASS in param.value:
             return param.launch
     return ""
 

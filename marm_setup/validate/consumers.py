@@ -33,6 +33,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
+from marm_setup.package import SIMPLE_MANAGER_CLASS
 from marm_setup.ros import Target
 from marm_setup.safe_yaml import YamlLimitError, load_yaml
 
@@ -352,7 +353,6 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
     return ConsumerRun(tuple(out), ran)
 
 
-SIMPLE_MANAGER_CLASS = "MoveItSimpleControllerManager"
 MANAGER_KEY = "/moveit_controller_manager"
 LIST_KEY = "/controller_list"
 

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound, remedy
 from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
 from marm_setup.package import (
+    ControllersFile,
     MoveItPackage,
     launch_nodes,
     package_start_values,
@@ -440,11 +441,18 @@ def check_controller_files(pkg: MoveItPackage) -> list[Finding]:
     moveit = pkg.moveit_controllers
     if moveit is None or uses_ros_control_interface(moveit):
         return out
-    out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
+    out += _listed_controller_rules(pkg, moveit)
+    return out + check_moveit_controllers(moveit, None)
+
+
+def _listed_controller_rules(pkg: MoveItPackage, moveit: ControllersFile) -> list[Finding]:
+    """The simple manager's list on its own: entries listed and named, and where the launch
+    files load it (MoveIt 1) or the manager's namespace (MoveIt 2)."""
+    out = check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
     out += check_ros1_namespace(moveit)
     if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
         out += check_ros2_namespace(moveit)
-    return out + check_moveit_controllers(moveit, None)
+    return out
 
 
 def _package_hint(exc: InputError) -> str:
@@ -486,10 +494,7 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
         driver = pkg.ros2_controllers or pkg.ros_controllers
         out += check_ros_control_coverage(moveit, driver, pkg.srdf, robot)
         return out + (check_driver_controllers(moveit, driver, robot) if driver is not None else [])
-    out += check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
-    out += check_ros1_namespace(moveit)
-    if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
-        out += check_ros2_namespace(moveit)
+    out += _listed_controller_rules(pkg, moveit)
     out += check_moveit_controllers(moveit, robot)
     out += check_coverage(moveit, pkg.srdf, robot, pkg.alt_moveit_controllers)
     if pkg.ros2_controllers is not None:
