@@ -16,6 +16,7 @@ import hashlib
 from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING
 
+from marm_setup.collision.proof import SCREEN, SETTLE
 from marm_setup.robot import Joint, Mesh, RobotModel, load_mesh
 
 if TYPE_CHECKING:
@@ -85,8 +86,6 @@ def run_context(scene: CollisionScene, settings: Mapping[str, object]) -> str:
     its pair's key and this context, and reused only by the very same run: the proof budgets
     (proof.SCREEN, proof.SETTLE) count too, so a cache an older plan filled serves its facts
     (proved, in contact) but not its unproved outcomes."""
-    from marm_setup.collision.proof import SCREEN, SETTLE
-
     robot = scene.robot
     keys = sorted(pair_keys(scene, scene.candidate_pairs).values())
     joints = [_joint(robot, joint) for joint in robot.joints if joint.is_actuated]
