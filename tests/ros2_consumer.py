@@ -13,11 +13,11 @@ import functools
 import json
 import os
 import shutil
-import subprocess
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
+from tests import ros2_zygote
 from tests.ros2_harness import HARNESS, harness_python
 
 CONSUMER = HARNESS
@@ -57,7 +57,7 @@ def harness_report(
         command += ["--description-pkg", str(description)]
     for launch in launch_files or ():
         command += ["--launch", str(pkg / launch)]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=600, env=_env())
+    result = ros2_zygote.run(python, command[1:], _env(), timeout=600)
     report = json.loads(result.stdout)
     try:
         yield report
@@ -86,12 +86,8 @@ def node_values(process: dict, distro: str) -> dict[str, tuple[str, object]]:
     )  # shortened by the report
     name = process["node"].rsplit("/", 1)[-1]
     script = _NODE_VALUES.format(consumer=str(CONSUMER))
-    result = subprocess.run(
-        [str(consumer_python(distro)), "-c", script, json.dumps(cmd), name],
-        capture_output=True,
-        text=True,
-        timeout=120,
-        env=_env(),
+    result = ros2_zygote.run(
+        consumer_python(distro), ["-c", script, json.dumps(cmd), name], _env(), timeout=120
     )
     assert result.returncode == 0, result.stderr[-2000:]
     out = json.loads(result.stdout.strip().splitlines()[-1])

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from tests import ros2_zygote
 from tests.conftest import ROOT
 
 HARNESS = ROOT.parent / "shared" / "ros2-consumer"
@@ -92,7 +93,7 @@ def check_package(
     start = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="ros2_harness_") as home:
         env = {**os.environ, "ROS_HOME": home, "ROS_LOG_DIR": os.path.join(home, "log")}
-        done = subprocess.run(argv, capture_output=True, text=True, env=env, timeout=600)
+        done = ros2_zygote.run(Path(argv[0]), argv[1:], env, timeout=600)
     RUNS.append((f"{pkg} ({distro})", time.monotonic() - start))
     assert done.stdout.strip(), done.stderr[-3000:]
     return json.loads(done.stdout)
