@@ -39,7 +39,7 @@ _OPENING = (yaml.MappingStartEvent, yaml.SequenceStartEvent)
 _CLOSING = (yaml.MappingEndEvent, yaml.SequenceEndEvent)
 
 
-class BoundedSafeLoader(_SAFE_LOADER):  # type: ignore[misc,valid-type]
+class BoundedSafeLoader(_SAFE_LOADER):
     """PyYAML's safe loader within the bounds above (subclass it to add constructors); the
     nesting bound is `check_depth`'s, run on the text first."""
 

@@ -13,6 +13,7 @@ API = {
     "proof": "PairProof",
     "cached_proof": "CachedProof",
     "proof_cache": "cache_dir known_proofs remember_proofs",
+    "cached_matrix": "compute_cached_matrix",
     "proof_keys": "pair_keys run_context",
     "proof_summary": "proof_key unproved_notes unproved_pairs",
     "scene": "CollisionScene",
@@ -24,6 +25,7 @@ API = {
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.collision.cached_matrix import compute_cached_matrix as compute_cached_matrix
     from marm_setup.collision.cached_proof import CachedProof as CachedProof
     from marm_setup.collision.matrix import ROUND as ROUND
     from marm_setup.collision.matrix import CollisionMatrix as CollisionMatrix

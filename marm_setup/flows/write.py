@@ -46,42 +46,10 @@ def with_collision_matrix(
 
 
 def compute_matrix(robot: RobotModel, scene: CollisionScene | None = None, **options: Any) -> CollisionMatrix:
-    """compute_collision_matrix(robot, scene, **options) with the proofs of the user's proof
-    cache (collision/proof_cache.py), its new finished proofs kept there: the same matrix as
-    without the cache, for less work. A `progress` with a `proofs(proved, in_contact, left)`
-    method (cli/progress.py) is told of the proofs too."""
-    from marm_setup.collision import (
-        CollisionScene,
-        cache_dir,
-        compute_collision_matrix,
-        known_proofs,
-        remember_proofs,
-        run_context,
-    )
+    """The matrix with the user's proof cache (collision/cached_matrix.py)."""
+    from marm_setup.collision import compute_cached_matrix
 
-    scene = CollisionScene(robot) if scene is None else scene
-    if options.get("prove", "off") == "off":
-        return compute_collision_matrix(robot, scene, **options)
-    told = getattr(options.get("progress"), "proofs", None)  # a progress that shows the proofs
-    if cache_dir() is None:
-        return compute_collision_matrix(robot, scene, proof_progress=told, **options)
-    context = run_context(scene, {name: options.get(name, value) for name, value in RUN_SETTINGS.items()})
-    known = known_proofs(scene, context=context)
-    matrix = compute_collision_matrix(robot, scene, known=known, proof_progress=told, **options)
-    remember_proofs(scene, matrix, context)
-    return matrix
-
-
-# compute_collision_matrix's options an unproved proof depends on, with their defaults
-RUN_SETTINGS = {
-    "trials": 10000,
-    "seed": 0,
-    "min_collision_fraction": 0.95,
-    "check_default": True,
-    "check_always": True,
-    "default_q": None,
-    "prove": "off",
-}
+    return compute_cached_matrix(robot, scene, **options)
 
 
 def collision_settings(

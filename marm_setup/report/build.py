@@ -150,21 +150,12 @@ def _matrix_section(
 ) -> tuple[MatrixSection, CollisionMatrix] | None:
     """The matrix picture and pairs (reasons from the SRDF, counts and proofs from a fresh
     computation; see the module doc), and the matrix."""
-    from marm_setup.collision import (
-        compute_collision_matrix,
-        describe_matrix,
-        known_proofs,
-        remember_proofs,
-        render_matrix_svg,
-    )
+    from marm_setup.collision import compute_cached_matrix, describe_matrix, render_matrix_svg
 
     if not scene.candidate_pairs:
         return None
     count = trials or DEFAULT_TRIALS  # the command's own, whatever the package says
-    matrix = compute_collision_matrix(
-        robot, scene, trials=count, jobs=jobs, progress=progress, prove="on", known=known_proofs(scene)
-    )
-    remember_proofs(scene, matrix)
+    matrix = compute_cached_matrix(robot, scene, trials=count, jobs=jobs, progress=progress, prove="on")
     links = [name for name in robot.links_in_tree_order if robot.link(name).has_geometry]
     svg = render_matrix_svg(matrix, robot.name, links, srdf.disabled)
     return MatrixSection(svg, describe_matrix(matrix, robot.name, srdf.disabled)), matrix

@@ -148,3 +148,16 @@ def test_a_package_without_recorded_proofs_is_proved_and_its_disabled_contacts_d
         q = np.array([state["joints"][name] for name in robot.active_joint_names])
         pair_id = scene.pair_ids([(p["link1"], p["link2"])])[0]
         assert scene.collide(scene.link_poses(q[None])[0], int(pair_id))
+
+
+def test_a_report_after_init_proves_nothing_again(tmp_path, monkeypatch):
+    """The page's matrix is init's run again (same trials, seed and robot): every proof, the
+    unproved ones too, comes from the proof cache that init filled."""
+    pkg = marm_package(tmp_path)  # init's package, and its proofs in this test's cache
+
+    def proved_again(*args, **kwargs):
+        raise AssertionError("a pair was proved again")
+
+    monkeypatch.setattr("marm_setup.collision.proving.prove_pair", proved_again)
+    result = report(pkg, "-o", tmp_path / "page.html")
+    assert result.exit_code == 0, result.output
