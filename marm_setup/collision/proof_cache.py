@@ -4,14 +4,21 @@ One SQLite file, `$XDG_CACHE_HOME/marm-setup/proofs.sqlite` (else `~/.cache/marm
 written only by the user's own runs of `init` and `collisions`: a package never supplies a
 proof, so this is the only place proofs are trusted from (validate skips the resample of a
 Never pair only when this cache holds its proof). `MARM_SETUP_CACHE=off` turns it off;
-`MARM_SETUP_CACHE=DIR` puts it in DIR. Finished proofs ("proved": no state of the pair's box
-is in contact; "collides": a state that is) are kept by their pair's key, for any robot that
-has the pair; an unproved one (the outcome of the budget its whole run gave it) by its pair's
-key within that run (proof_keys.run_context), for the very same run only, as is the screen of
-a pair that run's trials then saw in collision (SEEN). Each keeps what the
-matrix needs to account for it as a run without the cache would (its units, the screen's
-outcome and units, where its first witness-search round ended). A cache that cannot be read
-or written is skipped: it only ever saves work.
+`MARM_SETUP_CACHE=DIR` puts it in DIR.
+
+A matrix computation (collision/cached_matrix.py) replays its own run only: every proof and
+screen a run left is kept under its pair's key within that run's context
+(proof_keys.run_context: every candidate pair's key, the sampled joints, the settings and the
+proof budgets), and served to the very same run, which then gives the same bytes as without the
+cache. A finished proof of another run is not served to a matrix: each pair's proof depends on
+the budget its whole run gave it (the pools the pairs share, the trial states its witness search
+starts from), so a pair proved by a variant of the robot might stay unproved here, and taking it
+would change the budgets of the others and the output with the cache's contents. Finished proofs
+("proved": no state of the pair's box is in contact; "collides": a state that is) are also kept
+by their pair's key alone, for validate: a proved pair needs no resampling, whatever run proved
+it. Each entry keeps what the matrix needs to account for it as the run did (its units, the
+screen's outcome and units, where its first witness-search round ended). A cache that cannot be
+read or written is skipped: it only ever saves work.
 """
 
 from __future__ import annotations
@@ -52,42 +59,37 @@ def cache_dir() -> Path | None:
 def known_proofs(
     scene: CollisionScene, pairs: Iterable[Pair] | None = None, context: str | None = None
 ) -> dict[Pair, CachedProof]:
-    """Pair -> its finished proof in the cache, for `pairs` (default: every candidate pair of
-    `scene`); with `context` (proof_keys.run_context) also the unproved ones that very run left."""
+    """Pair -> its proof in the cache, for `pairs` (default: every candidate pair of `scene`):
+    with `context` (proof_keys.run_context) what that very run left, every outcome (a matrix
+    computation replays only its own run: see the module doc); without, the finished proofs of
+    any run (validate's: a proved pair needs no resampling)."""
     if cache_dir() is None:
         return {}
     from marm_setup.collision.proof_keys import pair_keys
 
     keys = pair_keys(scene, scene.candidate_pairs if pairs is None else pairs)
-    runs = {pair: _in_run(key, context) for pair, key in keys.items()} if context else {}
-    found = load_proofs([*keys.values(), *runs.values()])
-    out = {pair: found[key] for pair, key in runs.items() if key in found}
-    out.update(
-        {pair: found[key] for pair, key in keys.items() if key in found and found[key].outcome in OUTCOMES}
-    )
-    return out
+    if context:
+        runs = {pair: _in_run(key, context) for pair, key in keys.items()}
+        found = load_proofs(runs.values())
+        return {pair: found[key] for pair, key in runs.items() if key in found}
+    found = load_proofs(keys.values())
+    return {pair: found[key] for pair, key in keys.items() if key in found and found[key].outcome in OUTCOMES}
 
 
 def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix, context: str | None = None) -> None:
-    """Keep the finished proofs of `matrix` (computed on `scene`) in the cache, and with
-    `context` the unproved ones and the screens of the pairs its trials saw in collision (SEEN),
-    for that very run only."""
+    """Keep the finished proofs of `matrix` (computed on `scene`) in the cache by their pair's
+    key, and with `context` every proof and the screens of the pairs its trials saw in collision
+    (SEEN) for that very run."""
     from marm_setup.collision.proof_keys import pair_keys
 
-    kept: dict[Pair, CachedProof] = {}
-    for stats in matrix.stats:
-        proof = _kept(stats, matrix.screened)
-        if proof is not None and (proof.outcome in OUTCOMES or context):
-            kept[stats.pair] = proof
+    kept = {stats.pair: proof for stats in matrix.stats if (proof := _kept(stats, matrix.screened))}
     if cache_dir() is None or not kept:
         return
     keys = pair_keys(scene, kept)
-    dump_proofs(
-        {
-            keys[pair] if proof.outcome in OUTCOMES else _in_run(keys[pair], context or ""): proof
-            for pair, proof in kept.items()
-        }
-    )
+    entries = {keys[pair]: proof for pair, proof in kept.items() if proof.outcome in OUTCOMES}
+    if context:
+        entries |= {_in_run(keys[pair], context): proof for pair, proof in kept.items()}
+    dump_proofs(entries)
 
 
 def _kept(stats: PairStats, screened: Mapping[Pair, tuple[str, int]]) -> CachedProof | None:

@@ -1,6 +1,6 @@
-"""The proof cache (collision/proof_cache.py, proof_keys.py): a re-run reuses every finished
-proof whose key matches and gives the same matrix; the key follows every byte and joint a proof
-depends on, and nothing else; progress tells the proofs as they end."""
+"""The proof cache (collision/proof_cache.py, proof_keys.py): the same run replays every proof it
+left and gives the same matrix, whatever other runs left; the key follows every byte and joint a
+proof depends on, and nothing else; progress tells the proofs as they end."""
 
 from __future__ import annotations
 
@@ -18,6 +18,8 @@ from marm_setup.collision import (
 )
 from marm_setup.robot.load import load_robot
 from tests.conftest import realworld
+
+pytestmark = pytest.mark.usefixtures("own_proof_cache")  # each test fills its own cache
 
 PANDA = realworld("ros1", "panda_description", "urdf", "panda_arm_hand.urdf.xacro")
 
@@ -57,8 +59,19 @@ def test_the_same_run_reuses_its_unproved_pairs_too_and_proves_nothing(marm):
     }
     warm = compute_collision_matrix(marm, CollisionScene(marm), trials=2000, prove="on", known=known)
     assert warm == cold and warm.work.proof_units == sum(k.units for k in known.values())
-    other = known_proofs(CollisionScene(marm), context=context(1))
-    assert {k.outcome for k in other.values()} == {"proved", "collides"} and set(other) < set(known)
+    assert known_proofs(CollisionScene(marm), context=context(1)) == {}  # another run replays nothing
+
+
+def test_what_other_runs_left_does_not_change_a_matrix(marm):
+    """A matrix is the same bytes whatever the cache holds: the proofs runs with other trial
+    counts left are not served (their budgets were theirs), its own run's are."""
+    from marm_setup.collision import compute_cached_matrix
+
+    fresh = compute_cached_matrix(marm, trials=1000, prove="on")
+    for trials in (20, 300):
+        compute_cached_matrix(marm, trials=trials, prove="on")
+    again = compute_cached_matrix(marm, trials=1000, prove="on")
+    assert again == fresh and again.work.proof_units == fresh.work.proof_units
 
 
 def test_another_proof_budget_is_another_run(marm, monkeypatch):
