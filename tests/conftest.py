@@ -172,17 +172,19 @@ def no_sourced_ros(monkeypatch):
 
 @pytest.fixture(autouse=True, scope="session")
 def session_proof_cache(tmp_path_factory):
-    """Fixtures of any scope use a proof cache of the session's (collision/proof_cache.py),
-    never the user's."""
+    """Tests and fixtures of any scope share a proof cache of the session's (one per pytest-xdist
+    worker; collision/proof_cache.py), never the user's: a matrix replays only its own run's
+    proofs and gives the same bytes as without the cache, so each run of a robot is proved once
+    per worker, not once per test. A test about proving or the cache takes `own_proof_cache`."""
     with pytest.MonkeyPatch.context() as patch:
         patch.setenv("MARM_SETUP_CACHE", str(tmp_path_factory.mktemp("proof-cache")))
         patch.delenv("XDG_CACHE_HOME", raising=False)
         yield
 
 
-@pytest.fixture(autouse=True)
+@pytest.fixture
 def own_proof_cache(monkeypatch, tmp_path_factory, session_proof_cache):
-    """Each test gets its own empty proof cache."""
+    """This test's own empty proof cache: what it proves, it proves itself."""
     monkeypatch.setenv("MARM_SETUP_CACHE", str(tmp_path_factory.mktemp("proof-cache")))
 
 

@@ -14,23 +14,10 @@ from tests.conftest import FIXTURES, MARM_URDF, realworld
 from tests.validate_helpers import validate_package
 
 DISTROS = (("ros1", "noetic"), ("ros2", "humble"), ("ros2", "jazzy"))
-# One worker runs them all (`--dist loadgroup`), so they share the proof cache below.
+# One worker runs them all (`--dist loadgroup`): a robot's matrix is the same for every target and
+# distro (300 trials, seed 0), so the session's proof cache (tests/conftest.py) proves it once, not
+# three times (the PR2's: 12 s of CPU each). What is tested is validate on the generated package.
 pytestmark = pytest.mark.xdist_group("generated_validate")
-
-
-@pytest.fixture(scope="module")
-def module_proof_cache(tmp_path_factory):
-    return tmp_path_factory.mktemp("proof-cache")
-
-
-@pytest.fixture(autouse=True)
-def own_proof_cache(monkeypatch, module_proof_cache):
-    """This module's tests share one proof cache (tests/conftest.py's own_proof_cache gives each
-    test an empty one): a robot's matrix is the same for every target and distro (300 trials,
-    seed 0), so it is proved once, not three times (the PR2's: 12 s of CPU each). As before, the
-    package each test validates was made by an init whose proofs the cache then holds; what is
-    tested is validate on the generated package, not the proving."""
-    monkeypatch.setenv("MARM_SETUP_CACHE", str(module_proof_cache))
 
 
 def robots() -> dict[str, tuple]:
