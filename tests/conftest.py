@@ -83,6 +83,9 @@ def _xdist_groups(config, items) -> None:
             from _pytest.nodeid import coerce_node_id
 
             item._id = coerce_node_id(item.nodeid + suffix)
+    # the groups first: each runs whole on one worker (the browser's, about 80 s), so started last
+    # one would keep that worker busy after the other ran out of tests
+    items.sort(key=lambda item: "@" not in item.nodeid)
 
 
 def pytest_sessionfinish(session):
