@@ -39,8 +39,9 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 if TYPE_CHECKING:
+    from marm_setup.collision.chain_kinematics import Frames
     from marm_setup.collision.meter import Meter
-    from marm_setup.collision.pair_chain import Frames, PairChain
+    from marm_setup.collision.pair_chain import PairChain
     from marm_setup.collision.scene import CollisionScene
 
 DENSE = 2048  # descents from the DENSE_STARTS nearest-looking of DENSE random states of the
