@@ -93,10 +93,21 @@ class CollisionScene:
         self._hull_request.break_distance = 0.0
         self._result = coal.CollisionResult()
         self._distance_request = coal.DistanceRequest()
-        for request in (self._request, self._hull_request, self._distance_request):
+        # hull distances are read only where positive (a lower bound that certifies, or a
+        # descent's step while the hulls are apart): overlapping hulls need no penetration
+        # depth (EPA, about 10 us a query), coal's unsigned distance (0) says as much
+        self._hull_distance_request = coal.DistanceRequest()
+        self._hull_distance_request.enable_signed_distance = False
+        for request in (
+            self._request,
+            self._hull_request,
+            self._distance_request,
+            self._hull_distance_request,
+        ):
             _same_start(request, coal)
         self._distance_result = coal.DistanceResult()
         self._distance_solvers: dict[tuple[int, int], object] = {}  # keyed by the geometries' ids
+        self._plans: dict[tuple[int, bool], tuple] = {}  # (pair, hulls) -> its distance functors
         self._hulls: dict[int, tuple | None] = {}  # link row -> hull shapes (None: no mesh)
         self._hull_cache: dict = {}  # one hull per mesh BVH
         self._tf = (coal.Transform3s(), coal.Transform3s())
@@ -273,12 +284,7 @@ class CollisionScene:
         cheaper than mesh distance); the exact distance for a pair of primitives."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
         self.hull_checks += 1
-        best = self._min_distance(
-            self._hull_shapes(a) or self._shapes[a],
-            self._hull_shapes(b) or self._shapes[b],
-            poses[a],
-            poses[b],
-        )
+        best = self._closest(self._distance_plan(pair_id, True), poses[a], poses[b])[0]
         self.hull_rejections += bool(best > self.padding + HULL_MARGIN)
         return best
 
@@ -329,32 +335,21 @@ class CollisionScene:
     def distance(self, poses: np.ndarray, pair_id: int) -> float:
         """Smallest distance [m] between the pair's shapes (0 or less when touching)."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        return self._min_distance(self._shapes[a], self._shapes[b], poses[a], poses[b])
+        return self._closest(self._distance_plan(pair_id, False), poses[a], poses[b])[0]
 
     def shape_distance(
         self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
     ) -> float:
         """Smallest distance [m] between the pair's shapes with its links at `pose_a`, `pose_b`
         (any common frame); `hulls`: of the meshes' convex hulls (a lower bound)."""
-        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        if hulls:
-            shapes_a, shapes_b = (
-                self._hull_shapes(a) or self._shapes[a],
-                self._hull_shapes(b) or self._shapes[b],
-            )
-            return self._min_distance(shapes_a, shapes_b, pose_a, pose_b)
-        return self._min_distance(self._shapes[a], self._shapes[b], pose_a, pose_b)
+        return self._closest(self._distance_plan(pair_id, hulls), pose_a, pose_b)[0]
 
     def nearest_points(
         self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
     ) -> tuple[float, np.ndarray, np.ndarray]:
         """The pair's distance [m] at `pose_a`, `pose_b` and its nearest points on each link
         (in the poses' frame); `hulls`: of the meshes' convex hulls."""
-        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        shapes_a, shapes_b = self._shapes[a], self._shapes[b]
-        if hulls:
-            shapes_a, shapes_b = self._hull_shapes(a) or shapes_a, self._hull_shapes(b) or shapes_b
-        return self._closest(shapes_a, shapes_b, pose_a, pose_b, points=True)
+        return self._closest(self._distance_plan(pair_id, hulls), pose_a, pose_b, points=True)
 
     def lever_points(self, link: str) -> LeverPoints:
         """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes
@@ -370,30 +365,40 @@ class CollisionScene:
             self._levers[link] = link_levers(np.concatenate(points), np.concatenate(radii))
         return self._levers[link]
 
-    def _min_distance(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
-        return self._closest(shapes_a, shapes_b, pose_a, pose_b)[0]
+    def _distance_plan(self, pair_id: int, hulls: bool) -> tuple:
+        """The pair's distance request and its (coal distance functor, link-from-shape pose of
+        a, of b) per pair of its shapes (of the meshes' convex hulls when `hulls`), built once:
+        a proof asks tens of thousands of distances of the same pair."""
+        plan = self._plans.get((pair_id, hulls))
+        if plan is None:
+            a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+            shapes_a, shapes_b = self._shapes[a], self._shapes[b]
+            if hulls:
+                shapes_a, shapes_b = self._hull_shapes(a) or shapes_a, self._hull_shapes(b) or shapes_b
+            request = self._hull_distance_request if hulls else self._distance_request
+            shapes = itertools.product(shapes_a, shapes_b)
+            plan = (request, tuple((self._distance_solver(ga, gb), la, lb) for (ga, la), (gb, lb) in shapes))
+            self._plans[(pair_id, hulls)] = plan
+        return plan
 
-    def _closest(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray, points: bool = False):
-        """(distance, nearest point on a, on b) of the closest pair of shapes; the points are
-        read only when `points` (else zeros). One coal distance functor per pair of geometries."""
+    def _closest(self, plan: tuple, pose_a: np.ndarray, pose_b: np.ndarray, points: bool = False):
+        """(distance, nearest point on a, on b) of the closest pair of shapes of a distance
+        `plan`; the points are read only when `points` (else zeros)."""
         tf_a, tf_b = self._tf
-        result, request = self._distance_result, self._distance_request
-        best = (np.inf, np.zeros(3), np.zeros(3))
-        for (ga, la), (gb, lb) in itertools.product(shapes_a, shapes_b):
-            _set(tf_a, pose_a, la)
-            _set(tf_b, pose_b, lb)
+        result, (request, solvers) = self._distance_result, plan
+        best, near = np.inf, None
+        for solve, local_a, local_b in solvers:
+            _set(tf_a, pose_a, local_a)
+            _set(tf_b, pose_b, local_b)
             result.clear()
             request.cached_gjk_guess, request.cached_support_func_guess = _GUESS, _HINT  # _same_start
-            self._distance_solver(ga, gb)(tf_a, tf_b, request, result)
+            solve(tf_a, tf_b, request, result)
             distance = float(result.min_distance)
-            if distance < best[0]:
-                near = (
-                    (np.array(result.getNearestPoint1()), np.array(result.getNearestPoint2()))
-                    if points
-                    else best[1:]
-                )
-                best = (distance, *near)
-        return best
+            if distance < best:
+                best = distance
+                if points:  # copies: the result's points change with its next query
+                    near = (np.array(result.getNearestPoint1()), np.array(result.getNearestPoint2()))
+        return (best, *near) if near is not None else (best, np.zeros(3), np.zeros(3))
 
     def _distance_solver(self, geom_a, geom_b):
         key = (id(geom_a), id(geom_b))
