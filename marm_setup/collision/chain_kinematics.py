@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 MOVING = ("revolute", "continuous", "prismatic")
+_EYE = np.eye(3)
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,8 +81,7 @@ class ChainKinematics:
         fixed, sine, versine = self.rotations[:, 0], self.rotations[:, 1], self.rotations[:, 2]
         local = fixed + np.sin(values)[..., None] * sine + (1.0 - np.cos(values))[..., None] * versine
         local = local.reshape(count, joints, 3, 3)
-        rotation = np.broadcast_to(np.eye(3), (count, 3, 3))
-        translation = np.zeros((count, 3))
+        rotation, translation = _EYE, np.zeros(3)  # broadcast to (K, ...) by the first joint
         origins, axes = np.empty((count, joints, 3)), np.empty((count, joints, 3))
         for j in range(joints):
             translation = translation + rotation @ self.shift[j]

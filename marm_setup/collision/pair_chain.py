@@ -105,8 +105,7 @@ class PairChain:
         frames = self.frames(centers)
         path = _path(frames)
         half = np.abs(path.multipliers) * halves[:, path.columns]  # (K, n) per path joint
-        moved_a, balls_a = _sweep(path, self.levers[0], frames[0].pose, half, forward=True)
-        moved_b, balls_b = _sweep(path, self.levers[1], frames[1].pose, half, forward=False)
+        (moved_a, balls_a), (moved_b, balls_b) = _sweeps(path, self.levers, frames, half)
         # pivot k: the path's first k joints move a, the others move b
         before_a = np.concatenate([np.zeros((len(centers), 1)), np.cumsum(moved_a, axis=1)], axis=1)
         after_b = np.concatenate(
@@ -119,7 +118,8 @@ class PairChain:
         shares = np.zeros(halves.shape)
         for i, column in enumerate(path.columns):  # a column may drive several joints (mimic)
             shares[:, column] += per_joint[:, i]
-        gaps = np.linalg.norm(balls_a[0] - balls_b[0], axis=2) - balls_a[1] - balls_b[1]
+        apart = balls_a[0] - balls_b[0]
+        gaps = np.sqrt(np.vecdot(apart, apart)) - balls_a[1] - balls_b[1]
         axis_gap = _axis_gap(path, frames, self.levers, moved_a, moved_b)
         return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, gaps.max(axis=1), axis_gap)
 
@@ -200,45 +200,48 @@ def _path(frames: tuple[Frames, Frames]) -> _Path:
     )
 
 
-def _sweep(
-    path: _Path, levers: LeverPoints, pose: np.ndarray, half: np.ndarray, forward: bool
-) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
-    """One link (a: `forward`, b: backward) moved by the path's joints, nearest it first (see
-    the module doc): each joint's displacement bound (K, n), and its ball swept by the joints on
-    its side of each pivot k (k = how many path joints move a), as centres (K, n + 1, 3) and
-    radii (K, n + 1)."""
-    count, n = len(pose), path.count
-    reach = _reach(pose, levers, path)  # (K, n): farthest point from each axis
-    center, radius = ball_round(levers)
-    ball_center = pose[:, :3, :3] @ center + pose[:, :3, 3]
-    ball_radius = np.full(count, radius)
-    chord = 2.0 * np.sin(np.minimum(half, np.pi) / 2.0)  # per unit of distance from the axis
-    keep, grow = _sweep_factors(half, path.turning)
-    order = range(n) if forward else range(n - 1, -1, -1)
-    centers, radii = np.zeros((count, n + 1, 3)), np.zeros((count, n + 1))
-    slot = 0 if forward else n
-    centers[:, slot], radii[:, slot] = ball_center, ball_radius
-    moved = np.where(path.turning, 0.0, half)  # a sliding joint moves every point by its half
-    total = np.zeros(count)
-    for i in order:
-        if path.turning[i]:
-            moved[:, i] = (reach[:, i] + total) * chord[:, i]
-            offset = ball_center - path.origins[:, i]
-            radial = offset - np.einsum("ki,ki->k", offset, path.axes[:, i])[:, None] * path.axes[:, i]
-            ball_center = ball_center - radial * keep[:, i, None]
-            ball_radius = ball_radius + np.sqrt(np.einsum("ki,ki->k", radial, radial)) * grow[:, i]
-        else:
-            ball_radius = ball_radius + half[:, i]
-        total = total + moved[:, i]
-        slot = i + 1 if forward else i
-        centers[:, slot], radii[:, slot] = ball_center, ball_radius
-    return moved, (centers, radii)
+def _sweeps(
+    path: _Path, levers: tuple[LeverPoints, LeverPoints], frames: tuple[Frames, Frames], half: np.ndarray
+) -> tuple[tuple[np.ndarray, tuple[np.ndarray, np.ndarray]], ...]:
+    """Both links moved by the path's joints, each nearest it first (a forward, b backward; see
+    the module doc): per link, each joint's displacement bound (K, n), and its ball swept by the
+    joints on its side of each pivot k (k = how many path joints move a), as centres
+    (K, n + 1, 3) and radii (K, n + 1). The two links go through one loop, stacked (side, K,
+    ...) in the order each meets the joints: a batch of boxes costs numpy calls per joint."""
+    count, n = len(half), path.count
+    reach = np.stack(
+        [_reach(frames[0].pose, levers[0], path), _reach(frames[1].pose, levers[1], path)[:, ::-1]]
+    )
+    halves = np.stack([half, half[:, ::-1]])  # (2, K, n), in each side's order
+    turning = np.stack([path.turning, path.turning[::-1]])[:, None, :]  # (2, 1, n)
+    origins = np.stack([path.origins, path.origins[:, ::-1]])  # (2, K, n, 3)
+    axes = np.stack([path.axes, path.axes[:, ::-1]])
+    chord = 2.0 * np.sin(np.minimum(halves, np.pi) / 2.0)  # per unit of distance from the axis
+    keep, grow = _sweep_factors(halves, turning)
+    slide = np.where(turning, 0.0, halves)  # a sliding joint moves every point by its half
+    centers, radii = np.zeros((2, count, n + 1, 3)), np.zeros((2, count, n + 1))
+    for side, (levers_side, frame) in enumerate(zip(levers, frames, strict=True)):
+        center, radius = ball_round(levers_side)
+        centers[side, :, 0], radii[side, :, 0] = frame.pose[:, :3, :3] @ center + frame.pose[:, :3, 3], radius
+    moved, total = np.zeros((2, count, n)), np.zeros((2, count))
+    for t in range(n):
+        moved[:, :, t] = np.where(turning[:, :, t], (reach[:, :, t] + total) * chord[:, :, t], slide[:, :, t])
+        total = total + moved[:, :, t]
+        offset = centers[:, :, t] - origins[:, :, t]
+        radial = offset - np.vecdot(offset, axes[:, :, t])[..., None] * axes[:, :, t]
+        centers[:, :, t + 1] = centers[:, :, t] - radial * keep[:, :, t, None]
+        grown = np.sqrt(np.vecdot(radial, radial)) * grow[:, :, t]
+        radii[:, :, t + 1] = radii[:, :, t] + grown + slide[:, :, t]
+    side_a = moved[0], (centers[0], radii[0])
+    side_b = moved[1][:, ::-1], (centers[1][:, ::-1], radii[1][:, ::-1])  # back in path order
+    return side_a, side_b
 
 
 def _sweep_factors(half: np.ndarray, turning: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per turning joint (K, n), how a ball swept over +- half moves (see the module doc): the
-    share 1 - cos h of its offset from the axis its centre moves towards the axis by (all of it
-    beyond pi/2), and the growth of its radius per unit of that offset (sin h; 1 beyond pi/2)."""
+    """Per turning joint, how a ball swept over +- half moves (see the module doc): the share
+    1 - cos h of its offset from the axis its centre moves towards the axis by (all of it
+    beyond pi/2), and the growth of its radius per unit of that offset (sin h; 1 beyond pi/2);
+    both 0 for a sliding joint."""
     narrow = half <= np.pi / 2.0
     keep = np.where(narrow, 1.0 - np.cos(half), 1.0)
     grow = np.where(narrow, np.sin(np.minimum(half, np.pi / 2.0)), 1.0)
@@ -252,13 +255,13 @@ def _reach(pose: np.ndarray, levers: LeverPoints, path: _Path) -> np.ndarray:
     origins = (path.origins - translation[:, None, :]) @ rotation  # rows: R^T v
     axes = path.axes @ rotation
     points = levers.points
-    along = _times_points(axes, points) - np.sum(origins * axes, axis=2)[..., None]  # (K, n, P)
+    along = _times_points(axes, points) - np.vecdot(origins, axes)[..., None]  # (K, n, P)
     squared = (
         np.sum(points**2, axis=1)
         - 2.0 * _times_points(origins, points)
-        + np.sum(origins**2, axis=2)[..., None]
+        + np.vecdot(origins, origins)[..., None]
     ) - along**2
-    return np.max(np.sqrt(np.maximum(squared, 0.0)) + levers.radii, axis=2)
+    return (np.sqrt(np.maximum(squared, 0.0)) + levers.radii).max(axis=2)
 
 
 def _times_points(rows: np.ndarray, points: np.ndarray) -> np.ndarray:
@@ -292,7 +295,7 @@ def _axis_gap(
     zeros = np.zeros((len(gap), 1, gap.shape[1]))
     before_a = np.concatenate([zeros, np.cumsum(shrink_a, axis=1)], axis=1)
     after_b = np.concatenate([np.cumsum(shrink_b[:, ::-1], axis=1)[:, ::-1], zeros], axis=1)
-    return np.max(gap - np.min(before_a + after_b, axis=1), axis=1)
+    return (gap - (before_a + after_b).min(axis=1)).max(axis=1)
 
 
 def _projection(
@@ -301,12 +304,12 @@ def _projection(
     """(K, D) lowest and highest projections of the link's support balls on `directions` (the
     balls' centres projected in the link's frame, in one matrix product; then moved)."""
     local = directions @ pose[:, :3, :3]  # rows: R^T u
-    offset = np.einsum("kdi,ki->kd", directions, pose[:, :3, 3])
+    offset = np.vecdot(directions, pose[:, None, :3, 3])
     points, radii = levers.support_points, levers.support_radii
     along = _times_points(local, points)
     if not radii.any():  # hull vertices: no radii to add
-        return np.min(along, axis=2) + offset, np.max(along, axis=2) + offset
-    return np.min(along - radii, axis=2) + offset, np.max(along + radii, axis=2) + offset
+        return along.min(axis=2) + offset, along.max(axis=2) + offset
+    return (along - radii).min(axis=2) + offset, (along + radii).max(axis=2) + offset
 
 
 def swept_ball(
@@ -330,7 +333,4 @@ def _swept(center, radius, origin, axis, half):
 
 def ball_round(levers: LeverPoints) -> tuple[np.ndarray, float]:
     """A ball round the lever points' balls (centred on their bounding box)."""
-    lo = np.min(levers.points - levers.radii[:, None], axis=0)
-    hi = np.max(levers.points + levers.radii[:, None], axis=0)
-    center = (lo + hi) / 2.0
-    return center, float(np.max(np.linalg.norm(levers.points - center, axis=1) + levers.radii))
+    return levers.ball
