@@ -47,13 +47,15 @@ class Frames:
     turning: np.ndarray  # (J,) bool
     _spread: np.ndarray  # (J, m)
 
-    def velocities(self, rows: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """(R, m, 3): how fast each point (R, 3), fixed to the link, moves per unit of each box
-        column at the states `rows` (R,) (the columns' Jacobian at those points)."""
+    def rates(self, rows: np.ndarray, points: np.ndarray, directions: np.ndarray) -> np.ndarray:
+        """(R, m): how fast each point (R, 3), fixed to the link, moves along its direction
+        (R, 3) per unit of each box column, at the states `rows` (R,) (a row of the columns'
+        Jacobian at those points, projected)."""
         axes = self.axes[rows]
         arm = points[:, None, :] - self.origins[rows]
-        moved = np.where(self.turning[None, :, None], cross(axes, arm), axes)
-        return np.einsum("jm,rji->rmi", self._spread, moved)
+        along = directions[:, None, :]
+        moved = np.where(self.turning, np.vecdot(cross(axes, arm), along), np.vecdot(axes, along))
+        return moved @ self._spread
 
 
 @dataclass(frozen=True, eq=False)
@@ -72,7 +74,7 @@ class ChainKinematics:
     pivot_axes: np.ndarray
     rotations: np.ndarray
     tail: np.ndarray | None
-    spread: np.ndarray  # (J, m): column weights of each joint (the velocities' Jacobian)
+    spread: np.ndarray  # (J, m): column weights of each joint (the Jacobian's)
 
     def frames(self, q: np.ndarray) -> Frames:
         """The chain at the states `q` (K, m) of the box's variables."""

@@ -23,20 +23,24 @@ class Meter:
         self.units = 0
         self.extra_tries = 0
         self.extra_wins = 0
+        self._plans = (scene.distance_plan(pair_id, False), scene.distance_plan(pair_id, True))
 
     def hull(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
+        """The distance [m] of the meshes' convex hulls (see CollisionScene.shape_distance)."""
         self.units += 1
-        return self.scene.shape_distance(self.pair_id, pose_a, pose_b, hulls=True)
+        return self.scene.closest(self._plans[True], pose_a, pose_b)[0]
 
     def exact(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
+        """The distance [m] of the pair's shapes."""
         self.units += EXACT_UNITS if self.hulls else 1
-        return self.scene.shape_distance(self.pair_id, pose_a, pose_b)
+        return self.scene.closest(self._plans[False], pose_a, pose_b)[0]
 
     def nearest(
         self, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool
     ) -> tuple[float, np.ndarray, np.ndarray]:
+        """The distance [m] and nearest points of the pair's shapes (`hulls`: of their hulls)."""
         self.units += 1 if hulls or not self.hulls else EXACT_UNITS
-        return self.scene.nearest_points(self.pair_id, pose_a, pose_b, hulls=hulls)
+        return self.scene.closest(self._plans[hulls], pose_a, pose_b, points=True)
 
     def extra_pays(self) -> bool:
         return self.extra_tries < PROBE or self.extra_wins * PROBE >= self.extra_tries

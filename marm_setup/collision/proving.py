@@ -95,6 +95,7 @@ def settle_pairs(
     boxes = plan.again if screen_pool is None else min(plan.again, max(0, screen_pool - spent) // count)
     if tally is not None:
         tally.start(tally.proved, tally.in_contact, len(priors))
+    chains = _chains(scene, sorted(priors))  # both rounds' (a chain costs about 0.25 ms)
     proofs = prove_pairs(
         scene,
         sorted(priors),
@@ -104,6 +105,7 @@ def settle_pairs(
         priors,
         starts,
         tally,
+        chains,
     )
     reached = {pair: proof.reached for pair, proof in proofs.items() if proof.outcome == UNPROVED}
     proofs.update(
@@ -116,7 +118,9 @@ def settle_pairs(
         todo = [pair for pair in close if pair not in known]
         if tally is not None:
             tally.start(tally.proved, tally.in_contact, len(todo))
-        again = prove_pairs(scene, todo, Budget(0, descent), seed + 1, jobs, proofs, tally=tally)
+        again = prove_pairs(
+            scene, todo, Budget(0, descent), seed + 1, jobs, proofs, tally=tally, chains=chains
+        )
         proofs.update(
             {pair: dataclasses.replace(proof, second=reached[pair]) for pair, proof in again.items()}
         )
@@ -144,13 +148,15 @@ def prove_pairs(
     priors: dict[Pair, PairProof] | None = None,
     starts: dict[Pair, np.ndarray] | None = None,
     tally: ProofTally | None = None,
+    chains: Mapping[Pair, PairChain] | None = None,
 ) -> dict[Pair, PairProof]:
     """Pair -> its proof within `budget` (with `priors`: going on from each; `starts`: robot
-    states each pair's witness search starts from; `tally` hears of each proof as it ends)."""
+    states each pair's witness search starts from; `tally` hears of each proof as it ends;
+    `chains`: the pairs' PairChains, when the caller has them)."""
     if not pairs:
         return {}
     priors, starts = priors or {}, starts or {}
-    chains = _chains(scene, pairs)
+    chains = {pair: chains[pair] for pair in pairs} if chains is not None else _chains(scene, pairs)
     order = sorted(pairs, key=lambda p: (-chains[p].dims, p))
     found: Iterator[tuple[Pair, PairProof]]
     if jobs <= 1 or len(pairs) < 2 or len(pairs) * (budget.boxes + budget.descent) < WORTH_A_POOL:

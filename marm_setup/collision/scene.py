@@ -284,7 +284,7 @@ class CollisionScene:
         cheaper than mesh distance); the exact distance for a pair of primitives."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
         self.hull_checks += 1
-        best = self._closest(self._distance_plan(pair_id, True), poses[a], poses[b])[0]
+        best = self.closest(self.distance_plan(pair_id, True), poses[a], poses[b])[0]
         self.hull_rejections += bool(best > self.padding + HULL_MARGIN)
         return best
 
@@ -335,21 +335,21 @@ class CollisionScene:
     def distance(self, poses: np.ndarray, pair_id: int) -> float:
         """Smallest distance [m] between the pair's shapes (0 or less when touching)."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        return self._closest(self._distance_plan(pair_id, False), poses[a], poses[b])[0]
+        return self.closest(self.distance_plan(pair_id, False), poses[a], poses[b])[0]
 
     def shape_distance(
         self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
     ) -> float:
         """Smallest distance [m] between the pair's shapes with its links at `pose_a`, `pose_b`
         (any common frame); `hulls`: of the meshes' convex hulls (a lower bound)."""
-        return self._closest(self._distance_plan(pair_id, hulls), pose_a, pose_b)[0]
+        return self.closest(self.distance_plan(pair_id, hulls), pose_a, pose_b)[0]
 
     def nearest_points(
         self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
     ) -> tuple[float, np.ndarray, np.ndarray]:
         """The pair's distance [m] at `pose_a`, `pose_b` and its nearest points on each link
         (in the poses' frame); `hulls`: of the meshes' convex hulls."""
-        return self._closest(self._distance_plan(pair_id, hulls), pose_a, pose_b, points=True)
+        return self.closest(self.distance_plan(pair_id, hulls), pose_a, pose_b, points=True)
 
     def lever_points(self, link: str) -> LeverPoints:
         """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes
@@ -365,7 +365,7 @@ class CollisionScene:
             self._levers[link] = link_levers(np.concatenate(points), np.concatenate(radii))
         return self._levers[link]
 
-    def _distance_plan(self, pair_id: int, hulls: bool) -> tuple:
+    def distance_plan(self, pair_id: int, hulls: bool) -> tuple:
         """The pair's distance request and its (coal distance functor, link-from-shape pose of
         a, of b) per pair of its shapes (of the meshes' convex hulls when `hulls`), built once:
         a proof asks tens of thousands of distances of the same pair."""
@@ -381,9 +381,10 @@ class CollisionScene:
             self._plans[(pair_id, hulls)] = plan
         return plan
 
-    def _closest(self, plan: tuple, pose_a: np.ndarray, pose_b: np.ndarray, points: bool = False):
-        """(distance, nearest point on a, on b) of the closest pair of shapes of a distance
-        `plan`; the points are read only when `points` (else zeros)."""
+    def closest(self, plan: tuple, pose_a: np.ndarray, pose_b: np.ndarray, points: bool = False):
+        """(distance, nearest point on a, on b) of the closest pair of shapes of a
+        `distance_plan`, its links at `pose_a`, `pose_b` (any common frame); the points are
+        read only when `points` (else zeros)."""
         tf_a, tf_b = self._tf
         result, (request, solvers) = self._distance_result, plan
         best, near = np.inf, None
@@ -436,8 +437,7 @@ def _set(tf, pose: np.ndarray, local: np.ndarray | None) -> None:
     """Set coal transform `tf` to `pose @ local` (local None: identity)."""
     if local is not None:
         pose = pose @ local
-    tf.setRotation(pose[:3, :3])
-    tf.setTranslation(pose[:3, 3])
+    tf.setTransform(pose[:3, :3], pose[:3, 3])
 
 
 def _link_shapes(robot: RobotModel, name: str, coal, bvh_cache: dict):

@@ -259,5 +259,4 @@ def _gradients(
     length = np.linalg.norm(gap, axis=1)
     normal = np.where((distance > 0)[:, None], gap, -gap) / np.maximum(length, 1e-12)[:, None]
     normal[length < 1e-12] = 0.0
-    rate = frames[1].velocities(rows, near_b) - frames[0].velocities(rows, near_a)
-    return np.einsum("rmi,ri->rm", rate, normal)
+    return frames[1].rates(rows, near_b, normal) - frames[0].rates(rows, near_a, normal)
