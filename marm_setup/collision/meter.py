@@ -35,12 +35,19 @@ class Meter:
         self.units += EXACT_UNITS if self.hulls else 1
         return self.scene.closest(self._plans[False], pose_a, pose_b)[0]
 
-    def nearest(
-        self, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool
-    ) -> tuple[float, np.ndarray, np.ndarray]:
-        """The distance [m] and nearest points of the pair's shapes (`hulls`: of their hulls)."""
+    def batch(self, poses_a: np.ndarray, poses_b: np.ndarray) -> tuple:
+        """The pair at K states (its links' poses (K, 4, 4)), for `nearest`; the distance
+        plans are laid out for them when first asked (collision/scene.py `posed`)."""
+        return poses_a, poses_b, {}
+
+    def nearest(self, batch: tuple, row: int, hulls: bool) -> tuple[float, np.ndarray, np.ndarray]:
+        """The distance [m] and nearest points of the pair's shapes at state `row` of a
+        `batch`, `hulls`: of their hulls."""
         self.units += 1 if hulls or not self.hulls else EXACT_UNITS
-        return self.scene.closest(self._plans[hulls], pose_a, pose_b, points=True)
+        poses_a, poses_b, posed = batch
+        if hulls not in posed:
+            posed[hulls] = self.scene.posed(self._plans[hulls], poses_a, poses_b)
+        return self.scene.closest_at(posed[hulls], row, points=True)
 
     def extra_pays(self) -> bool:
         return self.extra_tries < PROBE or self.extra_wins * PROBE >= self.extra_tries

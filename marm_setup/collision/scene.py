@@ -386,20 +386,53 @@ class CollisionScene:
         `distance_plan`, its links at `pose_a`, `pose_b` (any common frame); the points are
         read only when `points` (else zeros)."""
         tf_a, tf_b = self._tf
-        result, (request, solvers) = self._distance_result, plan
-        best, near = np.inf, None
+        request, solvers = plan
+        best: tuple = (np.inf, None)
         for solve, local_a, local_b in solvers:
             _set(tf_a, pose_a, local_a)
             _set(tf_b, pose_b, local_b)
-            result.clear()
-            request.cached_gjk_guess, request.cached_support_func_guess = _GUESS, _HINT  # _same_start
-            solve(tf_a, tf_b, request, result)
-            distance = float(result.min_distance)
-            if distance < best:
-                best = distance
-                if points:  # copies: the result's points change with its next query
-                    near = (np.array(result.getNearestPoint1()), np.array(result.getNearestPoint2()))
-        return (best, *near) if near is not None else (best, np.zeros(3), np.zeros(3))
+            best = self._nearer(best, solve, request, points)
+        return best if len(best) == 3 else (best[0], np.zeros(3), np.zeros(3))
+
+    def posed(self, plan: tuple, poses_a: np.ndarray, poses_b: np.ndarray) -> tuple:
+        """A `distance_plan` at K poses of its links (K, 4, 4) each: per pair of shapes, their
+        rotations and translations laid out as coal reads them (for `closest_at`: a proof's
+        descents measure hundreds of states of a batch one by one)."""
+        request, solvers = plan
+        out = []
+        for solve, local_a, local_b in solvers:
+            shape_a = poses_a if local_a is None else poses_a @ local_a
+            shape_b = poses_b if local_b is None else poses_b @ local_b
+            rotations = (np.ascontiguousarray(shape_a[:, :3, :3]), np.ascontiguousarray(shape_b[:, :3, :3]))
+            shifts = (np.ascontiguousarray(shape_a[:, :3, 3]), np.ascontiguousarray(shape_b[:, :3, 3]))
+            out.append((solve, rotations, shifts))
+        return request, tuple(out)
+
+    def closest_at(self, posed: tuple, row: int, points: bool = False):
+        """`closest` at state `row` of a `posed` plan."""
+        tf_a, tf_b = self._tf
+        request, solvers = posed
+        best: tuple = (np.inf, None)
+        for solve, (rotation_a, rotation_b), (shift_a, shift_b) in solvers:
+            tf_a.setTransform(rotation_a[row], shift_a[row])
+            tf_b.setTransform(rotation_b[row], shift_b[row])
+            best = self._nearer(best, solve, request, points)
+        return best if len(best) == 3 else (best[0], np.zeros(3), np.zeros(3))
+
+    def _nearer(self, best: tuple, solve, request, points: bool) -> tuple:
+        """`best` ((distance, nearest points...) so far) or the distance of coal functor `solve`
+        at the transforms set, whichever is smaller; the points are read only when `points`."""
+        result = self._distance_result
+        result.clear()
+        request.cached_gjk_guess, request.cached_support_func_guess = _GUESS, _HINT  # _same_start
+        solve(*self._tf, request, result)
+        distance = float(result.min_distance)
+        if distance >= best[0]:
+            return best
+        if not points:
+            return (distance, None)
+        # (coal returns copies of the points: the result's next query leaves them be)
+        return distance, result.getNearestPoint1(), result.getNearestPoint2()
 
     def _distance_solver(self, geom_a, geom_b):
         key = (id(geom_a), id(geom_b))

@@ -176,7 +176,8 @@ class _Descents:
     def __init__(self, search: PairSearch, q: np.ndarray) -> None:
         self.q = q
         frames = search.chain.frames(q)
-        measured = [_measure(search, frames, row) for row in range(len(q))]
+        batch = search.meter.batch(frames[0].pose, frames[1].pose)
+        measured = [_measure(search, batch, row) for row in range(len(q))]
         self.value = np.array([m[0] for m in measured])
         self.exact = np.array([m[2] for m in measured], dtype=bool)
         self.gradient = _gradients(frames, np.arange(len(q)), measured, search.chain.dims)
@@ -216,11 +217,12 @@ def _step(search: PairSearch, state: _Descents, limit: int) -> None:
     moves = q[:, None, :] - factors[:, :, None] * gradient[:, None, :]
     moves = np.clip(moves, chain.lower, chain.upper).reshape(-1, chain.dims)
     frames = chain.frames(moves)
+    batch = search.meter.batch(frames[0].pose, frames[1].pose)
     accepted: list[tuple[int, int]] = []
     measured: list[Measured] = []
     for i, s in enumerate(rows):
         for h in range(tries):
-            found = _measure(search, frames, i * tries + h)
+            found = _measure(search, batch, i * tries + h)
             if found[0] < state.value[s]:
                 state.q[s], state.value[s], state.exact[s] = moves[i * tries + h], found[0], found[2]
                 accepted.append((int(s), i * tries + h))
@@ -235,15 +237,14 @@ def _step(search: PairSearch, state: _Descents, limit: int) -> None:
         state.gradient[targets] = _gradients(frames, at, measured, chain.dims)
 
 
-def _measure(search: PairSearch, frames: tuple[Frames, Frames], row: int) -> Measured:
-    """The distance at state `row` of `frames`, its nearest points, and whether it is the real
-    distance (else the hulls', while they are more than SWITCH apart)."""
+def _measure(search: PairSearch, batch: tuple, row: int) -> Measured:
+    """The distance at state `row` of a meter's `batch`, its nearest points, and whether it is
+    the real distance (else the hulls', while they are more than SWITCH apart)."""
     meter = search.meter
-    pose_a, pose_b = frames[0].pose[row], frames[1].pose[row]
-    distance, near_a, near_b = meter.nearest(pose_a, pose_b, hulls=meter.hulls)
+    distance, near_a, near_b = meter.nearest(batch, row, hulls=meter.hulls)
     exact = not meter.hulls
     if meter.hulls and distance <= search.threshold + SWITCH:
-        distance, near_a, near_b = meter.nearest(pose_a, pose_b, hulls=False)
+        distance, near_a, near_b = meter.nearest(batch, row, hulls=False)
         exact = True
     return distance, (near_a, near_b), exact
 
