@@ -279,6 +279,12 @@ class CollisionScene:
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
         return self._hull_shapes(a) is not None or self._hull_shapes(b) is not None
 
+    def pair_triangles(self, pair_id: int) -> tuple[int, int]:
+        """Each link's mesh triangles (a primitive counts 1): what an exact distance costs."""
+        rows = (int(self._pair_a[pair_id]), int(self._pair_b[pair_id]))
+        count = [sum(getattr(geom, "num_tris", 1) for geom, _ in self._shapes[row]) for row in rows]
+        return count[0], count[1]
+
     def hull_distance(self, poses: np.ndarray, pair_id: int) -> float:
         """A lower bound [m] on the pair's distance: that of the meshes' convex hulls (GJK, much
         cheaper than mesh distance); the exact distance for a pair of primitives."""

@@ -171,23 +171,31 @@ def _lever_gaps(chain: PairChain, frames: tuple[Frames, Frames], rows: np.ndarra
 
 class _Descents:
     """The state of S descents: where each is, its distance there, its gradient, whether that
-    distance is the real one (else the hulls'), and whether it still moves."""
+    distance is the real one (else the hulls'), and whether it still moves. The starts are
+    measured in order until the meter reaches `limit` (a pair whose meshes' distance costs
+    tens of units reaches it within a batch); the rest never start (inf, inactive)."""
 
-    def __init__(self, search: PairSearch, q: np.ndarray) -> None:
+    def __init__(self, search: PairSearch, q: np.ndarray, limit: int) -> None:
         self.q = q
         frames = search.chain.frames(q)
         batch = search.meter.batch(frames[0].pose, frames[1].pose)
-        measured = [_measure(search, batch, row) for row in range(len(q))]
-        self.value = np.array([m[0] for m in measured])
-        self.exact = np.array([m[2] for m in measured], dtype=bool)
-        self.gradient = _gradients(frames, np.arange(len(q)), measured, search.chain.dims)
-        self.active = np.ones(len(q), dtype=bool)
+        measured: list[Measured] = []
+        while len(measured) < len(q) and search.meter.units < limit:
+            measured.append(_measure(search, batch, len(measured)))
+        count = len(measured)
+        self.value = np.full(len(q), np.inf)
+        self.value[:count] = [m[0] for m in measured]
+        self.exact = np.zeros(len(q), dtype=bool)
+        self.exact[:count] = [m[2] for m in measured]
+        self.gradient = np.zeros((len(q), search.chain.dims))
+        self.gradient[:count] = _gradients(frames, np.arange(count), measured, search.chain.dims)
+        self.active = np.arange(len(q)) < count
 
 
 def descend(search: PairSearch, q: np.ndarray, limit: int) -> tuple[Witness, np.ndarray]:
     """Descents from each row of `q` (S, m) together, each row moved to where its descent
     ended: the first witness found (or ()) and the distances there."""
-    state = _Descents(search, q)
+    state = _Descents(search, q, limit)
     for _ in range(STEPS):
         for s in np.flatnonzero(state.active & state.exact & (state.value <= search.threshold)):
             witness = search.check_witness(state.q[s])
