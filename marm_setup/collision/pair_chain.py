@@ -43,8 +43,9 @@ of its points (distance from a line is convex), plus that point's radius.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -58,6 +59,9 @@ from marm_setup.collision.chain_kinematics import (
 )
 from marm_setup.collision.levers import LeverPoints
 from marm_setup.robot import Joint, RobotModel, origin_matrix
+
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
 
 
 @dataclass(frozen=True, eq=False)
@@ -122,6 +126,12 @@ class PairChain:
         gaps = np.sqrt(np.vecdot(apart, apart)) - balls_a[1] - balls_b[1]
         axis_gap = _axis_gap(path, frames, self.levers, moved_a, moved_b)
         return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, gaps.max(axis=1), axis_gap)
+
+
+def pair_chains(scene: CollisionScene, pairs: Sequence[tuple[str, str]]) -> dict[tuple[str, str], PairChain]:
+    """Pair -> its PairChain, for the pairs of a CollisionScene `scene`."""
+    levers = {link: scene.lever_points(link) for pair in pairs for link in pair}
+    return {pair: pair_chain(scene.robot, pair, levers) for pair in pairs}
 
 
 def pair_chain(robot: RobotModel, pair: tuple[str, str], levers: Mapping[str, LeverPoints]) -> PairChain:
