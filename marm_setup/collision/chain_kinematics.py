@@ -60,11 +60,12 @@ class Frames:
 
 @dataclass(frozen=True, eq=False)
 class ChainKinematics:
-    """A chain's constants (see the module doc), per moving joint j: the box column driving
-    it, its multiplier and offset, whether it turns, its origin's translation `shift` (J, 3)
-    and its axis in its parent's frame `pivot_axes` (J, 3), its rotation's matrices
-    `rotations` (J, 3, 9) as rows A, B, C; the fixed joints after the last moving one folded
-    into `tail` (4x4, None when there are none)."""
+    """A chain's constants (see the module doc), per moving joint j: the column driving it (the
+    robot's active joint, or once `placed`, the pair's box column), its multiplier and offset,
+    whether it turns, its origin's translation `shift` (J, 3) and its axis in its parent's
+    frame `pivot_axes` (J, 3), its rotation's matrices `rotations` (J, 3, 9) as rows A, B, C;
+    the fixed joints after the last moving one folded into `tail` (4x4, None when there are
+    none)."""
 
     columns: np.ndarray
     multipliers: np.ndarray
@@ -74,7 +75,15 @@ class ChainKinematics:
     pivot_axes: np.ndarray
     rotations: np.ndarray
     tail: np.ndarray | None
-    spread: np.ndarray  # (J, m): column weights of each joint (the Jacobian's)
+    spread: np.ndarray  # (J, m): column weights of each joint (the Jacobian's; once placed)
+
+    def placed(self, position: np.ndarray, dims: int) -> ChainKinematics:
+        """The chain in a pair's box of `dims` variables, `position[c]` the box column of the
+        robot's active joint c (one chain serves every pair with the same ancestor and link)."""
+        columns = position[self.columns]
+        spread = np.zeros((len(columns), dims))
+        spread[np.arange(len(columns)), columns] = self.multipliers
+        return dataclasses.replace(self, columns=columns, spread=spread)
 
     def frames(self, q: np.ndarray) -> Frames:
         """The chain at the states `q` (K, m) of the box's variables."""
@@ -100,9 +109,9 @@ class ChainKinematics:
         return Frames(pose, origins, axes, self.columns, self.multipliers, self.turning, self.spread)
 
 
-def chain_kinematics(steps: tuple[Step, ...], dims: int) -> ChainKinematics:
+def chain_kinematics(steps: tuple[Step, ...]) -> ChainKinematics:
     """The ChainKinematics of folded `steps` (each fixed joint's origin folded into the next
-    moving joint's; at most one fixed step, the last) over a box of `dims` variables."""
+    moving joint's; at most one fixed step, the last), columns as the steps give them."""
     moving = [step for step in steps if step.column >= 0]
     tail = steps[-1].origin if steps and steps[-1].column < 0 else None
     rotations = np.zeros((len(moving), 3, 9))
@@ -110,20 +119,16 @@ def chain_kinematics(steps: tuple[Step, ...], dims: int) -> ChainKinematics:
         turn = _cross_matrix(step.axis) if step.kind == "revolute" else np.zeros((3, 3))
         origin = step.origin[:3, :3]
         rotations[j] = [origin.ravel(), (origin @ turn).ravel(), (origin @ turn @ turn).ravel()]
-    columns = np.array([s.column for s in moving], dtype=np.intp)
-    multipliers = np.array([s.multiplier for s in moving], dtype=float)
-    spread = np.zeros((len(moving), dims))
-    spread[np.arange(len(moving)), columns] = multipliers
     return ChainKinematics(
-        columns,
-        multipliers,
+        np.array([s.column for s in moving], dtype=np.intp),
+        np.array([s.multiplier for s in moving], dtype=float),
         np.array([s.offset for s in moving], dtype=float),
         np.array([s.kind == "revolute" for s in moving], dtype=bool),
         np.array([s.origin[:3, 3] for s in moving], dtype=float).reshape(-1, 3),
         np.array([s.origin[:3, :3] @ s.axis for s in moving], dtype=float).reshape(-1, 3),
         rotations,
         tail,
-        spread,
+        np.zeros((len(moving), 0)),
     )
 
 
