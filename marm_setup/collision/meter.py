@@ -2,12 +2,13 @@
 
 A unit is about one hull distance (GJK on two convex hulls, a few microseconds). An exact mesh
 distance costs far more, and more the larger the meshes: on the PR2, 0.05 ms for a small box
-against a 1,000-triangle mesh, 0.3 to 1.4 ms for two meshes of 1,000 to 1,900 triangles
-nested within millimetres of each other, about 0.7 us times the square root of the product of
-their triangle counts. The branch and bound charges it EXACT_UNITS (its per-pair budgets were
-sized to that, and the proofs it completes need one exact query or none); the witness search,
-which descends the real distance for hundreds of queries on the pairs whose hulls touch,
-charges it by its meshes: sqrt(n_a n_b) / TRIANGLES_PER_UNIT units, at least EXACT_UNITS.
+against a 1,000-triangle mesh, 0.3 to 1.4 ms for two meshes of 100 to 1,900 triangles nested
+within millimetres of each other: 50 to 250 hull queries, 0.3 to 1.5 us times the square root
+of the product of their triangle counts. The branch and bound charges it EXACT_UNITS (its
+per-pair budgets were sized to that, and the proofs it completes need one exact query or none);
+the witness search, which descends the real distance for hundreds of queries on the pairs whose
+hulls touch, charges it by its meshes: sqrt(n_a n_b) / TRIANGLES_PER_UNIT units, at least
+EXACT_UNITS (still below what they cost: with / 8 a PR2 seed lost a contact the others find).
 Counts of triangles, never time: the outcome stays the same on any machine.
 """
 
@@ -22,7 +23,7 @@ if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
 
 EXACT_UNITS = 10  # the branch and bound's charge for an exact mesh distance
-TRIANGLES_PER_UNIT = 32  # the witness search's: sqrt(n_a n_b) / this, at least EXACT_UNITS
+TRIANGLES_PER_UNIT = 16  # the witness search's: sqrt(n_a n_b) / this, at least EXACT_UNITS
 PROBES = 2  # exact queries beyond the hulls a branch and bound tries before judging their pay
 PAYS = 8  # then they go on while at least 1 in PAYS certifies what the hull did not (on the
 # PR2 3,300 such queries in a default run certified 7 boxes, none of them completing a proof)
