@@ -43,29 +43,33 @@ class Meter:
         self._plans = (scene.distance_plan(pair_id, False), scene.distance_plan(pair_id, True))
         self._descent_exact = descent_units(*scene.pair_triangles(pair_id)) if self.hulls else 1
 
-    def hull(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
-        """The distance [m] of the meshes' convex hulls (see CollisionScene.shape_distance)."""
-        self.units += 1
-        return self.scene.closest(self._plans[True], pose_a, pose_b)[0]
-
-    def exact(self, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
-        """The distance [m] of the pair's shapes (the branch and bound's)."""
-        self.units += EXACT_UNITS if self.hulls else 1
-        return self.scene.closest(self._plans[False], pose_a, pose_b)[0]
-
     def batch(self, poses_a: np.ndarray, poses_b: np.ndarray) -> tuple:
-        """The pair at K states (its links' poses (K, 4, 4)), for `nearest`; the distance
-        plans are laid out for them when first asked (collision/scene.py `posed`)."""
+        """The pair at K states (its links' poses (K, 4, 4)), for the queries below; the
+        distance plans are laid out for them when first asked (collision/scene.py `posed`)."""
         return poses_a, poses_b, {}
+
+    def hull(self, batch: tuple, row: int) -> float:
+        """The distance [m] of the meshes' convex hulls at state `row` of a `batch`."""
+        self.units += 1
+        return self._closest(batch, row, True, False)[0]
+
+    def exact(self, batch: tuple, row: int) -> float:
+        """The distance [m] of the pair's shapes at state `row` of a `batch` (the branch and
+        bound's)."""
+        self.units += EXACT_UNITS if self.hulls else 1
+        return self._closest(batch, row, False, False)[0]
 
     def nearest(self, batch: tuple, row: int, hulls: bool) -> tuple[float, np.ndarray, np.ndarray]:
         """The distance [m] and nearest points of the pair's shapes at state `row` of a
         `batch`, `hulls`: of their hulls (the witness search's)."""
         self.units += 1 if hulls else self._descent_exact
+        return self._closest(batch, row, hulls, True)
+
+    def _closest(self, batch: tuple, row: int, hulls: bool, points: bool) -> tuple:
         poses_a, poses_b, posed = batch
         if hulls not in posed:
             posed[hulls] = self.scene.posed(self._plans[hulls], poses_a, poses_b)
-        return self.scene.closest_at(posed[hulls], row, points=True)
+        return self.scene.closest_at(posed[hulls], row, points)
 
     def extra_pays(self) -> bool:
         return self.extra_tries < PROBES or self.extra_wins * PAYS >= self.extra_tries
