@@ -145,7 +145,7 @@ def pair_chain(
     common = _common_ancestor(robot, a, b)
     memo = {} if sides is None else sides
     chains = [_side(robot, common, link, memo) for link in pair]
-    leaders = np.unique(np.concatenate([chain.columns for chain in chains]))  # robot's active joints
+    leaders = np.array(sorted({int(c) for chain in chains for c in chain.columns}), dtype=np.intp)
     position = np.full(len(robot.active_joints), -1, dtype=np.intp)
     position[leaders] = np.arange(len(leaders))
     joints = robot.active_joints
@@ -153,7 +153,7 @@ def pair_chain(
     upper = np.array([joints[c].bounds[1] for c in leaders], dtype=float)
     kinematics = (chains[0].placed(position, len(leaders)), chains[1].placed(position, len(leaders)))
     upper = np.minimum(upper, lower + _periods(kinematics, len(leaders)))
-    return PairChain(pair, leaders.astype(np.intp), lower, upper, kinematics, (levers[a], levers[b]))
+    return PairChain(pair, leaders, lower, upper, kinematics, (levers[a], levers[b]))
 
 
 def _side(robot: RobotModel, common: str, link: str, memo: dict) -> ChainKinematics:
