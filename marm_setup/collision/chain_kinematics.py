@@ -5,9 +5,11 @@ The chain is built once (`chain_kinematics`): each moving joint's fixed origin i
 its motion into three constant 3x3 matrices A, B, C, so that its rotation at value v is
 A + sin(v) B + (1 - cos(v)) C (Rodrigues: A = origin, B = origin K, C = origin K^2, K the
 axis' cross-product matrix; a sliding joint has only A). At K states, all the joints' local
-rotations come out of one product, and walking the chain costs one batched 3x3 product per
-joint: the proofs evaluate small batches (a box, 16 descents) tens of thousands of times, and
-their cost is numpy's per-call overhead far more than arithmetic.
+rotations come out of one array expression, and walking the chain costs one batched 3x3
+product per joint: the proofs evaluate small batches (a box, 16 descents) tens of thousands
+of times, and their cost is numpy's per-call overhead far more than arithmetic. A chain is
+built with the robot's active joints as its columns and `placed` in each pair's box: the
+pairs that share an ancestor and a link share it.
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ class Step:
     origin: np.ndarray  # 4x4
     kind: str  # "revolute" (also continuous), "prismatic" or "fixed"
     axis: np.ndarray  # unit
-    column: int  # index into the pair's box columns (-1: fixed)
+    column: int  # the robot's active joint that drives it (-1: fixed)
     multiplier: float = 1.0
     offset: float = 0.0
 
