@@ -11,6 +11,7 @@ end-cap centres with its radius (a capsule holds it); then merged into at most L
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -28,6 +29,15 @@ class LeverPoints:
     radii: np.ndarray
     support_points: np.ndarray
     support_radii: np.ndarray
+
+    @cached_property
+    def ball(self) -> tuple[np.ndarray, float]:
+        """A ball (centre, radius) round the lever balls, centred on their bounding box
+        (worked out once: every box a proof evaluates starts from it)."""
+        lo = np.min(self.points - self.radii[:, None], axis=0)
+        hi = np.max(self.points + self.radii[:, None], axis=0)
+        center = (lo + hi) / 2.0
+        return center, float(np.max(np.linalg.norm(self.points - center, axis=1) + self.radii))
 
 
 def link_levers(points: np.ndarray, radii: np.ndarray) -> LeverPoints:

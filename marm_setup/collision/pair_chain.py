@@ -43,57 +43,25 @@ of its points (distance from a line is convex), plus that point's radius.
 
 from __future__ import annotations
 
-import dataclasses
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from marm_setup.collision.chain_kinematics import (
+    MOVING,
+    ChainKinematics,
+    Frames,
+    Step,
+    chain_kinematics,
+    folded,
+)
 from marm_setup.collision.levers import LeverPoints
 from marm_setup.robot import Joint, RobotModel, origin_matrix
 
-MOVING = ("revolute", "continuous", "prismatic")
-
-
-@dataclass(frozen=True, eq=False)
-class _Step:
-    """One joint from the common ancestor towards a link."""
-
-    origin: np.ndarray  # 4x4
-    kind: str  # "revolute" (also continuous), "prismatic" or "fixed"
-    axis: np.ndarray  # unit
-    column: int  # index into the pair's box columns (-1: fixed)
-    multiplier: float = 1.0
-    offset: float = 0.0
-
-    @property
-    def cross(self) -> np.ndarray:
-        """The axis' cross-product matrix (Rodrigues' K)."""
-        x, y, z = self.axis
-        return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-
-
-@dataclass(frozen=True, eq=False)
-class Frames:
-    """One chain at K states: the link's pose in the common ancestor's frame (K, 4, 4) and its
-    moving joints' axis lines there (through `origins` (K, J, 3) along unit `axes` (K, J, 3)),
-    with the box column driving each, its multiplier, and whether it turns (else it slides)."""
-
-    pose: np.ndarray
-    origins: np.ndarray
-    axes: np.ndarray
-    columns: np.ndarray  # (J,)
-    multipliers: np.ndarray  # (J,)
-    turning: np.ndarray  # (J,) bool
-    _spread: np.ndarray  # (J, m)
-
-    def velocities(self, rows: np.ndarray, points: np.ndarray) -> np.ndarray:
-        """(R, m, 3): how fast each point (R, 3), fixed to the link, moves per unit of each box
-        column at the states `rows` (R,) (the columns' Jacobian at those points)."""
-        axes = self.axes[rows]
-        arm = points[:, None, :] - self.origins[rows]
-        moved = np.where(self.turning[None, :, None], _cross(axes, arm), axes)
-        return np.einsum("jm,rji->rmi", self._spread, moved)
+if TYPE_CHECKING:
+    from marm_setup.collision.scene import CollisionScene
 
 
 @dataclass(frozen=True, eq=False)
@@ -119,7 +87,7 @@ class PairChain:
     columns: np.ndarray  # (m,) sorted active-joint columns
     lower: np.ndarray  # (m,)
     upper: np.ndarray  # (m,)
-    steps: tuple[tuple[_Step, ...], tuple[_Step, ...]]
+    kinematics: tuple[ChainKinematics, ChainKinematics]  # c -> a, c -> b
     levers: tuple[LeverPoints, LeverPoints]
 
     @property
@@ -134,15 +102,14 @@ class PairChain:
 
     def frames(self, q: np.ndarray) -> tuple[Frames, Frames]:
         """Both links' frames at the states `q` (K, m) of the box's variables."""
-        return _frames(self.steps[0], q), _frames(self.steps[1], q)
+        return self.kinematics[0].frames(q), self.kinematics[1].frames(q)
 
     def evaluate(self, centers: np.ndarray, halves: np.ndarray) -> BoxBounds:
         """Bounds of the pair over the boxes `centers` +- `halves` (K, m)."""
         frames = self.frames(centers)
         path = _path(frames)
         half = np.abs(path.multipliers) * halves[:, path.columns]  # (K, n) per path joint
-        moved_a, balls_a = _sweep(path, self.levers[0], frames[0].pose, half, forward=True)
-        moved_b, balls_b = _sweep(path, self.levers[1], frames[1].pose, half, forward=False)
+        (moved_a, balls_a), (moved_b, balls_b) = _sweeps(path, self.levers, frames, half)
         # pivot k: the path's first k joints move a, the others move b
         before_a = np.concatenate([np.zeros((len(centers), 1)), np.cumsum(moved_a, axis=1)], axis=1)
         after_b = np.concatenate(
@@ -155,62 +122,70 @@ class PairChain:
         shares = np.zeros(halves.shape)
         for i, column in enumerate(path.columns):  # a column may drive several joints (mimic)
             shares[:, column] += per_joint[:, i]
-        gaps = np.linalg.norm(balls_a[0] - balls_b[0], axis=2) - balls_a[1] - balls_b[1]
+        apart = balls_a[0] - balls_b[0]
+        gaps = np.sqrt(np.vecdot(apart, apart)) - balls_a[1] - balls_b[1]
         axis_gap = _axis_gap(path, frames, self.levers, moved_a, moved_b)
         return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, gaps.max(axis=1), axis_gap)
 
 
-def pair_chain(robot: RobotModel, pair: tuple[str, str], levers: Mapping[str, LeverPoints]) -> PairChain:
-    """The PairChain of `pair` (both links need lever points)."""
+def pair_chains(scene: CollisionScene, pairs: Sequence[tuple[str, str]]) -> dict[tuple[str, str], PairChain]:
+    """Pair -> its PairChain, for the pairs of a CollisionScene `scene` (each chain from an
+    ancestor to a link built once: on the PR2, 640 pairs have 1,280 chains, 200 of them apart)."""
+    levers = {link: scene.lever_points(link) for pair in pairs for link in pair}
+    sides: dict = {}
+    return {pair: pair_chain(scene.robot, pair, levers, sides) for pair in pairs}
+
+
+def pair_chain(
+    robot: RobotModel, pair: tuple[str, str], levers: Mapping[str, LeverPoints], sides: dict | None = None
+) -> PairChain:
+    """The PairChain of `pair` (both links need lever points); `sides`: the chains built so far
+    for pairs of the same robot, by (ancestor, link)."""
     a, b = pair
     common = _common_ancestor(robot, a, b)
-    chains = (robot.chain(common, a) or (), robot.chain(common, b) or ())
-    active = {name: i for i, name in enumerate(robot.active_joint_names)}
-    leaders = sorted({active[_leader(j)[0]] for chain in chains for j in chain if j.type in MOVING})
-    position = {col: k for k, col in enumerate(leaders)}
+    memo = {} if sides is None else sides
+    chains = [_side(robot, common, link, memo) for link in pair]
+    leaders = np.array(sorted({int(c) for chain in chains for c in chain.columns}), dtype=np.intp)
+    position = np.full(len(robot.active_joints), -1, dtype=np.intp)
+    position[leaders] = np.arange(len(leaders))
     joints = robot.active_joints
     lower = np.array([joints[c].bounds[0] for c in leaders], dtype=float)
     upper = np.array([joints[c].bounds[1] for c in leaders], dtype=float)
-    steps = tuple(_folded([_step(j, active, position) for j in chain]) for chain in chains)
-    upper = np.minimum(upper, lower + _periods(steps, len(leaders)))
-    return PairChain(
-        pair, np.array(leaders, dtype=np.intp), lower, upper, (steps[0], steps[1]), (levers[a], levers[b])
-    )
+    kinematics = (chains[0].placed(position, len(leaders)), chains[1].placed(position, len(leaders)))
+    upper = np.minimum(upper, lower + _periods(kinematics, len(leaders)))
+    return PairChain(pair, leaders, lower, upper, kinematics, (levers[a], levers[b]))
 
 
-def _periods(steps: tuple[tuple[_Step, ...], ...], count: int) -> np.ndarray:
+def _side(robot: RobotModel, common: str, link: str, memo: dict) -> ChainKinematics:
+    """The chain from `common` down to `link`, its columns the robot's active joints (memo)."""
+    if (common, link) not in memo:
+        active = {name: i for i, name in enumerate(robot.active_joint_names)}
+        steps = folded([_step(j, active) for j in robot.chain(common, link) or ()])
+        memo[(common, link)] = chain_kinematics(steps)
+    return memo[(common, link)]
+
+
+def _periods(kinematics: tuple[ChainKinematics, ...], count: int) -> np.ndarray:
     """Per box column, 2 pi when every joint it drives turns (multiplier +-1), else inf: a
     turning joint's poses repeat every 2 pi, so a wider range holds no pose a 2 pi window lacks."""
     periodic = np.ones(count, dtype=bool)  # (the proved fraction is that of the window)
-    for step in (s for side in steps for s in side if s.column >= 0):
-        periodic[step.column] &= step.kind == "revolute" and abs(step.multiplier) == 1.0
+    for chain in kinematics:
+        for column, turning, multiplier in zip(chain.columns, chain.turning, chain.multipliers, strict=True):
+            periodic[column] &= bool(turning) and abs(multiplier) == 1.0
     return np.where(periodic, 2.0 * np.pi, np.inf)
 
 
-def _step(joint: Joint, active: Mapping[str, int], position: Mapping[int, int]) -> _Step:
+def _step(joint: Joint, active: Mapping[str, int]) -> Step:
+    """One joint as a Step, its column the active joint that drives it (a mimic's leader)."""
     origin = origin_matrix(joint.origin)
     if joint.type not in MOVING:
-        return _Step(origin, "fixed", np.zeros(3), -1)
+        return Step(origin, "fixed", np.zeros(3), -1)
     leader, multiplier, offset = _leader(joint)
     axis = np.asarray(joint.axis, dtype=float)
     norm = np.linalg.norm(axis)
     axis = axis / norm if norm > 0 else np.array([1.0, 0.0, 0.0])  # as kinematics._unit
     kind = "prismatic" if joint.type == "prismatic" else "revolute"
-    return _Step(origin, kind, axis, position[active[leader]], multiplier, offset)
-
-
-def _folded(steps: list[_Step]) -> tuple[_Step, ...]:
-    """The same chain with each fixed joint's origin folded into the next joint's (fixed joints
-    at the end become one): fewer matrix products per state, the same poses."""
-    out, carried = [], np.eye(4)
-    for step in steps:
-        carried = carried @ step.origin
-        if step.column >= 0:
-            out.append(dataclasses.replace(step, origin=carried))
-            carried = np.eye(4)
-    if not np.array_equal(carried, np.eye(4)):
-        out.append(_Step(carried, "fixed", np.zeros(3), -1))
-    return tuple(out)
+    return Step(origin, kind, axis, active[leader], multiplier, offset)
 
 
 def _leader(joint: Joint) -> tuple[str, float, float]:
@@ -222,40 +197,6 @@ def _leader(joint: Joint) -> tuple[str, float, float]:
 def _common_ancestor(robot: RobotModel, a: str, b: str) -> str:
     above_b = {b, *(j.parent for j in robot.path_to_root(b))}
     return next(x for x in (a, *(j.parent for j in robot.path_to_root(a))) if x in above_b)
-
-
-def _frames(steps: tuple[_Step, ...], q: np.ndarray) -> Frames:
-    """FK of one chain at the states `q` (K, m), in the common ancestor's frame."""
-    count = len(q)
-    pose = np.broadcast_to(np.eye(4), (count, 4, 4)).copy()
-    origins, axes, moving = [], [], []
-    for step in steps:
-        pose = pose @ step.origin
-        if step.column < 0:
-            continue
-        value = q[:, step.column] * step.multiplier + step.offset
-        axis = pose[:, :3, :3] @ step.axis
-        origins.append(pose[:, :3, 3].copy())
-        axes.append(axis)
-        moving.append(step)
-        if step.kind == "revolute":
-            pose[:, :3, :3] = pose[:, :3, :3] @ _rotations(step.cross, value)
-        else:
-            pose[:, :3, 3] += axis * value[:, None]
-    empty = np.zeros((count, 0, 3))
-    columns = np.array([s.column for s in moving], dtype=np.intp)
-    multipliers = np.array([s.multiplier for s in moving], dtype=float)
-    spread = np.zeros((len(moving), q.shape[1]))
-    spread[np.arange(len(moving)), columns] = multipliers
-    return Frames(
-        pose,
-        np.stack(origins, axis=1) if origins else empty,
-        np.stack(axes, axis=1) if axes else empty,
-        columns,
-        multipliers,
-        np.array([s.kind == "revolute" for s in moving], dtype=bool),
-        spread,
-    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -285,38 +226,52 @@ def _path(frames: tuple[Frames, Frames]) -> _Path:
     )
 
 
-def _sweep(
-    path: _Path, levers: LeverPoints, pose: np.ndarray, half: np.ndarray, forward: bool
-) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
-    """One link (a: `forward`, b: backward) moved by the path's joints, nearest it first (see
-    the module doc): each joint's displacement bound (K, n), and its ball swept by the joints on
-    its side of each pivot k (k = how many path joints move a), as centres (K, n + 1, 3) and
-    radii (K, n + 1)."""
-    count, n = len(pose), path.count
-    reach = _reach(pose, levers, path)  # (K, n): farthest point from each axis
-    center, radius = ball_round(levers)
-    ball_center = pose[:, :3, :3] @ center + pose[:, :3, 3]
-    ball_radius = np.full(count, radius)
-    chord = 2.0 * np.sin(np.minimum(half, np.pi) / 2.0)  # per unit of distance from the axis
-    order = range(n) if forward else range(n - 1, -1, -1)
-    centers, radii = np.zeros((count, n + 1, 3)), np.zeros((count, n + 1))
-    slot = 0 if forward else n
-    centers[:, slot], radii[:, slot] = ball_center, ball_radius
-    moved = np.zeros((count, n))
-    total = np.zeros(count)
-    for i in order:
-        if path.turning[i]:
-            moved[:, i] = (reach[:, i] + total) * chord[:, i]
-            ball_center, ball_radius = _swept(
-                ball_center, ball_radius, path.origins[:, i], path.axes[:, i], half[:, i]
-            )
-        else:
-            moved[:, i] = half[:, i]
-            ball_radius = ball_radius + half[:, i]
-        total = total + moved[:, i]
-        slot = i + 1 if forward else i
-        centers[:, slot], radii[:, slot] = ball_center, ball_radius
-    return moved, (centers, radii)
+def _sweeps(
+    path: _Path, levers: tuple[LeverPoints, LeverPoints], frames: tuple[Frames, Frames], half: np.ndarray
+) -> tuple[tuple[np.ndarray, tuple[np.ndarray, np.ndarray]], ...]:
+    """Both links moved by the path's joints, each nearest it first (a forward, b backward; see
+    the module doc): per link, each joint's displacement bound (K, n), and its ball swept by the
+    joints on its side of each pivot k (k = how many path joints move a), as centres
+    (K, n + 1, 3) and radii (K, n + 1). The two links go through one loop, stacked (side, K,
+    ...) in the order each meets the joints: a batch of boxes costs numpy calls per joint."""
+    count, n = len(half), path.count
+    reach = np.stack(
+        [_reach(frames[0].pose, levers[0], path), _reach(frames[1].pose, levers[1], path)[:, ::-1]]
+    )
+    halves = np.stack([half, half[:, ::-1]])  # (2, K, n), in each side's order
+    turning = np.stack([path.turning, path.turning[::-1]])[:, None, :]  # (2, 1, n)
+    origins = np.stack([path.origins, path.origins[:, ::-1]])  # (2, K, n, 3)
+    axes = np.stack([path.axes, path.axes[:, ::-1]])
+    chord = 2.0 * np.sin(np.minimum(halves, np.pi) / 2.0)  # per unit of distance from the axis
+    keep, grow = _sweep_factors(halves, turning)
+    slide = np.where(turning, 0.0, halves)  # a sliding joint moves every point by its half
+    centers, radii = np.zeros((2, count, n + 1, 3)), np.zeros((2, count, n + 1))
+    for side, (levers_side, frame) in enumerate(zip(levers, frames, strict=True)):
+        center, radius = ball_round(levers_side)
+        centers[side, :, 0], radii[side, :, 0] = frame.pose[:, :3, :3] @ center + frame.pose[:, :3, 3], radius
+    moved, total = np.zeros((2, count, n)), np.zeros((2, count))
+    for t in range(n):
+        moved[:, :, t] = np.where(turning[:, :, t], (reach[:, :, t] + total) * chord[:, :, t], slide[:, :, t])
+        total = total + moved[:, :, t]
+        offset = centers[:, :, t] - origins[:, :, t]
+        radial = offset - np.vecdot(offset, axes[:, :, t])[..., None] * axes[:, :, t]
+        centers[:, :, t + 1] = centers[:, :, t] - radial * keep[:, :, t, None]
+        grown = np.sqrt(np.vecdot(radial, radial)) * grow[:, :, t]
+        radii[:, :, t + 1] = radii[:, :, t] + grown + slide[:, :, t]
+    side_a = moved[0], (centers[0], radii[0])
+    side_b = moved[1][:, ::-1], (centers[1][:, ::-1], radii[1][:, ::-1])  # back in path order
+    return side_a, side_b
+
+
+def _sweep_factors(half: np.ndarray, turning: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per turning joint, how a ball swept over +- half moves (see the module doc): the share
+    1 - cos h of its offset from the axis its centre moves towards the axis by (all of it
+    beyond pi/2), and the growth of its radius per unit of that offset (sin h; 1 beyond pi/2);
+    both 0 for a sliding joint."""
+    narrow = half <= np.pi / 2.0
+    keep = np.where(narrow, 1.0 - np.cos(half), 1.0)
+    grow = np.where(narrow, np.sin(np.minimum(half, np.pi / 2.0)), 1.0)
+    return np.where(turning, keep, 0.0), np.where(turning, grow, 0.0)
 
 
 def _reach(pose: np.ndarray, levers: LeverPoints, path: _Path) -> np.ndarray:
@@ -326,11 +281,20 @@ def _reach(pose: np.ndarray, levers: LeverPoints, path: _Path) -> np.ndarray:
     origins = (path.origins - translation[:, None, :]) @ rotation  # rows: R^T v
     axes = path.axes @ rotation
     points = levers.points
-    along = axes @ points.T - np.sum(origins * axes, axis=2)[..., None]  # (K, n, P)
+    along = _times_points(axes, points) - np.vecdot(origins, axes)[..., None]  # (K, n, P)
     squared = (
-        np.sum(points**2, axis=1) - 2.0 * (origins @ points.T) + np.sum(origins**2, axis=2)[..., None]
+        np.sum(points**2, axis=1)
+        - 2.0 * _times_points(origins, points)
+        + np.vecdot(origins, origins)[..., None]
     ) - along**2
-    return np.max(np.sqrt(np.maximum(squared, 0.0)) + levers.radii, axis=2)
+    return (np.sqrt(np.maximum(squared, 0.0)) + levers.radii).max(axis=2)
+
+
+def _times_points(rows: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(K, n, P): each row (K, n, 3) dotted with each point (P, 3), as a stack of small matrix
+    products (one (K n, 3) x (3, P) product would go to a multithreaded BLAS, which costs far
+    more CPU time on a busy machine)."""
+    return rows @ points.T
 
 
 def _axis_gap(
@@ -357,18 +321,21 @@ def _axis_gap(
     zeros = np.zeros((len(gap), 1, gap.shape[1]))
     before_a = np.concatenate([zeros, np.cumsum(shrink_a, axis=1)], axis=1)
     after_b = np.concatenate([np.cumsum(shrink_b[:, ::-1], axis=1)[:, ::-1], zeros], axis=1)
-    return np.max(gap - np.min(before_a + after_b, axis=1), axis=1)
+    return (gap - (before_a + after_b).min(axis=1)).max(axis=1)
 
 
 def _projection(
     pose: np.ndarray, levers: LeverPoints, directions: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(K, D) lowest and highest projections of the link's support balls on `directions`."""
+    """(K, D) lowest and highest projections of the link's support balls on `directions` (the
+    balls' centres projected in the link's frame, in one matrix product; then moved)."""
     local = directions @ pose[:, :3, :3]  # rows: R^T u
-    offset = np.sum(directions * pose[:, None, :3, 3], axis=2)[..., None]
-    along = local @ levers.support_points.T + offset
-    radii = levers.support_radii
-    return np.min(along - radii, axis=2), np.max(along + radii, axis=2)
+    offset = np.vecdot(directions, pose[:, None, :3, 3])
+    points, radii = levers.support_points, levers.support_radii
+    along = _times_points(local, points)
+    if not radii.any():  # hull vertices: no radii to add
+        return along.min(axis=2) + offset, along.max(axis=2) + offset
+    return (along - radii).min(axis=2) + offset, (along + radii).max(axis=2) + offset
 
 
 def swept_ball(
@@ -379,13 +346,6 @@ def swept_ball(
         center[None], np.array([radius]), origin[None], axis[None], np.array([half])
     )
     return new_center[0], float(new_radius[0])
-
-
-def rotation_about(axis: np.ndarray, angle: float) -> np.ndarray:
-    """The rotation (3, 3) by `angle` about unit `axis`."""
-    x, y, z = axis
-    cross = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return _rotations(cross, np.array([angle]))[0]
 
 
 def _swept(center, radius, origin, axis, half):
@@ -399,31 +359,4 @@ def _swept(center, radius, origin, axis, half):
 
 def ball_round(levers: LeverPoints) -> tuple[np.ndarray, float]:
     """A ball round the lever points' balls (centred on their bounding box)."""
-    lo = np.min(levers.points - levers.radii[:, None], axis=0)
-    hi = np.max(levers.points + levers.radii[:, None], axis=0)
-    center = (lo + hi) / 2.0
-    return center, float(np.max(np.linalg.norm(levers.points - center, axis=1) + levers.radii))
-
-
-def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Cross product over the last axis (np.cross costs more in its axis handling)."""
-    return np.stack(
-        [
-            u[..., 1] * v[..., 2] - u[..., 2] * v[..., 1],
-            u[..., 2] * v[..., 0] - u[..., 0] * v[..., 2],
-            u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0],
-        ],
-        axis=-1,
-    )
-
-
-def _rotations(cross: np.ndarray, angles: np.ndarray) -> np.ndarray:
-    """Rotation matrices (K, 3, 3) about the unit axis whose cross-product matrix is `cross`
-    (Rodrigues: I + sin a K + (1 - cos a) K^2)."""
-    rotation = np.multiply.outer(np.sin(angles), cross) + np.multiply.outer(
-        1.0 - np.cos(angles), cross @ cross
-    )
-    rotation[:, 0, 0] += 1.0
-    rotation[:, 1, 1] += 1.0
-    rotation[:, 2, 2] += 1.0
-    return rotation
+    return levers.ball

@@ -16,8 +16,9 @@ distance from the closest centres measured and from seeded random states.
 
 Outcomes: `proved` (every box certified), `collides` (a witness state, checked exactly),
 `unproved` (budget spent; `proved_fraction` is the share of the box's volume certified).
-Budgets count coal queries (an exact mesh query counts EXACT_UNITS hull queries), never time:
-the outcome depends on the pair, the seed and the budget only (not --jobs nor the machine).
+Budgets count coal queries (an exact mesh query counts several hull queries, what it costs
+about: `collision/meter.py`), never time: the outcome depends on the pair, the seed and the
+budget only (not --jobs nor the machine).
 """
 
 from __future__ import annotations
@@ -48,7 +49,7 @@ TINY = 1e-9  # [m] a box whose whole displacement bound is below this is not spl
 @dataclass(frozen=True, slots=True)
 class Budget:
     """Work units for the branch and bound (a box evaluated or a hull distance: 1; an exact
-    mesh distance: EXACT_UNITS) and for the witness search."""
+    mesh distance: meter.EXACT_UNITS) and for the witness search (see collision/meter.py)."""
 
     boxes: int
     descent: int
@@ -220,7 +221,7 @@ class PairSearch:
         centers, halves = (lo + hi) / 2.0, (hi - lo) / 2.0
         bounds = self.chain.evaluate(centers, halves)
         gaps, motion, shares = np.maximum(bounds.ball_gap, bounds.axis_gap), bounds.motion, bounds.shares
-        poses = (bounds.frames[0].pose, bounds.frames[1].pose)
+        batch = self.meter.batch(bounds.frames[0].pose, bounds.frames[1].pose)
         volumes = np.prod((hi - lo) / self.width, axis=1)
         self.meter.units += len(lo)  # a box's kinematics and bounds cost about a hull query
         for k in range(len(lo)):
@@ -230,7 +231,7 @@ class PairSearch:
             if reach[k] - motion[k] <= self.threshold:
                 self._push(floor[k], lo[k], hi[k], shares[k], reach[k])
                 continue
-            bound, measured = self._distance_bound(poses[0][k], poses[1][k], motion[k], centers[k])
+            bound, measured = self._distance_bound(batch, k, motion[k], centers[k])
             if self.witness:
                 return
             if bound is None:
@@ -243,21 +244,27 @@ class PairSearch:
         self._sequence += 1
 
     def _distance_bound(
-        self, pose_a: np.ndarray, pose_b: np.ndarray, motion: float, center: np.ndarray
+        self, batch: tuple, row: int, motion: float, center: np.ndarray
     ) -> tuple[float | None, float]:
-        """(None when the box is certified, else a lower bound of its distance: the distance at
-        the centre less coal's tolerance and the motion; the most the certifying distance can
-        be at the centre). A centre within the padding is tried as a witness."""
+        """(None when the box `row` of a meter's `batch` is certified, else a lower bound of its
+        distance: the distance at the centre less coal's tolerance and the motion; the most the
+        certifying distance can be at the centre). A centre within the padding is tried as a
+        witness. Once a round has overrun the budget by SLACK units the hulls alone decide:
+        the last round may overrun it by boxes, not by exact queries (on the PR2, 32 boxes of
+        two nested meshes cost 400 units of a 30-unit budget; no pair's proof took more than 80)."""
         meter = self.meter
         hull = None
         if meter.hulls:
-            hull = meter.hull(pose_a, pose_b)
+            hull = meter.hull(batch, row)
             if _kept(hull) - motion > self.threshold:
                 return None, np.inf
-            if hull > self.threshold and not meter.extra_pays():  # the hulls alone decide
+            overrun = meter.units >= self.budget.boxes + SLACK
+            if hull > self.threshold and (overrun or not meter.extra_pays()):  # the hulls decide
                 self._measured(hull, center)
                 return _kept(hull) - motion, _most(hull)
-        distance = meter.exact(pose_a, pose_b)
+            if overrun:  # the hulls touch: a lower bound, and nothing known of the real distance
+                return _kept(hull) - motion, np.inf
+        distance = meter.exact(batch, row)
         self._measured(distance, center)
         if distance <= self.threshold:
             self.witness = self.check_witness(center)

@@ -16,6 +16,7 @@ import hashlib
 from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING
 
+from marm_setup.collision.meter import EXACT_UNITS, PAYS, PROBES, TRIANGLES_PER_UNIT
 from marm_setup.collision.proof import SCREEN, SETTLE
 from marm_setup.robot import Joint, Mesh, RobotModel, load_mesh
 
@@ -84,11 +85,13 @@ def run_context(scene: CollisionScene, settings: Mapping[str, object]) -> str:
     the sampled joints (names, types, bounds, mimic) and the `settings` (seed, trials, ...). An
     unproved proof is the outcome of its budget, which the whole run decides: it is kept under
     its pair's key and this context, and reused only by the very same run: the proof budgets
-    (proof.SCREEN, proof.SETTLE) count too, so a cache an older plan filled serves its facts
-    (proved, in contact) but not its unproved outcomes."""
+    (proof.SCREEN, proof.SETTLE) and what the meter charges (collision/meter.py) count too, so a
+    cache an older plan filled serves its facts (proved, in contact) but not its unproved
+    outcomes."""
     robot = scene.robot
     keys = sorted(pair_keys(scene, scene.candidate_pairs).values())
     joints = [_joint(robot, joint) for joint in robot.joints if joint.is_actuated]
     values = sorted((name, repr(v.tolist() if hasattr(v, "tolist") else v)) for name, v in settings.items())
-    text = repr((KEY_VERSION, keys, joints, values, SCREEN, SETTLE))
+    charges = (EXACT_UNITS, TRIANGLES_PER_UNIT, PROBES, PAYS)
+    text = repr((KEY_VERSION, keys, joints, values, SCREEN, SETTLE, charges))
     return hashlib.sha256(text.encode()).hexdigest()[:32]

@@ -4,18 +4,19 @@
 Each pair's proof depends on the pair, the seed and its budget alone (and a budget on how many
 pairs share its pool), so which process proves it, and how many there are, never changes a
 result. Pairs go out longest first (by how many variables move them), one at a time,
-to whichever process is free.
+to whichever process is free (`collision/proof_pool.py`).
 """
 
 from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from marm_setup.collision.certificates import CERT_MARGIN
+from marm_setup.collision.pair_chain import pair_chains
 from marm_setup.collision.pairs import PROVE_MODES
 from marm_setup.collision.proof import (
     COLLIDES,
@@ -31,13 +32,10 @@ from marm_setup.collision.proof import (
 if TYPE_CHECKING:
     from marm_setup.collision.pair_chain import PairChain
     from marm_setup.collision.scene import CollisionScene
-    from marm_setup.robot import RobotModel
 
 Pair = tuple[str, str]
 WORTH_A_POOL = 40_000  # units of work below which the proofs run in this process (a pool of
 # forked processes costs about 0.1 s of CPU; 40,000 units take about 0.5 s)
-
-_STATE: dict[str, Any] = {}  # in a pool process: its scene, chains and task
 
 
 def screen_pairs(
@@ -95,6 +93,7 @@ def settle_pairs(
     boxes = plan.again if screen_pool is None else min(plan.again, max(0, screen_pool - spent) // count)
     if tally is not None:
         tally.start(tally.proved, tally.in_contact, len(priors))
+    chains = pair_chains(scene, sorted(priors))  # both rounds' (a chain costs about 0.25 ms)
     proofs = prove_pairs(
         scene,
         sorted(priors),
@@ -104,6 +103,7 @@ def settle_pairs(
         priors,
         starts,
         tally,
+        chains,
     )
     reached = {pair: proof.reached for pair, proof in proofs.items() if proof.outcome == UNPROVED}
     proofs.update(
@@ -116,7 +116,9 @@ def settle_pairs(
         todo = [pair for pair in close if pair not in known]
         if tally is not None:
             tally.start(tally.proved, tally.in_contact, len(todo))
-        again = prove_pairs(scene, todo, Budget(0, descent), seed + 1, jobs, proofs, tally=tally)
+        again = prove_pairs(
+            scene, todo, Budget(0, descent), seed + 1, jobs, proofs, tally=tally, chains=chains
+        )
         proofs.update(
             {pair: dataclasses.replace(proof, second=reached[pair]) for pair, proof in again.items()}
         )
@@ -144,25 +146,29 @@ def prove_pairs(
     priors: dict[Pair, PairProof] | None = None,
     starts: dict[Pair, np.ndarray] | None = None,
     tally: ProofTally | None = None,
+    chains: Mapping[Pair, PairChain] | None = None,
 ) -> dict[Pair, PairProof]:
     """Pair -> its proof within `budget` (with `priors`: going on from each; `starts`: robot
-    states each pair's witness search starts from; `tally` hears of each proof as it ends)."""
+    states each pair's witness search starts from; `tally` hears of each proof as it ends;
+    `chains`: the pairs' PairChains, when the caller has them)."""
     if not pairs:
         return {}
     priors, starts = priors or {}, starts or {}
-    chains = _chains(scene, pairs)
+    chains = {pair: chains[pair] for pair in pairs} if chains is not None else pair_chains(scene, pairs)
     order = sorted(pairs, key=lambda p: (-chains[p].dims, p))
     found: Iterator[tuple[Pair, PairProof]]
     if jobs <= 1 or len(pairs) < 2 or len(pairs) * (budget.boxes + budget.descent) < WORTH_A_POOL:
         found = ((p, prove_pair(scene, chains[p], budget, seed, priors.get(p), starts.get(p))) for p in order)
     else:
-        found = _pooled(scene, chains, order, (budget, seed, priors, starts), jobs)
+        from marm_setup.collision.proof_pool import pooled_proofs
+
+        found = pooled_proofs(scene, chains, order, (budget, seed, priors, starts), jobs)
     out = {}
     for pair, proof in found:
         out[pair] = proof
         if tally is not None:
             tally(proof)
-    return out
+    return {pair: out[pair] for pair in order}
 
 
 class ProofTally:
@@ -194,44 +200,3 @@ def _checked(mode: str) -> str:
     if mode not in SCREEN:
         raise ValueError(f"unknown prove mode {mode!r}; expected one of {', '.join(PROVE_MODES)}")
     return mode
-
-
-def _chains(scene: CollisionScene, pairs: Sequence[Pair]) -> dict[Pair, PairChain]:
-    from marm_setup.collision.pair_chain import pair_chain
-
-    levers = {link: scene.lever_points(link) for pair in pairs for link in pair}
-    return {pair: pair_chain(scene.robot, pair, levers) for pair in pairs}
-
-
-def _pooled(
-    scene: CollisionScene, chains: dict[Pair, PairChain], order: list[Pair], task: tuple, jobs: int
-) -> Iterator[tuple[Pair, PairProof]]:
-    """The proofs in a pool; `task`: (budget, seed, priors, starts)."""
-    import multiprocessing
-
-    fork = "fork" in multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("fork" if fork else "spawn")
-    initargs: tuple = ()
-    if fork:  # the children inherit the built scene and chains
-        _STATE.update(scene=scene, chains=chains, task=task)
-    else:
-        initargs = (scene.robot, scene.padding, order, task)
-    try:
-        with context.Pool(min(jobs, len(order)), None if fork else _rebuild, initargs) as pool:
-            yield from pool.imap(_prove_one, order, chunksize=1)
-    finally:
-        _STATE.clear()
-
-
-def _rebuild(robot: RobotModel, padding: float, pairs: list[Pair], task: tuple) -> None:
-    """A spawned pool process: build the scene and chains again (coal objects do not pickle)."""
-    from marm_setup.collision.scene import CollisionScene
-
-    scene = CollisionScene(robot, padding)
-    _STATE.update(scene=scene, chains=_chains(scene, pairs), task=task)
-
-
-def _prove_one(pair: Pair) -> tuple[Pair, PairProof]:
-    budget, seed, priors, starts = _STATE["task"]
-    chain = _STATE["chains"][pair]
-    return pair, prove_pair(_STATE["scene"], chain, budget, seed, priors.get(pair), starts.get(pair))

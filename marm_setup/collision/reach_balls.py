@@ -18,8 +18,9 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
+from marm_setup.collision.chain_kinematics import MOVING, rotation_about
 from marm_setup.collision.levers import LeverPoints
-from marm_setup.collision.pair_chain import MOVING, ball_round, rotation_about, swept_ball
+from marm_setup.collision.pair_chain import ball_round, swept_ball
 from marm_setup.robot import Joint, RobotModel, origin_matrix
 
 

@@ -93,10 +93,21 @@ class CollisionScene:
         self._hull_request.break_distance = 0.0
         self._result = coal.CollisionResult()
         self._distance_request = coal.DistanceRequest()
-        for request in (self._request, self._hull_request, self._distance_request):
+        # hull distances are read only where positive (a lower bound that certifies, or a
+        # descent's step while the hulls are apart): overlapping hulls need no penetration
+        # depth (EPA, about 10 us a query), coal's unsigned distance (0) says as much
+        self._hull_distance_request = coal.DistanceRequest()
+        self._hull_distance_request.enable_signed_distance = False
+        for request in (
+            self._request,
+            self._hull_request,
+            self._distance_request,
+            self._hull_distance_request,
+        ):
             _same_start(request, coal)
         self._distance_result = coal.DistanceResult()
         self._distance_solvers: dict[tuple[int, int], object] = {}  # keyed by the geometries' ids
+        self._plans: dict[tuple[int, bool], tuple] = {}  # (pair, hulls) -> its distance functors
         self._hulls: dict[int, tuple | None] = {}  # link row -> hull shapes (None: no mesh)
         self._hull_cache: dict = {}  # one hull per mesh BVH
         self._tf = (coal.Transform3s(), coal.Transform3s())
@@ -268,17 +279,18 @@ class CollisionScene:
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
         return self._hull_shapes(a) is not None or self._hull_shapes(b) is not None
 
+    def pair_triangles(self, pair_id: int) -> tuple[int, int]:
+        """Each link's mesh triangles (a primitive counts 1): what an exact distance costs."""
+        rows = (int(self._pair_a[pair_id]), int(self._pair_b[pair_id]))
+        count = [sum(getattr(geom, "num_tris", 1) for geom, _ in self._shapes[row]) for row in rows]
+        return count[0], count[1]
+
     def hull_distance(self, poses: np.ndarray, pair_id: int) -> float:
         """A lower bound [m] on the pair's distance: that of the meshes' convex hulls (GJK, much
         cheaper than mesh distance); the exact distance for a pair of primitives."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
         self.hull_checks += 1
-        best = self._min_distance(
-            self._hull_shapes(a) or self._shapes[a],
-            self._hull_shapes(b) or self._shapes[b],
-            poses[a],
-            poses[b],
-        )
+        best = self.closest(self.distance_plan(pair_id, True), poses[a], poses[b])[0]
         self.hull_rejections += bool(best > self.padding + HULL_MARGIN)
         return best
 
@@ -329,32 +341,21 @@ class CollisionScene:
     def distance(self, poses: np.ndarray, pair_id: int) -> float:
         """Smallest distance [m] between the pair's shapes (0 or less when touching)."""
         a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        return self._min_distance(self._shapes[a], self._shapes[b], poses[a], poses[b])
+        return self.closest(self.distance_plan(pair_id, False), poses[a], poses[b])[0]
 
     def shape_distance(
         self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
     ) -> float:
         """Smallest distance [m] between the pair's shapes with its links at `pose_a`, `pose_b`
         (any common frame); `hulls`: of the meshes' convex hulls (a lower bound)."""
-        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        if hulls:
-            shapes_a, shapes_b = (
-                self._hull_shapes(a) or self._shapes[a],
-                self._hull_shapes(b) or self._shapes[b],
-            )
-            return self._min_distance(shapes_a, shapes_b, pose_a, pose_b)
-        return self._min_distance(self._shapes[a], self._shapes[b], pose_a, pose_b)
+        return self.closest(self.distance_plan(pair_id, hulls), pose_a, pose_b)[0]
 
     def nearest_points(
         self, pair_id: int, pose_a: np.ndarray, pose_b: np.ndarray, hulls: bool = False
     ) -> tuple[float, np.ndarray, np.ndarray]:
         """The pair's distance [m] at `pose_a`, `pose_b` and its nearest points on each link
         (in the poses' frame); `hulls`: of the meshes' convex hulls."""
-        a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
-        shapes_a, shapes_b = self._shapes[a], self._shapes[b]
-        if hulls:
-            shapes_a, shapes_b = self._hull_shapes(a) or shapes_a, self._hull_shapes(b) or shapes_b
-        return self._closest(shapes_a, shapes_b, pose_a, pose_b, points=True)
+        return self.closest(self.distance_plan(pair_id, hulls), pose_a, pose_b, points=True)
 
     def lever_points(self, link: str) -> LeverPoints:
         """Balls (points in the link's frame, radii) whose convex hull holds the link's shapes
@@ -370,30 +371,74 @@ class CollisionScene:
             self._levers[link] = link_levers(np.concatenate(points), np.concatenate(radii))
         return self._levers[link]
 
-    def _min_distance(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray) -> float:
-        return self._closest(shapes_a, shapes_b, pose_a, pose_b)[0]
+    def distance_plan(self, pair_id: int, hulls: bool) -> tuple:
+        """The pair's distance request and its (coal distance functor, link-from-shape pose of
+        a, of b) per pair of its shapes (of the meshes' convex hulls when `hulls`), built once:
+        a proof asks tens of thousands of distances of the same pair."""
+        plan = self._plans.get((pair_id, hulls))
+        if plan is None:
+            a, b = int(self._pair_a[pair_id]), int(self._pair_b[pair_id])
+            shapes_a, shapes_b = self._shapes[a], self._shapes[b]
+            if hulls:
+                shapes_a, shapes_b = self._hull_shapes(a) or shapes_a, self._hull_shapes(b) or shapes_b
+            request = self._hull_distance_request if hulls else self._distance_request
+            shapes = itertools.product(shapes_a, shapes_b)
+            plan = (request, tuple((self._distance_solver(ga, gb), la, lb) for (ga, la), (gb, lb) in shapes))
+            self._plans[(pair_id, hulls)] = plan
+        return plan
 
-    def _closest(self, shapes_a, shapes_b, pose_a: np.ndarray, pose_b: np.ndarray, points: bool = False):
-        """(distance, nearest point on a, on b) of the closest pair of shapes; the points are
-        read only when `points` (else zeros). One coal distance functor per pair of geometries."""
+    def closest(self, plan: tuple, pose_a: np.ndarray, pose_b: np.ndarray, points: bool = False):
+        """(distance, nearest point on a, on b) of the closest pair of shapes of a
+        `distance_plan`, its links at `pose_a`, `pose_b` (any common frame); the points are
+        read only when `points` (else zeros)."""
         tf_a, tf_b = self._tf
-        result, request = self._distance_result, self._distance_request
-        best = (np.inf, np.zeros(3), np.zeros(3))
-        for (ga, la), (gb, lb) in itertools.product(shapes_a, shapes_b):
-            _set(tf_a, pose_a, la)
-            _set(tf_b, pose_b, lb)
-            result.clear()
-            request.cached_gjk_guess, request.cached_support_func_guess = _GUESS, _HINT  # _same_start
-            self._distance_solver(ga, gb)(tf_a, tf_b, request, result)
-            distance = float(result.min_distance)
-            if distance < best[0]:
-                near = (
-                    (np.array(result.getNearestPoint1()), np.array(result.getNearestPoint2()))
-                    if points
-                    else best[1:]
-                )
-                best = (distance, *near)
-        return best
+        request, solvers = plan
+        best: tuple = (np.inf, None)
+        for solve, local_a, local_b in solvers:
+            _set(tf_a, pose_a, local_a)
+            _set(tf_b, pose_b, local_b)
+            best = self._nearer(best, solve, request, points)
+        return best if len(best) == 3 else (best[0], np.zeros(3), np.zeros(3))
+
+    def posed(self, plan: tuple, poses_a: np.ndarray, poses_b: np.ndarray) -> tuple:
+        """A `distance_plan` at K poses of its links (K, 4, 4) each: per pair of shapes, their
+        rotations and translations laid out as coal reads them (for `closest_at`: a proof's
+        descents measure hundreds of states of a batch one by one)."""
+        request, solvers = plan
+        out = []
+        for solve, local_a, local_b in solvers:
+            shape_a = poses_a if local_a is None else poses_a @ local_a
+            shape_b = poses_b if local_b is None else poses_b @ local_b
+            rotations = (np.ascontiguousarray(shape_a[:, :3, :3]), np.ascontiguousarray(shape_b[:, :3, :3]))
+            shifts = (np.ascontiguousarray(shape_a[:, :3, 3]), np.ascontiguousarray(shape_b[:, :3, 3]))
+            out.append((solve, rotations, shifts))
+        return request, tuple(out)
+
+    def closest_at(self, posed: tuple, row: int, points: bool = False):
+        """`closest` at state `row` of a `posed` plan."""
+        tf_a, tf_b = self._tf
+        request, solvers = posed
+        best: tuple = (np.inf, None)
+        for solve, (rotation_a, rotation_b), (shift_a, shift_b) in solvers:
+            tf_a.setTransform(rotation_a[row], shift_a[row])
+            tf_b.setTransform(rotation_b[row], shift_b[row])
+            best = self._nearer(best, solve, request, points)
+        return best if len(best) == 3 else (best[0], np.zeros(3), np.zeros(3))
+
+    def _nearer(self, best: tuple, solve, request, points: bool) -> tuple:
+        """`best` ((distance, nearest points...) so far) or the distance of coal functor `solve`
+        at the transforms set, whichever is smaller; the points are read only when `points`."""
+        result = self._distance_result
+        result.clear()
+        request.cached_gjk_guess, request.cached_support_func_guess = _GUESS, _HINT  # _same_start
+        solve(*self._tf, request, result)
+        distance = float(result.min_distance)
+        if distance >= best[0]:
+            return best
+        if not points:
+            return (distance, None)
+        # (coal returns copies of the points: the result's next query leaves them be)
+        return distance, result.getNearestPoint1(), result.getNearestPoint2()
 
     def _distance_solver(self, geom_a, geom_b):
         key = (id(geom_a), id(geom_b))
@@ -431,8 +476,7 @@ def _set(tf, pose: np.ndarray, local: np.ndarray | None) -> None:
     """Set coal transform `tf` to `pose @ local` (local None: identity)."""
     if local is not None:
         pose = pose @ local
-    tf.setRotation(pose[:3, :3])
-    tf.setTranslation(pose[:3, 3])
+    tf.setTransform(pose[:3, :3], pose[:3, 3])
 
 
 def _link_shapes(robot: RobotModel, name: str, coal, bvh_cache: dict):

@@ -39,8 +39,9 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 if TYPE_CHECKING:
+    from marm_setup.collision.chain_kinematics import Frames
     from marm_setup.collision.meter import Meter
-    from marm_setup.collision.pair_chain import Frames, PairChain
+    from marm_setup.collision.pair_chain import PairChain
     from marm_setup.collision.scene import CollisionScene
 
 DENSE = 2048  # descents from the DENSE_STARTS nearest-looking of DENSE random states of the
@@ -170,22 +171,31 @@ def _lever_gaps(chain: PairChain, frames: tuple[Frames, Frames], rows: np.ndarra
 
 class _Descents:
     """The state of S descents: where each is, its distance there, its gradient, whether that
-    distance is the real one (else the hulls'), and whether it still moves."""
+    distance is the real one (else the hulls'), and whether it still moves. The starts are
+    measured in order until the meter reaches `limit` (a pair whose meshes' distance costs
+    tens of units reaches it within a batch); the rest never start (inf, inactive)."""
 
-    def __init__(self, search: PairSearch, q: np.ndarray) -> None:
+    def __init__(self, search: PairSearch, q: np.ndarray, limit: int) -> None:
         self.q = q
         frames = search.chain.frames(q)
-        measured = [_measure(search, frames, row) for row in range(len(q))]
-        self.value = np.array([m[0] for m in measured])
-        self.exact = np.array([m[2] for m in measured], dtype=bool)
-        self.gradient = _gradients(frames, np.arange(len(q)), measured, search.chain.dims)
-        self.active = np.ones(len(q), dtype=bool)
+        batch = search.meter.batch(frames[0].pose, frames[1].pose)
+        measured: list[Measured] = []
+        while len(measured) < len(q) and search.meter.units < limit:
+            measured.append(_measure(search, batch, len(measured)))
+        count = len(measured)
+        self.value = np.full(len(q), np.inf)
+        self.value[:count] = [m[0] for m in measured]
+        self.exact = np.zeros(len(q), dtype=bool)
+        self.exact[:count] = [m[2] for m in measured]
+        self.gradient = np.zeros((len(q), search.chain.dims))
+        self.gradient[:count] = _gradients(frames, np.arange(count), measured, search.chain.dims)
+        self.active = np.arange(len(q)) < count
 
 
 def descend(search: PairSearch, q: np.ndarray, limit: int) -> tuple[Witness, np.ndarray]:
     """Descents from each row of `q` (S, m) together, each row moved to where its descent
     ended: the first witness found (or ()) and the distances there."""
-    state = _Descents(search, q)
+    state = _Descents(search, q, limit)
     for _ in range(STEPS):
         for s in np.flatnonzero(state.active & state.exact & (state.value <= search.threshold)):
             witness = search.check_witness(state.q[s])
@@ -215,11 +225,12 @@ def _step(search: PairSearch, state: _Descents, limit: int) -> None:
     moves = q[:, None, :] - factors[:, :, None] * gradient[:, None, :]
     moves = np.clip(moves, chain.lower, chain.upper).reshape(-1, chain.dims)
     frames = chain.frames(moves)
+    batch = search.meter.batch(frames[0].pose, frames[1].pose)
     accepted: list[tuple[int, int]] = []
     measured: list[Measured] = []
     for i, s in enumerate(rows):
         for h in range(tries):
-            found = _measure(search, frames, i * tries + h)
+            found = _measure(search, batch, i * tries + h)
             if found[0] < state.value[s]:
                 state.q[s], state.value[s], state.exact[s] = moves[i * tries + h], found[0], found[2]
                 accepted.append((int(s), i * tries + h))
@@ -234,15 +245,14 @@ def _step(search: PairSearch, state: _Descents, limit: int) -> None:
         state.gradient[targets] = _gradients(frames, at, measured, chain.dims)
 
 
-def _measure(search: PairSearch, frames: tuple[Frames, Frames], row: int) -> Measured:
-    """The distance at state `row` of `frames`, its nearest points, and whether it is the real
-    distance (else the hulls', while they are more than SWITCH apart)."""
+def _measure(search: PairSearch, batch: tuple, row: int) -> Measured:
+    """The distance at state `row` of a meter's `batch`, its nearest points, and whether it is
+    the real distance (else the hulls', while they are more than SWITCH apart)."""
     meter = search.meter
-    pose_a, pose_b = frames[0].pose[row], frames[1].pose[row]
-    distance, near_a, near_b = meter.nearest(pose_a, pose_b, hulls=meter.hulls)
+    distance, near_a, near_b = meter.nearest(batch, row, hulls=meter.hulls)
     exact = not meter.hulls
     if meter.hulls and distance <= search.threshold + SWITCH:
-        distance, near_a, near_b = meter.nearest(pose_a, pose_b, hulls=False)
+        distance, near_a, near_b = meter.nearest(batch, row, hulls=False)
         exact = True
     return distance, (near_a, near_b), exact
 
@@ -258,5 +268,4 @@ def _gradients(
     length = np.linalg.norm(gap, axis=1)
     normal = np.where((distance > 0)[:, None], gap, -gap) / np.maximum(length, 1e-12)[:, None]
     normal[length < 1e-12] = 0.0
-    rate = frames[1].velocities(rows, near_b) - frames[0].velocities(rows, near_a)
-    return np.einsum("rmi,ri->rm", rate, normal)
+    return frames[1].rates(rows, near_b, normal) - frames[0].rates(rows, near_a, normal)

@@ -203,6 +203,36 @@ def test_jobs_and_repeats_do_not_change_proofs(marm, marm_scene):
     assert any(s.proof is not None for s in one.stats)
 
 
+@pytest.mark.parametrize("start", ["fork", "spawn"])
+def test_a_pool_of_workers_proves_what_one_process_does(marm, marm_scene, monkeypatch, start):
+    """Pairs handed out to forked or spawned workers (collision/proof_pool.py) get the very
+    proofs one process gives them, in the same order."""
+    import multiprocessing
+
+    from marm_setup.collision import proving
+
+    pairs = list(marm_scene.candidate_pairs[::5])
+    alone = proving.prove_pairs(marm_scene, pairs, Budget(300, 200), seed=1, jobs=1)
+    monkeypatch.setattr(proving, "WORTH_A_POOL", 0)
+    monkeypatch.setattr(multiprocessing, "get_all_start_methods", lambda: [start])
+    pooled = proving.prove_pairs(CollisionScene(marm), pairs, Budget(300, 200), seed=1, jobs=2)
+    assert list(pooled) == list(alone) and pooled == alone
+    assert {proof.outcome for proof in alone.values()} >= {PROVED}
+
+
+def test_a_worker_that_raises_fails_the_pool_with_its_message(marm_scene, monkeypatch):
+    from marm_setup.collision import proof_pool, proving
+    from marm_setup.collision.workers import WorkerFailed
+
+    def broken(*args, **kwargs):
+        raise ValueError("no proof today")
+
+    monkeypatch.setattr(proving, "WORTH_A_POOL", 0)
+    monkeypatch.setattr(proof_pool, "prove_pair", broken)  # forked workers inherit it
+    with pytest.raises(WorkerFailed, match="no proof today"):
+        proving.prove_pairs(marm_scene, list(marm_scene.candidate_pairs[:4]), Budget(50, 0), jobs=2)
+
+
 def test_the_pair_box_folds_turning_joints_to_one_turn(tmp_path_factory):
     text = (
         '<?xml version="1.0"?><robot name="r"><link name="a"><collision><geometry><box size="0.1 0.1 0.1"/>'
