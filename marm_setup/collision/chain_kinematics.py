@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -79,6 +80,11 @@ class ChainKinematics:
     tail: np.ndarray | None
     spread: np.ndarray  # (J, m): column weights of each joint (the Jacobian's; once placed)
 
+    @cached_property
+    def lines(self) -> np.ndarray:
+        """(J, 3, 2): each joint's `shift` and `pivot_axes` as the columns of one matrix."""
+        return np.stack([self.shift, self.pivot_axes], axis=2)
+
     def placed(self, position: np.ndarray, dims: int) -> ChainKinematics:
         """The chain in a pair's box of `dims` variables, `position[c]` the box column of the
         robot's active joint c (one chain serves every pair with the same ancestor and link)."""
@@ -97,8 +103,9 @@ class ChainKinematics:
         rotation, translation = _EYE, np.zeros(3)  # broadcast to (K, ...) by the first joint
         origins, axes = np.empty((count, joints, 3)), np.empty((count, joints, 3))
         for j in range(joints):
-            translation = translation + rotation @ self.shift[j]
-            axis = rotation @ self.pivot_axes[j]
+            moved = rotation @ self.lines[j]  # the joint's origin offset and axis, in one product
+            translation = translation + moved[..., 0]
+            axis = moved[..., 1]
             origins[:, j], axes[:, j] = translation, axis
             if not self.turning[j]:
                 translation = translation + axis * values[:, j, None]

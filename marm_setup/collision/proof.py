@@ -287,7 +287,7 @@ class PairSearch:
         values = np.clip(np.round(values, WITNESS_DECIMALS), chain.lower, chain.upper) + 0.0
         q = default_configuration(scene.robot)
         q[chain.columns] = values
-        if not scene.collide(scene.link_poses(q[None])[0], self.pair_id):
+        if not scene.collide(scene.link_poses(q[None], self.pair_id)[0], self.pair_id):
             return ()
         names = scene.robot.active_joint_names
         return tuple((names[c], float(v)) for c, v in zip(chain.columns, values, strict=True))

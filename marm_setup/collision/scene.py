@@ -140,9 +140,12 @@ class CollisionScene:
             self._ids_cache[key] = ids
         return ids
 
-    def link_poses(self, q: np.ndarray) -> np.ndarray:
-        """World poses (N, L, 4, 4) of the geometry links (`self.links` order)."""
-        return forward_kinematics(self.robot, q)[:, self._fk_rows]
+    def link_poses(self, q: np.ndarray, pair_id: int | None = None) -> np.ndarray:
+        """World poses (N, L, 4, 4) of the geometry links (`self.links` order); with `pair_id`,
+        those of that pair's two links only, the same values (the others zero: `collide`
+        reads the pair's)."""
+        rows = None if pair_id is None else self._fk_rows[[self._pair_a[pair_id], self._pair_b[pair_id]]]
+        return forward_kinematics(self.robot, q, rows)[:, self._fk_rows]
 
     def pair_batches(self, states: int, pairs: int) -> list[slice]:
         """Consecutive slices of `pairs` pairs to filter together over `states` states, so that no

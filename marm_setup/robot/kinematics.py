@@ -7,6 +7,7 @@ batches are arrays of shape (N, n_active). Link poses come out as (N, n_links, 4
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,13 +86,18 @@ def link_index(robot: RobotModel) -> dict[str, int]:
     return {name: i for i, name in enumerate(robot.links_in_tree_order)}
 
 
-def forward_kinematics(robot: RobotModel, q: np.ndarray) -> np.ndarray:
-    """World poses (N, n_links, 4, 4) of every link for a batch of configurations."""
+def forward_kinematics(robot: RobotModel, q: np.ndarray, links: Iterable[int] | None = None) -> np.ndarray:
+    """World poses (N, n_links, 4, 4) of every link for a batch of configurations; with
+    `links` (indices in `link_index` order), of those links and their ancestors only (the
+    same values, the same operations; the other poses stay zero)."""
     q = np.atleast_2d(np.asarray(q, dtype=float))
     plan = _fk_plan(robot)
+    wanted = None if links is None else _with_ancestors(plan, links)
     poses = np.zeros((len(q), len(plan) + 1, 4, 4))
     poses[:, 0] = np.eye(4)
     for step in plan:
+        if wanted is not None and step.child not in wanted:
+            continue
         pose = poses[:, step.parent] @ step.origin
         child = poses[:, step.child]
         child[:] = pose
@@ -104,6 +110,17 @@ def forward_kinematics(robot: RobotModel, q: np.ndarray) -> np.ndarray:
         else:
             child[:, :3, 3] += pose[:, :3, :3] @ step.axis * value[:, None]
     return poses
+
+
+def _with_ancestors(plan: tuple[_FkStep, ...], links: Iterable[int]) -> set[int]:
+    """The link indices `links` and every link above them."""
+    parent = {step.child: step.parent for step in plan}
+    out: set[int] = set()
+    for link in links:
+        while link not in out:
+            out.add(link)
+            link = parent.get(link, link)
+    return out
 
 
 def bounds(robot: RobotModel) -> tuple[np.ndarray, np.ndarray]:

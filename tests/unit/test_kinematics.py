@@ -65,6 +65,18 @@ def test_fk_matches_yourdfpy(get_robot, seed):
             np.testing.assert_allclose(poses[k, i], ref.get_transform(name, robot.root), atol=1e-9)
 
 
+@pytest.mark.parametrize("get_robot", robots(), ids=lambda f: f.__name__)
+@given(seed=st.integers(0, 2**32 - 1), data=st.data())
+def test_fk_of_some_links_is_the_whole_fk_of_those(get_robot, seed, data):
+    """forward_kinematics(links=...) gives the very poses of those links (and their ancestors)."""
+    robot = get_robot()
+    q = sample_configurations(robot, np.random.default_rng(seed), 3)
+    count = len(link_index(robot))
+    links = data.draw(st.lists(st.integers(0, count - 1), min_size=1, max_size=3))
+    whole, some = forward_kinematics(robot, q), forward_kinematics(robot, q, links)
+    assert np.array_equal(some[:, links], whole[:, links])
+
+
 @given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 50))
 def test_samples_lie_within_bounds(seed, n):
     q = sample_configurations(marm(), np.random.default_rng(seed), n)
