@@ -10,6 +10,7 @@ end-cap centres with its radius (a capsule holds it); then merged into at most L
 
 from __future__ import annotations
 
+import heapq
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -49,42 +50,82 @@ def link_levers(points: np.ndarray, radii: np.ndarray) -> LeverPoints:
 
 
 def merged_levers(points: np.ndarray, radii: np.ndarray, most: int = 32) -> LeverPoints:
-    """At most `most` balls holding the given ones: the part whose ball is widest is halved at
-    the median of its widest axis until there are `most` parts, and each part becomes one ball
-    round it (fewer points make every bound cheaper, and looser only by each part's radius:
-    halving the widest, not the most numerous, keeps the largest radius small: a long link's
-    32 parts by count had radii up to 0.25 m, by size 0.05 m)."""
+    """At most `most` balls holding the given ones: the part whose ball is widest (the first of
+    them in point order) is halved at the median of its widest axis until there are `most`
+    parts, and each part becomes one ball round it (fewer points make every bound cheaper, and
+    looser only by each part's radius: halving the widest, not the most numerous, keeps the
+    largest radius small: a long link's 32 parts by count had radii up to 0.25 m, by size
+    0.05 m). The halving tree is built a level at a time (`_halvings`), then walked widest
+    first; a part's place in point order is where its points start."""
     if len(points) <= most:
         return LeverPoints(points, radii, points, radii)
-    parts = [_part_ball(points, radii, np.arange(len(points)))]
-    widths = [_width(parts[0])]  # per part: its radius, -1 for a single ball (not split)
-    while len(parts) < most:
-        widest = widths.index(max(widths))  # the first of the widest
-        rows = parts[widest][0]
-        if len(rows) < 2:
+    tree = _halvings(points, radii)
+    heap = [(tree.key[0], 0, 0)]  # (key, start, node)
+    while len(heap) < most and tree.size[heap[0][2]] > 1:  # (a single ball is never halved)
+        node = heapq.heappop(heap)[2]
+        for child in (tree.lower[node], tree.lower[node] + 1):
+            heapq.heappush(heap, (tree.key[child], tree.start[child], child))
+    nodes = [node for _, _, node in sorted(heap, key=lambda entry: entry[1])]
+    return LeverPoints(tree.center[nodes], tree.radius[nodes], tree.center[nodes], tree.radius[nodes])
+
+
+@dataclass(frozen=True)
+class _Halvings:
+    """Every part of the halving down to single balls, node 0 the whole: its ball (`center`,
+    `radius`), `key` (-radius; 1 for a single ball, never halved), where its points `start`
+    in point order and how many (`size`), and its halves: nodes `lower` and `lower` + 1."""
+
+    center: np.ndarray
+    radius: np.ndarray
+    key: list[float]
+    start: list[int]
+    size: list[int]
+    lower: list[int]
+
+
+def _halvings(points: np.ndarray, radii: np.ndarray) -> _Halvings:
+    """The halving tree of the balls, a level at a time: a level's parts are runs of one point
+    order (from `starts`), each halved at the median of its box's widest axis by one stable
+    sort of the whole order, and measured together."""
+    count = len(points)
+    order, starts, ids = np.arange(count), np.array([0]), np.array([0])
+    level = _measure(points, radii, order, starts)
+    nodes = [(*level[:2], starts, np.array([count]))]  # per level: its new nodes' center, radius, start, size
+    lower = np.full(2 * count - 1, -1)
+    first = 1  # the next node id
+    while True:
+        sizes = np.diff(np.append(starts, count))
+        halved = sizes > 1
+        if not halved.any():
             break
-        span = np.ptp(points[rows], axis=0)
-        order = rows[np.argsort(points[rows, int(np.argmax(span))], kind="stable")]
-        halves = [
-            _part_ball(points, radii, half) for half in (order[: len(order) // 2], order[len(order) // 2 :])
-        ]
-        parts[widest : widest + 1] = halves
-        widths[widest : widest + 1] = [_width(half) for half in halves]
-    centers, out_radii = np.array([p[1] for p in parts]), np.array([p[2] for p in parts])
-    return LeverPoints(centers, out_radii, centers, out_radii)
+        part = np.repeat(np.arange(len(starts)), sizes)
+        order = order[np.lexsort((points[order, np.argmax(level[2], axis=1)[part]], part))]
+        lower[ids[halved]] = first + 2 * np.arange(halved.sum())
+        parent = np.repeat(np.arange(len(starts)), np.where(halved, 2, 1))
+        is_half = halved[parent]
+        new_ids = np.where(is_half, first + np.cumsum(is_half) - 1, ids[parent])
+        starts = np.sort(np.concatenate([starts, starts[halved] + sizes[halved] // 2]))
+        level = _measure(points, radii, order, starts)
+        new_sizes = np.diff(np.append(starts, count))
+        nodes.append((level[0][is_half], level[1][is_half], starts[is_half], new_sizes[is_half]))
+        ids, first = new_ids, first + int(is_half.sum())
+    center, radius, start, size = (np.concatenate(column) for column in zip(*nodes, strict=True))
+    key = np.where(size > 1, -radius, 1.0)
+    return _Halvings(center, radius, key.tolist(), start.tolist(), size.tolist(), lower.tolist())
 
 
-def _width(part: tuple[np.ndarray, np.ndarray, float]) -> float:
-    return part[2] if len(part[0]) > 1 else -1.0
-
-
-def _part_ball(
-    points: np.ndarray, radii: np.ndarray, rows: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, float]:
-    """(rows, centre, radius): a ball round the balls `rows`, centred on their bounding box."""
-    lo, hi = points[rows].min(axis=0), points[rows].max(axis=0)
+def _measure(
+    points: np.ndarray, radii: np.ndarray, order: np.ndarray, starts: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each run of `order` from `starts`: its box's centre, the radius of the ball there round
+    its balls, its box's extent per axis (the values a part's own numpy reductions give)."""
+    inside = points[order]
+    lo, hi = np.minimum.reduceat(inside, starts, axis=0), np.maximum.reduceat(inside, starts, axis=0)
     center = (lo + hi) / 2.0
-    return rows, center, float(np.max(np.linalg.norm(points[rows] - center, axis=1) + radii[rows]))
+    part = np.repeat(np.arange(len(starts)), np.diff(np.append(starts, len(points))))
+    apart = inside - center[part]
+    reach = np.sqrt(np.add.reduce(apart * apart, axis=1)) + radii[order]  # norm's sum of squares
+    return center, np.maximum.reduceat(reach, starts), hi - lo
 
 
 def shape_levers(geom: Any, coal: Any, hull: Any) -> tuple[np.ndarray, np.ndarray]:
