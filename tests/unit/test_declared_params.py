@@ -85,6 +85,16 @@ def test_an_integer_max_effort_drops_the_gripper_controller(fresh, tmp_path, dis
     assert "drops" in found[0].message
 
 
+@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+def test_an_integer_publish_flag_of_the_semantic_description_stops_move_group(fresh, tmp_path, distro):
+    """SynchronizedStringParameter declares `publish_<name>` a bool and reads it into a bool."""
+    key = "publish_robot_description_semantic"
+    pkg = edited(fresh, tmp_path, distro, MOVEIT_YAML, f"{key}: true", f"{key}: 1")
+    found = findings(pkg)
+    assert only(found) == ("params.type", "error", MOVEIT_YAML, f"{PARAMS}{key}")
+    assert "synchronized_string_parameter.cpp:" in found[0].hint
+
+
 def test_an_integer_servo_double_on_humble_stops_servo(fresh, tmp_path):
     pkg = edited(fresh, tmp_path, "humble", SERVO_YAML, "publish_period: 0.034", "publish_period: 1")
     found = findings(pkg)
