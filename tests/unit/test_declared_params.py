@@ -95,6 +95,34 @@ def test_an_integer_publish_flag_of_the_semantic_description_stops_move_group(fr
     assert "synchronized_string_parameter.cpp:" in found[0].hint
 
 
+@pytest.mark.parametrize(("distro", "severity"), [("jazzy", "error"), ("humble", "warning")])
+def test_a_listed_pipeline_without_parameters(fresh, tmp_path, distro, severity):
+    """Jazzy's PlanningPipeline throws on an empty planning_plugins; Humble guesses a plugin."""
+    old = "      - pilz_industrial_motion_planner\n"
+    pkg = edited(fresh, tmp_path, distro, MOVEIT_YAML, old, old + "      - chomp\n")
+    found = findings(pkg)
+    assert only(found) == ("pipeline.not-configured", severity, MOVEIT_YAML, f"{PARAMS}planning_pipelines")
+    assert "'chomp'" in found[0].message
+
+
+def test_a_listed_pipeline_with_its_own_planning_file_is_left_alone(fresh, tmp_path):
+    """A launch file may load config/<name>_planning.yaml in ways the package model does not see."""
+    old = "      - pilz_industrial_motion_planner\n"
+    pkg = edited(fresh, tmp_path, "jazzy", MOVEIT_YAML, old, old + "      - chomp\n")
+    (pkg / "config" / "chomp_planning.yaml").write_text("planning_plugins: [chomp_interface/CHOMPPlanner]\n")
+    assert findings(pkg) == []
+
+
+@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+def test_a_default_pipeline_not_listed_is_a_warning_naming_the_one_meant(fresh, tmp_path, distro):
+    """move_group warns and plans with the first listed pipeline instead."""
+    key = "default_planning_pipeline"
+    pkg = edited(fresh, tmp_path, distro, MOVEIT_YAML, f"{key}: ompl", f"{key}: omp")
+    found = findings(pkg)
+    assert only(found) == ("moveit.default-pipeline", "warning", MOVEIT_YAML, f"{PARAMS}{key}")
+    assert "'ompl'" in found[0].hint
+
+
 def test_an_integer_servo_double_on_humble_stops_servo(fresh, tmp_path):
     pkg = edited(fresh, tmp_path, "humble", SERVO_YAML, "publish_period: 0.034", "publish_period: 1")
     found = findings(pkg)

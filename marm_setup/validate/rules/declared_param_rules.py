@@ -74,11 +74,71 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
     received = [r for r in received_parameters(pkg) if not _unread_group(r, pkg)]
     built = _package_finder(pkg)
     family = family_of(distro) or inferred_family(received)
+    listed = check_default_pipeline(received) + check_listed_pipelines(received, family, pkg.files)
     if family is not None:
-        return _check_all(received, load_table(family), built)
+        return _check_all(received, load_table(family), built) + listed
     found = [_check_all(received, load_table(f), built) for f in ("jazzy", "humble")]
     agreed = {(f.rule, f.file, f.element) for f in found[1]}
-    return [f for f in found[0] if (f.rule, f.file, f.element) in agreed]
+    return [f for f in found[0] if (f.rule, f.file, f.element) in agreed] + listed
+
+
+def check_listed_pipelines(
+    received: list[Received], family: str | None, files: frozenset[str]
+) -> list[Finding]:
+    """A pipeline of `planning_pipelines` with no parameter in its namespace (and no
+    `config/<name>_planning.yaml`, which a launch file may load in ways not modelled here).
+    Jazzy's PlanningPipeline throws "Planning plugin name is empty" from its constructor,
+    uncaught by createPlanningPipelineMap: move_group stops (planning_pipeline.cpp jazzy
+    l.136-140, planning_pipeline_interfaces.cpp jazzy l.187). Humble's guesses a plugin: the only
+    one installed, else the first with a warning (planning_pipeline.cpp humble l.117-134)."""
+    given = {r.name: r for r in received if r.node == "move_group"}
+    listed = given.get("planning_pipelines")
+    if listed is None or not isinstance(listed.value, list):
+        return []
+    spaces = {name.split(".", 1)[0] for name in given if "." in name}
+    out = []
+    for name in dict.fromkeys(str(n) for n in listed.value):
+        if name in spaces or f"config/{name}_planning.yaml" in files:
+            continue
+        if family == "humble":
+            msg = f"pipeline '{name}' has no parameters: Humble's move_group plans with whichever planner plugin it finds first"
+            out.append(
+                warning(
+                    "pipeline.not-configured", listed.file, listed.element, msg, f"add {name}.planning_plugin"
+                )
+            )
+        else:
+            msg = f"pipeline '{name}' has no parameters: move_group stops ('Planning plugin name is empty')"
+            out.append(
+                error(
+                    "pipeline.not-configured",
+                    listed.file,
+                    listed.element,
+                    msg,
+                    f"add {name}.planning_plugins or drop '{name}'",
+                )
+            )
+    return out
+
+
+def check_default_pipeline(received: list[Received]) -> list[Finding]:
+    """`default_planning_pipeline` naming no pipeline of `planning_pipelines`: move_group warns
+    and plans with the first pipeline instead (move_group.cpp main, humble l.234-260, jazzy
+    l.249-275: "not configured in ~planning_pipelines", the id reset, the first one taken)."""
+    given = {r.name: r for r in received if r.node == "move_group"}
+    default, listed = given.get("default_planning_pipeline"), given.get("planning_pipelines")
+    if default is None or listed is None or not isinstance(listed.value, list) or not listed.value:
+        return []
+    names = [str(n) for n in listed.value]
+    if str(default.value) in names:
+        return []
+    meant = difflib.get_close_matches(str(default.value), names, n=1)
+    msg = (
+        f"default_planning_pipeline '{default.value}' is not in planning_pipelines ({', '.join(names)}): "
+        f"move_group plans with '{names[0]}' instead"
+    )
+    hint = f"did you mean '{meant[0]}'?" if meant else f"name one of: {', '.join(names)}"
+    return [warning("moveit.default-pipeline", default.file, default.element, msg, hint)]
 
 
 def _unread_group(r: Received, pkg: MoveItPackage) -> bool:
