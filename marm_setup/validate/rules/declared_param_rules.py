@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
@@ -83,7 +83,7 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
 
 
 def check_listed_pipelines(
-    received: list[Received], family: str | None, files: frozenset[str]
+    received: list[Received], family: str | None, files: Collection[str]
 ) -> list[Finding]:
     """A pipeline of `planning_pipelines` with no parameter in its namespace (and no
     `config/<name>_planning.yaml`, which a launch file may load in ways not modelled here).
