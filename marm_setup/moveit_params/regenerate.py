@@ -1,5 +1,7 @@
-"""Rebuild the declared-parameter tables (data/<family>.yaml) from MoveIt's git repositories:
-`python -m marm_setup.moveit_params.regenerate --moveit2 DIR --moveit DIR [--check]`.
+"""Rebuild the declared-parameter tables (data/<family>.yaml) from MoveIt's git repositories,
+and the drivers' (data/drivers_<family>.yaml, driver_params.py) from ros2_control's:
+`python -m marm_setup.moveit_params.regenerate --moveit2 DIR --moveit DIR
+[--ros2-control DIR --ros2-controllers DIR] [--check]`.
 
 DIR is a git repository (a bare mirror or a checkout) holding the branches named below; each
 table pins the commit it was read at. Sources: the generate_parameter_library files (gpl.py),
@@ -162,15 +164,41 @@ def render_all(moveit2: Path | None, moveit: Path | None) -> dict[str, str]:
     return out
 
 
+def render_drivers(control: Path | None, controllers: Path | None) -> dict[Path, str]:
+    """{table path: text} of the drivers' tables, when both repositories are given."""
+    from marm_setup.moveit_params.driver_params import (
+        REFS as DRIVER_REFS,
+    )
+    from marm_setup.moveit_params.driver_params import (
+        build_driver_table,
+        driver_table_path,
+        dump_driver_table,
+    )
+
+    if control is None or controllers is None:
+        return {}
+    return {
+        driver_table_path(family): dump_driver_table(
+            build_driver_table(family, GitRef(controllers, ref), GitRef(control, ref))
+        )
+        for family, ref in DRIVER_REFS.items()
+    }
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--moveit2", type=Path, help="git repository of moveit/moveit2")
     parser.add_argument("--moveit", type=Path, help="git repository of moveit/moveit (noetic-devel)")
+    parser.add_argument("--ros2-control", type=Path, help="git repository of ros-controls/ros2_control")
+    parser.add_argument(
+        "--ros2-controllers", type=Path, help="git repository of ros-controls/ros2_controllers"
+    )
     parser.add_argument("--check", action="store_true", help="compare with the committed tables")
     args = parser.parse_args(argv)
     changed = []
-    for family, text in render_all(args.moveit2, args.moveit).items():
-        path = DATA / f"{family}.yaml"
+    tables = {DATA / f"{family}.yaml": text for family, text in render_all(args.moveit2, args.moveit).items()}
+    tables.update(render_drivers(args.ros2_control, args.ros2_controllers))
+    for path, text in tables.items():
         if path.exists() and path.read_text(encoding="utf-8") == text:
             continue
         changed.append(path.name)

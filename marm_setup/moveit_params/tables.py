@@ -83,14 +83,15 @@ def load_table(family: str) -> Table:
         family=data["family"],
         distros=tuple(data["distros"]),
         pinned=tuple((repo, ref, sha) for repo, refs in data["pinned"].items() for ref, sha in refs.items()),
-        parameters=tuple(_row(r) for r in data["parameters"]),
+        parameters=tuple(row_of(r) for r in data["parameters"]),
         owned=tuple((o["prefix"], o["source"]) for o in data["owned"]),
         plugins=_classes(data["plugins"]),
         third_party=_classes(data["third_party"]),
     )
 
 
-def _row(data: dict) -> ParamRow:
+def row_of(data: dict) -> ParamRow:
+    """A table row (one mapping of a data file's `parameters`) as a ParamRow."""
     validation = tuple((str(k), _args(v)) for k, v in (data.get("validation") or {}).items())
     return ParamRow(
         node=data["node"],

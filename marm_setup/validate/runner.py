@@ -42,6 +42,7 @@ from marm_setup.validate.rules.controller_rules import (
 )
 from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
 from marm_setup.validate.rules.distro_rules import check_package_runtime
+from marm_setup.validate.rules.driver_param_rules import check_driver_parameters
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
 from marm_setup.validate.rules.kinematics_rules import check_kinematics
 from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml
@@ -284,6 +285,7 @@ def check_as_launched(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[lis
             out += guarded("launch", check_ros2_launch, pkg, distro)
         out += guarded("params", check_params_files, pkg.root)
         out += guarded("params", check_declared_parameters, pkg, distro)
+        out += guarded("controller", check_driver_parameters, pkg, distro)
     if skips_code("the launch files in the user's ROS (roslaunch / ros2 launch)"):
         return out, "static rules only (--untrusted: no launch file was run)"
     run = run_consumer(pkg, robot, distro)
