@@ -1,6 +1,6 @@
 """Realistic one-line edits of a generated ROS 2 package, each of which crashes or silently
-disables move_group, the controller manager or Servo: does `validate` (no ROS installed) catch
-each one (exit 1)? Prints one line per edit and the count missed.
+disables move_group, the controller manager (or one of its controllers) or Servo: does
+`validate` (no ROS installed) catch each one (exit 1)? Prints one line per edit and the count missed.
 
 Run: .venv/bin/python benchmarks/sweep_edits.py
 (Run it from an older checkout's folder to measure that version: the CLI is `python -m
@@ -19,6 +19,7 @@ ROOT = Path(__file__).resolve().parent.parent
 MARM = ROOT / "fixtures" / "marm" / "urdf" / "marm.urdf.xacro"
 CLI = [sys.executable, "-m", "marm_setup.cli.app"]
 MOVEIT, SERVO, DEMO = "config/moveit.yaml", "config/arm_servo.yaml", "launch/demo.launch.xml"
+CONTROLLERS = "config/ros2_controllers.yaml"
 GRIPPER = "action_ns: gripper_cmd\n"
 
 # (distro, file, old, new, what MoveIt does)
@@ -44,6 +45,13 @@ EDITS = (
      "move_group starts without pipelines, kinematics or controllers"),
     ("humble", MOVEIT, "allowed_start_tolerance: 0.01", "allowed_start_tolerance: 0",
      "move_group dies at start-up (an integer for a double)"),
+    ("jazzy", MOVEIT, "publish_robot_description_semantic: true", "publish_robot_description_semantic: 1",
+     "move_group dies at start-up (declared a bool)"),
+    ("jazzy", MOVEIT, "      - pilz_industrial_motion_planner\n", "      - pilz_industrial_motion_planner\n      - chomp\n",
+     "move_group dies at start-up ('Planning plugin name is empty')"),
+    ("humble", CONTROLLERS, "update_rate: 100", "update_rate: 100.0", "ros2_control_node dies at start-up"),
+    ("jazzy", CONTROLLERS, "allow_nonzero_velocity_at_trajectory_end: true",
+     "allow_nonzero_velocity_at_trajectory_end: 1", "the arm controller does not load: nothing executes"),
 )  # fmt: skip
 
 
