@@ -13,6 +13,7 @@ and curated.yaml's rows, whose citations are looked up at the pinned commit (git
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -82,6 +83,7 @@ def build_table(family: str, git: GitRef, also: list[GitRef], curated: dict) -> 
         "owned": [{"prefix": o["prefix"], "source": _cite(git, curated["files"], o)} for o in owned],
         "plugins": _plugins(git),
         "third_party": curated["third_party"],
+        "ompl_planners": _ompl_planners(git),
     }
 
 
@@ -121,6 +123,18 @@ def _cite(git: GitRef, files: dict, spec: dict) -> str:
         except SourceError:
             continue
     raise SourceError(f"{git.ref}:{path}: none of {literals} found (row {full or spec.get('prefix')})")
+
+
+OMPL_CONTEXTS = "moveit_planners/ompl/ompl_interface/src/planning_context_manager.cpp"
+OMPL_REGISTERED = re.compile(r'registerPlannerAllocatorHelper<[^>]*>\("([^"]+)"\)')
+
+
+def _ompl_planners(git: GitRef) -> list[dict]:
+    """The planner types OMPL's PlanningContextManager registers (registerDefaultPlanners); any
+    other `type` is "Unknown planner" (plannerSelector)."""
+    lines = git.text(OMPL_CONTEXTS).splitlines()
+    found = [(m.group(1), n) for n, line in enumerate(lines, 1) for m in OMPL_REGISTERED.finditer(line)]
+    return [{"type": name, "source": f"{OMPL_CONTEXTS}:{n}"} for name, n in sorted(found)]
 
 
 def _plugins(git: GitRef) -> dict[str, list[dict]]:

@@ -62,6 +62,7 @@ class Table:
     owned: tuple[tuple[str, str], ...]  # (namespace prefix with placeholders, source)
     plugins: dict[str, tuple[tuple[str, str], ...]]  # kind -> (class, source)
     third_party: dict[str, tuple[tuple[str, str], ...]]
+    ompl_planners: tuple[tuple[str, str], ...] = ()  # (planner type OMPL registers, source)
 
     def rows(self, node: str) -> tuple[ParamRow, ...]:
         return tuple(r for r in self.parameters if r.node == node)
@@ -87,6 +88,7 @@ def load_table(family: str) -> Table:
         owned=tuple((o["prefix"], o["source"]) for o in data["owned"]),
         plugins=_classes(data["plugins"]),
         third_party=_classes(data["third_party"]),
+        ompl_planners=tuple((r["type"], r["source"]) for r in data.get("ompl_planners", ())),
     )
 
 

@@ -430,8 +430,19 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
         if uses_pilz(pkg.pipelines):
             out += guarded("limits", check_cartesian_limits, pkg.joint_limits)
     if pkg.ompl is not None:
-        out += guarded("ompl", check_ompl, pkg.ompl, srdf)
+        out += guarded("ompl", check_ompl, pkg.ompl, srdf, ompl_planners(pkg))
     return out
+
+
+def ompl_planners(pkg: MoveItPackage) -> frozenset[str]:
+    """The planner types the package's MoveIt registers: its family's (ROS 1: noetic), and with
+    no known ROS 2 distro those every ROS 2 family registers."""
+    from marm_setup.moveit_params import family_of, load_table
+
+    family = "noetic" if pkg.target == Target.ROS1 else family_of(pkg.ros_distro)
+    families = [family] if family else ["humble", "jazzy"]
+    found = [frozenset(t for t, _ in load_table(f).ompl_planners) for f in families]
+    return frozenset.intersection(*found)
 
 
 def check_controller_files(pkg: MoveItPackage) -> list[Finding]:

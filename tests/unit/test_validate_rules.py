@@ -382,6 +382,13 @@ KINEMATICS_CASES = [
         severity="warning",
     ),
     Case(
+        "kin-solver-typo",
+        "ros1",
+        text(KIN, "kdl_kinematics_plugin/KDLKinematicsPlugin", "kdl_kinematics_plugin/KDLKinematicPlugin"),
+        "kinematics.unknown-solver",
+        match="exports no solver",
+    ),
+    Case(
         "kin-kdl-on-hand",
         "ros1",
         ydata(
@@ -651,6 +658,20 @@ OMPL_CASES = [
         "ros1",
         text(OMPL, "default_planner_config: RRTConnect", "default_planner_config: RRTConect"),
         "ompl.unknown-default-planner",
+    ),
+    Case(
+        "ompl-unknown-type-of-the-default",
+        "ros1",
+        text(OMPL, "type: geometric::RRTConnect", "type: geometric::RRTConect"),
+        "ompl.unknown-planner-type",
+        match="the group's default config",
+    ),
+    Case(
+        "ompl-unknown-type-listed",
+        "ros1",
+        text(OMPL, "type: geometric::SBL\n", "type: geometric::SBLX\n"),
+        "ompl.unknown-planner-type",
+        severity="warning",
     ),
     Case(
         "ros2-ompl-unknown-config",

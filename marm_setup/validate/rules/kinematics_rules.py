@@ -8,6 +8,7 @@ moveit/moveit2 the same file l.254-265); such a key is a leftover or a typo.
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
@@ -65,10 +66,7 @@ def _check_entry(
     if solver is None:
         out.append(error("kinematics.missing-solver", file, where, "no kinematics_solver"))
     elif solver_names and solver not in KINEMATICS_PLUGINS and not solver.endswith(IKFAST_PLUGIN_SUFFIX):
-        msg = f"unknown solver plugin '{solver}'"
-        out.append(
-            warning("kinematics.unknown-solver", file, f"{where}.kinematics_solver", msg, _solver_hint())
-        )
+        out.append(_unknown_solver(file, f"{where}.kinematics_solver", solver))
     elif (
         robot is not None
         and solver in CHAIN_ONLY_PLUGINS
@@ -85,6 +83,26 @@ def _check_entry(
                 msg = f"{key} must be a positive number, got {value!r}"
                 out.append(error("kinematics.non-positive", file, f"{where}.{key}", msg))
     return out
+
+
+def _unknown_solver(file: str, element: str, solver: str) -> Finding:
+    """A solver class no known plugin package exports: an error when its package is one of the
+    known ones (that package exports no such class: pluginlib cannot load it, a typo), else a
+    warning (another package may export it once built)."""
+    owner = solver.split("/", 1)[0]
+    if owner not in {known.split("/", 1)[0] for known in KINEMATICS_PLUGINS}:
+        return warning(
+            "kinematics.unknown-solver", file, element, f"unknown solver plugin '{solver}'", _solver_hint()
+        )
+    close = difflib.get_close_matches(solver, KINEMATICS_PLUGINS, n=1, cutoff=0.6)
+    msg = f"package '{owner}' exports no solver '{solver}': pluginlib cannot load it, the group has no IK"
+    return error(
+        "kinematics.unknown-solver",
+        file,
+        element,
+        msg,
+        f"did you mean {close[0]}?" if close else _solver_hint(),
+    )
 
 
 def _solver_hint() -> str:

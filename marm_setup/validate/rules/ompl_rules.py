@@ -8,6 +8,8 @@ loops over `robot_model_->getJointModelGroupNames()`); such a key is a leftover 
 
 from __future__ import annotations
 
+import difflib
+from collections.abc import Collection
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
@@ -17,8 +19,9 @@ if TYPE_CHECKING:
     from marm_setup.setup import Srdf
 
 
-def check_ompl(ompl: PlanningPipeline, srdf: Srdf) -> list[Finding]:
-    """Every rule on an OMPL pipeline (`{planner_configs: {...}, <group>: {...}}`)."""
+def check_ompl(ompl: PlanningPipeline, srdf: Srdf, planners: Collection[str] = ()) -> list[Finding]:
+    """Every rule on an OMPL pipeline (`{planner_configs: {...}, <group>: {...}}`); `planners`:
+    the planner types this MoveIt's OMPL registers (none given: not checked)."""
     file = ompl.where.file
     if not ompl.is_mapping:
         return [error("ompl.malformed", file, ompl.where.element, "expected a mapping")]
@@ -38,6 +41,36 @@ def check_ompl(ompl: PlanningPipeline, srdf: Srdf) -> list[Finding]:
             out.append(warning("ompl.unknown-group", file, entry.where.element, msg, hint, at=at))
             continue
         out += _check_group(file, entry, configs)
+    return out + (_check_types(ompl, groups, planners) if planners else [])
+
+
+def _check_types(ompl: PlanningPipeline, groups: set[str], planners: Collection[str]) -> list[Finding]:
+    """A planner config a group uses whose `type` OMPL does not register: planning with it fails
+    ("Unknown planner", planning_context_manager.cpp plannerSelector; the registered types are
+    the tables' `ompl_planners`). An error for a group's default config, else a warning."""
+    used = [g for g in ompl.groups if g.group in groups]
+    defaults = {str(p.value) for g in used if (p := g.param("default_planner_config")) is not None}
+    listed = {
+        str(name)
+        for g in used
+        if (p := g.param("planner_configs")) is not None and isinstance(p.value, tuple)
+        for name in p.value
+    }
+    out: list[Finding] = []
+    for config in ompl.planner_configs or ():
+        if config.name not in defaults | listed or config.type is None or config.type in planners:
+            continue
+        close = difflib.get_close_matches(config.type, sorted(planners), n=1)
+        hint = f"did you mean {close[0]}?" if close else "known: " + ", ".join(sorted(planners)[:8])
+        element = config.where.child("type").element
+        if config.name in defaults:
+            msg = (
+                f"planner type '{config.type}' is not OMPL's: planning with the group's default config fails"
+            )
+            out.append(error("ompl.unknown-planner-type", ompl.where.file, element, msg, hint))
+        else:
+            msg = f"planner type '{config.type}' is not OMPL's: planning with config '{config.name}' fails"
+            out.append(warning("ompl.unknown-planner-type", ompl.where.file, element, msg, hint))
     return out
 
 
