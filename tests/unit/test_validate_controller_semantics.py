@@ -160,3 +160,20 @@ def test_a_driver_controller_of_unknown_type_names_no_urdf_joints(panda1):
         moveit, read_ros2_controllers(located_text(broken, "config/ros2_controllers.yaml")), robot
     )
     assert "controller.unknown-joint" in {f.rule for f in found}
+
+
+def test_an_empty_joints_list_is_a_controller_moveit1_takes():
+    """MoveIt 1's simple and fake managers check only that `joints` is an array
+    (moveit_simple_controller_manager.cpp l.75-91, moveit_fake_controller_manager.cpp l.86-105):
+    `joints: []` (a vacuum gripper's fake controller) is loaded and drives nothing. MoveIt 2's
+    `controller_names` form still needs a joint."""
+    text = yaml.safe_dump({"controller_list": [{"name": "suction", "joints": []}]})
+    fake = read_controllers(located_text(text, "config/fake_controllers.yaml"), ("name", "joints"))
+    assert check_listed(fake) == []
+    assert [(c.name, c.joints) for c in fake.controllers] == [("suction", ())]
+    ros1 = section(dump({**entry("suction", []), "type": "FollowJointTrajectory"}))
+    assert check_listed(ros1) == [] and ros1.controllers[0].joints == ()
+    ros2 = section(
+        "controller_names: [suction]\nsuction: {action_ns: x, type: FollowJointTrajectory, joints: []}\n"
+    )
+    assert [f.rule for f in check_listed(ros2)] == ["controller.malformed"]
