@@ -493,14 +493,17 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     if uses_ros_control_interface(moveit):
         driver = pkg.ros2_controllers or pkg.ros_controllers
         out += check_ros_control_coverage(moveit, driver, pkg.srdf, robot)
-        return out + (check_driver_controllers(moveit, driver, robot) if driver is not None else [])
+        ros1 = driver is pkg.ros_controllers
+        return out + (
+            check_driver_controllers(moveit, driver, robot, ros1=ros1) if driver is not None else []
+        )
     out += _listed_controller_rules(pkg, moveit)
     out += check_moveit_controllers(moveit, robot)
     out += check_coverage(moveit, pkg.srdf, robot, pkg.alt_moveit_controllers)
     if pkg.ros2_controllers is not None:
         out += check_driver_controllers(moveit, pkg.ros2_controllers, robot)
     if pkg.ros_controllers is not None and pkg.ros_controllers.where.file != moveit.where.file:
-        out += check_driver_controllers(moveit, pkg.ros_controllers, robot)
+        out += check_driver_controllers(moveit, pkg.ros_controllers, robot, ros1=True)
     if pkg.arbotix is not None:
         out += check_arbotix(pkg.arbotix, moveit, robot, gripper_nodes(pkg))
     return out

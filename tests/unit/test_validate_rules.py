@@ -897,3 +897,17 @@ def test_urdf_rule_and_hint_come_from_the_error_type(tmp_path, body, rule, hinte
     (found,) = run(good.path, good, urdf=broken)
     assert found.rule == rule
     assert bool(found.hint) == hinted, found
+
+
+def test_a_ros1_driver_file_without_action_controllers_is_not_moveits_driver(tmp_path):
+    """A ros_controllers.yaml with only a joint_state_controller beside the hardware interface:
+    MoveIt's action servers come from another package's driver (nothing here serves one), so
+    no controller.driver-missing; a trajectory controller in the file makes it the driver."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    driver = good.path / "config" / "ros_controllers.yaml"
+    state = "joint_state_controller:\n  type: joint_state_controller/JointStateController\n"
+    driver.write_text(state, encoding="utf-8")
+    assert "controller.driver-missing" not in {f.rule for f in run(good.path, good)}
+    trajectory = "other:\n  type: position_controllers/JointTrajectoryController\n  joints: [joint1]\n"
+    driver.write_text(state + trajectory, encoding="utf-8")
+    assert "controller.driver-missing" in {f.rule for f in run(good.path, good) if f.is_error}
