@@ -422,7 +422,10 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
     out = guarded("names", check_srdf_names, srdf, file)
     if pkg.kinematics is not None:
         ros1 = pkg.target == Target.ROS1  # a ROS 2 solver's class is declared_param_rules'
-        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot, solver_names=ros1)
+        depends = pkg.package_xml.dependencies if pkg.package_xml is not None else ()
+        out += guarded(
+            "kinematics", check_kinematics, pkg.kinematics, srdf, robot, solver_names=ros1, depends=depends
+        )
     if pkg.joint_limits is not None:
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
         if uses_pilz(pkg.pipelines):

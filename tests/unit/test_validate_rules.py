@@ -911,3 +911,18 @@ def test_a_ros1_driver_file_without_action_controllers_is_not_moveits_driver(tmp
     trajectory = "other:\n  type: position_controllers/JointTrajectoryController\n  joints: [joint1]\n"
     driver.write_text(state + trajectory, encoding="utf-8")
     assert "controller.driver-missing" in {f.rule for f in run(good.path, good) if f.is_error}
+
+
+def test_a_solver_of_a_package_the_package_depends_on_is_not_unknown(tmp_path):
+    """pluginlib finds a solver among every installed package's plugins: one whose name starts
+    with a package package.xml depends on (a third-party solver such as OPW) is installed with
+    the package, so no kinematics.unknown-solver; the same name without the dependency is."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    replace_text(
+        good.path, "config/kinematics.yaml", "kdl_kinematics_plugin/KDLKinematicsPlugin", "my_ik/MyIk"
+    )
+    assert "kinematics.unknown-solver" in {f.rule for f in run(good.path, good)}
+    replace_text(
+        good.path, "package.xml", "<exec_depend>", "<exec_depend>my_ik</exec_depend>\n  <exec_depend>"
+    )
+    assert "kinematics.unknown-solver" not in {f.rule for f in run(good.path, good)}

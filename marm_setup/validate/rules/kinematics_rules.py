@@ -4,6 +4,14 @@ A group the SRDF lacks is only a warning: the kinematics plugin loader looks up
 `<group>/kinematics_solver` for each group of the SRDF and never reads other keys (moveit/moveit
 `moveit_ros/planning/kinematics_plugin_loader/src/kinematics_plugin_loader.cpp` l.286-309,
 moveit/moveit2 the same file l.254-265); such a key is a leftover or a typo.
+
+A solver none of whose names we know is a warning unless the package declares a dependency on
+the package its name starts with (`moveit_opw_kinematics_plugin/MoveItOPWKinematicsPlugin` and
+`<exec_depend>moveit_opw_kinematics_plugin</exec_depend>`): the loader asks pluginlib for the
+name among every installed package's plugin descriptions (moveit/moveit
+kinematics_plugin_loader.cpp l.168 at fdb79ac, `createUniqueInstance`; l.199 the error when
+none has it), and the package pluginlib names are conventionally prefixed with is installed
+with this one.
 """
 
 from __future__ import annotations
@@ -24,12 +32,18 @@ POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resoluti
 
 
 def check_kinematics(
-    kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel | None, *, solver_names: bool = True
+    kinematics: KinematicsFile,
+    srdf: Srdf,
+    robot: RobotModel | None,
+    *,
+    solver_names: bool = True,
+    depends: tuple[str, ...] = (),
 ) -> list[Finding]:
     """Every rule on a kinematics file (`{group: {kinematics_solver: ..., ...}}`); without the
     robot (a description only the run time gives) whether a group is a chain is not checked.
     `solver_names`: whether the solver's class name is this rule's to check (a ROS 2 package's
-    is declared_param_rules', against MoveIt's plugin description files)."""
+    is declared_param_rules', against MoveIt's plugin description files); `depends`: the
+    packages package.xml depends on."""
     file = kinematics.where.file
     if kinematics.groups is None:
         return [error("kinematics.malformed", file, kinematics.where.element, "expected a mapping of groups")]
@@ -46,7 +60,8 @@ def check_kinematics(
         elif entry.params is None:
             out.append(error("kinematics.malformed", file, where, "expected a mapping"))
         else:
-            out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, solver_names)
+            names = solver_names and not _declared(entry.solver, depends)
+            out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, names)
     return out
 
 
@@ -85,6 +100,11 @@ def _check_entry(
                 msg = f"{key} must be a positive number, got {value!r}"
                 out.append(error("kinematics.non-positive", file, f"{where}.{key}", msg))
     return out
+
+
+def _declared(solver: str | None, depends: tuple[str, ...]) -> bool:
+    """`solver`'s name starts with a package the package depends on."""
+    return bool(solver) and "/" in str(solver) and str(solver).split("/", 1)[0] in depends
 
 
 def _solver_hint() -> str:
