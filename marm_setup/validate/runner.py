@@ -451,7 +451,9 @@ def check_controller_files(pkg: MoveItPackage) -> list[Finding]:
 def _listed_controller_rules(pkg: MoveItPackage, moveit: ControllersFile) -> list[Finding]:
     """The simple manager's list on its own: entries listed and named, and where the launch
     files load it (MoveIt 1) or the manager's namespace (MoveIt 2)."""
-    out = check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
+    ros1_list = moveit.form == "controller_list"
+    out = check_listed(moveit)
+    out += check_controller_names(moveit.controllers, moveit.where.file, global_names=ros1_list)
     out += check_ros1_namespace(moveit)
     if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
         out += check_ros2_namespace(moveit)

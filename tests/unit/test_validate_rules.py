@@ -926,3 +926,13 @@ def test_a_solver_of_a_package_the_package_depends_on_is_not_unknown(tmp_path):
         good.path, "package.xml", "<exec_depend>", "<exec_depend>my_ik</exec_depend>\n  <exec_depend>"
     )
     assert "kinematics.unknown-solver" not in {f.rule for f in run(good.path, good)}
+
+
+def test_a_global_controller_name_is_valid_in_a_moveit1_list(tmp_path):
+    """MoveIt 1's simple manager connects to `<name>/<action_ns>` (action_based_controller_handle.h
+    l.140-145): a global name such as Baxter's `/robot/limb/right` is a valid ROS name there."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    replace_text(good.path, "config/controllers.yaml", "name: arm_controller", "name: /arm_controller")
+    assert "names.invalid" not in {f.rule for f in run(good.path, good)}
+    replace_text(good.path, "config/controllers.yaml", "name: /arm_controller", "name: /arm controller")
+    assert "names.invalid" in {f.rule for f in run(good.path, good)}
