@@ -5,7 +5,11 @@ MoveIt 1 moveit_simple_controller_manager.cpp (constructor, ~l.75) skips an entr
 all of name, joints, action_ns and type; `name` may be empty. MoveIt 2's initialize() reads
 `<name>.action_ns`, `<name>.type` and a non-empty `<name>.joints` under
 `moveit_simple_controller_manager` (PARAM_BASE_NAME). moveit_fake_controller_manager.cpp (MoveIt
-1, constructor) needs only name and joints, and reads `initial` (group, pose) entries.
+1, constructor) needs only name and joints, and reads `initial` (group, pose) entries. MoveIt
+1's managers take an empty `joints` list (`joints: []`) as they take any array: the simple
+manager checks only that it is one (moveit/moveit moveit_plugins/moveit_simple_controller_manager/
+src/moveit_simple_controller_manager.cpp l.75-91 at fdb79ac), the fake one likewise
+(moveit_fake_controller_manager.cpp l.86-105); the controller then drives no joint.
 """
 
 from __future__ import annotations
@@ -108,7 +112,7 @@ def read_controllers(doc: Located, required: tuple[str, ...] = REQUIRED_KEYS) ->
     entries, form = _entries(section)
     found, skipped = [], []
     for where, entry in entries:
-        missing = _missing_keys(entry, required)
+        missing = _missing_keys(entry, required, empty_joints=form == "controller_list")
         if missing or not isinstance(entry, dict):
             skipped.append(SkippedController(where, missing))
         else:
@@ -140,11 +144,14 @@ def _entries(section: Located) -> tuple[list[tuple[Where, object]], str | None]:
     return [], None
 
 
-def _missing_keys(entry: object, required: tuple[str, ...]) -> tuple[str, ...]:
+def _missing_keys(entry: object, required: tuple[str, ...], empty_joints: bool = False) -> tuple[str, ...]:
+    """The keys the manager misses in `entry`; `empty_joints`: an empty `joints` list is one it
+    takes (MoveIt 1's `controller_list`; MoveIt 2 needs at least one joint)."""
     if not isinstance(entry, dict):
         return required
     missing = [k for k in required if k not in entry or entry[k] is None]
-    if "joints" not in missing and (not isinstance(entry["joints"], list) or not entry["joints"]):
+    joints = entry.get("joints")
+    if "joints" not in missing and (not isinstance(joints, list) or not (joints or empty_joints)):
         missing.append("joints")
     return tuple(missing)
 

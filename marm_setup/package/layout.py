@@ -245,10 +245,18 @@ def _simple_manager(real: list[tuple[YamlLoad, Located]], managers: tuple[str, .
 
 
 def _ros1_sensors(files: PackageFiles, loads: Loads) -> tuple[Located | None, str]:
+    """The file a launch file loads holding a `sensors` list, else the Setup Assistant's
+    `config/sensors_3d.yaml` only when the launch files load no YAML this package's reader can
+    follow (a bare config folder). Where they load the package's YAML and none of it is a
+    sensors list (xarm_ros: sensor_manager.launch.xml's load commented out), move_group finds
+    no `sensors` parameter and loads no updater (moveit/moveit moveit_ros/occupancy_map_monitor/
+    src/occupancy_map_monitor.cpp l.106 and l.184 at fdb79ac): the file is never read."""
     for load in _by_preference(list(loads)):
         doc = files.yaml(load.file)
         if doc is not None and doc.is_mapping and isinstance(doc.data.get("sensors"), list):
             return doc, _loaded_by(load)
+    if loads:
+        return None, ""
     return _named(files, DEFAULT_FILES["sensors"]), SA_NAME
 
 

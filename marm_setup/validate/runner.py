@@ -424,7 +424,10 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
     out = guarded("names", check_srdf_names, srdf, file)
     if pkg.kinematics is not None:
         ros1 = pkg.target == Target.ROS1  # a ROS 2 solver's class is declared_param_rules'
-        out += guarded("kinematics", check_kinematics, pkg.kinematics, srdf, robot, solver_names=ros1)
+        depends = pkg.package_xml.dependencies if pkg.package_xml is not None else ()
+        out += guarded(
+            "kinematics", check_kinematics, pkg.kinematics, srdf, robot, solver_names=ros1, depends=depends
+        )
     if pkg.joint_limits is not None:
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
         if uses_pilz(pkg.pipelines):
@@ -461,7 +464,9 @@ def check_controller_files(pkg: MoveItPackage) -> list[Finding]:
 def _listed_controller_rules(pkg: MoveItPackage, moveit: ControllersFile) -> list[Finding]:
     """The simple manager's list on its own: entries listed and named, and where the launch
     files load it (MoveIt 1) or the manager's namespace (MoveIt 2)."""
-    out = check_listed(moveit) + check_controller_names(moveit.controllers, moveit.where.file)
+    ros1_list = moveit.form == "controller_list"
+    out = check_listed(moveit)
+    out += check_controller_names(moveit.controllers, moveit.where.file, global_names=ros1_list)
     out += check_ros1_namespace(moveit)
     if pkg.target == Target.ROS2 and pkg.layout == "moveit2":
         out += check_ros2_namespace(moveit)
@@ -506,14 +511,17 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     if uses_ros_control_interface(moveit):
         driver = pkg.ros2_controllers or pkg.ros_controllers
         out += check_ros_control_coverage(moveit, driver, pkg.srdf, robot)
-        return out + (check_driver_controllers(moveit, driver, robot) if driver is not None else [])
+        ros1 = driver is pkg.ros_controllers
+        return out + (
+            check_driver_controllers(moveit, driver, robot, ros1=ros1) if driver is not None else []
+        )
     out += _listed_controller_rules(pkg, moveit)
     out += check_moveit_controllers(moveit, robot)
     out += check_coverage(moveit, pkg.srdf, robot, pkg.alt_moveit_controllers)
     if pkg.ros2_controllers is not None:
         out += check_driver_controllers(moveit, pkg.ros2_controllers, robot)
     if pkg.ros_controllers is not None and pkg.ros_controllers.where.file != moveit.where.file:
-        out += check_driver_controllers(moveit, pkg.ros_controllers, robot)
+        out += check_driver_controllers(moveit, pkg.ros_controllers, robot, ros1=True)
     if pkg.arbotix is not None:
         out += check_arbotix(pkg.arbotix, moveit, robot, gripper_nodes(pkg))
     return out

@@ -211,3 +211,27 @@ def test_moveit2_empty_sensor_name_is_a_warning_a_named_one_without_plugin_an_er
     found = rules(pkg)
     assert list(found) == [rule], found
     assert found[rule][0].startswith("warning" if rule == "sensors.empty" else "error")
+
+
+SENSOR_MANAGER = """<launch>
+  <rosparam command="load" file="$(find bot_moveit_config)/config/kinematics.yaml" ns="robot_description_kinematics"/>
+  {sensors}
+</launch>
+"""
+
+
+@pytest.mark.parametrize("loaded", [True, False])
+def test_a_moveit1_sensors_file_no_launch_loads_is_not_read(tmp_path, loaded):
+    """Launch files that load the package's YAML but not config/sensors_3d.yaml (its load
+    commented out): move_group finds no `sensors` parameter (occupancy_map_monitor.cpp l.106),
+    so the file's empty entry is nothing MoveIt logs. Loaded, it is the sensors.empty warning."""
+    pkg = ros1_package(tmp_path / "bot_moveit_config", "/arm_controller/command", POINTCLOUD)
+    (pkg / "config/sensors_3d.yaml").write_text("sensors:\n  - {}\n", encoding="utf-8")
+    (pkg / "config/kinematics.yaml").write_text(
+        "arm: {kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin}\n"
+    )
+    load = '<rosparam command="load" file="$(find bot_moveit_config)/config/sensors_3d.yaml"/>'
+    text = SENSOR_MANAGER.format(sensors=load if loaded else f"<!-- {load} -->")
+    (pkg / "launch").mkdir()
+    (pkg / "launch/move_group.launch").write_text(text, encoding="utf-8")
+    assert list(rules(pkg, ("sensors.",))) == (["sensors.empty"] if loaded else [])

@@ -12,7 +12,7 @@ import dataclasses
 import yaml
 
 from marm_setup.package.controllers_file import ControllersFile, read_controllers
-from marm_setup.package.driver_file import read_ros2_controllers
+from marm_setup.package.driver_file import read_ros2_controllers, read_ros_controllers
 from marm_setup.package.files import located_text
 from marm_setup.validate.rules.controller_rules import (
     check_coverage,
@@ -160,3 +160,49 @@ def test_a_driver_controller_of_unknown_type_names_no_urdf_joints(panda1):
         moveit, read_ros2_controllers(located_text(broken, "config/ros2_controllers.yaml")), robot
     )
     assert "controller.unknown-joint" in {f.rule for f in found}
+
+
+def test_an_empty_joints_list_is_a_controller_moveit1_takes():
+    """MoveIt 1's simple and fake managers check only that `joints` is an array
+    (moveit_simple_controller_manager.cpp l.75-91, moveit_fake_controller_manager.cpp l.86-105):
+    `joints: []` (a vacuum gripper's fake controller) is loaded and drives nothing. MoveIt 2's
+    `controller_names` form still needs a joint."""
+    text = yaml.safe_dump({"controller_list": [{"name": "suction", "joints": []}]})
+    fake = read_controllers(located_text(text, "config/fake_controllers.yaml"), ("name", "joints"))
+    assert check_listed(fake) == []
+    assert [(c.name, c.joints) for c in fake.controllers] == [("suction", ())]
+    ros1 = section(dump({**entry("suction", []), "type": "FollowJointTrajectory"}))
+    assert check_listed(ros1) == [] and ros1.controllers[0].joints == ()
+    ros2 = section(
+        "controller_names: [suction]\nsuction: {action_ns: x, type: FollowJointTrajectory, joints: []}\n"
+    )
+    assert [f.rule for f in check_listed(ros2)] == ["controller.malformed"]
+
+
+STATE_ONLY = """
+hardware_interface:
+  joints: [joint1, joint2]
+joint_state_controller:
+  type: joint_state_controller/JointStateController
+  publish_rate: 50
+"""
+TRAJECTORY = """
+other_controller:
+  type: position_controllers/JointTrajectoryController
+  joints: [joint1, joint2]
+"""
+
+
+def test_a_ros1_driver_file_serving_no_action_is_not_where_moveits_controllers_are(marm):
+    """A ROS 1 `ros_controllers.yaml` holding only a joint_state_controller (xarm_ros' examples):
+    the spawner starts only the controllers it names, and MoveIt's action servers are a vendor
+    driver's; a file with a trajectory controller, or a ROS 2 file, is still held to MoveIt's."""
+    moveit = section(dump(entry("arm_controller", ["joint1", "joint2"], True)))
+    state_only = read_ros_controllers(located_text(STATE_ONLY, "config/ros_controllers.yaml"))
+    assert check_driver_controllers(moveit, state_only, marm, ros1=True) == []
+    assert [f.rule for f in check_driver_controllers(moveit, state_only, marm)] == [
+        "controller.driver-missing"
+    ]
+    serving = read_ros_controllers(located_text(STATE_ONLY + TRAJECTORY, "config/ros_controllers.yaml"))
+    found = check_driver_controllers(moveit, serving, marm, ros1=True)
+    assert [(f.rule, f.severity) for f in found] == [("controller.driver-missing", "error")]

@@ -918,3 +918,42 @@ def test_urdf_rule_and_hint_come_from_the_error_type(tmp_path, body, rule, hinte
     (found,) = run(good.path, good, urdf=broken)
     assert found.rule == rule
     assert bool(found.hint) == hinted, found
+
+
+def test_a_ros1_driver_file_without_action_controllers_is_not_moveits_driver(tmp_path):
+    """A ros_controllers.yaml with only a joint_state_controller beside the hardware interface:
+    MoveIt's action servers come from another package's driver (nothing here serves one), so
+    no controller.driver-missing; a trajectory controller in the file makes it the driver."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    driver = good.path / "config" / "ros_controllers.yaml"
+    state = "joint_state_controller:\n  type: joint_state_controller/JointStateController\n"
+    driver.write_text(state, encoding="utf-8")
+    assert "controller.driver-missing" not in {f.rule for f in run(good.path, good)}
+    trajectory = "other:\n  type: position_controllers/JointTrajectoryController\n  joints: [joint1]\n"
+    driver.write_text(state + trajectory, encoding="utf-8")
+    assert "controller.driver-missing" in {f.rule for f in run(good.path, good) if f.is_error}
+
+
+def test_a_solver_of_a_package_the_package_depends_on_is_not_unknown(tmp_path):
+    """pluginlib finds a solver among every installed package's plugins: one whose name starts
+    with a package package.xml depends on (a third-party solver such as OPW) is installed with
+    the package, so no kinematics.unknown-solver; the same name without the dependency is."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    replace_text(
+        good.path, "config/kinematics.yaml", "kdl_kinematics_plugin/KDLKinematicsPlugin", "my_ik/MyIk"
+    )
+    assert "kinematics.unknown-solver" in {f.rule for f in run(good.path, good)}
+    replace_text(
+        good.path, "package.xml", "<exec_depend>", "<exec_depend>my_ik</exec_depend>\n  <exec_depend>"
+    )
+    assert "kinematics.unknown-solver" not in {f.rule for f in run(good.path, good)}
+
+
+def test_a_global_controller_name_is_valid_in_a_moveit1_list(tmp_path):
+    """MoveIt 1's simple manager connects to `<name>/<action_ns>` (action_based_controller_handle.h
+    l.140-145): a global name such as Baxter's `/robot/limb/right` is a valid ROS name there."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    replace_text(good.path, "config/controllers.yaml", "name: arm_controller", "name: /arm_controller")
+    assert "names.invalid" not in {f.rule for f in run(good.path, good)}
+    replace_text(good.path, "config/controllers.yaml", "name: /arm_controller", "name: /arm controller")
+    assert "names.invalid" in {f.rule for f in run(good.path, good)}

@@ -19,8 +19,16 @@ from marm_setup.moveit_params import (
 from marm_setup.package import ArbotixFile, ControllersFile, DriverController, DriverFile, MoveItController
 from marm_setup.robot import RobotModel
 
+# Controller classes that serve no action MoveIt sends: joint state publishers and the forward
+# command controllers (a topic, no action server).
+NO_ACTION_CONTROLLERS = frozenset(
+    {*JOINT_DRIVER_CONTROLLERS - set(DRIVER_CONTROLLERS), "JointStateController", "JointStateBroadcaster"}
+)
 
-def check_driver_controllers(moveit: ControllersFile, driver: DriverFile, robot: RobotModel) -> list[Finding]:
+
+def check_driver_controllers(
+    moveit: ControllersFile, driver: DriverFile, robot: RobotModel, *, ros1: bool = False
+) -> list[Finding]:
     """MoveIt's controllers exist in the driver file with a matching type, joints and action.
 
     A driver file without controllers (the Setup Assistant's ROS 1 `ros_controllers.yaml` with
@@ -28,7 +36,13 @@ def check_driver_controllers(moveit: ControllersFile, driver: DriverFile, robot:
     src/tools/moveit_config_data.cpp` l.1063-1074) is nothing to check: the spawner starts only
     the controllers named in its args (`templates/moveit_config_pkg_template/launch/
     ros_controllers.launch` l.8-9, `[ROS_CONTROLLERS]`, empty then), so nothing loads a
-    controller from the file and nothing fails; MoveIt's controllers come from elsewhere."""
+    controller from the file and nothing fails; MoveIt's controllers come from elsewhere.
+
+    So is a ROS 1 (`ros1`) file whose controllers serve no action MoveIt sends (only a
+    `joint_state_controller`, as the Setup Assistant's template lists it beside a hardware
+    interface): the action servers MoveIt connects to are another package's (a vendor driver,
+    ROS-Industrial's `joint_trajectory_action`), which no rule here can see. ROS 2 keeps the
+    check: its spawners start MoveIt's controllers from this file."""
     file = driver.where.file
     if not driver.well_formed:
         return [error("controller.driver-malformed", file, "", "expected a mapping of controllers")]
@@ -41,9 +55,17 @@ def check_driver_controllers(moveit: ControllersFile, driver: DriverFile, robot:
         for joint in d.joints or ():
             if joint not in robot.joint_map:
                 out.append(error("controller.unknown-joint", file, d.element, f"unknown joint '{joint}'"))
+    if ros1 and not any(_may_serve_action(d) for d in driver.controllers):
+        return out
     for c in moveit.controllers:
         out += _check_against_driver(moveit, driver, c)
     return out
+
+
+def _may_serve_action(d: DriverController) -> bool:
+    """`d` may be an action server MoveIt connects to (a trajectory or gripper action
+    controller, or a type we do not know)."""
+    return d.type.rsplit("/", 1)[-1] not in NO_ACTION_CONTROLLERS
 
 
 def _check_against_driver(moveit: ControllersFile, driver: DriverFile, c: MoveItController) -> list[Finding]:

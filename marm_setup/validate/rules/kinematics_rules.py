@@ -4,6 +4,14 @@ A group the SRDF lacks is only a warning: the kinematics plugin loader looks up
 `<group>/kinematics_solver` for each group of the SRDF and never reads other keys (moveit/moveit
 `moveit_ros/planning/kinematics_plugin_loader/src/kinematics_plugin_loader.cpp` l.286-309,
 moveit/moveit2 the same file l.254-265); such a key is a leftover or a typo.
+
+A solver none of whose names we know is a warning unless the package declares a dependency on
+the package its name starts with (`moveit_opw_kinematics_plugin/MoveItOPWKinematicsPlugin` and
+`<exec_depend>moveit_opw_kinematics_plugin</exec_depend>`): the loader asks pluginlib for the
+name among every installed package's plugin descriptions (moveit/moveit
+kinematics_plugin_loader.cpp l.168 at fdb79ac, `createUniqueInstance`; l.199 the error when
+none has it), and the package pluginlib names are conventionally prefixed with is installed
+with this one.
 """
 
 from __future__ import annotations
@@ -25,12 +33,18 @@ POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resoluti
 
 
 def check_kinematics(
-    kinematics: KinematicsFile, srdf: Srdf, robot: RobotModel | None, *, solver_names: bool = True
+    kinematics: KinematicsFile,
+    srdf: Srdf,
+    robot: RobotModel | None,
+    *,
+    solver_names: bool = True,
+    depends: tuple[str, ...] = (),
 ) -> list[Finding]:
     """Every rule on a kinematics file (`{group: {kinematics_solver: ..., ...}}`); without the
     robot (a description only the run time gives) whether a group is a chain is not checked.
     `solver_names`: whether the solver's class name is this rule's to check (a ROS 2 package's
-    is declared_param_rules', against MoveIt's plugin description files)."""
+    is declared_param_rules', against MoveIt's plugin description files); `depends`: the
+    packages package.xml depends on."""
     file = kinematics.where.file
     if kinematics.groups is None:
         return [error("kinematics.malformed", file, kinematics.where.element, "expected a mapping of groups")]
@@ -47,7 +61,8 @@ def check_kinematics(
         elif entry.params is None:
             out.append(error("kinematics.malformed", file, where, "expected a mapping"))
         else:
-            out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, solver_names)
+            names = solver_names and not _declared(entry.solver, depends)
+            out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, names)
     return out
 
 
@@ -90,7 +105,7 @@ def _unknown_solver(file: str, element: str, solver: str) -> Finding:
     known ones (that package exports no such class: pluginlib cannot load it, a typo), else a
     warning (another package may export it once built)."""
     owner = solver.split("/", 1)[0]
-    if owner not in {known.split("/", 1)[0] for known in KINEMATICS_PLUGINS}:
+    if owner not in _known_owners():
         return warning(
             "kinematics.unknown-solver", file, element, f"unknown solver plugin '{solver}'", _solver_hint()
         )
@@ -103,6 +118,17 @@ def _unknown_solver(file: str, element: str, solver: str) -> Finding:
         msg,
         f"did you mean {close[0]}?" if close else _solver_hint(),
     )
+
+
+def _declared(solver: str | None, depends: tuple[str, ...]) -> bool:
+    """`solver`'s name starts with a package the package depends on (and whose classes are not
+    known: a known package's other class is a typo whatever package.xml says)."""
+    owner = str(solver).split("/", 1)[0] if solver and "/" in str(solver) else None
+    return owner is not None and owner in depends and owner not in _known_owners()
+
+
+def _known_owners() -> set[str]:
+    return {known.split("/", 1)[0] for known in KINEMATICS_PLUGINS}
 
 
 def _solver_hint() -> str:

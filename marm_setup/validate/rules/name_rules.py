@@ -20,12 +20,18 @@ def check_srdf_names(srdf: Srdf, file: str) -> list[Finding]:
     return [_finding(file, where, problem) for where, problem in _srdf_problems(srdf)]
 
 
-def check_controller_names(controllers: Iterable, file: str) -> list[Finding]:
-    """One `names.invalid` warning per MoveIt controller name or action_ns not valid as such."""
+def check_controller_names(controllers: Iterable, file: str, *, global_names: bool = False) -> list[Finding]:
+    """One `names.invalid` warning per MoveIt controller name or action_ns not valid as such.
+
+    `global_names` (MoveIt 1's `controller_list`): a controller name may be a global ROS name
+    (`/robot/limb/right`, Baxter's): the simple manager only prefixes the action it connects to
+    with it (moveit/moveit moveit_simple_controller_manager action_based_controller_handle.h
+    l.77 and l.140-145 at fdb79ac, `name + "/" + action_ns`), and roscpp takes a leading '/'."""
     out = []
     for ctrl in controllers:
-        for kind, name in (("controller", ctrl.name), ("action_ns", ctrl.action_ns)):
-            if name and (problem := name_problem(kind, name)):
+        name = ctrl.name[1:] if global_names and ctrl.name.startswith("/") else ctrl.name
+        for kind, text in (("controller", name), ("action_ns", ctrl.action_ns)):
+            if text and (problem := name_problem(kind, text)):
                 out.append(_finding(file, ctrl.element, problem))
     return out
 
