@@ -318,8 +318,10 @@ def read_ros2_kinds(
             )
     _drivers(files, kinds)
     _ros2_sensor_loads(files, loads, kinds)
-    doc = _named(files, DEFAULT_FILES["fake_controllers"])
-    kinds.put("fake_controllers", read_controllers(doc, FAKE_KEYS) if doc is not None else None, doc, SA_NAME)
+    # No fake_controllers.yaml: MoveIt 2 has no fake controller manager to read one (deleted by
+    # moveit/moveit2#471, 2021; humble and jazzy moveit_plugins/ hold only
+    # moveit_simple_controller_manager and moveit_ros_control_interface). Such a file in a ROS 2
+    # package is another node's parameters or a MoveIt 1 leftover, never move_group's.
     kinds.values["servo"] = _servo(files, [load.file for load in loads])
     return kinds
 
@@ -341,11 +343,17 @@ def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
 def _ros2_controllers(
     files: PackageFiles, builder: BuilderFiles, kinds: Kinds, named_yaml: tuple[tuple[str, str], ...]
 ) -> None:
-    """MoveIt's controllers: the builder's file; else the `config/*_controllers.yaml` with a
-    MoveIt controller list that a Python launch names (one that loads it by hand)."""
-    chosen, into = controllers_file(builder, files.root), ""
+    """MoveIt's controllers: the builder's file; else the YAML with a MoveIt controller list
+    that a Python launch names (one that loads it by hand). When no launch file calls
+    MoveItConfigsBuilder, the file a launch loads by hand comes first: the builder's guess
+    among `config/*_controllers.yaml` (moveit_configs_utils moveit_configs_builder.py
+    `trajectory_execution`) only runs inside a builder, so a `fake_controllers.yaml` beside a
+    hand-loaded `controllers.yaml` is not what move_group gets."""
+    chosen, into = (controllers_file(builder, files.root), "") if builder.calls else (None, "")
     if chosen is None:
         chosen, into = _named_controllers(files, named_yaml)
+    if chosen is None and not builder.calls:
+        chosen = controllers_file(builder, files.root)
     doc = _named(files, chosen.file) if chosen is not None else None
     if doc is not None and chosen is not None:
         listed = replace(read_controllers(unwrap_parameters(doc)), loaded_into=into)

@@ -441,3 +441,49 @@ def test_a_controller_list_the_launch_puts_under_the_manager_namespace(tmp_path)
         "moveit_simple_controller_manager.moveit_simple_controller_manager.controller_names"
         in found[0].message
     )
+
+
+# -- a Python launch without MoveItConfigsBuilder: what it loads by hand, not the builder's guess ----
+
+DRIVER_NODE_PARAMS = """hl_trajectory_driver:
+  ros__parameters:
+    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]
+"""
+
+
+def test_a_hand_loaded_controller_list_wins_over_the_builders_guess(tmp_path):
+    """A launch that calls no MoveItConfigsBuilder and loads `config/controllers.yaml` by hand
+    into moveit_simple_controller_manager: that is move_group's list, even where the only
+    `config/*_controllers.yaml` (the one the builder would guess) is `fake_controllers.yaml`,
+    another node's parameter file."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path)
+    (source / "config/hlarm_controllers.yaml").rename(source / "config/controllers.yaml")
+    (source / "config/hlarm_ros_controllers.yaml").unlink()
+    (source / "config/fake_controllers.yaml").write_text(DRIVER_NODE_PARAMS)
+    edit(source / HAND_LAUNCH, "config/hlarm_controllers.yaml", "config/controllers.yaml")
+    loaded = read_package(source, package_paths=paths).source("moveit_controllers")
+    assert loaded is not None and loaded.file == "config/controllers.yaml"
+    found = findings(source, paths)
+    assert [f for f in errors(found) if f[0].startswith("controller.")] == []
+
+
+FAKE_LIST = """controller_list:
+  - name: fake_arm_controller
+    type: $(arg fake_execution_type)
+    joints: [joint_1]
+initial:
+  - group: nope
+    pose: home
+"""
+
+
+def test_a_ros2_package_has_no_fake_controllers(tmp_path):
+    """MoveIt 2 has no fake controller manager (moveit/moveit2#471): a MoveIt 1
+    `fake_controllers.yaml` left in a ROS 2 package is read by nothing, so its joints, list and
+    initial poses are no findings."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path)
+    (source / "config/fake_controllers.yaml").write_text(FAKE_LIST)
+    assert read_package(source, package_paths=paths).fake_controllers is None
+    found = findings(source, paths)
+    assert [f for f in found if "fake" in f.rule] == []
+    assert errors(found) == []
