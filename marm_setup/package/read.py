@@ -120,9 +120,10 @@ def _read_package(
     confine_reads((root, *files.allowed))  # --untrusted: nothing outside is read from now on
     found = _setup(files, shown, package_paths)
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
-    launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
+    wanted = _wanted_robots(srdf, urdf)
+    launched = _launched(files, trees, found.paths, found.target, found.name, wanted)
     problems += _other_robots(launched.builder)
-    srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched)
+    srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched, wanted)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
     description = _readable_description(
@@ -218,12 +219,16 @@ def _finder(paths: tuple[Path, ...]) -> Callable[[str], str | None]:
 
 def _wanted_robots(srdf: str | Path | None, urdf: str | Path | None) -> tuple[str, ...]:
     """Robot names the user's --srdf (its `<robot name>`) and --urdf (its file name, as
-    MoveItConfigsBuilder's `config/<robot_name>.urdf.xacro`) point at."""
+    MoveItConfigsBuilder's `config/<robot_name>.urdf.xacro`, and its `<robot name>`, which
+    srdfdom wants the SRDF's to be: srdfdom src/model.cpp initXml) point at."""
     out = []
     if srdf is not None and (name := srdf_robot_name(Path(srdf).resolve().parent, Path(srdf).name)):
         out.append(name)
     if urdf is not None:
         out.append(Path(urdf).name.split(".", 1)[0])
+        named = srdf_robot_name(Path(urdf).resolve().parent, Path(urdf).name)
+        if named and "$" not in named:
+            out.append(named)
     return tuple(out)
 
 
@@ -304,7 +309,11 @@ def _relative(path: str, root: Path) -> str | None:
 
 
 def _srdf_choice(
-    files: PackageFiles, given: str | Path | None, found: _Setup, launched: _Launched
+    files: PackageFiles,
+    given: str | Path | None,
+    found: _Setup,
+    launched: _Launched,
+    robots: tuple[str, ...] = (),
 ) -> tuple[str | None, tuple[tuple[str, str], ...]]:
     """(relative SRDF path or None, its xacro args): `--srdf` when given, else `choose_srdf`;
     a launch file's semantic description may lie in another package the package paths hold
@@ -336,7 +345,7 @@ def _srdf_choice(
     def refused(rel: str, file: str, element: str) -> bool:
         return rel != outside and files.refused(rel, file, element)
 
-    return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, refused)
+    return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, refused, robots)
 
 
 def _launched_file(

@@ -1,0 +1,82 @@
+"""Packages whose Python launch computes the SRDF and hands move_group its parameter files
+itself (no MoveItConfigsBuilder): the SRDF validate picks by name is a robot's, not a xacro
+macro library's, and is the user's robot's when --urdf names it; a kinematics parameter file
+(`/**: ros__parameters:`) is read as move_group reads it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from marm_setup.package.read import read_package
+from marm_setup.validate.runner import validate
+from tests.helpers import build_file_tree
+from tests.vendor_packages import AMENT, _arm_urdf, _srdf
+
+CONFIG = "ux_moveit_config"
+LAUNCH_PY = """from launch import LaunchDescription
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    dof = LaunchConfiguration("dof")
+    return LaunchDescription([Node(package="moveit_ros_move_group", executable="move_group",
+                                   parameters=[{"robot_description_semantic": dof}])])
+"""
+MACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://ros.org/wiki/xacro" name="{name}">{include}
+  <xacro:macro name="{name}_macro">{body}</xacro:macro>
+</robot>
+"""
+INCLUDE = '<xacro:include filename="_ux5_macro.srdf.xacro"/>'  # beside it
+TOP = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://wiki.ros.org/xacro" name="{name}">
+  <xacro:include filename="$(find ux_moveit_config)/srdf/ux_macro.srdf.xacro"/>
+  <xacro:ux_srdf_macro/>
+</robot>
+"""
+
+
+def _body(robot: str) -> str:
+    text = _srdf(robot, 6, gripper=False)
+    return text[text.index(">", text.index("<robot")) + 1 : text.rindex("</robot>")]
+
+
+def _package(root: Path, srdf_folder: str = "srdf") -> Path:
+    files = {
+        "ux_description/package.xml": AMENT.format(name="ux_description"),
+        "ux_description/urdf/ux.urdf.xacro": _arm_urdf("UX", 6, gripper=False),
+        f"{CONFIG}/package.xml": AMENT.format(name=CONFIG),
+        f"{CONFIG}/launch/move_group.launch.py": LAUNCH_PY,
+        # a macro library for another model, sorting first; the library the tops include
+        f"{CONFIG}/{srdf_folder}/_ux5_macro.srdf.xacro": MACRO.format(name="ux5_srdf", include="", body=_body("x")),
+        f"{CONFIG}/{srdf_folder}/ux_macro.srdf.xacro": MACRO.format(name="ux_srdf", include=INCLUDE, body=_body("x")),
+        f"{CONFIG}/{srdf_folder}/dual_ux.srdf.xacro": TOP.format(name="DUAL_UX"),
+        f"{CONFIG}/{srdf_folder}/ux.srdf.xacro": TOP.format(name="UX"),
+    }
+    files = {k: v.replace("ux_moveit_config)/srdf/", f"ux_moveit_config)/{srdf_folder}/") for k, v in files.items()}
+    build_file_tree(root, files)
+    return root / CONFIG
+
+
+def test_an_srdf_chosen_by_name_is_no_macro_library_and_the_urdfs_robot_comes_first(tmp_path):
+    """srdfdom wants the SRDF's `<robot name>` to be the URDF's (srdfdom src/model.cpp initXml);
+    a `.srdf.xacro` another one includes is loaded only through it (xacro:include)."""
+    source = _package(tmp_path)
+    assert read_package(source, package_paths=[tmp_path]).srdf_path == "srdf/dual_ux.srdf.xacro"
+    urdf = tmp_path / "ux_description/urdf/ux.urdf.xacro"
+    pkg = read_package(source, urdf=urdf, package_paths=[tmp_path])
+    assert (pkg.srdf_path, pkg.srdf.robot_name) == ("srdf/ux.srdf.xacro", "UX")
+    found = validate(source, urdf=urdf, package_paths=[tmp_path], plan=False, matrix_trials=0).findings
+    assert [f.rule for f in found if f.is_error] == []
+
+
+def test_an_srdf_in_a_config_sub_folder_is_found(tmp_path):
+    """A launch computing `config/srdf/<model>.srdf.xacro` from its args at run time: the package
+    has an SRDF, so no srdf.missing error."""
+    source = _package(tmp_path, "config/srdf")
+    urdf = tmp_path / "ux_description/urdf/ux.urdf.xacro"
+    assert read_package(source, urdf=urdf, package_paths=[tmp_path]).srdf_path == "config/srdf/ux.srdf.xacro"
+    found = validate(source, urdf=urdf, package_paths=[tmp_path], plan=False, matrix_trials=0).findings
+    assert [f.rule for f in found if f.is_error] == []
+
