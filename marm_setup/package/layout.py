@@ -301,6 +301,8 @@ def read_ros2_kinds(
     ):
         chosen = chosen_file(builder, method, root)
         doc = _named(files, chosen.file) if chosen is not None else None
+        if doc is not None and kind == "kinematics" and not builder.calls:
+            doc = _node_kinematics(doc)
         kinds.put(kind, reader(doc) if doc is not None else None, doc, chosen.how if chosen else SA_NAME)
     _ros2_controllers(files, builder, kinds, named_yaml)
     _ros2_pipelines(files, builder, kinds)
@@ -324,6 +326,19 @@ def read_ros2_kinds(
     # package is another node's parameters or a MoveIt 1 leftover, never move_group's.
     kinds.values["servo"] = _servo(files, [load.file for load in loads])
     return kinds
+
+
+def _node_kinematics(doc: Located) -> Located:
+    """A kinematics file no MoveItConfigsBuilder wraps (a launch hands it to move_group itself):
+    a ROS 2 parameter file (`/**: ros__parameters:`) holds move_group's own parameters, where
+    MoveIt reads `<group>.kinematics_solver` (Humble, before robot_description_kinematics.<group>:
+    humble kinematics_plugin_loader.cpp l.308-319) or `robot_description_kinematics.<group>`
+    (jazzy kinematics_plugin_loader.cpp l.260)."""
+    params = unwrap_parameters(doc)
+    if params is doc:
+        return doc
+    nested = params.get("robot_description_kinematics")
+    return nested if nested.is_mapping else params
 
 
 def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:

@@ -80,3 +80,24 @@ def test_an_srdf_in_a_config_sub_folder_is_found(tmp_path):
     found = validate(source, urdf=urdf, package_paths=[tmp_path], plan=False, matrix_trials=0).findings
     assert [f.rule for f in found if f.is_error] == []
 
+
+KINEMATICS = """/**:
+  ros__parameters:
+    arm:
+      kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin
+      kinematics_solver_timeout: 0.005
+"""
+
+
+def test_a_kinematics_parameter_file_a_launch_hands_to_move_group(tmp_path):
+    """No MoveItConfigsBuilder wraps it: `/**: ros__parameters: arm: ...` gives move_group
+    `arm.kinematics_solver`, which Humble reads (kinematics_plugin_loader.cpp l.308-319); the
+    wrapper is no group."""
+    source = _package(tmp_path)
+    (source / "config").mkdir(exist_ok=True)
+    (source / "config/kinematics.yaml").write_text(KINEMATICS)
+    urdf = tmp_path / "ux_description/urdf/ux.urdf.xacro"
+    pkg = read_package(source, urdf=urdf, package_paths=[tmp_path])
+    assert [g.group for g in pkg.kinematics.groups] == ["arm"]
+    found = validate(source, urdf=urdf, package_paths=[tmp_path], plan=False, matrix_trials=0).findings
+    assert [f for f in found if f.rule.startswith("kinematics.")] == []
