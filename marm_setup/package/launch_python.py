@@ -479,6 +479,44 @@ def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
     return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)
 
 
+PIPELINE_PLUGIN_KEYS = ("planning_plugin", "planning_plugins")
+
+
+def launch_pipeline_settings(root: Path, launch: str) -> tuple[tuple[str, Any], ...]:
+    """The literal entries of the dict the Python launch file `launch` sets a planning plugin in
+    (`{"move_group": {"planning_plugin": "ompl_interface/OMPLPlanner", "request_adapters": "..."}}`,
+    which it then updates with a `*_planning.yaml` it loads by hand): what move_group gets beside
+    the file. None read: () (also for an unreadable launch file)."""
+    try:
+        tree = parse_launch_module(root / launch, launch)
+    except Unreadable:
+        return ()
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Dict):
+            continue
+        entries = {
+            k.value: v
+            for k, v in zip(node.keys, node.values, strict=True)
+            if isinstance(k, ast.Constant) and isinstance(k.value, str)
+        }
+        if any(key in entries for key in PIPELINE_PLUGIN_KEYS):
+            return tuple((key, value) for key, v in entries.items() if (value := _setting(v)) is not None)
+    return ()
+
+
+def _str_constant(node: ast.AST | None) -> bool:
+    return isinstance(node, ast.Constant) and isinstance(node.value, str)
+
+
+def _setting(node: ast.AST) -> Any:
+    """A literal scalar, or a list of strings as a tuple; None for anything else."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (str, int, float, bool)):
+        return node.value
+    if isinstance(node, ast.List) and all(_str_constant(e) for e in node.elts):
+        return tuple(e.value for e in node.elts)  # type: ignore[attr-defined]
+    return None
+
+
 def _yaml_keys(tree: ast.AST) -> dict[str, str]:
     """YAML path literal -> the key of the innermost dict entry holding it (ast.walk goes
     outside in, so inner entries overwrite)."""

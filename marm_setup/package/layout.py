@@ -305,7 +305,7 @@ def read_ros2_kinds(
             doc = _node_kinematics(doc)
         kinds.put(kind, reader(doc) if doc is not None else None, doc, chosen.how if chosen else SA_NAME)
     _ros2_controllers(files, builder, kinds, named_yaml)
-    _ros2_pipelines(files, builder, kinds)
+    _ros2_pipelines(files, builder, kinds, named_yaml)
     chosen = chosen_file(builder, "sensors_3d", root)
     doc = _named(files, chosen.file) if chosen is not None else None
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, chosen.how if chosen else "")
@@ -401,12 +401,17 @@ def _is_moveit_controllers(doc: Located) -> bool:
     return isinstance(data.get(SIMPLE_MANAGER), dict) or isinstance(data.get("controller_names"), list)
 
 
-def _ros2_pipelines(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) -> None:
+def _ros2_pipelines(
+    files: PackageFiles, builder: BuilderFiles, kinds: Kinds, named_yaml: tuple[tuple[str, str], ...] = ()
+) -> None:
     pipelines: list[PlanningPipeline] = []
     for name in planning_pipelines(builder, files.root):
         doc = _named(files, f"config/{name}_planning.yaml")
         if doc is not None:
-            pipelines.append(read_pipeline(name, unwrap_parameters(doc)))
+            pipeline = read_pipeline(name, unwrap_parameters(doc))
+            if not builder.calls:
+                pipeline = _with_launch_settings(files, pipeline, named_yaml)
+            pipelines.append(pipeline)
             how = "MoveItConfigsBuilder.planning_pipelines" + (
                 " (the pipelines a launch file names)"
                 if builder.pipelines is not None
@@ -414,6 +419,31 @@ def _ros2_pipelines(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) ->
             )
             kinds.sources.append(Source(f"pipeline:{name}", doc.where.file, how))
     kinds.values["pipelines"] = tuple(sorted(pipelines, key=lambda p: (p.name != "ompl", p.name)))
+
+
+def _with_launch_settings(
+    files: PackageFiles, pipeline: PlanningPipeline, named_yaml: tuple[tuple[str, str], ...]
+) -> PlanningPipeline:
+    """A pipeline file a Python launch loads by hand into a dict where it sets the planning
+    plugin itself (`{"move_group": {"planning_plugin": ..., "request_adapters": ...}}` updated with
+    the file, as MoveIt 2's Humble-era tutorials do): move_group gets those settings too, the
+    file's own winning as dict.update gives them. Humble's move_group without a
+    `planning_pipelines` parameter plans with that `move_group` namespace (humble
+    moveit_ros/move_group/src/move_group.cpp l.254-267)."""
+    from marm_setup.package.launch_python import launch_pipeline_settings
+
+    if not pipeline.is_mapping:
+        return pipeline
+    launch = next((lf for rel, lf in named_yaml if rel == pipeline.where.file), None)
+    if launch is None:
+        return pipeline
+    have = {p.key for p in pipeline.settings}
+    extra = tuple(
+        Param(key, value, Where(launch, (key,)))
+        for key, value in launch_pipeline_settings(files.root, launch)
+        if key not in have
+    )
+    return replace(pipeline, settings=(*pipeline.settings, *extra)) if extra else pipeline
 
 
 def read_move_group_file(files: PackageFiles, kinds: Kinds, rel: str, how: str) -> tuple[Param, ...] | None:

@@ -487,3 +487,36 @@ def test_a_ros2_package_has_no_fake_controllers(tmp_path):
     found = findings(source, paths)
     assert [f for f in found if "fake" in f.rule] == []
     assert errors(found) == []
+
+
+OMPL_BY_HAND = """planner_configs:
+  RRTConnectkConfigDefault:
+    type: geometric::RRTConnect
+arm:
+  planner_configs: [RRTConnectkConfigDefault]
+"""
+PIPELINE_DICT = """    pipeline = {"move_group": {
+        "planning_plugin": "ompl_interface/OMPLPlanner",
+        "request_adapters": "default_planner_request_adapters/AddTimeOptimalParameterization "
+                            "default_planner_request_adapters/FixStartStateBounds",
+    }}
+    pipeline["move_group"].update(load_yaml("hl_moveit_config", "config/ompl_planning.yaml"))
+    controllers = {"""
+
+
+def test_a_pipeline_file_the_launch_gives_its_planning_plugin(tmp_path):
+    """A Humble launch without MoveItConfigsBuilder that sets `move_group.planning_plugin` in a
+    dict and updates it with ompl_planning.yaml: move_group gets the plugin (humble
+    move_group.cpp plans with the `move_group` namespace when no planning_pipelines is set), so
+    the file's lacking it is no error; a Jazzy-only adapter there still is one."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path)
+    (source / "config/ompl_planning.yaml").write_text(OMPL_BY_HAND)
+    edit(source / HAND_LAUNCH, "    controllers = {", PIPELINE_DICT)
+    edit(source / HAND_LAUNCH, "parameters=[controllers,", "parameters=[controllers, pipeline,")
+    assert of_rule(findings(source, paths, ros_distro="humble"), "distro.pipeline-format") == []
+    edit(
+        source / HAND_LAUNCH,
+        "default_planner_request_adapters/FixStartStateBounds",
+        "default_planning_request_adapters/X",
+    )
+    assert errors(findings(source, paths, ros_distro="humble")) == [("distro.adapter", "request_adapters")]

@@ -49,12 +49,18 @@ def _package(root: Path, srdf_folder: str = "srdf") -> Path:
         f"{CONFIG}/package.xml": AMENT.format(name=CONFIG),
         f"{CONFIG}/launch/move_group.launch.py": LAUNCH_PY,
         # a macro library for another model, sorting first; the library the tops include
-        f"{CONFIG}/{srdf_folder}/_ux5_macro.srdf.xacro": MACRO.format(name="ux5_srdf", include="", body=_body("x")),
-        f"{CONFIG}/{srdf_folder}/ux_macro.srdf.xacro": MACRO.format(name="ux_srdf", include=INCLUDE, body=_body("x")),
+        f"{CONFIG}/{srdf_folder}/_ux5_macro.srdf.xacro": MACRO.format(
+            name="ux5_srdf", include="", body=_body("x")
+        ),
+        f"{CONFIG}/{srdf_folder}/ux_macro.srdf.xacro": MACRO.format(
+            name="ux_srdf", include=INCLUDE, body=_body("x")
+        ),
         f"{CONFIG}/{srdf_folder}/dual_ux.srdf.xacro": TOP.format(name="DUAL_UX"),
         f"{CONFIG}/{srdf_folder}/ux.srdf.xacro": TOP.format(name="UX"),
     }
-    files = {k: v.replace("ux_moveit_config)/srdf/", f"ux_moveit_config)/{srdf_folder}/") for k, v in files.items()}
+    files = {
+        k: v.replace("ux_moveit_config)/srdf/", f"ux_moveit_config)/{srdf_folder}/") for k, v in files.items()
+    }
     build_file_tree(root, files)
     return root / CONFIG
 
