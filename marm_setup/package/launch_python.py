@@ -538,8 +538,20 @@ def _yaml_keys(tree: ast.AST) -> dict[str, str]:
 
 def _named_yaml(tree: ast.AST) -> Iterator[str]:
     """YAML paths a launch file writes as string literals: the files it loads by hand
-    (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder."""
+    (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder,
+    also joined from literals (`os.path.join("config", "x.yaml")`)."""
     for node in ast.walk(tree):
-        value = node.value if isinstance(node, ast.Constant) else None
+        value = node.value if isinstance(node, ast.Constant) else _literal_join(node)
         if isinstance(value, str) and value.endswith((".yaml", ".yml")):
             yield value
+
+
+def _literal_join(node: ast.AST) -> str | None:
+    """`os.path.join("config", "x.yaml")` (or PathJoinSubstitution of a list) of string literals
+    only: the path; else None."""
+    if not (isinstance(node, ast.Call) and _name(node.func) in ("join", "PathJoinSubstitution")):
+        return None
+    parts = node.args[0].elts if len(node.args) == 1 and isinstance(node.args[0], ast.List) else node.args
+    if len(parts) < 2 or not all(_str_constant(p) for p in parts):
+        return None
+    return os.path.join(*(p.value for p in parts))  # type: ignore[attr-defined]

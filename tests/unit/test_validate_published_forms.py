@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from marm_setup.findings import Finding
 from marm_setup.package.builder import builder_files
 from marm_setup.package.launch_python import BuilderCall
@@ -504,14 +506,21 @@ PIPELINE_DICT = """    pipeline = {"move_group": {
     controllers = {"""
 
 
-def test_a_pipeline_file_the_launch_gives_its_planning_plugin(tmp_path):
+@pytest.mark.parametrize(
+    "named", ['"config/ompl_planning.yaml"', 'os.path.join("config", "ompl_planning.yaml")']
+)
+def test_a_pipeline_file_the_launch_gives_its_planning_plugin(tmp_path, named):
     """A Humble launch without MoveItConfigsBuilder that sets `move_group.planning_plugin` in a
     dict and updates it with ompl_planning.yaml: move_group gets the plugin (humble
     move_group.cpp plans with the `move_group` namespace when no planning_pipelines is set), so
     the file's lacking it is no error; a Jazzy-only adapter there still is one."""
     source, paths = PACKAGES["hand_loaded"](tmp_path)
     (source / "config/ompl_planning.yaml").write_text(OMPL_BY_HAND)
-    edit(source / HAND_LAUNCH, "    controllers = {", PIPELINE_DICT)
+    edit(
+        source / HAND_LAUNCH,
+        "    controllers = {",
+        PIPELINE_DICT.replace('"config/ompl_planning.yaml"', named),
+    )
     edit(source / HAND_LAUNCH, "parameters=[controllers,", "parameters=[controllers, pipeline,")
     assert of_rule(findings(source, paths, ros_distro="humble"), "distro.pipeline-format") == []
     edit(
