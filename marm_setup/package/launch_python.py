@@ -66,6 +66,7 @@ class BuilderCall:
     unread: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (method, xacro args of unknown value)
     pipelines: tuple[str, ...] | None = None
     default_pipeline: str | None = None
+    computed: tuple[str, ...] = ()  # methods given a file_path only the run time computes
 
     def file(self, method: str) -> str | None:
         return dict(self.files).get(method)
@@ -323,12 +324,16 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
     description = _try(ctor.args[1] if len(ctor.args) > 1 else _keyword(ctor, "robot_description"), env)
     package = _try(ctor.args[2] if len(ctor.args) > 2 else _keyword(ctor, "package_name"), env)
     files, mappings, unread, pipelines, default = [], [], [], None, None
+    computed = []
     for call in chain[1:]:
         method = _name(call.func)
         if method in FILE_METHODS:
-            path = _try(call.args[0] if call.args else _keyword(call, "file_path"), env)
+            given = call.args[0] if call.args else _keyword(call, "file_path")
+            path = _try(given, env)
             if isinstance(path, str):
                 files.append((method, path))
+            elif given is not None and not (isinstance(given, ast.Constant) and given.value is None):
+                computed.append(method)
             known = _mappings(call, env)
             if known is not None:
                 mappings.append((method, known[0]))
@@ -350,6 +355,7 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
         tuple(unread),
         pipelines,
         default,
+        tuple(computed),
     )
 
 

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from marm_setup.findings import Finding, warning
 from marm_setup.package.builder import BuilderFiles, Chosen, chosen_file, controllers_file, planning_pipelines
 from marm_setup.package.controllers_file import (
     FAKE_KEYS,
@@ -369,6 +370,8 @@ def _ros2_controllers(
         chosen, into = _named_controllers(files, named_yaml)
     if chosen is None and not builder.calls:
         chosen = controllers_file(builder, files.root)
+    if chosen is None and (launch := builder.computed("trajectory_execution")):
+        files.problems.append(_runtime_controllers(launch))
     doc = _named(files, chosen.file) if chosen is not None else None
     if doc is not None and chosen is not None:
         listed = replace(read_controllers(unwrap_parameters(doc)), loaded_into=into)
@@ -379,6 +382,14 @@ def _ros2_controllers(
         if other is not None and _is_moveit_controllers(unwrap_parameters(other)):
             alternatives.append(read_controllers(unwrap_parameters(other)))
     kinds.values["alt_moveit_controllers"] = tuple(alternatives)
+
+
+def _runtime_controllers(launch: str) -> Finding:
+    msg = (
+        f"MoveIt's controller list is the file {launch} passes to "
+        "MoveItConfigsBuilder.trajectory_execution, a path only the run time computes: the controller rules are skipped"
+    )
+    return warning("controller.runtime-only", launch, "trajectory_execution", msg)
 
 
 def _named_controllers(

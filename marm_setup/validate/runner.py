@@ -486,7 +486,9 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
         out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
     moveit = pkg.moveit_controllers
     if moveit is None:
-        if pkg.fake_controllers is None:
+        if pkg.fake_controllers is None and not any(
+            f.rule == "controller.runtime-only" for f in pkg.problems
+        ):
             msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out

@@ -529,3 +529,23 @@ def test_a_pipeline_file_the_launch_gives_its_planning_plugin(tmp_path, named):
         "default_planning_request_adapters/X",
     )
     assert errors(findings(source, paths, ros_distro="humble")) == [("distro.adapter", "request_adapters")]
+
+
+def test_a_controller_list_the_launch_computes_at_run_time(tmp_path):
+    """`.trajectory_execution("config/controllers/controllers" + suffix + ".yaml")`: the builder
+    loads a file only the run time names, so there is a controller configuration (no
+    controller.none, 'MoveIt can plan but not execute') and no guess among *_controllers.yaml;
+    one controller.runtime-only warning says the controller rules were skipped."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / "config/controllers").mkdir()
+    (source / "config/bot_controllers.yaml").rename(source / "config/controllers/controllers_a.yaml")
+    edit(
+        source / "launch/move_group.launch.py",
+        '        .planning_pipelines(pipelines=["ompl"])',
+        '        .trajectory_execution("config/controllers/controllers_" + use_sim.perform(None) + ".yaml")\n'
+        '        .planning_pipelines(pipelines=["ompl"])',
+    )
+    found = findings(source, paths)
+    assert of_rule(found, "controller.none") == []
+    assert of_rule(found, "controller.runtime-only") == [("warning", "trajectory_execution")]
+    assert errors(found) == []
