@@ -58,6 +58,8 @@ def detect_target(root: Path, package_xml: PackageXml | None, marm: MarmSetupFil
 
 
 SrdfChoice = tuple[str, tuple[tuple[str, str], ...]]  # (relative path, xacro args)
+# How an SRDF only its name chose is shown (validate/srdf_fit.py refits it to the robot loaded).
+SRDF_GUESSED = "chosen by its name among the package's SRDFs (no file or launch names one statically)"
 
 
 def choose_srdf(
@@ -68,8 +70,9 @@ def choose_srdf(
     problems: list[Finding],
     refused: Callable[[str, str, str], bool] = lambda _rel, _file, _element: False,
     robots: tuple[str, ...] = (),
-) -> tuple[str | None, tuple[tuple[str, str], ...]]:
-    """(relative SRDF path or None, its xacro args) in the order of the module docstring;
+) -> tuple[str | None, tuple[tuple[str, str], ...], bool]:
+    """(relative SRDF path or None, its xacro args, whether only its name chose it: no file or
+    launch names it) in the order of the module docstring;
     `named` is (the builder's explicit file, the launch files' `*_semantic` file, the builder's
     default). A `.setup_assistant` naming a missing SRDF is an error in `problems`: the Setup
     Assistant cannot load the package. `refused(rel, file, element)` says whether a path that
@@ -94,9 +97,14 @@ def choose_srdf(
             problems.append(_missing_sa_srdf(sa))
     if builder_default is not None:
         candidates.append((builder_default, ()))
+    named_count = len(candidates)
     candidates += [(rel, ()) for rel in srdfs_by_name(root, robots)]
-    found = (c for c in candidates if (root / c[0]).is_file() and not refused(c[0], c[0], ""))
-    return next(found, (None, ()))
+    found = (
+        (*c, i >= named_count)
+        for i, c in enumerate(candidates)
+        if (root / c[0]).is_file() and not refused(c[0], c[0], "")
+    )
+    return next(found, (None, (), False))
 
 
 def srdfs_by_name(root: Path, robots: tuple[str, ...] = ()) -> list[str]:

@@ -19,6 +19,7 @@ from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package.builder import BuilderFiles, builder_files, chosen_file
 from marm_setup.package.description import (
     MARM_MOVEIT_YAML,
+    SRDF_GUESSED,
     Description,
     choose_srdf,
     detect_target,
@@ -123,7 +124,7 @@ def _read_package(
     wanted = _wanted_robots(srdf, urdf)
     launched = _launched(files, trees, found.paths, found.target, found.name, wanted)
     problems += _other_robots(launched.builder)
-    srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched, wanted)
+    srdf_rel, srdf_args, guessed = _srdf_choice(files, srdf, found, launched, wanted)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
     description = _readable_description(
@@ -153,7 +154,7 @@ def _read_package(
         python_launch_files=files.inside_only(python_launch_names(root)),
         ros2_control_files=_ros2_control_files(files) if found.target == Target.ROS2 else (),
         files=files.listing(),
-        sources=(*kinds.sources, *_srdf_source(srdf_file, launched)),
+        sources=(*kinds.sources, *_srdf_source(srdf_file, launched, guessed)),
         problems=tuple(problems),
         **kinds.values,  # type: ignore[arg-type]
     )
@@ -314,7 +315,7 @@ def _srdf_choice(
     found: _Setup,
     launched: _Launched,
     robots: tuple[str, ...] = (),
-) -> tuple[str | None, tuple[tuple[str, str], ...]]:
+) -> tuple[str | None, tuple[tuple[str, str], ...], bool]:
     """(relative SRDF path or None, its xacro args): `--srdf` when given, else `choose_srdf`;
     a launch file's semantic description may lie in another package the package paths hold
     (a `.srdf.xacro` beside the URDF)."""
@@ -322,7 +323,7 @@ def _srdf_choice(
     if given is not None:
         if not Path(given).is_file():
             raise InputError("file not found", path=str(given), element="--srdf")
-        return Path(os.path.relpath(Path(given).resolve(), root)).as_posix(), ()
+        return Path(os.path.relpath(Path(given).resolve(), root)).as_posix(), (), False
     builder = launched.builder
     explicit = (
         chosen_file(builder, "robot_description_semantic", root)
@@ -585,12 +586,14 @@ def _srdf(
     return read_srdf_file(root, rel, paths, problems, {**dict(known), **dict(user_args or {})}, unread)
 
 
-def _srdf_source(srdf: SrdfFile | None, launched: _Launched) -> tuple[Source, ...]:
+def _srdf_source(srdf: SrdfFile | None, launched: _Launched, guessed: bool) -> tuple[Source, ...]:
     if srdf is None:
         return ()
     how = (
         f"set as the semantic description by {launched.semantic.launch}"
         if launched.semantic and launched.semantic.file == srdf.path
+        else SRDF_GUESSED
+        if guessed
         else "chosen by its name"
     )
     return (Source("srdf", srdf.path, how),)

@@ -107,3 +107,35 @@ def test_a_kinematics_parameter_file_a_launch_hands_to_move_group(tmp_path):
     assert [g.group for g in pkg.kinematics.groups] == ["arm"]
     found = validate(source, urdf=urdf, package_paths=[tmp_path], plan=False, matrix_trials=0).findings
     assert [f for f in found if f.rule.startswith("kinematics.")] == []
+
+
+ADJACENT = "".join(
+    f'<disable_collisions link1="{a}" link2="{b}" reason="Adjacent"/>'
+    for a, b in [("base_link", "link1")] + [(f"link{i}", f"link{i + 1}") for i in range(1, 6)]
+)
+
+
+def test_an_srdf_chosen_by_name_is_the_one_made_for_the_robot_loaded(tmp_path):
+    """One SRDF per model in config/srdf/, the launch picking one at run time: the robot with its
+    arm is checked against the SRDF whose matrix names the arm's links, not the first by name (a
+    base-only model's, which names none: every arm pair would be a missing disable)."""
+    config = tmp_path / CONFIG
+    base_only = '<?xml version="1.0"?>\n<robot name="UX"><virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base_link"/></robot>\n'
+    build_file_tree(
+        tmp_path,
+        {
+            "ux_description/package.xml": AMENT.format(name="ux_description"),
+            "ux_description/urdf/ux.urdf": _arm_urdf("UX", 6, gripper=False),
+            f"{CONFIG}/package.xml": AMENT.format(name=CONFIG),
+            f"{CONFIG}/launch/move_group.launch.py": LAUNCH_PY,
+            f"{CONFIG}/config/srdf/ux_a-base.srdf": base_only,
+            f"{CONFIG}/config/srdf/ux_b-arm.srdf": _srdf("UX", 6, gripper=False).replace(
+                "</robot>", f"{ADJACENT}</robot>"
+            ),
+        },
+    )
+    urdf = tmp_path / "ux_description/urdf/ux.urdf"
+    done = validate(config, urdf=urdf, package_paths=[tmp_path], plan=False, matrix_trials=0)
+    assert done.srdf == "config/srdf/ux_b-arm.srdf"
+    assert "ux_a-base.srdf fits it worse" in done.srdf_origin
+    assert [f for f in done.findings if f.file.endswith("ux_a-base.srdf")] == []
