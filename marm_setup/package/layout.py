@@ -37,7 +37,7 @@ from marm_setup.package.launch_python import launch_yaml_key
 from marm_setup.package.launch_ros1 import MANAGER_PARAM, LaunchParam, YamlLoad
 from marm_setup.package.model import Source
 from marm_setup.package.perception_files import ServoConfig, read_sensors, read_servo
-from marm_setup.package.planning_file import PlanningPipeline, read_pipeline
+from marm_setup.package.planning_file import PlanningPipeline, read_pipeline, with_builder_ompl_defaults
 from marm_setup.package.where import Located, Param, Where, unwrap_parameters
 
 DRIVER_FILES = {
@@ -419,9 +419,12 @@ def _ros2_pipelines(
     for name in planning_pipelines(builder, files.root):
         doc = _named(files, f"config/{name}_planning.yaml")
         if doc is not None:
-            pipeline = read_pipeline(name, unwrap_parameters(doc))
+            params = unwrap_parameters(doc)
+            pipeline = read_pipeline(name, params)
             if not builder.calls:
                 pipeline = _with_launch_settings(files, pipeline, named_yaml)
+            elif name == "ompl" and params.is_mapping and "planner_configs" not in params.data:
+                pipeline = with_builder_ompl_defaults(pipeline)
             pipelines.append(pipeline)
             how = "MoveItConfigsBuilder.planning_pipelines" + (
                 " (the pipelines a launch file names)"

@@ -549,3 +549,23 @@ def test_a_controller_list_the_launch_computes_at_run_time(tmp_path):
     assert of_rule(found, "controller.none") == []
     assert of_rule(found, "controller.runtime-only") == [("warning", "trajectory_execution")]
     assert errors(found) == []
+
+
+OMPL_WITHOUT_CONFIGS = """planning_plugin: ompl_interface/OMPLPlanner
+arm:
+  default_planner_config: RRTConnect
+  planner_configs: [RRTConnect, BiTRRT, LazyPRMstar]
+"""
+
+
+def test_the_builder_adds_moveits_planner_configs_to_an_ompl_file_without_them(tmp_path):
+    """MoveItConfigsBuilder.planning_pipelines adds moveit_configs_utils' ompl_defaults.yaml to an
+    ompl file without `planner_configs` (humble moveit_configs_builder.py l.475-479): a group
+    naming those configurations names defined ones; one neither the file nor the defaults define
+    still is an error."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / "config/ompl_planning.yaml").write_text(OMPL_WITHOUT_CONFIGS.replace("LazyPRMstar", "Nope"))
+    found = findings(source, paths, ros_distro="humble")
+    assert errors(found) == [("ompl.unknown-planner-config", "arm.planner_configs")]
+    (source / "config/ompl_planning.yaml").write_text(OMPL_WITHOUT_CONFIGS)
+    assert errors(findings(source, paths, ros_distro="humble")) == []
