@@ -15,7 +15,7 @@ API = {
     "limits": "effective_limits LoadedLimit",
     "start": "package_start_values",
     "where": "FrozenMapping Param Value Where",
-    "description": "marm_package_paths setup_assistant_description",
+    "description": "marm_package_paths setup_assistant_description srdfs_by_name SRDF_GUESSED",
     "controllers_file": "ControllersFile MoveItController SIMPLE_MANAGER SIMPLE_MANAGER_CLASS SkippedController",
     "control_manager": "ROS2_CONTROL_HANDLES",
     "driver_file": "ArbotixFile ArbotixServo DriverController DriverFile InitialPositions Ros2ControlFile",
@@ -25,7 +25,7 @@ API = {
     "planning_file": "GroupPlanning PlanningPipeline",
     "launch_xml": "condition LaunchXml",
     "substitution": "Scope SubstitutionError SubstitutionTooLarge substitute",
-    "srdf_file": "SrdfFile",
+    "srdf_file": "SrdfFile read_srdf_file",
     "setup_files": "read_package_xml RecordedProofs",
     "launch_ros1": "LaunchParam launch_nodes",
     "launch_python": "undefined_unread_arg",
@@ -41,8 +41,10 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.controllers_file import ControllersFile as ControllersFile
     from marm_setup.package.controllers_file import MoveItController as MoveItController
     from marm_setup.package.controllers_file import SkippedController as SkippedController
+    from marm_setup.package.description import SRDF_GUESSED as SRDF_GUESSED
     from marm_setup.package.description import marm_package_paths as marm_package_paths
     from marm_setup.package.description import setup_assistant_description as setup_assistant_description
+    from marm_setup.package.description import srdfs_by_name as srdfs_by_name
     from marm_setup.package.driver_file import ArbotixFile as ArbotixFile
     from marm_setup.package.driver_file import ArbotixServo as ArbotixServo
     from marm_setup.package.driver_file import DriverController as DriverController
@@ -73,6 +75,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.setup_files import RecordedProofs as RecordedProofs
     from marm_setup.package.setup_files import read_package_xml as read_package_xml
     from marm_setup.package.srdf_file import SrdfFile as SrdfFile
+    from marm_setup.package.srdf_file import read_srdf_file as read_srdf_file
     from marm_setup.package.start import package_start_values as package_start_values
     from marm_setup.package.substitution import Scope as Scope
     from marm_setup.package.substitution import SubstitutionError as SubstitutionError

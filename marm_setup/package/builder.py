@@ -56,6 +56,11 @@ class BuilderFiles:
                 return Chosen(path, f"MoveItConfigsBuilder.{method}(file_path) in {call.launch}")
         return None
 
+    def computed(self, method: str) -> str | None:
+        """The launch file of the first call passing `method` a file_path only the run time
+        computes (`"config/controllers/controllers" + suffix + ".yaml"`), if any."""
+        return next((c.launch for c in self.calls if method in c.computed), None)
+
     def mappings(self, method: str) -> tuple[tuple[str, str], ...] | None:
         return next((m for c in self.calls if (m := c.mapping(method)) is not None), None)
 
@@ -99,8 +104,8 @@ def chosen_file(builder: BuilderFiles, method: str, root: Path) -> Chosen | None
 def controllers_file(builder: BuilderFiles, root: Path) -> Chosen | None:
     """trajectory_execution's file: explicit, else the builder's guess among `*_controllers.yaml`."""
     found = chosen_file(builder, "trajectory_execution", root)
-    if found is not None:
-        return found
+    if found is not None or builder.computed("trajectory_execution"):
+        return found  # a file_path given at run time: the builder guesses nothing
     config = root / "config"
     names = sorted(
         m.group(1) for p in config.glob("*_controllers.yaml") if (m := CONTROLLERS_FILE.match(p.name))

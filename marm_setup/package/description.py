@@ -5,8 +5,11 @@ file's `.robot_description(file_path)`, else `config/<robot>.urdf.xacro`, paired
 or the SRDF's robot name), else `.setup_assistant`'s. SRDF: `--srdf`, `marm_setup.yaml`'s, the
 builder's `.robot_description_semantic(file_path)`, the one a launch file sets as `*_semantic`
 (with the xacro args it passes: what move_group loads), `.setup_assistant`'s,
-`config/<robot>.srdf` of the builder, then the first of `config/*.srdf`, `srdf/*.srdf` and their
-`.srdf.xacro` forms.
+`config/<robot>.srdf` of the builder, then by name among `config/*.srdf`, `srdf/*.srdf`, their
+`.srdf.xacro` forms and those one folder below `config/` (`config/srdf/<robot>.srdf`, where a
+launch computes the file from its args at run time): a `.srdf.xacro` another of them includes
+is a macro library (xacro loads it only through its includer), and one whose `<robot name>` is
+the user's robot (`--urdf`, `--srdf`) comes first.
 """
 
 from __future__ import annotations
@@ -21,7 +24,14 @@ from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssis
 from marm_setup.ros import Target
 from marm_setup.untrusted import relative_inside
 
-SRDF_GLOBS = ("config/*.srdf", "srdf/*.srdf", "config/*.srdf.xacro", "srdf/*.srdf.xacro")
+SRDF_GLOBS = (
+    "config/*.srdf",
+    "srdf/*.srdf",
+    "config/*.srdf.xacro",
+    "srdf/*.srdf.xacro",
+    "config/*/*.srdf",
+    "config/*/*.srdf.xacro",
+)
 MARM_MOVEIT_YAML = "config/moveit.yaml"
 
 
@@ -48,6 +58,8 @@ def detect_target(root: Path, package_xml: PackageXml | None, marm: MarmSetupFil
 
 
 SrdfChoice = tuple[str, tuple[tuple[str, str], ...]]  # (relative path, xacro args)
+# How an SRDF only its name chose is shown (validate/srdf_fit.py refits it to the robot loaded).
+SRDF_GUESSED = "chosen by its name among the package's SRDFs (no file or launch names one statically)"
 
 
 def choose_srdf(
@@ -57,12 +69,15 @@ def choose_srdf(
     named: tuple[SrdfChoice | None, SrdfChoice | None, str | None],
     problems: list[Finding],
     refused: Callable[[str, str, str], bool] = lambda _rel, _file, _element: False,
-) -> tuple[str | None, tuple[tuple[str, str], ...]]:
-    """(relative SRDF path or None, its xacro args) in the order of the module docstring;
+    robots: tuple[str, ...] = (),
+) -> tuple[str | None, tuple[tuple[str, str], ...], bool]:
+    """(relative SRDF path or None, its xacro args, whether only its name chose it: no file or
+    launch names it) in the order of the module docstring;
     `named` is (the builder's explicit file, the launch files' `*_semantic` file, the builder's
     default). A `.setup_assistant` naming a missing SRDF is an error in `problems`: the Setup
     Assistant cannot load the package. `refused(rel, file, element)` says whether a path that
-    `file`'s `element` names leads outside the package (then it is not a candidate)."""
+    `file`'s `element` names leads outside the package (then it is not a candidate); `robots`
+    are the robot names the user's --urdf / --srdf give."""
     builder_file, launch_file, builder_default = named
     candidates: list[SrdfChoice] = []
     if marm is not None and marm.robot_name:
@@ -82,10 +97,25 @@ def choose_srdf(
             problems.append(_missing_sa_srdf(sa))
     if builder_default is not None:
         candidates.append((builder_default, ()))
-    for pattern in SRDF_GLOBS:
-        candidates += [(p.relative_to(root).as_posix(), ()) for p in sorted(root.glob(pattern))]
-    found = (c for c in candidates if (root / c[0]).is_file() and not refused(c[0], c[0], ""))
-    return next(found, (None, ()))
+    named_count = len(candidates)
+    candidates += [(rel, ()) for rel in srdfs_by_name(root, robots)]
+    found = (
+        (*c, i >= named_count)
+        for i, c in enumerate(candidates)
+        if (root / c[0]).is_file() and not refused(c[0], c[0], "")
+    )
+    return next(found, (None, (), False))
+
+
+def srdfs_by_name(root: Path, robots: tuple[str, ...] = ()) -> list[str]:
+    """The package's SRDFs found by name (SRDF_GLOBS, in order), but the `.srdf.xacro` macro
+    libraries another of them includes (xacro:include), those of a robot in `robots` first."""
+    from marm_setup.package.srdf_file import srdf_includes, srdf_robot_name
+
+    found = [p.relative_to(root).as_posix() for pattern in SRDF_GLOBS for p in sorted(root.glob(pattern))]
+    included = {rel for top in found for rel in srdf_includes(root, top)}
+    tops = [rel for rel in found if rel not in included] or found
+    return sorted(tops, key=lambda rel: srdf_robot_name(root, rel) not in robots) if robots else tops
 
 
 def _missing_sa_srdf(sa: SetupAssistantFile) -> Finding:

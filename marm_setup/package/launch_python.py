@@ -66,6 +66,7 @@ class BuilderCall:
     unread: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (method, xacro args of unknown value)
     pipelines: tuple[str, ...] | None = None
     default_pipeline: str | None = None
+    computed: tuple[str, ...] = ()  # methods given a file_path only the run time computes
 
     def file(self, method: str) -> str | None:
         return dict(self.files).get(method)
@@ -323,12 +324,16 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
     description = _try(ctor.args[1] if len(ctor.args) > 1 else _keyword(ctor, "robot_description"), env)
     package = _try(ctor.args[2] if len(ctor.args) > 2 else _keyword(ctor, "package_name"), env)
     files, mappings, unread, pipelines, default = [], [], [], None, None
+    computed = []
     for call in chain[1:]:
         method = _name(call.func)
         if method in FILE_METHODS:
-            path = _try(call.args[0] if call.args else _keyword(call, "file_path"), env)
+            given = call.args[0] if call.args else _keyword(call, "file_path")
+            path = _try(given, env)
             if isinstance(path, str):
                 files.append((method, path))
+            elif given is not None and not (isinstance(given, ast.Constant) and given.value is None):
+                computed.append(method)
             known = _mappings(call, env)
             if known is not None:
                 mappings.append((method, known[0]))
@@ -350,6 +355,7 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
         tuple(unread),
         pipelines,
         default,
+        tuple(computed),
     )
 
 
@@ -479,6 +485,44 @@ def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
     return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)
 
 
+PIPELINE_PLUGIN_KEYS = ("planning_plugin", "planning_plugins")
+
+
+def launch_pipeline_settings(root: Path, launch: str) -> tuple[tuple[str, Any], ...]:
+    """The literal entries of the dict the Python launch file `launch` sets a planning plugin in
+    (`{"move_group": {"planning_plugin": "ompl_interface/OMPLPlanner", "request_adapters": "..."}}`,
+    which it then updates with a `*_planning.yaml` it loads by hand): what move_group gets beside
+    the file. None read: () (also for an unreadable launch file)."""
+    try:
+        tree = parse_launch_module(root / launch, launch)
+    except Unreadable:
+        return ()
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Dict):
+            continue
+        entries = {
+            k.value: v
+            for k, v in zip(node.keys, node.values, strict=True)
+            if isinstance(k, ast.Constant) and isinstance(k.value, str)
+        }
+        if any(key in entries for key in PIPELINE_PLUGIN_KEYS):
+            return tuple((key, value) for key, v in entries.items() if (value := _setting(v)) is not None)
+    return ()
+
+
+def _str_constant(node: ast.AST | None) -> bool:
+    return isinstance(node, ast.Constant) and isinstance(node.value, str)
+
+
+def _setting(node: ast.AST) -> Any:
+    """A literal scalar, or a list of strings as a tuple; None for anything else."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (str, int, float, bool)):
+        return node.value
+    if isinstance(node, ast.List) and all(_str_constant(e) for e in node.elts):
+        return tuple(e.value for e in node.elts)  # type: ignore[attr-defined]
+    return None
+
+
 def _yaml_keys(tree: ast.AST) -> dict[str, str]:
     """YAML path literal -> the key of the innermost dict entry holding it (ast.walk goes
     outside in, so inner entries overwrite)."""
@@ -500,8 +544,20 @@ def _yaml_keys(tree: ast.AST) -> dict[str, str]:
 
 def _named_yaml(tree: ast.AST) -> Iterator[str]:
     """YAML paths a launch file writes as string literals: the files it loads by hand
-    (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder."""
+    (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder,
+    also joined from literals (`os.path.join("config", "x.yaml")`)."""
     for node in ast.walk(tree):
-        value = node.value if isinstance(node, ast.Constant) else None
+        value = node.value if isinstance(node, ast.Constant) else _literal_join(node)
         if isinstance(value, str) and value.endswith((".yaml", ".yml")):
             yield value
+
+
+def _literal_join(node: ast.AST) -> str | None:
+    """`os.path.join("config", "x.yaml")` (or PathJoinSubstitution of a list) of string literals
+    only: the path; else None."""
+    if not (isinstance(node, ast.Call) and _name(node.func) in ("join", "PathJoinSubstitution")):
+        return None
+    parts = node.args[0].elts if len(node.args) == 1 and isinstance(node.args[0], ast.List) else node.args
+    if len(parts) < 2 or not all(_str_constant(p) for p in parts):
+        return None
+    return os.path.join(*(p.value for p in parts))  # type: ignore[attr-defined]

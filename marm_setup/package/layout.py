@@ -14,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from marm_setup.findings import Finding, warning
 from marm_setup.package.builder import BuilderFiles, Chosen, chosen_file, controllers_file, planning_pipelines
 from marm_setup.package.controllers_file import (
     FAKE_KEYS,
@@ -36,7 +37,7 @@ from marm_setup.package.launch_python import launch_yaml_key
 from marm_setup.package.launch_ros1 import MANAGER_PARAM, LaunchParam, YamlLoad
 from marm_setup.package.model import Source
 from marm_setup.package.perception_files import ServoConfig, read_sensors, read_servo
-from marm_setup.package.planning_file import PlanningPipeline, read_pipeline
+from marm_setup.package.planning_file import PlanningPipeline, read_pipeline, with_builder_ompl_defaults
 from marm_setup.package.where import Located, Param, Where, unwrap_parameters
 
 DRIVER_FILES = {
@@ -309,9 +310,11 @@ def read_ros2_kinds(
     ):
         chosen = chosen_file(builder, method, root)
         doc = _named(files, chosen.file) if chosen is not None else None
+        if doc is not None and kind == "kinematics" and not builder.calls:
+            doc = _node_kinematics(doc)
         kinds.put(kind, reader(doc) if doc is not None else None, doc, chosen.how if chosen else SA_NAME)
     _ros2_controllers(files, builder, kinds, named_yaml)
-    _ros2_pipelines(files, builder, kinds)
+    _ros2_pipelines(files, builder, kinds, named_yaml)
     chosen = chosen_file(builder, "sensors_3d", root)
     doc = _named(files, chosen.file) if chosen is not None else None
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, chosen.how if chosen else "")
@@ -326,10 +329,25 @@ def read_ros2_kinds(
             )
     _drivers(files, kinds)
     _ros2_sensor_loads(files, loads, kinds)
-    doc = _named(files, DEFAULT_FILES["fake_controllers"])
-    kinds.put("fake_controllers", read_controllers(doc, FAKE_KEYS) if doc is not None else None, doc, SA_NAME)
+    # No fake_controllers.yaml: MoveIt 2 has no fake controller manager to read one (deleted by
+    # moveit/moveit2#471, 2021; humble and jazzy moveit_plugins/ hold only
+    # moveit_simple_controller_manager and moveit_ros_control_interface). Such a file in a ROS 2
+    # package is another node's parameters or a MoveIt 1 leftover, never move_group's.
     kinds.values["servo"] = _servo(files, [load.file for load in loads])
     return kinds
+
+
+def _node_kinematics(doc: Located) -> Located:
+    """A kinematics file no MoveItConfigsBuilder wraps (a launch hands it to move_group itself):
+    a ROS 2 parameter file (`/**: ros__parameters:`) holds move_group's own parameters, where
+    MoveIt reads `<group>.kinematics_solver` (Humble, before robot_description_kinematics.<group>:
+    humble kinematics_plugin_loader.cpp l.308-319) or `robot_description_kinematics.<group>`
+    (jazzy kinematics_plugin_loader.cpp l.260)."""
+    params = unwrap_parameters(doc)
+    if params is doc:
+        return doc
+    nested = params.get("robot_description_kinematics")
+    return nested if nested.is_mapping else params
 
 
 def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
@@ -349,11 +367,19 @@ def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:
 def _ros2_controllers(
     files: PackageFiles, builder: BuilderFiles, kinds: Kinds, named_yaml: tuple[tuple[str, str], ...]
 ) -> None:
-    """MoveIt's controllers: the builder's file; else the `config/*_controllers.yaml` with a
-    MoveIt controller list that a Python launch names (one that loads it by hand)."""
-    chosen, into = controllers_file(builder, files.root), ""
+    """MoveIt's controllers: the builder's file; else the YAML with a MoveIt controller list
+    that a Python launch names (one that loads it by hand). When no launch file calls
+    MoveItConfigsBuilder, the file a launch loads by hand comes first: the builder's guess
+    among `config/*_controllers.yaml` (moveit_configs_utils moveit_configs_builder.py
+    `trajectory_execution`) only runs inside a builder, so a `fake_controllers.yaml` beside a
+    hand-loaded `controllers.yaml` is not what move_group gets."""
+    chosen, into = (controllers_file(builder, files.root), "") if builder.calls else (None, "")
     if chosen is None:
         chosen, into = _named_controllers(files, named_yaml)
+    if chosen is None and not builder.calls:
+        chosen = controllers_file(builder, files.root)
+    if chosen is None and (launch := builder.computed("trajectory_execution")):
+        files.problems.append(_runtime_controllers(launch))
     doc = _named(files, chosen.file) if chosen is not None else None
     if doc is not None and chosen is not None:
         listed = replace(read_controllers(unwrap_parameters(doc)), loaded_into=into)
@@ -364,6 +390,14 @@ def _ros2_controllers(
         if other is not None and _is_moveit_controllers(unwrap_parameters(other)):
             alternatives.append(read_controllers(unwrap_parameters(other)))
     kinds.values["alt_moveit_controllers"] = tuple(alternatives)
+
+
+def _runtime_controllers(launch: str) -> Finding:
+    msg = (
+        f"MoveIt's controller list is the file {launch} passes to "
+        "MoveItConfigsBuilder.trajectory_execution, a path only the run time computes: the controller rules are skipped"
+    )
+    return warning("controller.runtime-only", launch, "trajectory_execution", msg)
 
 
 def _named_controllers(
@@ -386,12 +420,20 @@ def _is_moveit_controllers(doc: Located) -> bool:
     return isinstance(data.get(SIMPLE_MANAGER), dict) or isinstance(data.get("controller_names"), list)
 
 
-def _ros2_pipelines(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) -> None:
+def _ros2_pipelines(
+    files: PackageFiles, builder: BuilderFiles, kinds: Kinds, named_yaml: tuple[tuple[str, str], ...] = ()
+) -> None:
     pipelines: list[PlanningPipeline] = []
     for name in planning_pipelines(builder, files.root):
         doc = _named(files, f"config/{name}_planning.yaml")
         if doc is not None:
-            pipelines.append(read_pipeline(name, unwrap_parameters(doc)))
+            params = unwrap_parameters(doc)
+            pipeline = read_pipeline(name, params)
+            if not builder.calls:
+                pipeline = _with_launch_settings(files, pipeline, named_yaml)
+            elif name == "ompl" and params.is_mapping and "planner_configs" not in params.data:
+                pipeline = with_builder_ompl_defaults(pipeline)
+            pipelines.append(pipeline)
             how = "MoveItConfigsBuilder.planning_pipelines" + (
                 " (the pipelines a launch file names)"
                 if builder.pipelines is not None
@@ -399,6 +441,31 @@ def _ros2_pipelines(files: PackageFiles, builder: BuilderFiles, kinds: Kinds) ->
             )
             kinds.sources.append(Source(f"pipeline:{name}", doc.where.file, how))
     kinds.values["pipelines"] = tuple(sorted(pipelines, key=lambda p: (p.name != "ompl", p.name)))
+
+
+def _with_launch_settings(
+    files: PackageFiles, pipeline: PlanningPipeline, named_yaml: tuple[tuple[str, str], ...]
+) -> PlanningPipeline:
+    """A pipeline file a Python launch loads by hand into a dict where it sets the planning
+    plugin itself (`{"move_group": {"planning_plugin": ..., "request_adapters": ...}}` updated with
+    the file, as MoveIt 2's Humble-era tutorials do): move_group gets those settings too, the
+    file's own winning as dict.update gives them. Humble's move_group without a
+    `planning_pipelines` parameter plans with that `move_group` namespace (humble
+    moveit_ros/move_group/src/move_group.cpp l.254-267)."""
+    from marm_setup.package.launch_python import launch_pipeline_settings
+
+    if not pipeline.is_mapping:
+        return pipeline
+    launch = next((lf for rel, lf in named_yaml if rel == pipeline.where.file), None)
+    if launch is None:
+        return pipeline
+    have = {p.key for p in pipeline.settings}
+    extra = tuple(
+        Param(key, value, Where(launch, (key,)))
+        for key, value in launch_pipeline_settings(files.root, launch)
+        if key not in have
+    )
+    return replace(pipeline, settings=(*pipeline.settings, *extra)) if extra else pipeline
 
 
 def read_move_group_file(files: PackageFiles, kinds: Kinds, rel: str, how: str) -> tuple[Param, ...] | None:

@@ -26,6 +26,14 @@ GLOBAL_KEYS = frozenset(
 )
 
 
+# The planner configurations MoveItConfigsBuilder adds to an ompl pipeline whose file has no
+# `planner_configs` (moveit_configs_utils moveit_configs_builder.py planning_pipelines, humble
+# l.475-479, the same on jazzy; default_configs/ompl_defaults.yaml, identical on both): each
+# `<name>` of type `geometric::<name>`.
+BUILDER_OMPL_DEFAULTS_FILE = "moveit_configs_utils/default_configs/ompl_defaults.yaml"
+BUILDER_OMPL_DEFAULTS = ["AnytimePathShortening", "SBL", "EST", "LBKPIECE", "BKPIECE", "KPIECE", "RRT", "RRTConnect", "RRTstar", "TRRT", "PRM", "PRMstar", "FMT", "BFMT", "PDST", "STRIDE", "BiTRRT", "LBTRRT", "BiEST", "ProjEST", "LazyPRM", "LazyPRMstar", "SPARS", "SPARStwo"]
+
+
 @dataclass(frozen=True, slots=True)
 class PlannerConfig:
     """An OMPL `planner_configs` entry: its type (`geometric::RRTConnect`) and parameters;
@@ -105,3 +113,18 @@ def read_pipeline(name: str, doc: Located) -> PlanningPipeline:
         elif key != "planner_configs":
             settings.append(Param(key, freeze(value.data), value.where))
     return PlanningPipeline(name, doc.where, True, planner_configs, tuple(groups), tuple(settings))
+
+
+def with_builder_ompl_defaults(pipeline: PlanningPipeline) -> PlanningPipeline:
+    """The ompl pipeline MoveItConfigsBuilder hands move_group from a file without
+    `planner_configs`: the file's, plus BUILDER_OMPL_DEFAULTS (from moveit_configs_utils' file)."""
+    from dataclasses import replace
+
+    where = Where(BUILDER_OMPL_DEFAULTS_FILE, ("planner_configs",))
+    configs = tuple(
+        PlannerConfig(
+            name, where.child(name), (Param("type", f"geometric::{name}", where.child(name, "type")),)
+        )
+        for name in BUILDER_OMPL_DEFAULTS
+    )
+    return replace(pipeline, planner_configs=configs)

@@ -19,6 +19,7 @@ from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package.builder import BuilderFiles, builder_files, chosen_file
 from marm_setup.package.description import (
     MARM_MOVEIT_YAML,
+    SRDF_GUESSED,
     Description,
     choose_srdf,
     detect_target,
@@ -120,9 +121,10 @@ def _read_package(
     confine_reads((root, *files.allowed))  # --untrusted: nothing outside is read from now on
     found = _setup(files, shown, package_paths)
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
-    launched = _launched(files, trees, found.paths, found.target, found.name, _wanted_robots(srdf, urdf))
+    wanted = _wanted_robots(srdf, urdf)
+    launched = _launched(files, trees, found.paths, found.target, found.name, wanted)
     problems += _other_robots(launched.builder)
-    srdf_rel, srdf_args = _srdf_choice(files, srdf, found, launched)
+    srdf_rel, srdf_args, guessed = _srdf_choice(files, srdf, found, launched, wanted)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
     description = _readable_description(
@@ -152,7 +154,7 @@ def _read_package(
         python_launch_files=files.inside_only(python_launch_names(root)),
         ros2_control_files=_ros2_control_files(files) if found.target == Target.ROS2 else (),
         files=files.listing(),
-        sources=(*kinds.sources, *_srdf_source(srdf_file, launched)),
+        sources=(*kinds.sources, *_srdf_source(srdf_file, launched, guessed)),
         problems=tuple(problems),
         **kinds.values,  # type: ignore[arg-type]
     )
@@ -218,12 +220,16 @@ def _finder(paths: tuple[Path, ...]) -> Callable[[str], str | None]:
 
 def _wanted_robots(srdf: str | Path | None, urdf: str | Path | None) -> tuple[str, ...]:
     """Robot names the user's --srdf (its `<robot name>`) and --urdf (its file name, as
-    MoveItConfigsBuilder's `config/<robot_name>.urdf.xacro`) point at."""
+    MoveItConfigsBuilder's `config/<robot_name>.urdf.xacro`, and its `<robot name>`, which
+    srdfdom wants the SRDF's to be: srdfdom src/model.cpp initXml) point at."""
     out = []
     if srdf is not None and (name := srdf_robot_name(Path(srdf).resolve().parent, Path(srdf).name)):
         out.append(name)
     if urdf is not None:
         out.append(Path(urdf).name.split(".", 1)[0])
+        named = srdf_robot_name(Path(urdf).resolve().parent, Path(urdf).name)
+        if named and "$" not in named:
+            out.append(named)
     return tuple(out)
 
 
@@ -304,8 +310,12 @@ def _relative(path: str, root: Path) -> str | None:
 
 
 def _srdf_choice(
-    files: PackageFiles, given: str | Path | None, found: _Setup, launched: _Launched
-) -> tuple[str | None, tuple[tuple[str, str], ...]]:
+    files: PackageFiles,
+    given: str | Path | None,
+    found: _Setup,
+    launched: _Launched,
+    robots: tuple[str, ...] = (),
+) -> tuple[str | None, tuple[tuple[str, str], ...], bool]:
     """(relative SRDF path or None, its xacro args): `--srdf` when given, else `choose_srdf`;
     a launch file's semantic description may lie in another package the package paths hold
     (a `.srdf.xacro` beside the URDF)."""
@@ -313,7 +323,7 @@ def _srdf_choice(
     if given is not None:
         if not Path(given).is_file():
             raise InputError("file not found", path=str(given), element="--srdf")
-        return Path(os.path.relpath(Path(given).resolve(), root)).as_posix(), ()
+        return Path(os.path.relpath(Path(given).resolve(), root)).as_posix(), (), False
     builder = launched.builder
     explicit = (
         chosen_file(builder, "robot_description_semantic", root)
@@ -336,7 +346,7 @@ def _srdf_choice(
     def refused(rel: str, file: str, element: str) -> bool:
         return rel != outside and files.refused(rel, file, element)
 
-    return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, refused)
+    return choose_srdf(root, marm, sa, (named, semantic, default), files.problems, refused, robots)
 
 
 def _launched_file(
@@ -576,12 +586,14 @@ def _srdf(
     return read_srdf_file(root, rel, paths, problems, {**dict(known), **dict(user_args or {})}, unread)
 
 
-def _srdf_source(srdf: SrdfFile | None, launched: _Launched) -> tuple[Source, ...]:
+def _srdf_source(srdf: SrdfFile | None, launched: _Launched, guessed: bool) -> tuple[Source, ...]:
     if srdf is None:
         return ()
     how = (
         f"set as the semantic description by {launched.semantic.launch}"
         if launched.semantic and launched.semantic.file == srdf.path
+        else SRDF_GUESSED
+        if guessed
         else "chosen by its name"
     )
     return (Source("srdf", srdf.path, how),)

@@ -178,3 +178,42 @@ def srdf_robot_name(root: Path, rel: str | None) -> str | None:
     except (etree.XMLSyntaxError, OSError):
         return None
     return None
+
+
+FIND_PREFIXES = ("$(find ", "$(find-pkg-share ")
+
+
+def srdf_includes(root: Path, rel: str) -> tuple[str, ...]:
+    """The package-relative paths a `.srdf.xacro` includes (`xacro:include filename`, relative to
+    its folder or `$(find pkg)/...`, taken as this package's); none for a plain SRDF, an
+    unreadable one, or a filename built from args."""
+    if not rel.endswith(".xacro"):
+        return ()
+    from lxml import etree
+
+    from marm_setup.bounded_read import XML_BYTES
+
+    try:
+        if os.path.getsize(root / rel) > XML_BYTES:
+            return ()
+        tree = etree.parse(str(root / rel), etree.XMLParser(resolve_entities=False, no_network=True))
+    except (etree.XMLSyntaxError, OSError):
+        return ()
+    names = (
+        elem.get("filename", "")
+        for elem in tree.iter()
+        if isinstance(elem.tag, str) and elem.tag.endswith("}include") and "xacro" in elem.tag
+    )
+    return tuple(path for name in names if (path := _included_path(rel, name)) is not None)
+
+
+def _included_path(rel: str, name: str) -> str | None:
+    for prefix in FIND_PREFIXES:
+        if name.startswith(prefix) and ")/" in name:
+            name = name.split(")/", 1)[1]
+            break
+    else:
+        name = os.path.join(os.path.dirname(rel), name)
+    if "$(" in name or "${" in name:
+        return None
+    return os.path.normpath(name).replace(os.sep, "/")

@@ -53,6 +53,7 @@ from marm_setup.validate.rules.perception_rules import check_sensors, check_serv
 from marm_setup.validate.rules.pose_rules import check_initial_positions
 from marm_setup.validate.rules.srdf_rules import check_srdf, check_srdf_without_robot
 from marm_setup.validate.rules.write_state_rules import check_pending_write
+from marm_setup.validate.srdf_fit import fitting_srdf
 
 if TYPE_CHECKING:
     from marm_setup.collision import CollisionScene
@@ -196,13 +197,15 @@ def validate_read(
 ) -> ValidatedPackage:
     """Validate a package already read (its model), keeping what was planned; the
     `--xacro-arg`s given for it, if any, are checked against what its xacros take."""
+    robot, problems = load_package_robot(pkg)
+    if robot is not None:
+        pkg = fitting_srdf(pkg, robot)  # an SRDF chosen by name: the one made for this robot
     findings = list(pkg.problems)
     xml = pkg.package_xml.file if pkg.package_xml is not None else None
     findings += guarded("package", check_package_xml, pkg.root, xml)
     findings += guarded("package", check_pending_write, pkg.root)
     findings += guarded("package", check_merge_conflicts, pkg.root)
     findings += guarded("launch", check_launch_files, pkg.root, pkg.name, pkg.launch, pkg.target)
-    robot, problems = load_package_robot(pkg)
     findings += problems
     if robot is not None and xacro_args:
         check_given_xacro_args(pkg, robot, xacro_args)
@@ -504,7 +507,9 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
         out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
     moveit = pkg.moveit_controllers
     if moveit is None:
-        if pkg.fake_controllers is None:
+        if pkg.fake_controllers is None and not any(
+            f.rule == "controller.runtime-only" for f in pkg.problems
+        ):
             msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from marm_setup.findings import Finding
 from marm_setup.package.builder import builder_files
 from marm_setup.package.launch_python import BuilderCall
@@ -441,3 +443,129 @@ def test_a_controller_list_the_launch_puts_under_the_manager_namespace(tmp_path)
         "moveit_simple_controller_manager.moveit_simple_controller_manager.controller_names"
         in found[0].message
     )
+
+
+# -- a Python launch without MoveItConfigsBuilder: what it loads by hand, not the builder's guess ----
+
+DRIVER_NODE_PARAMS = """hl_trajectory_driver:
+  ros__parameters:
+    joints: [joint_1, joint_2, joint_3, joint_4, joint_5, joint_6]
+"""
+
+
+def test_a_hand_loaded_controller_list_wins_over_the_builders_guess(tmp_path):
+    """A launch that calls no MoveItConfigsBuilder and loads `config/controllers.yaml` by hand
+    into moveit_simple_controller_manager: that is move_group's list, even where the only
+    `config/*_controllers.yaml` (the one the builder would guess) is `fake_controllers.yaml`,
+    another node's parameter file."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path)
+    (source / "config/hlarm_controllers.yaml").rename(source / "config/controllers.yaml")
+    (source / "config/hlarm_ros_controllers.yaml").unlink()
+    (source / "config/fake_controllers.yaml").write_text(DRIVER_NODE_PARAMS)
+    edit(source / HAND_LAUNCH, "config/hlarm_controllers.yaml", "config/controllers.yaml")
+    loaded = read_package(source, package_paths=paths).source("moveit_controllers")
+    assert loaded is not None and loaded.file == "config/controllers.yaml"
+    found = findings(source, paths)
+    assert [f for f in errors(found) if f[0].startswith("controller.")] == []
+
+
+FAKE_LIST = """controller_list:
+  - name: fake_arm_controller
+    type: $(arg fake_execution_type)
+    joints: [joint_1]
+initial:
+  - group: nope
+    pose: home
+"""
+
+
+def test_a_ros2_package_has_no_fake_controllers(tmp_path):
+    """MoveIt 2 has no fake controller manager (moveit/moveit2#471): a MoveIt 1
+    `fake_controllers.yaml` left in a ROS 2 package is read by nothing, so its joints, list and
+    initial poses are no findings."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path)
+    (source / "config/fake_controllers.yaml").write_text(FAKE_LIST)
+    assert read_package(source, package_paths=paths).fake_controllers is None
+    found = findings(source, paths)
+    assert [f for f in found if "fake" in f.rule] == []
+    assert errors(found) == []
+
+
+OMPL_BY_HAND = """planner_configs:
+  RRTConnectkConfigDefault:
+    type: geometric::RRTConnect
+arm:
+  planner_configs: [RRTConnectkConfigDefault]
+"""
+PIPELINE_DICT = """    pipeline = {"move_group": {
+        "planning_plugin": "ompl_interface/OMPLPlanner",
+        "request_adapters": "default_planner_request_adapters/AddTimeOptimalParameterization "
+                            "default_planner_request_adapters/FixStartStateBounds",
+    }}
+    pipeline["move_group"].update(load_yaml("hl_moveit_config", "config/ompl_planning.yaml"))
+    controllers = {"""
+
+
+@pytest.mark.parametrize(
+    "named", ['"config/ompl_planning.yaml"', 'os.path.join("config", "ompl_planning.yaml")']
+)
+def test_a_pipeline_file_the_launch_gives_its_planning_plugin(tmp_path, named):
+    """A Humble launch without MoveItConfigsBuilder that sets `move_group.planning_plugin` in a
+    dict and updates it with ompl_planning.yaml: move_group gets the plugin (humble
+    move_group.cpp plans with the `move_group` namespace when no planning_pipelines is set), so
+    the file's lacking it is no error; a Jazzy-only adapter there still is one."""
+    source, paths = PACKAGES["hand_loaded"](tmp_path)
+    (source / "config/ompl_planning.yaml").write_text(OMPL_BY_HAND)
+    edit(
+        source / HAND_LAUNCH,
+        "    controllers = {",
+        PIPELINE_DICT.replace('"config/ompl_planning.yaml"', named),
+    )
+    edit(source / HAND_LAUNCH, "parameters=[controllers,", "parameters=[controllers, pipeline,")
+    assert of_rule(findings(source, paths, ros_distro="humble"), "distro.pipeline-format") == []
+    edit(
+        source / HAND_LAUNCH,
+        "default_planner_request_adapters/FixStartStateBounds",
+        "default_planning_request_adapters/X",
+    )
+    assert errors(findings(source, paths, ros_distro="humble")) == [("distro.adapter", "request_adapters")]
+
+
+def test_a_controller_list_the_launch_computes_at_run_time(tmp_path):
+    """`.trajectory_execution("config/controllers/controllers" + suffix + ".yaml")`: the builder
+    loads a file only the run time names, so there is a controller configuration (no
+    controller.none, 'MoveIt can plan but not execute') and no guess among *_controllers.yaml;
+    one controller.runtime-only warning says the controller rules were skipped."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / "config/controllers").mkdir()
+    (source / "config/bot_controllers.yaml").rename(source / "config/controllers/controllers_a.yaml")
+    edit(
+        source / "launch/move_group.launch.py",
+        '        .planning_pipelines(pipelines=["ompl"])',
+        '        .trajectory_execution("config/controllers/controllers_" + use_sim.perform(None) + ".yaml")\n'
+        '        .planning_pipelines(pipelines=["ompl"])',
+    )
+    found = findings(source, paths)
+    assert of_rule(found, "controller.none") == []
+    assert of_rule(found, "controller.runtime-only") == [("warning", "trajectory_execution")]
+    assert errors(found) == []
+
+
+OMPL_WITHOUT_CONFIGS = """planning_plugin: ompl_interface/OMPLPlanner
+arm:
+  default_planner_config: RRTConnect
+  planner_configs: [RRTConnect, BiTRRT, LazyPRMstar]
+"""
+
+
+def test_the_builder_adds_moveits_planner_configs_to_an_ompl_file_without_them(tmp_path):
+    """MoveItConfigsBuilder.planning_pipelines adds moveit_configs_utils' ompl_defaults.yaml to an
+    ompl file without `planner_configs` (humble moveit_configs_builder.py l.475-479): a group
+    naming those configurations names defined ones; one neither the file nor the defaults define
+    still is an error."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / "config/ompl_planning.yaml").write_text(OMPL_WITHOUT_CONFIGS.replace("LazyPRMstar", "Nope"))
+    found = findings(source, paths, ros_distro="humble")
+    assert errors(found) == [("ompl.unknown-planner-config", "arm.planner_configs")]
+    (source / "config/ompl_planning.yaml").write_text(OMPL_WITHOUT_CONFIGS)
+    assert errors(findings(source, paths, ros_distro="humble")) == []
