@@ -28,7 +28,9 @@ def config_packages(folder: Path) -> list[Path]:
 
 
 def _is_config(pkg: Path) -> bool:
-    return any(pkg.glob("config/*.srdf*")) or any(pkg.glob("srdf/*.srdf*")) or any(pkg.glob("config/*/*.srdf*"))
+    return (
+        any(pkg.glob("config/*.srdf*")) or any(pkg.glob("srdf/*.srdf*")) or any(pkg.glob("config/*/*.srdf*"))
+    )
 
 
 def run(pkg: Path, paths: tuple[Path, ...]) -> dict:

@@ -2,7 +2,8 @@
 data/<family>.yaml), how a value fits them (values.py) and how they are rebuilt from MoveIt's
 sources (regenerate.py); the controller types, plugins, planners and other names MoveIt reads
 (vocabulary.py); the parameters of a planning pipeline (pipeline_params.py) and of move_group
-(move_group_params.py) a setup may give.
+(move_group_params.py) a setup may give; ros2_control's and its controllers' declared parameters
+(driver_params.py, data/drivers_<family>.yaml).
 
 The public API, by module; names load on first use (`marm_setup.exports`).
 """
@@ -28,6 +29,7 @@ API = {
         "STRUCTURE_KEYS infinite_problem unknown_name_hint value_problem PipelineParameterValue "
         "parameter_problem"
     ),
+    "driver_params": "CONTROLLER_MANAGER driver_rows",
     "move_group_params": (
         "BY_ROS1_NAME MOVE_GROUP_PARAMS MoveGroupParam move_group_problem move_group_values written_values "
         "MoveGroupValue"
@@ -36,6 +38,8 @@ API = {
 __all__, __getattr__, __dir__ = lazy_api(__name__, API)
 
 if TYPE_CHECKING:  # the same names, for type checkers
+    from marm_setup.moveit_params.driver_params import CONTROLLER_MANAGER as CONTROLLER_MANAGER
+    from marm_setup.moveit_params.driver_params import driver_rows as driver_rows
     from marm_setup.moveit_params.move_group_params import BY_ROS1_NAME as BY_ROS1_NAME
     from marm_setup.moveit_params.move_group_params import MOVE_GROUP_PARAMS as MOVE_GROUP_PARAMS
     from marm_setup.moveit_params.move_group_params import MoveGroupParam as MoveGroupParam

@@ -23,7 +23,7 @@ from marm_setup.moveit_params.tables import DATA, SAFE_LOADER, ParamRow, row_of
 if TYPE_CHECKING:
     from marm_setup.moveit_params.git_source import GitRef
 
-MANAGER = "controller_manager"
+CONTROLLER_MANAGER = "controller_manager"
 JTC = "joint_trajectory_controller/src/joint_trajectory_controller_parameters.yaml"
 GRIPPER = "gripper_controllers/src/gripper_action_controller_parameters.yaml"
 PARALLEL = "parallel_gripper_controller/src/gripper_action_controller_parameters.yaml"
@@ -69,11 +69,11 @@ def build_driver_table(family: str, controllers: GitRef, control: GitRef) -> dic
     if family == "humble":
         line = control.line_of(HUMBLE_MANAGER, 'get_parameter("update_rate"')
         rows.append(
-            {"node": MANAGER, "name": "update_rate", "type": "int", "on_wrong": "throws",
+            {"node": CONTROLLER_MANAGER, "name": "update_rate", "type": "int", "on_wrong": "throws",
              "source": f"ros2_control/{HUMBLE_MANAGER}:{line}"}
         )  # fmt: skip
     else:
-        rows += gpl_rows(control.text(MANAGER_FILE), f"ros2_control/{MANAGER_FILE}", "", MANAGER)
+        rows += gpl_rows(control.text(MANAGER_FILE), f"ros2_control/{MANAGER_FILE}", "", CONTROLLER_MANAGER)
     pins = {
         "ros-controls/ros2_controllers": controllers.commit(),
         "ros-controls/ros2_control": control.commit(),

@@ -31,7 +31,32 @@ GLOBAL_KEYS = frozenset(
 # l.475-479, the same on jazzy; default_configs/ompl_defaults.yaml, identical on both): each
 # `<name>` of type `geometric::<name>`.
 BUILDER_OMPL_DEFAULTS_FILE = "moveit_configs_utils/default_configs/ompl_defaults.yaml"
-BUILDER_OMPL_DEFAULTS = ["AnytimePathShortening", "SBL", "EST", "LBKPIECE", "BKPIECE", "KPIECE", "RRT", "RRTConnect", "RRTstar", "TRRT", "PRM", "PRMstar", "FMT", "BFMT", "PDST", "STRIDE", "BiTRRT", "LBTRRT", "BiEST", "ProjEST", "LazyPRM", "LazyPRMstar", "SPARS", "SPARStwo"]
+BUILDER_OMPL_DEFAULTS = [
+    "AnytimePathShortening",
+    "SBL",
+    "EST",
+    "LBKPIECE",
+    "BKPIECE",
+    "KPIECE",
+    "RRT",
+    "RRTConnect",
+    "RRTstar",
+    "TRRT",
+    "PRM",
+    "PRMstar",
+    "FMT",
+    "BFMT",
+    "PDST",
+    "STRIDE",
+    "BiTRRT",
+    "LBTRRT",
+    "BiEST",
+    "ProjEST",
+    "LazyPRM",
+    "LazyPRMstar",
+    "SPARS",
+    "SPARStwo",
+]
 
 
 @dataclass(frozen=True, slots=True)

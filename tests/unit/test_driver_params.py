@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from marm_setup.flows import with_collision_matrix
-from marm_setup.moveit_params.driver_params import MANAGER, driver_rows
+from marm_setup.moveit_params import CONTROLLER_MANAGER, driver_rows
 from marm_setup.package import read_package
 from marm_setup.render.package import render_package
 from marm_setup.render.writer import apply_writes, plan_writes
@@ -101,7 +101,7 @@ def test_a_controller_of_a_type_not_in_the_tables_is_left_alone(fresh, tmp_path)
 @pytest.mark.parametrize("family", ["humble", "jazzy"])
 def test_the_tables_hold_the_manager_and_the_controllers_marm_setup_writes(family):
     rows = driver_rows(family)
-    assert [r.type for r in rows[MANAGER] if r.name == "update_rate"] == ["int"]
+    assert [r.type for r in rows[CONTROLLER_MANAGER] if r.name == "update_rate"] == ["int"]
     assert {r.name for r in rows[JTC]} >= {"joints", "command_interfaces", "state_interfaces"}
     assert all(":" in r.source for node in rows.values() for r in node)
 

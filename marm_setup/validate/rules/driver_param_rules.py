@@ -18,8 +18,13 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 from marm_setup.findings import Finding, error
-from marm_setup.moveit_params import family_of, type_problem, validator_problem
-from marm_setup.moveit_params.driver_params import MANAGER, driver_rows
+from marm_setup.moveit_params import (
+    CONTROLLER_MANAGER,
+    driver_rows,
+    family_of,
+    type_problem,
+    validator_problem,
+)
 
 if TYPE_CHECKING:
     from marm_setup.moveit_params import ParamRow
@@ -58,8 +63,14 @@ def _load(pkg: MoveItPackage, file: str) -> Any:
 def _check_file(data: dict, file: str, family: str) -> list[Finding]:
     rows = driver_rows(family)
     out: list[Finding] = []
-    manager = _section(data, MANAGER)
-    out += _check_node(manager, rows.get(MANAGER, ()), file, MANAGER, "ros2_control_node stops at start-up")
+    manager = _section(data, CONTROLLER_MANAGER)
+    out += _check_node(
+        manager,
+        rows.get(CONTROLLER_MANAGER, ()),
+        file,
+        CONTROLLER_MANAGER,
+        "ros2_control_node stops at start-up",
+    )
     for name, entry in sorted(manager.items()):
         if not (isinstance(entry, dict) and isinstance(entry.get("type"), str)):
             continue
