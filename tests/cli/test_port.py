@@ -5,6 +5,8 @@ JSON accounts for every setting."""
 from __future__ import annotations
 
 import json
+import re
+from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
@@ -70,10 +72,19 @@ def test_ros1_to_ros2_changes_the_gripper_action_and_says_why(tmp_path):
     assert doc["port"]["target"] == "ros2" and doc["port"]["ros_distro"] == "jazzy"
 
 
+def _with_sensors_file(pkg: Path, text: str) -> None:
+    """config/sensors_3d.yaml and the Setup Assistant's sensor_manager.launch.xml loading it
+    (move_group reads only a sensors list a launch file loads)."""
+    (pkg / "config" / "sensors_3d.yaml").write_text(text)
+    name = re.search(r"<name>(.+?)</name>", (pkg / "package.xml").read_text()).group(1)  # type: ignore[union-attr]
+    load = f'<rosparam command="load" file="$(find {name})/config/sensors_3d.yaml"/>'
+    (pkg / "launch" / "sensor_manager.launch.xml").write_text(f"<launch>\n  {load}\n</launch>\n")
+
+
 def test_every_source_file_is_accounted_for(tmp_path):
     """Nothing dropped silently: each file of the source package is read or has a report line."""
     _generate(tmp_path / "a", "ros1", "noetic")
-    (tmp_path / "a" / "config" / "sensors_3d.yaml").write_text("sensors: []\n")
+    _with_sensors_file(tmp_path / "a", "sensors: []\n")
     result = _port(tmp_path / "a", tmp_path / "b", "--format", "json")
     doc = json.loads(result.stdout)
     sources = " ".join(i["source"] for i in doc["port"]["items"])
@@ -87,9 +98,10 @@ def test_sensors_and_servo_settings_are_carried(tmp_path):
     """A 3D sensor and a MoveIt Servo file reach marm_setup.yaml's `sensors` and `servo` (a MoveIt
     1 sensor, unnamed, is named by its type and index); a key the setup has no place for is a line."""
     _generate(tmp_path / "a", "ros1", "noetic")
-    (tmp_path / "a" / "config" / "sensors_3d.yaml").write_text(
+    _with_sensors_file(
+        tmp_path / "a",
         "sensors:\n  - sensor_plugin: occupancy_map_monitor/PointCloudOctomapUpdater\n"
-        "    point_cloud_topic: /camera/points\n    max_range: 3.0\n    mystery: 1\n"
+        "    point_cloud_topic: /camera/points\n    max_range: 3.0\n    mystery: 1\n",
     )
     servo = tmp_path / "a" / "config" / "arm_servo.yaml"
     servo.write_text(servo.read_text().replace("publish_period: 0.034", "publish_period: 0.02"))
