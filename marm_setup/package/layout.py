@@ -193,6 +193,7 @@ def _ros1_controllers(
     the simple manager move_group's (`controller_list_unloaded`). And the fake manager's.
     `managers`: every moveit_controller_manager value, and those set on default branches."""
     every_manager, taken_managers = managers
+    kinds.values["controller_managers"] = taken_managers
     real = _controller_loads(files, loads, fake=False)
     landed = [(lo, d) for lo, d in real if lo.ns in move_groups]
     if real:

@@ -69,6 +69,8 @@ class MoveItPackage:
     # MoveIt 1: the launch file that makes the simple controller manager move_group's manager when
     # no launch file loads a controller list at all ('' otherwise)
     controller_list_unloaded: str = ""
+    # MoveIt 1: the moveit_controller_manager params set on branches the launch defaults take
+    controller_managers: tuple[LaunchParam, ...] = ()
     fake_controllers: ControllersFile | None = None
     ros2_controllers: DriverFile | None = None
     ros_controllers: DriverFile | None = None

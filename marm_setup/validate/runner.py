@@ -35,6 +35,7 @@ from marm_setup.validate.rules.controller_rules import (
     check_listed,
     check_moveit_controllers,
     check_ros1_list_loaded,
+    check_ros1_manager_plugins,
     check_ros1_namespace,
     check_ros2_namespace,
     check_ros_control_coverage,
@@ -454,7 +455,7 @@ def ompl_planners(pkg: MoveItPackage) -> frozenset[str]:
 def check_controller_files(pkg: MoveItPackage) -> list[Finding]:
     """MoveIt's controller files on their own (without the robot): listed, named, namespaced,
     typed."""
-    out: list[Finding] = check_ros1_list_loaded(pkg)
+    out: list[Finding] = check_ros1_list_loaded(pkg) + check_ros1_manager_plugins(pkg)
     if pkg.fake_controllers is not None:
         out += check_listed(pkg.fake_controllers)
     moveit = pkg.moveit_controllers
@@ -502,7 +503,7 @@ def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
 def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     """MoveIt's controllers vs robot and groups, then vs every driver file the package has."""
     assert pkg.srdf is not None
-    out: list[Finding] = check_ros1_list_loaded(pkg)
+    out: list[Finding] = check_ros1_list_loaded(pkg) + check_ros1_manager_plugins(pkg)
     if pkg.fake_controllers is not None:
         out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
     moveit = pkg.moveit_controllers

@@ -389,6 +389,17 @@ KINEMATICS_CASES = [
         match="exports no solver",
     ),
     Case(
+        "ros1-controller-manager-typo",
+        "ros1",
+        text(
+            "launch/simple_moveit_controller_manager.launch.xml",
+            "MoveItSimpleControllerManager",
+            "MoveItSimpleControlerManager",
+        ),
+        "params.plugin",
+        match="no controller manager",
+    ),
+    Case(
         "kin-kdl-on-hand",
         "ros1",
         ydata(
