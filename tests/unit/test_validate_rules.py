@@ -685,6 +685,29 @@ OMPL_CASES = [
         severity="warning",
     ),
     Case(
+        "ompl-projection-joint-outside-the-group",
+        "ros1",
+        text(OMPL, "joints(panda_joint1,panda_joint2)", "joints(panda_joint1,panda_joint9)"),
+        "ompl.projection-invalid",
+        severity="warning",
+        match="'panda_joint9' (not a joint of the group)",
+    ),
+    Case(
+        "ompl-projection-none-left-for-kpiece",
+        "ros1",
+        lambda pkg: (
+            replace_text(
+                pkg,
+                OMPL,
+                "panda_arm:\n  default_planner_config: RRTConnect",
+                "panda_arm:\n  default_planner_config: KPIECE",
+            ),
+            replace_text(pkg, OMPL, "joints(panda_joint1,panda_joint2)", "link(panda_link99)"),
+        ),
+        "ompl.projection-invalid",
+        match="every plan fails",
+    ),
+    Case(
         "ros2-ompl-unknown-config",
         "ros2",
         text(OMPL, "    - TrajOptDefault\n", "    - TrajOpt\n"),

@@ -25,11 +25,11 @@ Sources (moveit/moveit2 humble and jazzy branches, ros-controls/ros2_control):
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package import MoveItPackage, Param, PlanningPipeline, Ros2ControlFile
+from marm_setup.package import GroupPlanning, MoveItPackage, Param, PlanningPipeline, Ros2ControlFile
 from marm_setup.ros import DISTROS, Distro, Target, distro_row
 from marm_setup.setup import active_group_joints, groups_by_name
 
@@ -160,11 +160,12 @@ def check_publish_flags(params: tuple[Param, ...], file: str, prefix: str) -> li
 
 
 def check_projection_evaluators(ompl: PlanningPipeline, srdf: Srdf, robot: RobotModel) -> list[Finding]:
-    """A group of two or more joints whose default OMPL planner needs a projection has one."""
+    """A group of two or more joints whose default OMPL planner needs a projection has one, and
+    a projection_evaluator names what MoveIt can project on (`_projection_problem`)."""
     by_name = groups_by_name(srdf.groups)
     out = []
     for entry in sorted(ompl.groups, key=lambda g: g.group):
-        if entry.group not in by_name or entry.param("projection_evaluator") is not None:
+        if entry.group not in by_name:
             continue
         default = entry.param("default_planner_config")
         config = ompl.config(str(default.value if default is not None else None))
@@ -174,11 +175,50 @@ def check_projection_evaluators(ompl: PlanningPipeline, srdf: Srdf, robot: Robot
             else ""
         )
         joints = active_group_joints(by_name[entry.group], by_name, robot, tuple(srdf.passive_joints))
+        given = entry.param("projection_evaluator")
+        if given is not None:
+            out += _projection_problem(ompl.where.file, entry, str(given.value), joints, robot, kind)
+            continue
         if kind in PROJECTION_PLANNERS and len(joints) >= 2:
             msg = f"default planner {kind} needs a projection_evaluator: every plan of this group fails"
             hint = f"projection_evaluator: joints({joints[0]},{joints[1]})"
             out.append(error("ompl.projection-missing", ompl.where.file, entry.where.element, msg, hint))
     return out
+
+
+def _projection_problem(
+    file: str, entry: GroupPlanning, given: str, joints: Sequence[str], robot: RobotModel, kind: str
+) -> list[Finding]:
+    """`link(<link>)` of a link of the robot, or `joints(<a>,<b>,...)` of joints of the group:
+    anything else MoveIt logs as an error and the group has no projection
+    (model_based_planning_context.cpp getProjectionEvaluator, jazzy l.166-231, the same in
+    humble and moveit/moveit noetic); a joint outside the group is logged and skipped. An error
+    when the group's default planner needs the projection, else a warning."""
+    text = given.strip()
+    element = f"{entry.where.element}.projection_evaluator"
+    if text.startswith("link(") and text.endswith(")"):
+        bad = [] if text[5:-1] in robot.link_map else [text[5:-1]]
+        usable = not bad
+    elif text.startswith("joints(") and text.endswith(")"):
+        names = text[7:-1].replace(",", " ").split()
+        bad = [n for n in names if n not in joints]
+        usable = len(bad) < len(names)
+    else:
+        bad, usable = [text], False
+    if not bad:
+        return []
+    what = "not a link of the robot" if text.startswith("link(") else "not a joint of the group"
+    said = ", ".join(f"'{b}'" for b in bad) + (f" ({what})" if text.startswith(("link(", "joints(")) else "")
+    hint = f"projection_evaluator: joints({','.join(joints[:2])})" if len(joints) >= 2 else ""
+    if not usable and kind in PROJECTION_PLANNERS:
+        msg = (
+            f"MoveIt cannot project on {said}: the default planner {kind} has no projection, every plan fails"
+        )
+        return [error("ompl.projection-invalid", file, element, msg, hint)]
+    tail = "the group has no projection" if not usable else "MoveIt logs an error and skips it"
+    return [
+        warning("ompl.projection-invalid", file, element, f"MoveIt cannot project on {said}: {tail}", hint)
+    ]
 
 
 def check_ros2_control_systems(
