@@ -400,6 +400,17 @@ KINEMATICS_CASES = [
         match="no controller manager",
     ),
     Case(
+        "kin-attempts-ignored",
+        "ros1",
+        text(
+            KIN,
+            "kinematics_solver_timeout: 0.05",
+            "kinematics_solver_timeout: 0.05\n  kinematics_solver_attempts: 3",
+        ),
+        "kinematics.attempts-ignored",
+        severity="warning",
+    ),
+    Case(
         "kin-kdl-on-hand",
         "ros1",
         ydata(

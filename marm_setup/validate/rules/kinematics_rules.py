@@ -63,7 +63,26 @@ def check_kinematics(
         else:
             names = solver_names and not _declared(entry.solver, depends)
             out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, names)
+            out += _attempts(file, entry) if solver_names else []  # MoveIt 1 (solver_names: ROS 1)
     return out
+
+
+def _attempts(file: str, entry: GroupKinematics) -> list[Finding]:
+    """MoveIt 1 >= 1.0 ignores kinematics_solver_attempts and warns at start-up that it is no
+    longer supported (kinematics_plugin_loader.cpp noetic l.350-357)."""
+    if entry.param("kinematics_solver_attempts") is None:
+        return []
+    msg = "kinematics_solver_attempts is ignored since MoveIt 1.0: move_group warns at start-up"
+    hint = "remove it; raise kinematics_solver_timeout instead"
+    return [
+        warning(
+            "kinematics.attempts-ignored",
+            file,
+            f"{entry.where.element}.kinematics_solver_attempts",
+            msg,
+            hint,
+        )
+    ]
 
 
 def _check_entry(
