@@ -88,6 +88,9 @@ class ControllersFile:
     initial: tuple[InitialPose, ...] | None = None  # fake controllers; None when absent
     initial_malformed: bool = False  # `initial` is not a list
     loaded_into: str = ""  # the key a launch file puts the whole file under ('' for none)
+    # no launch file of the package loads the list (no MoveItConfigsBuilder, no load by hand):
+    # the file is the builder's guess, and the key another package's launch puts it under unknown
+    load_unknown: bool = False
     # MoveIt 1: the simple manager's loads of this list when none lands in move_group's private
     # namespace (`read_at`, the move_group nodes' full names) and MoveIt reads no list at all
     elsewhere: tuple[ListLoad, ...] = ()

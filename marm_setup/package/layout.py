@@ -377,13 +377,14 @@ def _ros2_controllers(
     chosen, into = (controllers_file(builder, files.root), "") if builder.calls else (None, "")
     if chosen is None:
         chosen, into = _named_controllers(files, named_yaml)
-    if chosen is None and not builder.calls:
+    unknown = chosen is None and not builder.calls
+    if unknown:
         chosen = controllers_file(builder, files.root)
     if chosen is None and (launch := builder.computed("trajectory_execution")):
         files.problems.append(_runtime_controllers(launch))
     doc = _named(files, chosen.file) if chosen is not None else None
     if doc is not None and chosen is not None:
-        listed = replace(read_controllers(unwrap_parameters(doc)), loaded_into=into)
+        listed = replace(read_controllers(unwrap_parameters(doc)), loaded_into=into, load_unknown=unknown)
         kinds.put("moveit_controllers", listed, doc, chosen.how)
     alternatives = []
     for rel in files.glob("config/*_controllers.yaml"):

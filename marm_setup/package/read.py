@@ -16,7 +16,7 @@ from typing import Any
 from marm_setup.bounded_read import XML_BYTES
 from marm_setup.errors import InputError, PackageNotFound
 from marm_setup.findings import Finding, Location, error, warning
-from marm_setup.package.builder import BuilderFiles, builder_files, chosen_file
+from marm_setup.package.builder import BuilderFiles, Chosen, builder_files, chosen_file
 from marm_setup.package.description import (
     MARM_MOVEIT_YAML,
     SRDF_GUESSED,
@@ -413,6 +413,10 @@ def _description(
         from_launch = _launch_description(files, launched.description, given[1], found.paths)
         if from_launch is not None:
             return from_launch
+    if urdf is None and not (found.marm and found.marm.urdf) and explicit is not None and rel is None:
+        from_builder = _external_builder_description(explicit, mappings, given[1], found.paths)
+        if from_builder is not None:
+            return from_builder
     if urdf is None and not (found.marm and found.marm.urdf) and not (rel and (root / rel).is_file()):
         from_command = _command_description(command, shown, given[1], found.paths)
         if from_command is not None:
@@ -492,6 +496,26 @@ def _launch_description(
         )
     merged = tuple(sorted({**dict(load.xacro_args), **dict(args)}.items()))
     return Description((files.root / chosen[0]).resolve(), origin, merged)
+
+
+def _external_builder_description(
+    explicit: Chosen,
+    mappings: tuple[tuple[str, str], ...] | None,
+    args: tuple[tuple[str, str], ...],
+    paths: tuple[Path, ...],
+) -> Description | None:
+    """The file a launch file's `MoveItConfigsBuilder.robot_description(file_path)` names in
+    another package (`os.path.join(get_package_share_directory("pkg"), ...)`): the builder
+    joins it to its package path, and an absolute path wins (moveit2 humble
+    moveit_configs_utils/moveit_configs_builder.py robot_description l.213-227,
+    `self._package_path / file_path`), so move_group gets that file, not the one `.setup_assistant` names. Taken only
+    inside the packages the package paths hold, as a xacro command's file is; None otherwise."""
+    from marm_setup.untrusted import inside
+
+    file = Path(explicit.file)
+    if not file.is_absolute() or not inside(file, paths) or not file.is_file():
+        return None
+    return Description(file, explicit.how, args or mappings or ())
 
 
 def _command_description(

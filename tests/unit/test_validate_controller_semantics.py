@@ -196,7 +196,8 @@ other_controller:
 def test_a_ros1_driver_file_serving_no_action_is_not_where_moveits_controllers_are(marm):
     """A ROS 1 `ros_controllers.yaml` holding only a joint_state_controller (xarm_ros' examples):
     the spawner starts only the controllers it names, and MoveIt's action servers are a vendor
-    driver's; a file with a trajectory controller, or a ROS 2 file, is still held to MoveIt's."""
+    driver's; a file with a trajectory controller, or a ROS 2 file, is still held to MoveIt's
+    (a ROS 2 file that drives none of the controller's joints: a warning, see below)."""
     moveit = section(dump(entry("arm_controller", ["joint1", "joint2"], True)))
     state_only = read_ros_controllers(located_text(STATE_ONLY, "config/ros_controllers.yaml"))
     assert check_driver_controllers(moveit, state_only, marm, ros1=True) == []
@@ -206,3 +207,48 @@ def test_a_ros1_driver_file_serving_no_action_is_not_where_moveits_controllers_a
     serving = read_ros_controllers(located_text(STATE_ONLY + TRAJECTORY, "config/ros_controllers.yaml"))
     found = check_driver_controllers(moveit, serving, marm, ros1=True)
     assert [(f.rule, f.severity) for f in found] == [("controller.driver-missing", "error")]
+
+
+ROS2_ARM = """
+controller_manager:
+  ros__parameters:
+    update_rate: 100
+    arm_controller: {type: joint_trajectory_controller/JointTrajectoryController}
+    joint_state_broadcaster: {type: joint_state_broadcaster/JointStateBroadcaster}
+    vendor_state_broadcaster: {type: vendor_broadcasters/StateBroadcaster}
+arm_controller:
+  ros__parameters:
+    joints: [joint1, joint2]
+    command_interfaces: [position]
+    state_interfaces: [position]
+"""
+MOVEIT_ARM_GRIPPER = """
+controller_names: [arm_controller, gripper]
+arm_controller: {action_ns: follow_joint_trajectory, type: FollowJointTrajectory, default: true, joints: [joint1, joint2]}
+gripper: {action_ns: gripper_action, type: GripperCommand, default: true, joints: [finger_joint1]}
+"""
+
+
+def test_a_moveit_controller_on_joints_no_ros2_control_controller_drives_may_be_another_nodes(marm):
+    """franka_ros2: MoveIt's simple controller manager connects to `<name>/<action_ns>`
+    whoever serves it (moveit_simple_controller_manager.cpp l.111-182); its gripper is a
+    vendor node's action server, not a ros2_control controller, and no controller of
+    ros2_controllers.yaml names its joints (a broadcaster of unknown type names none): a
+    warning. A MoveIt controller whose joints a ros2_control controller drives under another
+    name (a rename, a typo) is still an error: nothing serves the action MoveIt connects to."""
+    driver = read_ros2_controllers(located_text(ROS2_ARM, "config/ros2_controllers.yaml"))
+    found = check_driver_controllers(section(MOVEIT_ARM_GRIPPER), driver, marm)
+    assert [(f.rule, f.severity, f.element) for f in found] == [
+        ("controller.driver-missing", "warning", "gripper")
+    ]
+    renamed = section(MOVEIT_ARM_GRIPPER.replace("arm_controller", "arm_ctrl"))
+    found = check_driver_controllers(renamed, driver, marm)
+    assert sorted((f.rule, f.severity, f.element) for f in found) == [
+        ("controller.driver-missing", "error", "arm_ctrl"),
+        ("controller.driver-missing", "warning", "gripper"),
+    ]
+    no_joints = ROS2_ARM.split("arm_controller:\n  ros__parameters:")[0]  # a JTC whose joints are not given
+    found = check_driver_controllers(renamed, read_ros2_controllers(located_text(no_joints, "x.yaml")), marm)
+    assert ("controller.driver-missing", "error", "arm_ctrl") in {
+        (f.rule, f.severity, f.element) for f in found
+    }

@@ -74,7 +74,12 @@ def check_ros2_namespace(controllers: ControllersFile) -> list[Finding]:
     hands the file over as it is (moveit_configs_builder.py l.343-382 at jazzy 4d84106), so there
     top-level `controller_names` give MoveIt no controllers, and so does a file that names the
     namespace again under a launch that already adds it. Ros2ControlManager asks ros2_control for
-    its controllers instead and needs no list."""
+    its controllers instead and needs no list.
+
+    When no launch file of the package loads the list (`load_unknown`: a config package whose
+    move_group is launched by another package, as a bringup's `{"moveit_simple_controller_manager":
+    load_yaml(...)}` does), the key it lands under is that other launch file's to say: top-level
+    `controller_names` is then a warning, not an error."""
     if controllers.form != "controller_names" or "Ros2ControlManager" in controllers.manager:
         return []
     in_file = (SIMPLE_MANAGER,) if controllers.namespaced else ()
@@ -85,6 +90,12 @@ def check_ros2_namespace(controllers: ControllersFile) -> list[Finding]:
     if not landed:
         msg = f"controller_names is not under '{SIMPLE_MANAGER}': MoveIt 2 finds no controllers"
         hint = f"indent controller_names and the controllers under '{SIMPLE_MANAGER}:'"
+        if controllers.load_unknown:
+            msg += (
+                " unless the launch file that loads it (no launch file of this package does) puts it "
+                f"under '{SIMPLE_MANAGER}'"
+            )
+            return [warning("controller.no-namespace", file, "controller_names", msg, hint)]
         return [error("controller.no-namespace", file, "controller_names", msg, hint)]
     msg = (
         f"the launch puts this file under '{controllers.loaded_into}', so controller_names lands at "

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from marm_setup.findings import Finding, error
+from marm_setup.findings import Finding, error, warning
 from marm_setup.moveit_params import (
     DRIVER_CONTROLLER_TYPES,
     DRIVER_CONTROLLERS,
@@ -72,9 +72,7 @@ def _check_against_driver(moveit: ControllersFile, driver: DriverFile, c: MoveIt
     file = driver.where.file
     d: DriverController | None = driver.controller(c.name)
     if d is None:
-        known = ", ".join(sorted(x.name for x in driver.controllers)) or "none"
-        msg = f"controller '{c.name}' is not in {file} (has: {known})"
-        return [error("controller.driver-missing", moveit.where.file, c.element, msg)]
+        return [_missing(moveit, driver, c)]
     suffix = d.type.rsplit("/", 1)[-1]
     served = DRIVER_CONTROLLER_TYPES.get(d.type) or DRIVER_CONTROLLERS.get(suffix)
     if served is None:
@@ -94,6 +92,41 @@ def _check_against_driver(moveit: ControllersFile, driver: DriverFile, c: MoveIt
         msg = f"joints {list(d.joints)} differ from MoveIt's {list(c.joints)} for '{c.name}'"
         out.append(error("controller.driver-joints", file, d.element, msg))
     return out
+
+
+def _missing(moveit: ControllersFile, driver: DriverFile, c: MoveItController) -> Finding:
+    """MoveIt's controller `c` is not in the driver file. MoveIt's simple controller manager
+    connects to the action `<name>/<action_ns>` whoever serves it (moveit2 humble
+    `moveit_simple_controller_manager/src/moveit_simple_controller_manager.cpp` l.111-182: one
+    action client per listed controller, no controller_manager asked). An error when a
+    controller of the file that may serve an action may drive one of `c`'s joints: ros2_control
+    moves those joints under another name, so nothing serves the action MoveIt connects to (a
+    renamed or misspelled controller). When no controller of the file may drive any of its
+    joints (a broadcaster drives none), they are moved outside this file (a gripper driver's
+    own action server, e.g. franka_gripper's `<name>/gripper_action` started by another
+    package's launch file), which validate cannot see: a warning."""
+    known = ", ".join(sorted(x.name for x in driver.controllers)) or "none"
+    msg = f"controller '{c.name}' is not in {driver.where.file} (has: {known})"
+    joints = set(c.joints)
+    if any(_may_drive(d, joints) for d in driver.controllers):
+        return error("controller.driver-missing", moveit.where.file, c.element, msg)
+    msg += (
+        f", and none of its controllers drives {sorted(joints)}: the action '{c.action}' must come "
+        "from another node (a vendor driver), which validate cannot see"
+    )
+    fix = f"start the node serving '{c.action}', or add '{c.name}' to {driver.where.file}"
+    return warning("controller.driver-missing", moveit.where.file, c.element, msg, fix)
+
+
+def _may_drive(d: DriverController, joints: set[str]) -> bool:
+    """`d` may serve an action and drive some of `joints`: it names one of them, or it is a
+    trajectory or gripper action controller whose joints the file does not give (they may be
+    any)."""
+    if not _may_serve_action(d):
+        return False
+    if d.joints is not None:
+        return bool(joints & set(d.joints))
+    return d.type in DRIVER_CONTROLLER_TYPES or d.type.rsplit("/", 1)[-1] in DRIVER_CONTROLLERS
 
 
 # -- ArbotiX ---------------------------------------------------------------------------------------

@@ -93,7 +93,11 @@ def check_matrix_fresh(
     proved: frozenset[tuple[str, str]] = frozenset(),
 ) -> list[Finding]:
     """Resample `trials` random states; every Never pair seen colliding means a stale matrix
-    (`proved`: pairs the user's proof cache proves collision-free, not resampled)."""
+    (`proved`: pairs the user's proof cache proves collision-free, not resampled). A Never
+    pair colliding in at least ALWAYS_FRACTION of them is not stale: recomputing the matrix
+    disables it all the same, as Always (moveit2 humble `moveit_setup_srdf_plugins/src/
+    compute_default_collisions.cpp` l.147-153, `min_collision_fraction`), and MoveIt reads no reason
+    label (srdfdom `model.cpp` loadDisabledCollisions), so MoveIt's behaviour is the same."""
     from marm_setup.collision import trial_samples
 
     never = [pair for pair in never_pairs(srdf, scene) if pair not in proved]
@@ -103,7 +107,7 @@ def check_matrix_fresh(
     counts = scene.collision_counts(scene.link_poses(q), scene.pair_ids(never))
     out = []
     for pair, n in zip(never, counts, strict=True):
-        if n:
+        if n and n < ALWAYS_FRACTION * trials:
             out.append(_stale(pair, int(n), q, robot, scene, file, trials))
     return out
 
