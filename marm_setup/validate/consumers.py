@@ -333,7 +333,7 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
             if launch.file.endswith(".launch") and launch.root is not None and not _needs_args(launch.root)
         ]
         argvs = [[roslaunch, "--dump-params", str(pkg.path(rel))] for rel in files]
-        unheld = _unheld_description_packages(pkg)
+        unheld = _unheld_packages(pkg, os.environ.get("ROS_PACKAGE_PATH", ""))
         with ThreadPoolExecutor(max_workers=max(1, min(len(files), os.cpu_count() or 1))) as pool:
             runs = list(pool.map(lambda argv: _run(argv, env, seconds), argvs))  # each a process
         for rel, done in zip(files, runs, strict=True):
@@ -406,23 +406,44 @@ MISSING_RESOURCE = re.compile(
 )
 
 
-def _launch_failure(rel: str, problem: str, unheld: Callable[[str], bool]) -> Finding:
-    """A roslaunch failure: an error, but a warning when it only lacks the package the robot
-    description lives in, which no package path validate was given holds either (the user's
-    environment, not the package: package.read's urdf/srdf.package-missing names the package
-    and the --package-path to pass)."""
+def _launch_failure(rel: str, problem: str, unheld: Callable[[str], str | None]) -> Finding:
+    """A roslaunch failure: an error, but a warning when it only lacks a package validate cannot
+    tell is missing from the user's machine (`unheld` says why; the user's environment, not the
+    package)."""
     msg = f"roslaunch fails: {problem}"[:MESSAGE_CHARS]
     missing = MISSING_RESOURCE.search(problem)
-    if missing is None or not unheld(missing.group(1)):
+    why = None if missing is None else unheld(missing.group(1))
+    if missing is None or why is None:
         return error("ros1.launch", rel, "launch", msg)
-    hint = f"pass --package-path DIR (the folder holding {missing.group(1)})"
+    hint = f"pass --package-path DIR (the folder holding {missing.group(1)}){why}"
     return warning("ros1.launch", rel, "launch", msg, hint)
 
 
-def _unheld_description_packages(pkg: MoveItPackage) -> Callable[[str], bool]:
-    """Whether a package is one the robot description lives in that no package path holds."""
+def _unheld_packages(pkg: MoveItPackage, ros_package_path: str) -> Callable[[str], str | None]:
+    """Why a package roslaunch lacks is no fault of the package ('' or the words to add to the
+    hint), else None: the package the robot description lives in, which no package path holds
+    (package.read's urdf/srdf.package-missing names it); or any package while no ROS is sourced
+    (ROS_PACKAGE_PATH unset), when roslaunch here sees only the package paths given and cannot
+    tell a ROS package this machine lacks from a wrong name: roslaunch's $(find) looks only on
+    ROS_PACKAGE_PATH (ros/ros_comm tools/roslaunch/src/roslaunch/substitution_args.py _find
+    l.141 at 845f746, through rospkg.RosPack), and MoveIt's own Setup Assistant gazebo.launch
+    includes $(find gazebo_ros) while its package.xml leaves the Gazebo packages out on purpose
+    (moveit/moveit moveit_setup_assistant/templates/moveit_config_pkg_template/launch/gazebo.launch
+    l.11 and package.xml.template l.32-35 at noetic-devel 5555c3d)."""
     names = {f.location.name for f in pkg.problems if f.rule.endswith(".package-missing")}
-    return lambda name: name in names
+    sourced = any(ros_package_path.split(os.pathsep))
+
+    def why(name: str) -> str | None:
+        if name in names:
+            return ""
+        if not sourced:
+            return (
+                ", or source the ROS installation that has it: no ROS is sourced (ROS_PACKAGE_PATH is "
+                "unset), so roslaunch here finds only the package paths given"
+            )
+        return None
+
+    return why
 
 
 def _dump_problem(done: subprocess.CompletedProcess) -> str:

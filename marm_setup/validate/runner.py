@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFound, remedy
-from marm_setup.findings import INTERNAL, Finding, error, sort_findings, warning
+from marm_setup.findings import INTERNAL, Finding, Location, error, sort_findings, warning
 from marm_setup.package import (
     ControllersFile,
     MoveItPackage,
@@ -366,12 +366,29 @@ def load_package_robot(pkg: MoveItPackage) -> tuple[RobotModel | None, list[Find
         return load_robot(pkg.urdf, dict(pkg.xacro_args), pkg.package_paths), []
     except CodeNotRun:  # --untrusted: a xacro description is not expanded (the summary says so)
         return None, []
+    except PackageNotFound as exc:  # a mesh's or $(find)'s package no path holds: the user's environment
+        return None, [_robot_package_missing(pkg, shown, exc)]
     except InputError as exc:
         if (arg := undefined_unread_arg(exc.message, pkg.unread_xacro_args)) is not None:
             return None, [runtime_arg_description(pkg, shown, arg)]
         rule = "urdf.mesh-missing" if isinstance(exc, MeshNotFound) else "urdf.load"
         message = f"{exc.message} (robot description from {pkg.urdf_origin})"
         return None, [error(rule, shown, exc.element or "", message, _package_hint(exc))]
+
+
+def _robot_package_missing(pkg: MoveItPackage, shown: str, exc: PackageNotFound) -> Finding:
+    """The description loads a package (a `package://` mesh, a xacro `$(find)`) that no package
+    path holds: a warning, as for the description's own package (package/read.py
+    missing_package): MoveIt resolves it where ROS has it installed (geometric_shapes'
+    createMeshFromResource through resource_retriever, package:// via ROS_PACKAGE_PATH), so
+    validate cannot tell it is missing; only a file missing from a package at hand is an error."""
+    message = (
+        f"loads package '{exc.package}', which no package path holds ({exc.element or 'the description'}; "
+        f"robot description from {pkg.urdf_origin}): the rules needing the robot are skipped"
+    )
+    hint = f"pass --package-path DIR (the folder holding {exc.package})"
+    at = Location("package", exc.package)
+    return warning("urdf.package-missing", shown, exc.element or "", message, hint, at=at)
 
 
 RUNTIME_RULES = ("urdf.runtime-only", "urdf.runtime-arg")

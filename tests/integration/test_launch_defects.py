@@ -212,7 +212,7 @@ def real_ros1(monkeypatch, tmp_path):
     monkeypatch.setenv("MARM_SETUP_ROSLAUNCH", roslaunch)
 
 
-def test_ros1_package_through_real_roslaunch(tmp_path, real_ros1):
+def test_ros1_package_through_real_roslaunch(tmp_path, monkeypatch, real_ros1):
     from typer.testing import CliRunner
 
     from marm_setup.cli.app import app
@@ -233,6 +233,8 @@ def test_ros1_package_through_real_roslaunch(tmp_path, real_ros1):
         "</launch>",
         '  <include file="$(find no_such_package)/launch/x.launch"/>\n</launch>',
     )
+    (tmp_path / "ros").mkdir()  # a ROS sourced: the package it lacks is the launch's fault
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "ros"))
     broken = validate(out, plan=False)
     found = _rules(broken, "ros1.launch")
     assert list(found) == ["launch/demo.launch"]

@@ -223,7 +223,7 @@ def test_a_roslaunch_failure_for_want_of_the_description_package_is_a_warning():
     from marm_setup.validate.consumers import _launch_failure
 
     problem = "Unable to load file /ws/x_moveit_config/launch/demo.launch: x_description"
-    unheld = lambda name: name == "x_description"  # noqa: E731 - the description's package, not passed
+    unheld = lambda name: "" if name == "x_description" else None  # noqa: E731 - the description's package, not passed
     lacking = _launch_failure("launch/demo.launch", problem, unheld)
     assert (lacking.rule, lacking.severity) == ("ros1.launch", "warning")
     assert "--package-path DIR (the folder holding x_description)" in lacking.hint
@@ -231,3 +231,40 @@ def test_a_roslaunch_failure_for_want_of_the_description_package_is_a_warning():
     assert _launch_failure("launch/demo.launch", typo, unheld).severity == "error"
     other = _launch_failure("launch/demo.launch", "unused args [controller_manager]", unheld)
     assert other.severity == "error"
+
+
+GAZEBO_LAUNCH = """<launch>
+  <arg name="paused" default="false"/>
+  <include file="$(find gazebo_ros)/launch/empty_world.launch" pass_all_args="true"/>
+  <node name="spawn_gazebo_model" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description"/>
+</launch>
+"""
+
+
+def test_a_ros_package_roslaunch_lacks_is_a_warning_while_no_ros_is_sourced(tmp_path, monkeypatch):
+    """The Setup Assistant's gazebo.launch $(find)s gazebo_ros, which its package.xml leaves out:
+    with no ROS sourced, roslaunch here cannot tell a package this machine lacks from a wrong name;
+    with a ROS sourced that has no such package, the launch fails for the user too."""
+    import shutil
+
+    from marm_setup.validate.runner import validate
+    from tests.validate_helpers import generate_marm
+
+    roslaunch = shutil.which("roslaunch")
+    if roslaunch is None:
+        pytest.skip("roslaunch not on PATH")
+    pkg = generate_marm(tmp_path, "ros1")
+    (pkg / "launch" / "gazebo.launch").write_text(GAZEBO_LAUNCH, encoding="utf-8")
+    monkeypatch.setenv("MARM_SETUP_ROSLAUNCH", roslaunch)
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+
+    def found() -> list[tuple[str, str, str]]:
+        checked = validate(pkg, plan=False)
+        return [(f.file, str(f.severity), f.hint) for f in checked.findings if f.rule == "ros1.launch"]
+
+    [(file, severity, hint)] = found()
+    assert (file, severity) == ("launch/gazebo.launch", "warning")
+    assert "the folder holding gazebo_ros), or source the ROS installation that has it" in hint
+    (tmp_path / "ros").mkdir()
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "ros"))
+    assert [(file, severity) for file, severity, _ in found()] == [("launch/gazebo.launch", "error")]

@@ -52,3 +52,28 @@ def test_ros2_param_file_missing_leaves_the_node_without_it(tmp_path):
     assert "the node starts without these parameters" in out[0][2]
     sim = ROS2.replace('default="false"', 'default="true"').format(first="here", second="gone")
     assert [(s, line) for s, line, _ in found(tmp_path / "b", sim, ros2=True)] == [("error", "line 7")]
+
+
+GDB = """<launch>
+  <arg name="debug" default="false"/>
+  <arg unless="$(arg debug)" name="launch_prefix" value=""/>
+  <arg if="$(arg debug)" name="launch_prefix" value="gdb -x $(dirname)/gdb_settings.gdb --ex run --args"/>
+  <arg name="rviz_config" default="$(find bot_moveit_config)/launch/{config}"/>
+</launch>
+"""
+
+
+def test_a_path_no_launcher_opens_on_a_branch_the_defaults_skip_is_no_finding(tmp_path):
+    """MoveIt's Setup Assistant template: gdb_settings.gdb, never written, only with debug:=true."""
+    assert found(tmp_path, GDB.format(config="moveit.rviz"), ros2=False) == [
+        (
+            "warning",
+            "line 5",
+            "default refers to '$(find bot_moveit_config)/launch/moveit.rviz', which does not exist",
+        )
+    ]  # on the branch the defaults take, a likely mistake still
+    debug = GDB.replace('name="debug" default="false"', 'name="debug" default="true"')
+    assert [line for _, line, _ in found(tmp_path / "d", debug.format(config="x.rviz"), ros2=False)] == [
+        "line 4",
+        "line 5",
+    ]

@@ -950,7 +950,7 @@ LINK = '<link name="base"><collision><geometry><mesh filename="{uri}"/></geometr
     "body, rule, hinted",
     [
         (LINK.format(uri="meshes/nope.stl"), "urdf.mesh-missing", False),
-        (LINK.format(uri="package://nopkg/meshes/base.stl"), "urdf.load", True),  # PackageNotFound
+        (LINK.format(uri="package://nopkg/meshes/base.stl"), "urdf.package-missing", True),  # PackageNotFound
         # text that mentions a mesh, "not found" and a package, but the error is an unknown link
         ('<link name="a"/><joint name="mesh not found" type="fixed"><parent link="a"/>'
          '<child link="package_link"/></joint>', "urdf.load", False),
@@ -963,6 +963,21 @@ def test_urdf_rule_and_hint_come_from_the_error_type(tmp_path, body, rule, hinte
     (found,) = run(good.path, good, urdf=broken)
     assert found.rule == rule
     assert bool(found.hint) == hinted, found
+
+
+def test_a_mesh_in_a_package_no_path_holds_is_a_warning_not_an_error(tmp_path):
+    """MoveIt resolves `package://` where ROS has the package installed: validate, holding no
+    path to it, cannot tell it is missing (as for the description's own package); a mesh file
+    missing from a package at hand stays an error."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    broken = tmp_path / "robot.urdf"
+    broken.write_text(urdf(LINK.format(uri="package://nopkg/meshes/base.stl"), name="marm"), encoding="utf-8")
+    (found,) = run(good.path, good, urdf=broken)
+    assert (found.rule, str(found.severity)) == ("urdf.package-missing", "warning")
+    assert "(the folder holding nopkg)" in found.hint
+    broken.write_text(urdf(LINK.format(uri="meshes/nope.stl"), name="marm"), encoding="utf-8")
+    (found,) = run(good.path, good, urdf=broken)
+    assert (found.rule, str(found.severity)) == ("urdf.mesh-missing", "error")
 
 
 def test_a_ros1_driver_file_without_action_controllers_is_not_moveits_driver(tmp_path):

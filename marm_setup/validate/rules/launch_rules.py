@@ -106,7 +106,13 @@ def check_paths(tree, rel: str, root: Path, package: str, ros2: bool = False) ->
     without its pipelines, kinematics or controllers (ros2/launch_ros
     launch_ros/actions/node.py l.459-463 at humble 25a207c and jazzy 62c56e5). On a branch only
     other args take (or that cannot be decided), and for any other attribute naming a path, a
-    warning: with the defaults nothing fails."""
+    warning: with the defaults nothing fails. A path no launcher opens (an arg's value, a node's
+    args) on a branch the defaults do not take: nothing, as roslaunch never opens it and the
+    defaults never pass it on. MoveIt's own Setup Assistant template sets `launch_prefix` to `gdb
+    -x $(dirname)/gdb_settings.gdb ...` only `if="$(arg debug)"` and never writes that file
+    (moveit/moveit moveit_setup_assistant/templates/moveit_config_pkg_template/launch/
+    move_group.launch l.6-7 at noetic-devel 5555c3d; configuration_files_widget.cpp l.411-745 lists no
+    gdb_settings.gdb), and gdb only reports a missing `-x` file and runs on."""
     out = []
     launch_dir = (root / rel).parent
     scope = _default_scope(tree, launch_dir, ros2)
@@ -122,7 +128,7 @@ def check_paths(tree, rel: str, root: Path, package: str, ros2: bool = False) ->
                 elif opened:
                     msg = f"{attr} '{shown}' does not exist (on a branch only non-default launch args take: the launch fails then)"
                     out.append(warning("launch.missing-file", rel, _where(elem), msg))
-                elif target.suffix:
+                elif target.suffix and _taken(elem, scope):
                     msg = f"{attr} refers to '{shown}', which does not exist"
                     out.append(warning("launch.missing-file", rel, _where(elem), msg))
     return out
