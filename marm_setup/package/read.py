@@ -200,6 +200,14 @@ def _name(root: Path) -> str:
     return package_name(root) or root.name
 
 
+def _own_names(files: PackageFiles) -> tuple[str, ...]:
+    """The package's own name and the packages its package.xml depends on."""
+    xml = _package_xml(files)
+    if xml is None:
+        return (files.root.name,)
+    return (xml.name or files.root.name, *xml.dependencies)
+
+
 def _package_xml(files: PackageFiles) -> PackageXml | None:
     try:
         text = files.text("package.xml", XML_BYTES)
@@ -360,7 +368,7 @@ def _launched_file(
     if load is None or (load.file is None and load.missing_package is None):
         return None
     if load.missing_package is not None:
-        files.problems.append(missing_package(load, param))
+        files.problems.append(missing_package(load, param, _own_names(files)))
         return None
     assert load.file is not None
     path = files.root / load.file
@@ -379,9 +387,22 @@ def _kind(param: str) -> str:
     return "srdf" if param.endswith("_semantic") else "urdf"
 
 
-def missing_package(load: DescriptionLoad, param: str) -> Finding:
+def missing_package(load: DescriptionLoad, param: str, own: tuple[str, ...] = ()) -> Finding:
     """A description in a package no package path holds: validate cannot read what MoveIt loads
-    (the rules needing it are skipped); the user passes the folder holding it."""
+    (the rules needing it are skipped); the user passes the folder holding it. An error when
+    the name nearly spells one of `own` (the package's name and those its package.xml depends
+    on): a typo, and roslaunch's $(find) stops before move_group starts (substitution_args.py
+    _find)."""
+    from marm_setup.robot import misspelt_package
+
+    meant = misspelt_package(str(load.missing_package), own)
+    what = "SRDF" if param.endswith("_semantic") else "robot description"
+    at = Location("package", str(load.missing_package))
+    if meant is not None:
+        msg = f"loads its {what} from package '{load.missing_package}', which does not exist: roslaunch stops before move_group starts"
+        return error(
+            f"{_kind(param)}.package-missing", load.launch, param, msg, f"did you mean '{meant}'?", at=at
+        )
     msg = (
         f"loads its {'SRDF' if param.endswith('_semantic') else 'robot description'} from package "
         f"'{load.missing_package}', which no package path holds: the rules needing it are skipped"
@@ -485,7 +506,7 @@ def _launch_description(
     description is then unknown (None file), never another robot's."""
     origin = f"robot_description in {load.launch}"
     if load.missing_package is not None:
-        files.problems.append(missing_package(load, "robot_description"))
+        files.problems.append(missing_package(load, "robot_description", _own_names(files)))
         return Description(
             None, f"{origin}, from package '{load.missing_package}' not found", (), unreadable=True
         )

@@ -254,3 +254,12 @@ def description_file(ref: str, base: Path, package_paths: Iterable[str | Path] =
     usable = [p for p in package_paths if Path(p).is_dir()]
     index = find_packages(usable, near=base / "marm_setup.yaml")
     return find_package(pkg, index, path=str(base / "marm_setup.yaml"), element="robot.urdf") / rest
+
+
+def misspelt_package(name: str, known: Iterable[str]) -> str | None:
+    """The package of `known` that `name` (a package no path holds) nearly spells, if any: then
+    `name` is a typo, not a ROS package installed elsewhere."""
+    import difflib
+
+    close = difflib.get_close_matches(name, sorted(set(known) - {name}), n=1, cutoff=0.8)
+    return close[0] if close else None

@@ -430,10 +430,15 @@ def _unheld_packages(pkg: MoveItPackage, ros_package_path: str) -> Callable[[str
     includes $(find gazebo_ros) while its package.xml leaves the Gazebo packages out on purpose
     (moveit/moveit moveit_setup_assistant/templates/moveit_config_pkg_template/launch/gazebo.launch
     l.11 and package.xml.template l.32-35 at noetic-devel 5555c3d)."""
+    from marm_setup.robot import misspelt_package
+
     names = {f.location.name for f in pkg.problems if f.rule.endswith(".package-missing")}
     sourced = any(ros_package_path.split(os.pathsep))
+    at_hand = _packages_at_hand(pkg)
 
     def why(name: str) -> str | None:
+        if misspelt_package(name, at_hand) is not None:
+            return None
         if name in names:
             return ""
         if not sourced:
@@ -444,6 +449,15 @@ def _unheld_packages(pkg: MoveItPackage, ros_package_path: str) -> Callable[[str
         return None
 
     return why
+
+
+def _packages_at_hand(pkg: MoveItPackage) -> list[str]:
+    """The package's own name and the packages its package.xml depends on: a name roslaunch
+    lacks that nearly spells one of them is a misspelling (an error), whatever ROS is sourced.
+    (Not every package the paths hold: a vendor repository's ur5_description would make its
+    ur5e_description, installed elsewhere, look like a typo.)"""
+    xml = pkg.package_xml
+    return sorted(n for n in {xml.name, *xml.dependencies} if n) if xml is not None else []
 
 
 def _dump_problem(done: subprocess.CompletedProcess) -> str:

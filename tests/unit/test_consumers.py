@@ -268,3 +268,27 @@ def test_a_ros_package_roslaunch_lacks_is_a_warning_while_no_ros_is_sourced(tmp_
     (tmp_path / "ros").mkdir()
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path / "ros"))
     assert [(file, severity) for file, severity, _ in found()] == [("launch/gazebo.launch", "error")]
+
+
+def test_a_misspelt_package_roslaunch_lacks_is_an_error_even_with_no_ros_sourced(tmp_path, monkeypatch):
+    """A name a letter away from the package's own (or one its package paths hold) is a typo,
+    not a ROS package this machine may lack."""
+    import shutil
+
+    from marm_setup.validate.runner import validate
+    from tests.validate_helpers import generate_marm
+
+    roslaunch = shutil.which("roslaunch")
+    if roslaunch is None:
+        pytest.skip("roslaunch not on PATH")
+    pkg = generate_marm(tmp_path, "ros1")
+    launch = pkg / "launch" / "planning_context.launch"
+    launch.write_text(
+        launch.read_text().replace("$(find marm_moveit_config)", "$(find marm_moveit_confg)", 1)
+    )
+    monkeypatch.setenv("MARM_SETUP_ROSLAUNCH", roslaunch)
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    checked = validate(pkg, plan=False)
+    found = {(f.file, str(f.severity)) for f in checked.findings if f.rule == "ros1.launch"}
+    assert ("launch/planning_context.launch", "error") in found
+    assert all(severity == "error" for _, severity in found)

@@ -729,6 +729,18 @@ OMPL_CASES = [
 LAUNCH_CASES = [
     Case("launch-malformed", "ros1", text("launch/demo.launch", "</launch>", "</lunch>"), "launch.malformed"),
     Case(
+        "launch-own-package-misspelt",
+        "ros1",
+        text(
+            "launch/planning_context.launch",
+            "$(find moveit_resources_panda_moveit_config)/config/panda.srdf",
+            "$(find moveit_resources_panda_moveit_confg)/config/panda.srdf",
+        ),
+        "srdf.package-missing",
+        match="which does not exist",
+        also=("ros1.launch",),
+    ),
+    Case(
         "launch-missing-file",
         "ros1",
         text("launch/planning_context.launch", "config/panda.srdf", "config/panda2.srdf"),
