@@ -403,6 +403,7 @@ def _needs_args(root: etree._Element) -> bool:
 
 MISSING_RESOURCE = re.compile(
     r"(?:ResourceNotFound|[Rr]esource not found|Unable to load file [^:]+): ([A-Za-z][\w]*)$"
+    r"|\$\(find ([A-Za-z]\w*)\): unknown package '\2'"  # a robot_description command's xacro
 )
 
 
@@ -412,10 +413,11 @@ def _launch_failure(rel: str, problem: str, unheld: Callable[[str], str | None])
     package)."""
     msg = f"roslaunch fails: {problem}"[:MESSAGE_CHARS]
     missing = MISSING_RESOURCE.search(problem)
-    why = None if missing is None else unheld(missing.group(1))
-    if missing is None or why is None:
+    name = None if missing is None else missing.group(1) or missing.group(2)
+    why = None if name is None else unheld(name)
+    if name is None or why is None:
         return error("ros1.launch", rel, "launch", msg)
-    hint = f"pass --package-path DIR (the folder holding {missing.group(1)}){why}"
+    hint = f"pass --package-path DIR (the folder holding {name}){why}"
     return warning("ros1.launch", rel, "launch", msg, hint)
 
 

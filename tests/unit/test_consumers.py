@@ -292,3 +292,18 @@ def test_a_misspelt_package_roslaunch_lacks_is_an_error_even_with_no_ros_sourced
     found = {(f.file, str(f.severity)) for f in checked.findings if f.rule == "ros1.launch"}
     assert ("launch/planning_context.launch", "error") in found
     assert all(severity == "error" for _, severity in found)
+
+
+def test_a_robot_description_xacro_lacking_a_package_reads_as_that_package():
+    """roslaunch runs the description's xacro command; its `$(find pkg): unknown package` is the
+    same want of a package as roslaunch's own ResourceNotFound."""
+    from marm_setup.validate.consumers import _launch_failure
+
+    problem = (
+        "xacro: /ws/x_support/urdf/x.xacro: $(find x_resources): unknown package 'x_resources' "
+        "(no package.xml or folder of that name; known packages: x_support)"
+    )
+    unheld = lambda name: "" if name == "x_resources" else None  # noqa: E731
+    found = _launch_failure("launch/demo.launch", problem, unheld)
+    assert (found.severity, "the folder holding x_resources" in found.hint) == ("warning", True)
+    assert _launch_failure("launch/demo.launch", problem, lambda name: None).severity == "error"
