@@ -257,9 +257,21 @@ def description_file(ref: str, base: Path, package_paths: Iterable[str | Path] =
 
 
 def misspelt_package(name: str, known: Iterable[str]) -> str | None:
-    """The package of `known` that `name` (a package no path holds) nearly spells, if any: then
-    `name` is a typo, not a ROS package installed elsewhere."""
-    import difflib
+    """The package of `known` that `name` (a package no path holds) misspells, if any: one or two
+    letters apart (inserted, dropped or changed). Then `name` is a typo, not a ROS package
+    installed elsewhere; a name `known` holds is no typo."""
+    names = set(known)
+    if name in names:
+        return None
+    close = sorted((_edits(name, k), k) for k in names if abs(len(k) - len(name)) <= 2)
+    return close[0][1] if close and close[0][0] <= min(2, len(name) // 4) else None
 
-    close = difflib.get_close_matches(name, sorted(set(known) - {name}), n=1, cutoff=0.8)
-    return close[0] if close else None
+
+def _edits(a: str, b: str) -> int:
+    """Levenshtein distance (names are short)."""
+    row = list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        prev, row[0] = row[0], i
+        for j, cb in enumerate(b, 1):
+            prev, row[j] = row[j], min(row[j] + 1, row[j - 1] + 1, prev + (ca != cb))
+    return row[-1]

@@ -38,7 +38,7 @@ def _package(tmp_path):
 def test_validate_runs_the_package_xacro_by_default(tmp_path):
     pkg = _package(tmp_path)
     result = runner.invoke(app, ["validate", str(pkg), "--no-plan"])
-    assert result.exit_code == 1 and "no_such_package_ran" in result.stdout
+    assert "no_such_package_ran" in result.stdout  # a package no path holds: urdf.package-missing
 
 
 def test_validate_untrusted_runs_no_package_code_and_says_what_it_skipped(tmp_path):

@@ -307,3 +307,18 @@ def test_a_robot_description_xacro_lacking_a_package_reads_as_that_package():
     found = _launch_failure("launch/demo.launch", problem, unheld)
     assert (found.severity, "the folder holding x_resources" in found.hint) == ("warning", True)
     assert _launch_failure("launch/demo.launch", problem, lambda name: None).severity == "error"
+
+
+def test_a_misspelling_is_one_or_two_letters_from_a_name_the_package_declares():
+    from marm_setup.robot import misspelt_package
+
+    own = ["marm_moveit_config", "marm_description"]
+    assert misspelt_package("marm_moveit_confg", own) == "marm_moveit_config"
+    assert misspelt_package("marm_descriptoin", own) == "marm_description"
+    assert misspelt_package("marm_description", own) is None  # declared: no typo
+    assert misspelt_package("gazebo_ros", own) is None  # another package, installed elsewhere
+    # a long shared prefix is not a typo (difflib's ratio would say 0.8)
+    assert (
+        misspelt_package("moveit_resources_panda_description", ["moveit_resources_panda_moveit_config"])
+        is None
+    )
