@@ -36,6 +36,7 @@ import numpy as np
 from marm_setup.robot import Joint, RobotModel, origin_matrix
 
 CERT_MARGIN = 1e-5  # [m] kept below every certified distance (coal's GJK tolerance is 1e-6)
+RELATIVE_MARGIN = 1e-5  # coal's GJK stops within a relative 1e-6 of the distance (VDB criterion)
 MOVING = ("revolute", "continuous", "prismatic")
 
 

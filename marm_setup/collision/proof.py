@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from marm_setup.collision.certificates import CERT_MARGIN
+from marm_setup.collision.certificates import CERT_MARGIN, RELATIVE_MARGIN
 from marm_setup.collision.meter import Meter
 from marm_setup.collision.pair_chain import PairChain
 
@@ -41,7 +41,6 @@ BATCH = 256  # boxes split per round (their children are evaluated in one numpy 
 MIN_CHILDREN = 128  # costs about 1 ms however small, a box in it about 15 us); a round cuts its
 MAX_LEVELS = 5  # few boxes in more parts, up to 2**MAX_LEVELS each (a proof's boxes are the same
 SLACK = 64  # in any order); SLACK: open boxes beyond what the budget left can split
-RELATIVE_MARGIN = 1e-5  # coal's GJK stops within a relative 1e-6 of the distance (VDB criterion)
 WITNESS_DECIMALS = 6  # a witness is rounded to 1e-6 [rad, m], then checked at those values
 TINY = 1e-9  # [m] a box whose whole displacement bound is below this is not split further
 

@@ -38,8 +38,7 @@ from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from marm_setup.collision.certificates import CERT_MARGIN
-from marm_setup.collision.proof import RELATIVE_MARGIN
+from marm_setup.collision.certificates import CERT_MARGIN, RELATIVE_MARGIN
 
 if TYPE_CHECKING:
     from marm_setup.collision.chain_kinematics import Frames
