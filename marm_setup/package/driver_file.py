@@ -4,9 +4,14 @@ driver's `arbotix.yaml` and ros2_control's `initial_positions.yaml`."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
+from marm_setup.moveit_params import flatten
 from marm_setup.package.where import Located, Param, Where, freeze
+
+# (dotted name, value as YAML gave it) of every parameter of one node
+Settings = tuple[tuple[str, Any], ...]
 
 OWN_KEYS = ("type", "joints", "joint")
 
@@ -21,6 +26,7 @@ class DriverController:
     joints: tuple[str, ...] | None
     where: Where
     parameters: tuple[str, ...] = ()
+    settings: Settings = field(default=(), compare=False)  # ROS 2: its ros__parameters, flattened
 
     @property
     def element(self) -> str:
@@ -32,6 +38,7 @@ class DriverFile:
     where: Where
     controllers: tuple[DriverController, ...]
     well_formed: bool = True  # the controllers' mapping is one (ROS 2: controller_manager.ros__parameters)
+    manager_settings: Settings = field(default=(), compare=False)  # ROS 2: controller_manager's own
 
     def controller(self, name: str) -> DriverController | None:
         return next((c for c in self.controllers if c.name == name), None)
@@ -45,10 +52,13 @@ def read_ros2_controllers(doc: Located) -> DriverFile:
     for name, entry in manager.items():
         if entry.is_mapping and "type" in entry.data:
             params = doc.get(name).get("ros__parameters")
+            joints, others = _joints(params), _others(params)
             out.append(
-                DriverController(name, str(entry.data["type"]), _joints(params), entry.where, _others(params))
+                DriverController(
+                    name, str(entry.data["type"]), joints, entry.where, others, _settings(params)
+                )
             )
-    return DriverFile(doc.where, tuple(out), manager.is_mapping)
+    return DriverFile(doc.where, tuple(out), manager.is_mapping, _settings(manager))
 
 
 def read_ros_controllers(doc: Located) -> DriverFile:
@@ -68,6 +78,10 @@ def _joints(params: Located) -> tuple[str, ...] | None:
     if data.get("joint"):
         return (str(data["joint"]),)
     return None
+
+
+def _settings(params: Located) -> Settings:
+    return tuple(flatten(params.data)) if isinstance(params.data, dict) else ()
 
 
 def _others(params: Located) -> tuple[str, ...]:

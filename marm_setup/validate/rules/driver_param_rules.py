@@ -14,8 +14,7 @@ Controllers of other types, and names a file declares nowhere, are left alone (n
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error
 from marm_setup.moveit_params import (
@@ -28,7 +27,7 @@ from marm_setup.moveit_params import (
 
 if TYPE_CHECKING:
     from marm_setup.moveit_params import ParamRow
-    from marm_setup.package import MoveItPackage
+    from marm_setup.package import DriverFile, MoveItPackage, Settings
 
 PARAMS = "ros__parameters"
 
@@ -39,61 +38,38 @@ def check_driver_parameters(pkg: MoveItPackage, distro: str | None) -> list[Find
     driver = pkg.ros2_controllers
     if driver is None:
         return []
-    data = _load(pkg, driver.where.file)
-    if not isinstance(data, dict):
-        return []
     family = family_of(distro)
     if family in ("humble", "jazzy"):
-        return _check_file(data, driver.where.file, family)
-    found = [_check_file(data, driver.where.file, f) for f in ("jazzy", "humble")]
+        return _check_file(driver, family)
+    found = [_check_file(driver, f) for f in ("jazzy", "humble")]
     agreed = {(f.rule, f.element) for f in found[1]}
     return [f for f in found[0] if (f.rule, f.element) in agreed]
 
 
-def _load(pkg: MoveItPackage, file: str) -> Any:
-    from marm_setup.bounded_read import YAML_BYTES, read_bytes
-    from marm_setup.safe_yaml import load_yaml
-
-    try:
-        return load_yaml(read_bytes(pkg.path(file), YAML_BYTES).decode("utf-8"))
-    except Exception:  # unreadable: the package reader's yaml.parse finding says so
-        return None
-
-
-def _check_file(data: dict, file: str, family: str) -> list[Finding]:
-    rows = driver_rows(family)
-    out: list[Finding] = []
-    manager = _section(data, CONTROLLER_MANAGER)
-    out += _check_node(
-        manager,
-        rows.get(CONTROLLER_MANAGER, ()),
-        file,
-        CONTROLLER_MANAGER,
-        "ros2_control_node stops at start-up",
+def _check_file(driver: DriverFile, family: str) -> list[Finding]:
+    rows, file = driver_rows(family), driver.where.file
+    stops = "ros2_control_node stops at start-up"
+    out = _check_node(
+        driver.manager_settings, rows.get(CONTROLLER_MANAGER, ()), file, CONTROLLER_MANAGER, stops
     )
-    for name, entry in sorted(manager.items()):
-        if not (isinstance(entry, dict) and isinstance(entry.get("type"), str)):
-            continue
-        does = f"controller '{name}' does not load (its parameters are refused): MoveIt cannot execute on it"
-        out += _check_node(_section(data, name), rows.get(entry["type"], ()), file, name, does)
+    for c in sorted(driver.controllers, key=lambda c: c.name):
+        does = (
+            f"controller '{c.name}' does not load (its parameters are refused): MoveIt cannot execute on it"
+        )
+        out += _check_node(c.settings, rows.get(c.type, ()), file, c.name, does)
     return out
 
 
-def _section(data: dict, node: str) -> dict:
-    body = data.get(node)
-    params = body.get(PARAMS) if isinstance(body, dict) else None
-    return params if isinstance(params, dict) else {}
-
-
-def _check_node(params: dict, rows: tuple[ParamRow, ...], file: str, node: str, does: str) -> list[Finding]:
+def _check_node(
+    settings: Settings, rows: tuple[ParamRow, ...], file: str, node: str, does: str
+) -> list[Finding]:
     out = []
-    for name, value in _leaves(params, ""):
+    for name, value in settings:
         row = next((r for r in rows if r.pattern.fullmatch(name)), None)
         if row is None:
             continue
         element = f"{node}.{PARAMS}.{name}"
-        problem = type_problem(row, value)
-        if problem is not None:
+        if (problem := type_problem(row, value)) is not None:
             out.append(
                 error("controller.param-type", file, element, f"{name}: {problem}: {does}", row.source)
             )
@@ -102,13 +78,3 @@ def _check_node(params: dict, rows: tuple[ParamRow, ...], file: str, node: str, 
                 error("controller.param-bounds", file, element, f"{name}: {bound}: {does}", row.source)
             )
     return out
-
-
-def _leaves(data: dict, prefix: str) -> Iterator[tuple[str, Any]]:
-    """(dotted name, value) of each leaf; a non-empty mapping is a namespace, lists are values."""
-    for key, value in data.items():
-        name = f"{prefix}{key}"
-        if isinstance(value, dict) and value:
-            yield from _leaves(value, f"{name}.")
-        else:
-            yield name, value
