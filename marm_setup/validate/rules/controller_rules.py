@@ -3,8 +3,6 @@ controller selection), and MoveIt 1's fake controllers. The driver side is `driv
 
 from __future__ import annotations
 
-import difflib
-import re
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
@@ -153,30 +151,22 @@ def check_ros1_list_loaded(pkg: MoveItPackage) -> list[Finding]:
 
 def check_ros1_manager_plugins(pkg: MoveItPackage) -> list[Finding]:
     """MoveIt 1: a `moveit_controller_manager` class (set on a branch the launch defaults take)
-    that no MoveIt package nor a known third-party one exports. pluginlib throws, and the
-    trajectory execution manager logs "Exception while loading controller manager" and executes
-    nothing (trajectory_execution_manager.cpp noetic l.160-169 at fdb79ac; the classes: the
-    noetic table's pluginlib files). An error for a class of a known package or a near miss of a
-    known class (a typo); a warning for another package's (it may export it once built)."""
-    known = load_table("noetic").classes("controller_manager")
-    owners = {_plugin_owner(k) for k in known}
+    that no MoveIt package nor a known third-party one exports, as declared_param_rules judges a
+    ROS 2 plugin class (params.plugin). pluginlib throws, and the trajectory execution manager
+    logs "Exception while loading controller manager" and executes nothing
+    (trajectory_execution_manager.cpp noetic l.160-169 at fdb79ac)."""
+    from marm_setup.package import Received
+    from marm_setup.validate.rules.declared_param_rules import check_plugin_param, package_finder
+
+    table, built = load_table("noetic"), package_finder(pkg)
     out: list[Finding] = []
     for launch, value in dict.fromkeys((p.launch, p.value.strip()) for p in pkg.controller_managers):
-        if not value or "$(" in value or value in known:
-            continue
-        close = difflib.get_close_matches(value, known, n=1, cutoff=0.8)
-        hint = f"did you mean {close[0]}?" if close else "known: " + ", ".join(known)
-        if close or _plugin_owner(value) in owners:
-            msg = f"no controller manager '{value}' in MoveIt: pluginlib cannot load it, move_group executes nothing"
-            out.append(error("params.plugin", launch, "moveit_controller_manager", msg, hint))
-        else:
-            msg = f"controller manager '{value}' is not MoveIt's: its package must export it (pluginlib)"
-            out.append(warning("params.plugin", launch, "moveit_controller_manager", msg, hint))
+        if value and "$(" not in value:
+            param = Received(
+                "move_group", "moveit_controller_manager", value, launch, "moveit_controller_manager"
+            )
+            out += check_plugin_param(param, table, built)
     return out
-
-
-def _plugin_owner(name: str) -> str:
-    return re.split(r"/|::", name, maxsplit=1)[0]
 
 
 def _list_at(ns: str) -> str:

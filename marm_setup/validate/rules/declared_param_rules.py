@@ -72,7 +72,7 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
     """The findings on every parameter move_group and servo receive from a ROS 2 package; with
     no known distro, the family its format shows, else only what Jazzy's and Humble's agree on."""
     received = [r for r in received_parameters(pkg) if not _unread_group(r, pkg)]
-    built = _package_finder(pkg)
+    built = package_finder(pkg)
     family = family_of(distro) or inferred_family(received)
     listed = check_default_pipeline(received) + check_listed_pipelines(received, family, pkg.files)
     if family is not None:
@@ -161,7 +161,7 @@ def inferred_family(received: list[Received]) -> str | None:
     return "humble" if "planning_plugin" in tails else None
 
 
-def _package_finder(pkg: MoveItPackage) -> Callable[[str], bool]:
+def package_finder(pkg: MoveItPackage) -> Callable[[str], bool]:
     """Whether a ROS package of that name is on the package paths (it may export a plugin)."""
     from marm_setup.robot import find_packages
 
@@ -173,7 +173,7 @@ def _check_all(received: list[Received], table: Table, built: Callable[[str], bo
     instances = _instances(received)
     out: list[Finding] = []
     for r in received:
-        out += _check_plugins(r, table, built)
+        out += check_plugin_param(r, table, built)
         if not _elsewhere(r, instances):
             out += _check_one(r, table, instances)
     return out
@@ -317,7 +317,7 @@ def _short(names: list[str]) -> str:
     return ", ".join(tails[:12]) + (", ..." if len(tails) > 12 else "")
 
 
-def _check_plugins(r: Received, table: Table, built: Callable[[str], bool]) -> list[Finding]:
+def check_plugin_param(r: Received, table: Table, built: Callable[[str], bool]) -> list[Finding]:
     """Plugin class names pluginlib cannot load in this family: an error, but a warning for a
     class of another package the package paths hold (pluginlib loads it once that is built)."""
     kind = next((k for pattern, k in PLUGIN_KEYS if pattern.fullmatch(r.name)), None)

@@ -21,7 +21,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
-from marm_setup.moveit_params import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, KINEMATICS_PLUGINS
+from marm_setup.moveit_params import CHAIN_ONLY_PLUGINS, IKFAST_PLUGIN_SUFFIX, load_table
 from marm_setup.package import GroupKinematics, KinematicsFile
 from marm_setup.robot import RobotModel
 from marm_setup.setup import groups_by_name, is_chain
@@ -99,7 +99,7 @@ def _check_entry(
     solver = entry.solver
     if solver is None:
         out.append(error("kinematics.missing-solver", file, where, "no kinematics_solver"))
-    elif solver_names and solver not in KINEMATICS_PLUGINS and not solver.endswith(IKFAST_PLUGIN_SUFFIX):
+    elif solver_names and solver not in _known_solvers() and not solver.endswith(IKFAST_PLUGIN_SUFFIX):
         out.append(_unknown_solver(file, f"{where}.kinematics_solver", solver))
     elif (
         robot is not None
@@ -128,7 +128,7 @@ def _unknown_solver(file: str, element: str, solver: str) -> Finding:
         return warning(
             "kinematics.unknown-solver", file, element, f"unknown solver plugin '{solver}'", _solver_hint()
         )
-    close = difflib.get_close_matches(solver, KINEMATICS_PLUGINS, n=1, cutoff=0.6)
+    close = difflib.get_close_matches(solver, _known_solvers(), n=1, cutoff=0.6)
     msg = f"package '{owner}' exports no solver '{solver}': pluginlib cannot load it, the group has no IK"
     return error(
         "kinematics.unknown-solver",
@@ -147,8 +147,14 @@ def _declared(solver: str | None, depends: tuple[str, ...]) -> bool:
 
 
 def _known_owners() -> set[str]:
-    return {known.split("/", 1)[0] for known in KINEMATICS_PLUGINS}
+    return {known.split("/", 1)[0] for known in _known_solvers()}
 
 
 def _solver_hint() -> str:
-    return "known: " + ", ".join(s.split("/")[0] for s in KINEMATICS_PLUGINS[:5]) + ", ikfast"
+    return "known: " + ", ".join(s.split("/")[0] for s in _known_solvers()[:5]) + ", ikfast"
+
+
+def _known_solvers() -> tuple[str, ...]:
+    """MoveIt 1's solver classes (the noetic table: its pluginlib files) and the known
+    third-party ones (solver_names is the ROS 1 path; ROS 2's are declared_param_rules')."""
+    return load_table("noetic").classes("kinematics")
