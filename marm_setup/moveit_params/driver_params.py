@@ -29,27 +29,17 @@ GRIPPER = "gripper_controllers/src/gripper_action_controller_parameters.yaml"
 PARALLEL = "parallel_gripper_controller/src/gripper_action_controller_parameters.yaml"
 FORWARD = "forward_command_controller/src/forward_command_controller_parameters.yaml"
 JSB = "joint_state_broadcaster/src/joint_state_broadcaster_parameters.yaml"
-# (controller types, gpl file of ros2_controllers) per family; the same file serves each type
+# (controller types, gpl file of ros2_controllers) per family; the same file serves each type.
+# Jazzy adds parallel_gripper_controller (its GripperActionController).
+_SHARED = (
+    (("joint_trajectory_controller/JointTrajectoryController",), JTC),
+    (("position_controllers/GripperActionController", "effort_controllers/GripperActionController"), GRIPPER),
+    (("forward_command_controller/ForwardCommandController",), FORWARD),
+    (("joint_state_broadcaster/JointStateBroadcaster",), JSB),
+)
 CONTROLLER_FILES = {
-    "humble": (
-        (("joint_trajectory_controller/JointTrajectoryController",), JTC),
-        (
-            ("position_controllers/GripperActionController", "effort_controllers/GripperActionController"),
-            GRIPPER,
-        ),
-        (("forward_command_controller/ForwardCommandController",), FORWARD),
-        (("joint_state_broadcaster/JointStateBroadcaster",), JSB),
-    ),
-    "jazzy": (
-        (("joint_trajectory_controller/JointTrajectoryController",), JTC),
-        (
-            ("position_controllers/GripperActionController", "effort_controllers/GripperActionController"),
-            GRIPPER,
-        ),
-        (("parallel_gripper_action_controller/GripperActionController",), PARALLEL),
-        (("forward_command_controller/ForwardCommandController",), FORWARD),
-        (("joint_state_broadcaster/JointStateBroadcaster",), JSB),
-    ),
+    "humble": _SHARED,
+    "jazzy": (*_SHARED, (("parallel_gripper_action_controller/GripperActionController",), PARALLEL)),
 }
 MANAGER_FILE = "controller_manager/src/controller_manager_parameters.yaml"  # jazzy on
 HUMBLE_MANAGER = "controller_manager/src/controller_manager.cpp"

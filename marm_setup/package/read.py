@@ -203,9 +203,8 @@ def _name(root: Path) -> str:
 def _own_names(files: PackageFiles) -> tuple[str, ...]:
     """The package's own name and the packages its package.xml depends on."""
     xml = _package_xml(files)
-    if xml is None:
-        return (files.root.name,)
-    return (xml.name or files.root.name, *xml.dependencies)
+    names = xml.names if xml is not None else ()
+    return names if xml is not None and xml.name else (files.root.name, *names)
 
 
 def _package_xml(files: PackageFiles) -> PackageXml | None:

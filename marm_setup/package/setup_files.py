@@ -219,6 +219,11 @@ class PackageXml:
     dependencies: tuple[str, ...] = ()
 
     @property
+    def names(self) -> tuple[str, ...]:
+        """The package's own name and those it depends on (what a launch file may $(find))."""
+        return tuple(n for n in (self.name, *self.dependencies) if n)
+
+    @property
     def build_type(self) -> str | None:
         """ament (ROS 2) or catkin (ROS 1), from the text as discovery always read it."""
         if "ament_cmake" in self.text or "ament_python" in self.text:

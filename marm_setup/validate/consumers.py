@@ -458,8 +458,7 @@ def _packages_at_hand(pkg: MoveItPackage) -> list[str]:
     lacks that nearly spells one of them is a misspelling (an error), whatever ROS is sourced.
     (Not every package the paths hold: a vendor repository's ur5_description would make its
     ur5e_description, installed elsewhere, look like a typo.)"""
-    xml = pkg.package_xml
-    return sorted(n for n in {xml.name, *xml.dependencies} if n) if xml is not None else []
+    return sorted(pkg.package_xml.names) if pkg.package_xml is not None else []
 
 
 def _dump_problem(done: subprocess.CompletedProcess) -> str:
