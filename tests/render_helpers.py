@@ -79,3 +79,20 @@ def assert_yaml_errors(model: SetupModel, cases: list[tuple[dict, str, str]]) ->
         with pytest.raises(InputError) as err:
             setup_from_dict({**data, **extra}, "spec.yaml")
         assert err.value.element == element and message in err.value.message, (element, err.value)
+
+
+def written_ros2_marms(tmp_path_factory) -> dict[str, Path]:
+    """A generated ROS 2 marm package per distro (humble, jazzy), matrix of 50 trials, written
+    under `tmp_path_factory` (a module fixture's: made once, copied by the tests that edit)."""
+    from marm_setup.flows import with_collision_matrix
+    from marm_setup.render.package import render_package
+    from marm_setup.render.writer import apply_writes, plan_writes
+
+    out = {}
+    for distro in ("humble", "jazzy"):
+        pkg = tmp_path_factory.mktemp(distro) / "marm_moveit_config"
+        model, robot = inferred_marm("ros2", pkg, distro)
+        model = with_collision_matrix(model, robot, trials=50, seed=0)
+        apply_writes(plan_writes(render_package(model, robot), pkg), pkg)
+        out[distro] = pkg
+    return out

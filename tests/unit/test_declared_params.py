@@ -11,14 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from marm_setup.flows import with_collision_matrix
 from marm_setup.moveit_params import FAMILIES, load_table
 from marm_setup.package import read_package
-from marm_setup.render.package import render_package
-from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
 from tests.conftest import FIXTURES
-from tests.render_helpers import inferred_marm
+from tests.render_helpers import written_ros2_marms
 from tests.validate_helpers import validate_package
 
 MOVEIT_YAML = "config/moveit.yaml"
@@ -30,14 +27,7 @@ CITATION = re.compile(r"^[\w./-]+\.(yaml|cpp|hpp|h|xml|cfg):\d+$")
 @pytest.fixture(scope="module")
 def fresh(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """A generated ROS 2 marm package per distro, made once."""
-    out = {}
-    for distro in ("humble", "jazzy"):
-        pkg = tmp_path_factory.mktemp(distro) / "marm_moveit_config"
-        model, robot = inferred_marm("ros2", pkg, distro)
-        model = with_collision_matrix(model, robot, trials=50, seed=0)
-        apply_writes(plan_writes(render_package(model, robot), pkg), pkg)
-        out[distro] = pkg
-    return out
+    return written_ros2_marms(tmp_path_factory)
 
 
 def edited(fresh: dict[str, Path], tmp_path: Path, distro: str, rel: str, old: str, new: str) -> Path:

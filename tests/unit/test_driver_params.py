@@ -10,13 +10,10 @@ from pathlib import Path
 
 import pytest
 
-from marm_setup.flows import with_collision_matrix
 from marm_setup.moveit_params import CONTROLLER_MANAGER, driver_rows
 from marm_setup.package import read_package
-from marm_setup.render.package import render_package
-from marm_setup.render.writer import apply_writes, plan_writes
 from marm_setup.validate.rules.driver_param_rules import check_driver_parameters
-from tests.render_helpers import inferred_marm
+from tests.render_helpers import written_ros2_marms
 
 CONTROLLERS = "config/ros2_controllers.yaml"
 JTC = "joint_trajectory_controller/JointTrajectoryController"
@@ -25,14 +22,7 @@ JTC = "joint_trajectory_controller/JointTrajectoryController"
 @pytest.fixture(scope="module")
 def fresh(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """A generated ROS 2 marm package per distro, made once."""
-    out = {}
-    for distro in ("humble", "jazzy"):
-        pkg = tmp_path_factory.mktemp(distro) / "marm_moveit_config"
-        model, robot = inferred_marm("ros2", pkg, distro)
-        model = with_collision_matrix(model, robot, trials=50, seed=0)
-        apply_writes(plan_writes(render_package(model, robot), pkg), pkg)
-        out[distro] = pkg
-    return out
+    return written_ros2_marms(tmp_path_factory)
 
 
 def edited(fresh: dict[str, Path], tmp_path: Path, distro: str, old: str, new: str) -> Path:
