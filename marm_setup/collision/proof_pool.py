@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 from marm_setup.collision.pair_chain import pair_chains
 from marm_setup.collision.proof import PairProof, prove_pair
-from marm_setup.collision.workers import WorkerFailed
+from marm_setup.collision.workers import receive
 
 if TYPE_CHECKING:
     from multiprocessing.connection import Connection
@@ -73,14 +73,7 @@ def _hand_out(conn: Connection, pair: Pair | None, busy: dict) -> None:
 
 def _answer(conn: Connection, proc: Any) -> tuple[Pair, PairProof]:
     """A worker's answer: its pair and proof; WorkerFailed when it raised or died."""
-    try:
-        kind, payload = conn.recv()
-    except EOFError:
-        proc.join(timeout=1.0)
-        raise WorkerFailed(f"proof worker {proc.pid} died (exit {proc.exitcode})") from None
-    if kind == "error":
-        raise WorkerFailed(payload[0], detail=f"in the proof worker:\n{payload[1]}")
-    return payload
+    return receive(conn, proc, "proof worker")
 
 
 def _serve(spec: tuple, forked: bool, conn: Connection) -> None:

@@ -111,17 +111,20 @@ class Workers:
 
     def _receive(self) -> list:
         """The next message of every worker, in shard order."""
-        out = []
-        for proc, conn in self._procs:
-            try:
-                kind, payload = conn.recv()
-            except EOFError:
-                proc.join(timeout=1.0)
-                raise WorkerFailed(f"collision worker {proc.pid} died (exit {proc.exitcode})") from None
-            if kind == "error":
-                raise WorkerFailed(payload[0], detail=f"in the collision worker:\n{payload[1]}")
-            out.append(payload)
-        return out
+        return [receive(conn, proc, "collision worker") for proc, conn in self._procs]
+
+
+def receive(conn: Any, proc: Any, what: str) -> Any:
+    """The payload of a worker's next ("ok" | "error", payload) message; WorkerFailed when the
+    worker (`what`, e.g. "proof worker") sent its exception or died without an answer."""
+    try:
+        kind, payload = conn.recv()
+    except EOFError:
+        proc.join(timeout=1.0)
+        raise WorkerFailed(f"{what} {proc.pid} died (exit {proc.exitcode})") from None
+    if kind == "error":
+        raise WorkerFailed(payload[0], detail=f"in the {what}:\n{payload[1]}")
+    return payload
 
 
 class _ShardSpec:
