@@ -447,7 +447,7 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
         ros1 = pkg.target == Target.ROS1  # a ROS 2 solver's class is declared_param_rules'
         depends = pkg.package_xml.dependencies if pkg.package_xml is not None else ()
         out += guarded(
-            "kinematics", check_kinematics, pkg.kinematics, srdf, robot, solver_names=ros1, depends=depends
+            "kinematics", check_kinematics, pkg.kinematics, srdf, robot, moveit1=ros1, depends=depends
         )
     if pkg.joint_limits is not None:
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)

@@ -37,14 +37,14 @@ def check_kinematics(
     srdf: Srdf,
     robot: RobotModel | None,
     *,
-    solver_names: bool = True,
+    moveit1: bool = True,
     depends: tuple[str, ...] = (),
 ) -> list[Finding]:
     """Every rule on a kinematics file (`{group: {kinematics_solver: ..., ...}}`); without the
     robot (a description only the run time gives) whether a group is a chain is not checked.
-    `solver_names`: whether the solver's class name is this rule's to check (a ROS 2 package's
-    is declared_param_rules', against MoveIt's plugin description files); `depends`: the
-    packages package.xml depends on."""
+    `moveit1`: a MoveIt 1 package, whose solver class names (and ignored attempts) are this
+    rule's to check (a ROS 2 package's classes are declared_param_rules', against MoveIt 2's
+    plugin description files); `depends`: the packages package.xml depends on."""
     file = kinematics.where.file
     if kinematics.groups is None:
         return [error("kinematics.malformed", file, kinematics.where.element, "expected a mapping of groups")]
@@ -61,9 +61,9 @@ def check_kinematics(
         elif entry.params is None:
             out.append(error("kinematics.malformed", file, where, "expected a mapping"))
         else:
-            names = solver_names and not _declared(entry.solver, depends)
+            names = moveit1 and not _declared(entry.solver, depends)
             out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, names)
-            out += _attempts(file, entry) if solver_names else []  # MoveIt 1 (solver_names: ROS 1)
+            out += _attempts(file, entry) if moveit1 else []
     return out
 
 
@@ -156,5 +156,5 @@ def _solver_hint() -> str:
 
 def _known_solvers() -> tuple[str, ...]:
     """MoveIt 1's solver classes (the noetic table: its pluginlib files) and the known
-    third-party ones (solver_names is the ROS 1 path; ROS 2's are declared_param_rules')."""
+    third-party ones (a ROS 2 package's are declared_param_rules')."""
     return load_table("noetic").classes("kinematics")
