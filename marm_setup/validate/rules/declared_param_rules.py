@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Mapping
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, error, warning
@@ -74,7 +74,8 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
     received = [r for r in received_parameters(pkg) if not _unread_group(r, pkg)]
     built = package_finder(pkg)
     family = family_of(distro) or inferred_family(received)
-    listed = check_default_pipeline(received) + check_listed_pipelines(received, family, pkg.files)
+    given = {r.name: r for r in received if r.node == "move_group"}
+    listed = check_default_pipeline(given) + check_listed_pipelines(given, family, pkg.files)
     if family is not None:
         return _check_all(received, load_table(family), built) + listed
     found = [_check_all(received, load_table(f), built) for f in ("jazzy", "humble")]
@@ -83,15 +84,15 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
 
 
 def check_listed_pipelines(
-    received: list[Received], family: str | None, files: Collection[str]
+    given: Mapping[str, Received], family: str | None, files: Collection[str]
 ) -> list[Finding]:
-    """A pipeline of `planning_pipelines` with no parameter in its namespace (and no
-    `config/<name>_planning.yaml`, which a launch file may load in ways not modelled here).
-    Jazzy's PlanningPipeline throws "Planning plugin name is empty" from its constructor,
-    uncaught by createPlanningPipelineMap: move_group stops (planning_pipeline.cpp jazzy
-    l.136-140, planning_pipeline_interfaces.cpp jazzy l.187). Humble's guesses a plugin: the only
-    one installed, else the first with a warning (planning_pipeline.cpp humble l.117-134)."""
-    given = {r.name: r for r in received if r.node == "move_group"}
+    """A pipeline of `planning_pipelines` (in `given`, move_group's parameters by name) with no
+    parameter in its namespace (and no `config/<name>_planning.yaml`, which a launch file may
+    load in ways not modelled here). Jazzy's PlanningPipeline throws "Planning plugin name is
+    empty" from its constructor, uncaught by createPlanningPipelineMap: move_group stops
+    (planning_pipeline.cpp jazzy l.136-140, planning_pipeline_interfaces.cpp jazzy l.187).
+    Humble's guesses a plugin: the only one installed, else the first with a warning
+    (planning_pipeline.cpp humble l.117-134)."""
     listed = given.get("planning_pipelines")
     if listed is None or not isinstance(listed.value, list):
         return []
@@ -101,31 +102,27 @@ def check_listed_pipelines(
         if name in spaces or f"config/{name}_planning.yaml" in files:
             continue
         if family == "humble":
-            msg = f"pipeline '{name}' has no parameters: Humble's move_group plans with whichever planner plugin it finds first"
-            out.append(
-                warning(
-                    "pipeline.not-configured", listed.file, listed.element, msg, f"add {name}.planning_plugin"
-                )
+            does, hint, finding = (
+                "Humble's move_group plans with whichever planner plugin it finds first",
+                f"add {name}.planning_plugin",
+                warning,
             )
         else:
-            msg = f"pipeline '{name}' has no parameters: move_group stops ('Planning plugin name is empty')"
-            out.append(
-                error(
-                    "pipeline.not-configured",
-                    listed.file,
-                    listed.element,
-                    msg,
-                    f"add {name}.planning_plugins or drop '{name}'",
-                )
+            does, hint, finding = (
+                "move_group stops ('Planning plugin name is empty')",
+                f"add {name}.planning_plugins or drop '{name}'",
+                error,
             )
+        msg = f"pipeline '{name}' has no parameters: {does}"
+        out.append(finding("pipeline.not-configured", listed.file, listed.element, msg, hint))
     return out
 
 
-def check_default_pipeline(received: list[Received]) -> list[Finding]:
-    """`default_planning_pipeline` naming no pipeline of `planning_pipelines`: move_group warns
-    and plans with the first pipeline instead (move_group.cpp main, humble l.234-260, jazzy
-    l.249-275: "not configured in ~planning_pipelines", the id reset, the first one taken)."""
-    given = {r.name: r for r in received if r.node == "move_group"}
+def check_default_pipeline(given: Mapping[str, Received]) -> list[Finding]:
+    """`default_planning_pipeline` naming no pipeline of `planning_pipelines` (in `given`,
+    move_group's parameters by name): move_group warns and plans with the first pipeline instead
+    (move_group.cpp main, humble l.234-260, jazzy l.249-275: "not configured in
+    ~planning_pipelines", the id reset, the first one taken)."""
     default, listed = given.get("default_planning_pipeline"), given.get("planning_pipelines")
     if default is None or listed is None or not isinstance(listed.value, list) or not listed.value:
         return []
