@@ -22,6 +22,7 @@ a launch may load instead, e.g. with `gazebo_sim:=true`). What it records:
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
@@ -66,6 +67,7 @@ class DescriptionLoad:
     launch: str
     unread_args: tuple[str, ...] = ()  # xacro args given values only the run time has
     missing_package: str | None = None  # the `$(find pkg)` no package path holds
+    conditional: bool = False  # set only on a branch the arg defaults do not take
 
 
 @dataclass(frozen=True, slots=True)
@@ -166,7 +168,8 @@ def evaluate_ros1(
 def first_taken(found: list[tuple[DescriptionLoad, bool]]) -> DescriptionLoad | None:
     """The first load on a branch the arg defaults take, else the first at all (a launch that
     loads the description only with `load_robot_description:=true` still names MoveIt's robot)."""
-    return next((d for d, conditional in found if not conditional), next((d for d, _ in found), None))
+    taken = next((d for d, conditional in found if not conditional), None)
+    return taken or next((dataclasses.replace(d, conditional=True) for d, _ in found), None)
 
 
 def _walk_file(

@@ -375,11 +375,23 @@ def _launched_file(
         files.refused(load.file, load.launch, param)
         return None
     if not path.is_file() and load.file.startswith("../"):  # in this package: launch.missing-file
-        msg = f"loads {load.file}, which does not exist: roslaunch stops before move_group starts"
-        files.problems.append(error(f"{_kind(param)}.missing", load.launch, param, msg, "fix the path"))
+        files.problems.append(_missing_file(load, param))
     if not path.is_file():
         return None
     return load.file, load.xacro_args
+
+
+def _missing_file(load: DescriptionLoad, param: str) -> Finding:
+    """A description file of another package that does not exist: roslaunch stops before
+    move_group starts; a warning when only a branch the arg defaults do not take loads it
+    (e.g. `load_robot_description:=true`, where the robot publishes the description itself)."""
+    if load.conditional:
+        msg = (
+            f"loads {load.file}, which does not exist, on a branch only other args take: roslaunch stops then"
+        )
+        return warning(f"{_kind(param)}.missing", load.launch, param, msg, "fix the path")
+    msg = f"loads {load.file}, which does not exist: roslaunch stops before move_group starts"
+    return error(f"{_kind(param)}.missing", load.launch, param, msg, "fix the path")
 
 
 def _kind(param: str) -> str:

@@ -198,3 +198,17 @@ def test_a_ros2_xml_launch_gives_move_group_its_description(tmp_path):
         {"prefix": "right_"},
     )
     assert pkg.srdf_path == "config/vd.srdf"
+
+
+def test_a_missing_description_file_only_a_non_default_branch_loads_is_a_warning(tmp_path):
+    """sawyer_moveit_config's case: planning_context.launch loads the URDF only with
+    load_robot_description:=true, and no launch of the package sets it (the robot publishes
+    robot_description): a missing file there stops roslaunch only when a user sets it."""
+    command = "command=\"xacro '$(find vd_description)/urdf/gone.urdf.xacro'\""
+    root = vendor(tmp_path, command, TEXTFILE_SRDF)
+    (root / "launch/demo.launch").write_text(
+        '<launch>\n  <include file="$(dirname)/planning_context.launch"/>\n</launch>\n', encoding="utf-8"
+    )
+    found = [f for f in validate(root, plan=False).findings if f.rule == "urdf.missing"]
+    assert [(f.severity, f.file) for f in found] == [("warning", "launch/planning_context.launch")]
+    assert "only other args take" in found[0].message
