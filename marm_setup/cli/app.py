@@ -138,6 +138,14 @@ def _register() -> None:
 _register()
 
 
+def one_blas_thread() -> None:
+    """One OpenBLAS thread unless the user chose: our matrices are 4x4 poses and point sets of a
+    few hundred rows, too small for BLAS threads to pay, while starting one per core costs
+    about 60 ms of CPU at numpy's import (a third of `--help`'s whole run) and they compete
+    with our own worker processes (`--jobs`). Set before numpy is imported."""
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
 def main() -> None:
     """The console script. A usage error (an unknown option, a bad choice, a missing argument)
     is one `error: ... (see '... --help')` line with exit 2, like every other bad input, instead
@@ -151,6 +159,7 @@ def main() -> None:
         )
         sys.exit(2)
     tolerate_closed_stdout()
+    one_blas_thread()
     try:
         code = app(prog_name="marm-setup", standalone_mode=False)
     except typer.TyperException as exc:  # the errors of the click typer bundles: usage errors

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 
@@ -56,3 +57,24 @@ def test_version_and_no_args():
     assert runner.invoke(app, ["--version"]).stdout.strip() == f"marm-setup {__version__}"
     result = runner.invoke(app, [])
     assert "Usage" in result.output
+
+
+def test_the_console_script_runs_numpy_on_one_blas_thread_unless_the_user_chose():
+    code = (
+        "import sys\n"
+        "sys.argv = ['marm-setup', '--version']\n"
+        "from marm_setup.cli.app import main\n"
+        "try:\n"
+        "    main()\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "import os\n"
+        "print(os.environ.get('OPENBLAS_NUM_THREADS'))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    ours = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    assert ours.stdout.split()[-1] == "1"
+    chosen = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, env={**env, "OPENBLAS_NUM_THREADS": "4"}
+    )
+    assert chosen.stdout.split()[-1] == "4"
