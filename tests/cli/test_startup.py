@@ -75,6 +75,10 @@ def test_the_console_script_runs_numpy_on_one_blas_thread_unless_the_user_chose(
     ours = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
     assert ours.stdout.split()[-1] == "1"
     chosen = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True, env={**env, "OPENBLAS_NUM_THREADS": "4"}
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        env={**env, "OPENBLAS_NUM_THREADS": "4"},
     )
     assert chosen.stdout.split()[-1] == "4"
