@@ -329,7 +329,7 @@ class CollisionScene:
             return geom
         key = id(geom)
         if key not in self._hull_cache:
-            vertices = np.asarray(geom.vertices(), dtype=float)
+            vertices = _distinct_rows(np.asarray(geom.vertices(), dtype=float))
             hull = None
             if _solid(vertices):  # coal's qhull call crashes the process on flat point sets
                 points = self._coal.StdVec_Vec3s()
@@ -512,6 +512,17 @@ def _coal_geometry(shape: CollisionShape, coal, shown: str, element: str, bvh_ca
             bvh_cache[key] = _bvh(mesh, coal)
         return bvh_cache[key], np.asarray(mesh.vertices)
     raise TypeError(f"unknown geometry {geom!r}")
+
+
+def _distinct_rows(points: np.ndarray) -> np.ndarray:
+    """The distinct rows of `points` in first-seen order: an STL triangle soup repeats each
+    vertex about six times, and qhull's time grows with the points it is given (xarm7's 123k
+    corners are 21k points: its hulls 52 -> 20 ms)."""
+    rows = np.ascontiguousarray(points, dtype=float)
+    _, first = np.unique(
+        rows.view(np.dtype((np.void, rows.itemsize * rows.shape[1]))).ravel(), return_index=True
+    )
+    return rows[np.sort(first)]
 
 
 def _solid(points: np.ndarray) -> bool:

@@ -6,6 +6,8 @@ import itertools
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from marm_setup.collision.scene import CollisionScene
 from marm_setup.errors import InputError
@@ -180,3 +182,12 @@ def test_a_mesh_coal_cannot_hull_is_checked_as_it_is(tmp_path):
     with_hulls = scene.collision_counts(poses, ids, hulls=True)
     assert 0 < with_hulls[0] < 41
     np.testing.assert_array_equal(with_hulls, scene.collision_counts(poses, ids))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(*[st.sampled_from([-1.5, 0.0, 0.25, 2.0])] * 3), min_size=1, max_size=40))
+def test_a_hull_is_built_from_each_distinct_vertex_once_in_first_seen_order(rows):
+    from marm_setup.collision.scene import _distinct_rows
+
+    once = list(dict.fromkeys(rows))
+    assert _distinct_rows(np.array(rows, dtype=float)).tolist() == [list(r) for r in once]
