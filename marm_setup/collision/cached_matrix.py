@@ -1,9 +1,11 @@
-"""compute_cached_matrix: the matrix with the proofs of the user's proof cache (proof_cache.py).
+"""compute_cached_matrix: the matrix with what the user's caches hold.
 
-The proofs the cache holds are taken (finished ones from any run; unproved ones from the very
+A run the matrix cache (matrix_cache.py) holds, same robot and same settings, is its stored
+result: nothing is computed, not even the collision scene. Otherwise the proofs the proof
+cache (proof_cache.py) holds are taken (finished ones from any run; unproved ones from the very
 same run: its context, proof_keys.run_context), the new ones kept: the same matrix as without
-the cache, for less work. `init`, `collisions` and `report` compute their matrices here, so a
-`report` after an `init` with the same settings proves nothing again.
+the caches, for less work. `init`, `collisions` and `report` compute their matrices here, so a
+`report` after an `init` with the same settings computes nothing again.
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from marm_setup.collision.matrix import CollisionMatrix
+    from marm_setup.collision.results import CollisionMatrix
     from marm_setup.collision.scene import CollisionScene
     from marm_setup.robot import RobotModel
 
@@ -28,17 +30,38 @@ RUN_SETTINGS = {
 
 
 def compute_cached_matrix(
-    robot: RobotModel, scene: CollisionScene | None = None, **options: Any
+    robot: RobotModel, scene: CollisionScene | None = None, padding: float = 0.0, **options: Any
 ) -> CollisionMatrix:
-    """compute_collision_matrix(robot, scene, **options) with the proof cache's proofs, its new
-    ones kept there. A `progress` with a `proofs(proved, in_contact, left)` method
-    (cli/progress.py) is told of the proofs too."""
+    """compute_collision_matrix(robot, scene, **options) from the caches (the module doc), a new
+    result kept there; without `scene`, one with `padding` is built when the matrix is computed.
+    A `progress` with a `proofs(proved, in_contact, left)` method (cli/progress.py) is told of
+    the proofs too."""
+    from marm_setup.collision.matrix_cache import load_matrix, matrix_key, store_matrix
+    from marm_setup.collision.proof_cache import cache_dir
+
+    if cache_dir() is None:
+        return _with_proof_cache(robot, _scene(robot, scene, padding), options)
+    key = matrix_key(robot, padding if scene is None else scene.padding, options)
+    stored = load_matrix(key)
+    if stored is not None:
+        return stored
+    matrix = _with_proof_cache(robot, _scene(robot, scene, padding), options)
+    store_matrix(key, matrix)
+    return matrix
+
+
+def _scene(robot: RobotModel, scene: CollisionScene | None, padding: float) -> CollisionScene:
+    from marm_setup.collision.scene import CollisionScene
+
+    return CollisionScene(robot, padding) if scene is None else scene
+
+
+def _with_proof_cache(robot: RobotModel, scene: CollisionScene, options: dict[str, Any]) -> CollisionMatrix:
+    """The matrix with the proof cache's proofs, its new proofs kept there."""
     from marm_setup.collision.matrix import compute_collision_matrix
     from marm_setup.collision.proof_cache import cache_dir, known_proofs, remember_proofs
     from marm_setup.collision.proof_keys import run_context
-    from marm_setup.collision.scene import CollisionScene
 
-    scene = CollisionScene(robot) if scene is None else scene
     if options.get("prove", "off") == "off":
         return compute_collision_matrix(robot, scene, **options)
     told = getattr(options.get("progress"), "proofs", None)  # a progress that shows the proofs

@@ -38,7 +38,8 @@ import numpy as np
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED, PairProof
-from marm_setup.collision.trials import CHUNK, Work, trial_samples
+from marm_setup.collision.results import ROUND, CollisionMatrix, PairStats, Work
+from marm_setup.collision.trials import CHUNK, trial_samples
 from marm_setup.collision.workers import Workers
 from marm_setup.robot import RobotModel, default_configuration, sample_configurations
 
@@ -48,56 +49,9 @@ if TYPE_CHECKING:
 __all__ = ["CHUNK", "CollisionMatrix", "PairStats", "compute_collision_matrix", "trial_samples"]
 
 Pair = tuple[str, str]
-ROUND = 200  # samples per Always round, as MoveIt
 Progress = Callable[[int, int], None]
 PAIR_OVERHEAD = 5e-8  # [s] numpy filtering of one pair in one trial state (for the shard plan)
 WORTH_A_PROCESS = 0.3  # [s] estimated Never-phase work below which extra processes do not pay
-
-
-@dataclass(frozen=True, slots=True)
-class PairStats:
-    """One candidate pair: its reason (None: enabled), hits in the fully counted Always-round
-    samples (`hits` of `samples`), whether any sample showed it in collision, for Never
-    pairs the smallest distance [m] measured over its closest-looking trial states, and its
-    proof (None: not proved, the pair being decided before the Never phase or `prove` off)."""
-
-    link1: str
-    link2: str
-    reason: DisabledReason | None
-    hits: int = 0
-    samples: int = 0
-    seen_colliding: bool = False
-    min_distance: float | None = None
-    proof: PairProof | None = None
-
-    @property
-    def pair(self) -> Pair:
-        return (self.link1, self.link2)
-
-
-@dataclass(frozen=True)
-class CollisionMatrix:
-    """The result: `disabled` sorted, `enabled` the sometimes-colliding pairs, `stats` per pair."""
-
-    disabled: tuple[DisabledPair, ...]
-    enabled: tuple[Pair, ...]
-    stats: tuple[PairStats, ...]
-    trials: int
-    seed: int
-    min_collision_fraction: float
-    padding: float
-    work: Work = field(default=Work(), compare=False)
-    prove: str = "off"
-    screened: dict[Pair, tuple[str, int]] = field(default_factory=dict, compare=False)  # the screen's
-    # (outcome, units) per pair it screened or knew (what the proof cache keeps with a proof)
-
-    @property
-    def narrow_calls(self) -> int:
-        """Exact coal checks, every worker process included."""
-        return self.work.exact_checks
-
-    def count(self, reason: DisabledReason) -> int:
-        return sum(1 for d in self.disabled if d.reason is reason)
 
 
 def compute_collision_matrix(

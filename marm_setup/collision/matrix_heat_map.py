@@ -10,10 +10,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from marm_setup.collision.matrix import CollisionMatrix
 from marm_setup.collision.matrix_summary import ENABLED, final_reasons, summary_lines
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
 from marm_setup.collision.proof import COLLIDES, PROVED
+from marm_setup.collision.results import CollisionMatrix
 
 COLORS = {
     DisabledReason.ADJACENT: "#bdbdbd",

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 
-from marm_setup.collision.matrix import ROUND, CollisionMatrix, PairStats
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
+from marm_setup.collision.results import ROUND, CollisionMatrix, PairStats
 
 ENABLED = "Enabled"
 HIT_COUNTS = (
@@ -143,6 +143,11 @@ def format_summary(
     lines.append(
         f"{matrix.trials} trials, seed {matrix.seed}, Always at >= {matrix.min_collision_fraction:g} "
         f"of a {ROUND}-sample round, padding {matrix.padding:g} m, {seconds:.2f} s"
+        + (
+            " (an earlier run's stored result; MARM_SETUP_CACHE=off computes it again)"
+            if matrix.stored
+            else ""
+        )
     )
     if matrix.trials:
         lines.append(

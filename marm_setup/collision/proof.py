@@ -24,7 +24,7 @@ budget only (not --jobs nor the machine).
 from __future__ import annotations
 
 import heapq
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -32,6 +32,7 @@ import numpy as np
 from marm_setup.collision.certificates import CERT_MARGIN, RELATIVE_MARGIN
 from marm_setup.collision.meter import Meter
 from marm_setup.collision.pair_chain import PairChain
+from marm_setup.collision.results import PairProof
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -104,27 +105,6 @@ class SearchState:
     extra: tuple[int, int]
     sequence: int
     stuck: bool
-
-
-@dataclass(frozen=True, slots=True)
-class PairProof:
-    """What the proof of one pair found; `witness`: (joint, value) in contact (collides only);
-    `state`: an unproved branch and bound's, to go on with more units."""
-
-    outcome: str
-    proved_fraction: float
-    witness: tuple[tuple[str, float], ...] = ()
-    units: int = 0  # work done, in hull-query units
-    closest: tuple[tuple[float, ...], ...] = field(default=(), compare=False, repr=False)  # centres
-    state: SearchState | None = field(default=None, compare=False, repr=False)
-    near: tuple = field(default=(), compare=False, repr=False)  # witness search: (distance, order, state)
-    second: float | None = field(default=None, compare=False, repr=False)  # left open by the first
-    # round of the witness search: where that round ended [m] (proving.settle_pairs)
-
-    @property
-    def reached(self) -> float:
-        """The smallest distance [m] its witness search reached (inf: none ran)."""
-        return self.near[0][0] if self.near else np.inf
 
 
 class PairSearch:

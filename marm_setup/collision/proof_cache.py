@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 from marm_setup.collision.cached_proof import OUTCOMES, CachedProof
 
 if TYPE_CHECKING:
-    from marm_setup.collision.matrix import CollisionMatrix, PairStats
+    from marm_setup.collision.results import CollisionMatrix, PairStats
     from marm_setup.collision.scene import CollisionScene
 
 Pair = tuple[str, str]

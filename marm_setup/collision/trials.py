@@ -9,7 +9,6 @@ whether a pair is seen colliding does not depend on who checks it.
 from __future__ import annotations
 
 import math
-from dataclasses import astuple, dataclass
 
 import numpy as np
 
@@ -19,28 +18,6 @@ from marm_setup.robot import RobotModel, sample_configurations
 Pair = tuple[str, str]
 CHUNK = 1000  # trial samples per chunk (fixed: independent of jobs and CPU count)
 CLOSEST = 8  # samples per Never pair (smallest bounding-sphere gap) where the distance is measured
-
-
-@dataclass(frozen=True, slots=True)
-class Work:
-    """What the computation did (not part of the result: it varies with --jobs and shortcuts)."""
-
-    exact_checks: int = 0  # coal collision checks of the real geometry
-    hull_checks: int = 0
-    hull_rejections: int = 0  # hull checks that proved a pair apart (no exact check needed)
-    certificate_queries: int = 0  # coal distance queries made for certificates
-    certified: int = 0  # (state, pair) checks a certificate answered
-    proof_units: int = 0  # work of the proofs, in hull-distance queries (collision/proof.py)
-
-    @classmethod
-    def of(cls, scene) -> Work:
-        return cls(*scene.work())
-
-    def __add__(self, other: Work) -> Work:
-        return Work(*(a + b for a, b in zip(astuple(self), astuple(other), strict=True)))
-
-    def __sub__(self, other: Work) -> Work:
-        return Work(*(a - b for a, b in zip(astuple(self), astuple(other), strict=True)))
 
 
 def trial_chunk(robot: RobotModel, seed: int, index: int, trials: int) -> np.ndarray:

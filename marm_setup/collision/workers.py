@@ -13,7 +13,8 @@ import traceback
 from collections.abc import Iterator
 from typing import Any
 
-from marm_setup.collision.trials import Pair, PairShard, Work
+from marm_setup.collision.results import Work
+from marm_setup.collision.trials import Pair, PairShard
 
 
 class WorkerFailed(RuntimeError):

@@ -48,7 +48,7 @@ def run_collisions(
     request: CollisionsRequest, robot: RobotModel, progress: Progress | None = None
 ) -> CollisionsResult:
     """Compute the matrix; update or write the SRDF and the report the request names."""
-    from marm_setup.collision import CollisionScene, load_srdf_text, read_srdf_entries
+    from marm_setup.collision import load_srdf_text, read_srdf_entries
     from marm_setup.flows.write import compute_matrix
 
     srdf, srdf_text = request.srdf, None
@@ -62,7 +62,7 @@ def run_collisions(
         default_q = pose_configuration(robot, srdf_text, request.default_pose, str(srdf))
     matrix = compute_matrix(
         robot,
-        CollisionScene(robot, request.matrix.padding),
+        padding=request.matrix.padding,
         **request.matrix.matrix_options(),
         check_default=request.check_default,
         check_always=request.check_always,

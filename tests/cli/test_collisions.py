@@ -63,7 +63,8 @@ def test_same_output_whatever_jobs(tmp_path):
 
 
 @pytest.mark.parametrize(("text", "count"), [("2k", 2000), ("1_500", 1500), ("0.002M", 2000), ("2e3", 2000)])
-def test_trials_take_k_and_m_suffixes_and_the_summary_prices_a_denser_run(text, count):
+def test_trials_take_k_and_m_suffixes_and_the_summary_prices_a_denser_run(text, count, monkeypatch):
+    monkeypatch.setenv("MARM_SETUP_CACHE", "off")  # priced by a run that computes (2k twice)
     result = _run(str(MARM_URDF), "--trials", text)
     assert result.exit_code == 0, result.output
     assert f"{count} trials, seed 0" in result.stdout
@@ -428,6 +429,35 @@ def test_a_rerun_reuses_the_proof_cache_and_prints_the_same_bytes(tmp_path, monk
     uncached = _run(*args)
     assert first.stdout == again.stdout == uncached.stdout
     assert json.loads(first.stdout)["proofs"]["proved"] > 0
+
+
+def test_a_rerun_with_the_same_settings_is_the_stored_result_and_computes_nothing(tmp_path, monkeypatch):
+    """The matrix cache (collision/matrix_cache.py): the second run builds no collision scene
+    and prints the first run's JSON, byte for byte (the text summary says it is stored);
+    another seed, or the robot changed, computes again."""
+    import marm_setup.collision.scene as scene_module
+
+    monkeypatch.setenv("MARM_SETUP_CACHE", str(tmp_path / "cache"))
+    urdf = tmp_path / "toy.urdf"
+    urdf.write_text(TOY, encoding="utf-8")
+    json_args = (str(urdf), "--trials", "400", "--format", "json")
+    first, first_text = _run(*json_args), _run(str(urdf), "--trials", "400")
+    assert first.exit_code == 0 and "stored result" not in first_text.stdout
+    real_init = scene_module.CollisionScene.__init__
+
+    def refused(*_args, **_kwargs):
+        raise AssertionError("a collision scene was built for a stored result")
+
+    monkeypatch.setattr(scene_module.CollisionScene, "__init__", refused)
+    again = _run(*json_args)
+    assert again.exit_code == 0 and again.stdout == first.stdout
+    assert "an earlier run's stored result" in _run(str(urdf), "--trials", "400").stdout
+    assert _run(*json_args[:3], "--seed", "1").exit_code != 0  # not stored: computes
+    urdf.write_text(TOY.replace('upper="1"', 'upper="0.9"', 1), encoding="utf-8")
+    assert 'upper="0.9"' in urdf.read_text()
+    assert _run(*json_args).exit_code != 0  # the robot changed: computes
+    monkeypatch.setattr(scene_module.CollisionScene, "__init__", real_init)
+    assert _run(*json_args).exit_code == 0
 
 
 def test_the_sampling_progress_hears_of_the_proofs():
