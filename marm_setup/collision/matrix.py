@@ -30,6 +30,7 @@ they prove would say "no collision", so `shortcuts=False` gives the same bytes.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -255,12 +256,15 @@ class _AlwaysRounds:
 
     def costs(self, trials: int) -> dict[Pair, float]:
         """Estimated Never-phase seconds per pair: its share of states that reach the exact
-        check, times `trials`, times its measured exact-check time."""
+        check, times its measured exact-check time, times the states it will be checked in:
+        `trials`, or for a pair the rounds saw in collision (`hits` of `samples`) the chunks
+        until its expected first hit (samples / hits states), after which it is not checked."""
         out = {}
-        for pair, (_, samples) in self.counts.items():
+        for pair, (hits, samples) in self.counts.items():
             opened = self.open_states.get(pair, 0)
             per_check = self.seconds.get(pair, 0.0) / opened if opened else 0.0
-            out[pair] = (opened / samples * per_check + PAIR_OVERHEAD) * trials
+            checked = min(trials, CHUNK * math.ceil(samples / hits / CHUNK)) if hits else trials
+            out[pair] = (opened / samples * per_check + PAIR_OVERHEAD) * checked
         return out
 
 

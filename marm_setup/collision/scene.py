@@ -184,8 +184,12 @@ class CollisionScene:
     ) -> np.ndarray:
         """How many of the configurations in `poses` have each pair of `ids` in collision.
         `opened` / `seconds` (arrays per pair), when given, add up the states that reached the
-        exact check and the seconds those checks took."""
+        exact check and the seconds those checks took (the hulls built before: their one-time
+        qhull would be charged to the first state of each pair)."""
         counts = np.zeros(len(ids), dtype=np.int64)
+        if seconds is not None and hulls:
+            for row in {int(r) for r in (*self._pair_a[ids], *self._pair_b[ids])}:
+                self._hull_shapes(row)
         centers = self.link_centers(poses)
         for part in self.pair_batches(len(poses), len(ids)):
             maybe = self.maybe_colliding(poses, ids[part], self.sphere_gaps(poses, ids[part], centers))

@@ -312,3 +312,35 @@ def test_filtering_in_pair_batches_gives_the_same_matrix(marm, monkeypatch, batc
     assert len(scene.pair_batches(200, len(pairs))) > 1
     _same_bytes(whole, compute_collision_matrix(marm, scene, trials=2000, prove=prove))
     assert scene.first_collisions(q, pairs) == first
+
+
+def test_the_shard_plan_prices_a_pair_seen_in_the_rounds_until_its_expected_first_hit():
+    """A pair the Always rounds saw in collision stops being checked at its first hit in the
+    trials: it is priced for the chunks until then, not for every trial."""
+    rounds = matrix_module._AlwaysRounds(
+        counts={("a", "b"): (100, 200), ("a", "c"): (0, 200)},
+        open_states={("a", "b"): 200, ("a", "c"): 200},
+        seconds={("a", "b"): 0.2, ("a", "c"): 0.2},
+    )
+    costs = rounds.costs(10000)
+    per_state = 0.001 + matrix_module.PAIR_OVERHEAD
+    assert costs[("a", "b")] == pytest.approx(per_state * matrix_module.CHUNK)
+    assert costs[("a", "c")] == pytest.approx(per_state * 10000)
+
+
+def test_the_rounds_time_exact_checks_with_the_hulls_already_built(marm):
+    """The one-time qhull of a link's hull is not charged to the first state that reaches it."""
+    scene = CollisionScene(marm)
+    real = scene.collide
+    pairs = [p for p in scene.candidate_pairs if scene.has_hulls(scene.pair_ids([p])[0])]
+    scene._hulls.clear()
+    ids = scene.pair_ids(pairs)
+
+    def collide(poses, pair_id, hulls=False):
+        assert {int(scene._pair_a[pair_id]), int(scene._pair_b[pair_id])} <= set(scene._hulls)
+        return real(poses, pair_id, hulls)
+
+    scene.collide = collide
+    poses = scene.link_poses(sample_configurations(marm, np.random.default_rng(0), 50))
+    scene.collision_counts(poses, ids, True, opened=np.zeros(len(ids), np.int64), seconds=np.zeros(len(ids)))
+    assert pairs
