@@ -12,8 +12,7 @@ from dataclasses import dataclass
 
 from marm_setup.collision.matrix_summary import ENABLED, final_reasons, summary_lines
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
-from marm_setup.collision.proof import COLLIDES, PROVED
-from marm_setup.collision.results import CollisionMatrix
+from marm_setup.collision.results import COLLIDES, PROVED, CollisionMatrix
 
 COLORS = {
     DisabledReason.ADJACENT: "#bdbdbd",

@@ -32,12 +32,11 @@ import numpy as np
 from marm_setup.collision.certificates import CERT_MARGIN, RELATIVE_MARGIN
 from marm_setup.collision.meter import Meter
 from marm_setup.collision.pair_chain import PairChain
-from marm_setup.collision.results import PairProof
+from marm_setup.collision.results import COLLIDES, PROVED, UNPROVED, PairProof
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
 
-PROVED, COLLIDES, UNPROVED = "proved", "collides", "unproved"
 BATCH = 256  # boxes split per round (their children are evaluated in one numpy batch: a batch
 MIN_CHILDREN = 128  # costs about 1 ms however small, a box in it about 15 us); a round cuts its
 MAX_LEVELS = 5  # few boxes in more parts, up to 2**MAX_LEVELS each (a proof's boxes are the same

@@ -17,8 +17,7 @@ import hashlib
 from collections.abc import Iterable, Mapping
 
 from marm_setup.collision.pairs import DisabledReason, UnprovedPair
-from marm_setup.collision.proof import COLLIDES, PROVED, UNPROVED
-from marm_setup.collision.results import CollisionMatrix, PairStats
+from marm_setup.collision.results import COLLIDES, PROVED, UNPROVED, CollisionMatrix, PairStats
 
 OUTCOMES = (PROVED, COLLIDES, UNPROVED)
 WITNESS_SHOWN = 4  # joints of a witness in a summary line (the JSON has them all)

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
 
 Pair = tuple[str, str]
 ROUND = 200  # samples per Always round, as MoveIt
+PROVED, COLLIDES, UNPROVED = "proved", "collides", "unproved"  # a pair proof's outcomes
 
 
 @dataclass(frozen=True, slots=True)
