@@ -48,8 +48,7 @@ def run_collisions(
     request: CollisionsRequest, robot: RobotModel, progress: Progress | None = None
 ) -> CollisionsResult:
     """Compute the matrix; update or write the SRDF and the report the request names."""
-    from marm_setup.collision import load_srdf_text, read_srdf_entries
-    from marm_setup.flows.write import compute_matrix
+    from marm_setup.collision import compute_cached_matrix, load_srdf_text, read_srdf_entries
 
     srdf, srdf_text = request.srdf, None
     if srdf is not None:
@@ -60,7 +59,7 @@ def run_collisions(
     default_q = None
     if request.default_pose is not None and srdf_text is not None:
         default_q = pose_configuration(robot, srdf_text, request.default_pose, str(srdf))
-    matrix = compute_matrix(
+    matrix = compute_cached_matrix(
         robot,
         padding=request.matrix.padding,
         **request.matrix.matrix_options(),
