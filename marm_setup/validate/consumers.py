@@ -396,9 +396,29 @@ def dump_list_namespace(rel: str, dumped: str) -> list[Finding]:
     return out
 
 
+USED_ARG = re.compile(
+    r"\$\(arg\s+([^\s()]+)\s*\)|\barg\(\s*['\"]([^'\"]+)['\"]\s*\)"
+)  # $(arg x), $(eval arg('x'))
+
+
 def _needs_args(root: etree._Element) -> bool:
-    """The file declares an arg with neither default nor value: it is meant to be included."""
-    return any(a.get("default") is None and a.get("value") is None for a in root.findall("arg"))
+    """The file is meant to be included: it declares an arg with neither default nor value, or
+    uses an arg it never declares (`$(arg x)`, `arg('x')` in `$(eval)`), which only an includer
+    passing its own (`pass_all_args`) sets. roslaunch run on it alone stops at either
+    (xmlloader.py: ArgException, "requires the 'x' arg to be set"; with --dump-params its
+    handler fails first on a loader attribute --dump-params never sets, ignore_unset_args)."""
+    if any(a.get("default") is None and a.get("value") is None for a in root.findall("arg")):
+        return True
+    elements = [e for e in root.iter() if isinstance(e.tag, str)]
+    declared = {e.get("name") for e in elements if e.tag == "arg" and _parent_tag(e) != "include"}
+    texts = [v for e in elements for v in (*e.attrib.values(), e.text or "")]
+    used = {m.group(1) or m.group(2) for text in texts for m in USED_ARG.finditer(text)}
+    return bool(used - declared)
+
+
+def _parent_tag(element: etree._Element) -> str | None:
+    parent = element.getparent()
+    return None if parent is None else str(parent.tag)
 
 
 MISSING_RESOURCE = re.compile(

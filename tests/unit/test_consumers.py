@@ -322,3 +322,25 @@ def test_a_misspelling_is_one_or_two_letters_from_a_name_the_package_declares():
         misspelt_package("moveit_resources_panda_description", ["moveit_resources_panda_moveit_config"])
         is None
     )
+
+
+@pytest.mark.parametrize(
+    ("body", "included"),
+    [
+        ('<node pkg="a" type="b" name="c" args="$(arg transmission)_controller"/>', True),
+        (
+            '<arg name="transmission" default="e"/><node pkg="a" type="b" name="c" args="$(arg transmission)"/>',
+            False,
+        ),
+        ('<group><arg name="t" default="e"/><param name="p" value="$(arg t)"/></group>', False),
+        ('<include file="x.launch"><arg name="t" value="$(arg other)"/></include>', True),
+        ('<param name="p" value="$(eval arg(\'speed\') * 2)"/>', True),
+        ('<rosparam subst_value="true">a: $(arg gain)</rosparam>', True),
+        ("<!-- $(arg commented) --><param name='p' value='1'/>", False),
+    ],
+)
+def test_a_launch_file_using_an_arg_it_never_declares_is_an_include(tmp_path, body, included):
+    """franka's panda_moveit_config ros_controllers.launch uses $(arg transmission) that only
+    franka_control.launch (pass_all_args) sets: run alone, roslaunch stops on it."""
+    root = build_file_tree(tmp_path, {"a.launch": f"<launch>{body}</launch>"})
+    assert _needs_args(parse_launch(root / "a.launch", "a.launch").root) is included
