@@ -19,6 +19,13 @@ collision matrix; the reason is informational), authors disable touching pairs o
 gripper linkage), and a pair that collides at the default state is what the Setup Assistant
 itself would label Default (compute_default_collisions.cpp, phase "default state").
 
+Covered: a Never pair is not stale in a state where a pair the SRDF leaves enabled between the
+same two rigid bodies (links joined by fixed joints) is in collision too: MoveIt finds the state
+in collision all the same. Some robots are built that way on purpose: franka_description puts
+coarse self-collision shapes on a `*_sc` link fixed to each arm link, and its panda_moveit_config
+disables the arm links' own pairs ("handled by sc links") while enabling the `*_sc` pairs. Only
+the states where no such pair collides count against the pair; when there are none it passes.
+
 The resample uses the matrix computation's own sampler (`collision.trials.trial_samples`)
 with validate's own seed and trial count (DEFAULT_SEED, or what the caller chooses), never the
 package's `collision.seed` or `collision.trials` (a package could choose the seed whose states
@@ -29,6 +36,7 @@ a real, observed collision, whatever made the matrix.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -99,17 +107,64 @@ def check_matrix_fresh(
     compute_default_collisions.cpp` l.147-153, `min_collision_fraction`), and MoveIt reads no reason
     label (srdfdom `model.cpp` loadDisabledCollisions), so MoveIt's behaviour is the same."""
     from marm_setup.collision import trial_samples
+    from marm_setup.setup import allowed_pairs
 
     never = [pair for pair in never_pairs(srdf, scene) if pair not in proved]
     if not never or trials <= 0:
         return []
     q = trial_samples(robot, seed, trials)
     counts = scene.collision_counts(scene.link_poses(q), scene.pair_ids(never))
+    enabled = scene.enabled_pairs(allowed_pairs(srdf, scene.candidate_pairs))
     out = []
     for pair, n in zip(never, counts, strict=True):
-        if n and n < ALWAYS_FRACTION * trials:
-            out.append(_stale(pair, int(n), q, robot, scene, file, trials))
+        if not n or n >= ALWAYS_FRACTION * trials:
+            continue
+        covers = covering_pairs(pair, enabled, robot)
+        rows = _uncovered_rows(pair, covers, q, scene)
+        if rows:
+            out.append(_stale(pair, len(rows), q[rows], robot, file, trials, covers))
     return out
+
+
+def covering_pairs(
+    pair: tuple[str, str], enabled: Sequence[tuple[str, str]], robot: RobotModel
+) -> list[tuple[str, str]]:
+    """The enabled pairs between the rigid bodies of `pair`'s two links (each body: the links
+    joined to it by fixed joints), the pair itself excepted."""
+    body_a, body_b = rigid_body(robot, pair[0]), rigid_body(robot, pair[1])
+    return [
+        p
+        for p in enabled
+        if p != pair and ((p[0] in body_a and p[1] in body_b) or (p[0] in body_b and p[1] in body_a))
+    ]
+
+
+def rigid_body(robot: RobotModel, link: str) -> frozenset[str]:
+    """`link` and every link joined to it through fixed joints only."""
+    joined: dict[str, list[str]] = {}
+    for joint in robot.joints:
+        if joint.type == "fixed":
+            joined.setdefault(joint.parent, []).append(joint.child)
+            joined.setdefault(joint.child, []).append(joint.parent)
+    body, todo = {link}, [link]
+    while todo:
+        for other in joined.get(todo.pop(), ()):
+            if other not in body:
+                body.add(other)
+                todo.append(other)
+    return frozenset(body)
+
+
+def _uncovered_rows(
+    pair: tuple[str, str], covers: list[tuple[str, str]], q: np.ndarray, scene: CollisionScene
+) -> list[int]:
+    """The states of `q` where `pair` is in collision and none of `covers` is."""
+    rows = [i for i, hit in enumerate(scene.first_collisions(q, [pair])) if hit is not None]
+    if not covers or not rows:
+        return rows
+    return [
+        row for row, hit in zip(rows, scene.first_collisions(q[rows], covers), strict=True) if hit is None
+    ]
 
 
 def never_pairs(srdf: Srdf, scene: CollisionScene) -> list[tuple[str, str]]:
@@ -137,23 +192,27 @@ def cached_proved(srdf: Srdf, scene: CollisionScene) -> frozenset[tuple[str, str
 def _stale(
     pair: tuple[str, str],
     n: int,
-    q: np.ndarray,
+    hits: np.ndarray,
     robot: RobotModel,
-    scene: CollisionScene,
     file: str,
     trials: int,
+    covers: list[tuple[str, str]],
 ) -> Finding:
-    hits = scene.first_collisions(q, [pair])
-    row = next(i for i, hit in enumerate(hits) if hit is not None)
+    """The finding for a Never pair in collision in the `n` states `hits` (of `trials`) where no
+    pair of `covers` (enabled, between the same rigid bodies) is."""
     state = ", ".join(
-        f"{name}={value:.3f}" for name, value in zip(robot.active_joint_names, q[row], strict=True)
+        f"{name}={value:.3f}" for name, value in zip(robot.active_joint_names, hits[0], strict=True)
     )
+    where = ""
+    if covers:
+        named = ", ".join(f"{a}/{b}" for a, b in covers[:3]) + (", ..." if len(covers) > 3 else "")
+        where = f" where none of the enabled pairs of the same rigid bodies ({named}) is"
     return warning(
         "matrix.stale",
         file,
         f"disable_collisions[{pair[0]} {pair[1]}]",
-        f"marked Never but collides in {n} of {trials} random states ({100 * n / trials:.1f} %), "
+        f"marked Never but collides in {n} of {trials} random states ({100 * n / trials:.1f} %){where}, "
         f"e.g. {state}; MoveIt never checks this pair",
         hint="recompute the matrix for this URDF (marm-setup collisions URDF --srdf SRDF)",
-        evidence=Evidence.of(pair, robot.active_joint_names, q[row]),
+        evidence=Evidence.of(pair, robot.active_joint_names, hits[0]),
     )
