@@ -2,9 +2,9 @@
 
 A run the matrix cache (matrix_cache.py) holds, same robot and same settings, is its stored
 result: nothing is computed, not even the collision scene. Otherwise the proofs the proof
-cache (proof_cache.py) holds are taken (finished ones from any run; unproved ones from the very
-same run: its context, proof_keys.run_context), the new ones kept: the same matrix as without
-the caches, for less work. `init`, `collisions` and `report` compute their matrices here, so a
+cache (proof_cache.py) holds are taken (every one the very same run left: its context,
+proof_keys.run_context; of other runs, those the screen finished alone where this run's screen
+repeats them), the new ones kept: the same matrix as without the caches, for less work. `init`, `collisions` and `report` compute their matrices here, so a
 `report` after an `init` with the same settings computes nothing again.
 """
 
@@ -69,6 +69,9 @@ def _with_proof_cache(robot: RobotModel, scene: CollisionScene, options: dict[st
         return compute_collision_matrix(robot, scene, proof_progress=told, **options)
     context = run_context(scene, {name: options.get(name, value) for name, value in RUN_SETTINGS.items()})
     known = known_proofs(scene, context=context)
-    matrix = compute_collision_matrix(robot, scene, known=known, proof_progress=told, **options)
+    others = {p: c for p, c in known_proofs(scene).items() if c.screened_alone and p not in known}
+    matrix = compute_collision_matrix(
+        robot, scene, known=known, proof_progress=told, reusable=others, **options
+    )
     remember_proofs(scene, matrix, context)
     return matrix

@@ -20,6 +20,13 @@ class CachedProof:
     units: int
     screen: tuple[str, int]
     second: float | None = None  # left open by the first witness-search round: where it ended [m]
+    least: int | None = None  # finished by the screen's branch and bound: the least budget giving it
+
+    @property
+    def screened_alone(self) -> bool:
+        """Finished by the screen's branch and bound alone, whose run any screen budget of at
+        least `least` boxes repeats step for step (proof.PairSearch.least): another run may take it."""
+        return self.least is not None and self.screen[0] == self.outcome and self.outcome in OUTCOMES
 
     @property
     def settled(self) -> bool:

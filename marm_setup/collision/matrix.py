@@ -72,6 +72,7 @@ def compute_collision_matrix(
     prove: str = "off",
     known: Mapping[Pair, CachedProof] | None = None,
     proof_progress: Callable[[int, int, int], None] | None = None,
+    reusable: Mapping[Pair, CachedProof] | None = None,
 ) -> CollisionMatrix:
     """MoveIt's matrix for `robot` (scene: a CollisionScene, built when None).
 
@@ -81,6 +82,8 @@ def compute_collision_matrix(
     outputs show it; measuring it costs a distance query per pair and closest state).
     `prove`: "off" (MoveIt's rule), "on" or "exhaustive" (the proof budget; see the module doc).
     `known`: finished proofs of pairs, taken as they are (see the module doc; ignored when off).
+    `reusable`: proofs of other runs the screen's branch and bound finished alone
+    (CachedProof.screened_alone), taken as known where this run's screen budget repeats them.
     `proof_progress(proved, in_contact, left)`: told as each proof ends.
     """
     if scene is None:
@@ -99,6 +102,8 @@ def compute_collision_matrix(
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
     unseen_pairs = tuple(p for p in remaining if p not in seen)
+    if reusable and prove != "off":
+        known = {**_repeated(scene, unseen_pairs, prove, reusable), **(known or {})}
     screens = {p: known[p] for p in unseen_pairs if p in known} if known and prove != "off" else {}
     cached = {p: c for p, c in screens.items() if c.outcome != "seen"}  # "seen": its screen only
     tally = _tally(proof_progress, cached, prove)
@@ -141,6 +146,22 @@ def compute_collision_matrix(
         prove=prove,
         screened={p: (proof.outcome, proof.units) for p, proof in screened.items()},
     )
+
+
+def _repeated(
+    scene, pairs: tuple[Pair, ...], prove: str, reusable: Mapping[Pair, CachedProof]
+) -> dict[Pair, CachedProof]:
+    """The `reusable` proofs of `pairs` this run's screen would repeat step for step: its budget
+    (proving.screen_budget) at least the least that gives each (proof.PairSearch.least)."""
+    from marm_setup.collision.proving import screen_budget
+
+    wanted = [p for p in pairs if p in reusable]
+    if not wanted:
+        return {}
+    _, boxes = screen_budget(scene, pairs, prove)
+    if not boxes:  # this run's screen runs no branch and bound
+        return {}
+    return {p: reusable[p] for p in wanted if (least := reusable[p].least) is not None and least <= boxes}
 
 
 def _followed(

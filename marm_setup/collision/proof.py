@@ -126,6 +126,8 @@ class PairSearch:
         self._stuck = False  # a box too small to split is still undecided
         self._started = state is not None
         self.near: list = []  # the witness search's nearest end states (see witness.py)
+        self._least = 0  # the smallest budget whose run is this one, step for step (see `least`)
+        self._exact = state is not None  # only this very budget gives this run
         if state is not None:
             self._heap, self.certified, self.measured = (
                 list(state.heap),
@@ -142,6 +144,7 @@ class PairSearch:
             self._evaluate(chain.lower[None], chain.upper[None], np.array([np.inf]), np.array([-np.inf]))
             self._started = True
         while self._heap and not self.witness and self._can_finish():
+            self._note_round()
             batch = [heapq.heappop(self._heap) for _ in range(min(BATCH, len(self._heap)))]
             wanted = min(MIN_CHILDREN, self.budget.boxes - self.meter.units)  # no more than is left
             levels = max(1, min(MAX_LEVELS, int(np.ceil(np.log2(max(1.0, wanted / len(batch)))))))
@@ -152,6 +155,23 @@ class PairSearch:
         if self.witness:
             return self._result(COLLIDES)
         return self._result(PROVED if not self._heap and not self._stuck else UNPROVED)
+
+    def _note_round(self) -> None:
+        """Before a round: what a budget must be for this round to go as it does (the loop test
+        passed and MIN_CHILDREN wanted); a round the budget cut short is this budget's alone."""
+        units, open_boxes = self.meter.units, len(self._heap)
+        if self.budget.boxes - units < MIN_CHILDREN:
+            self._exact = True
+        self._least = max(self._least, units + max(MIN_CHILDREN, 2 * open_boxes - 2 * SLACK))
+
+    def least(self) -> int | None:
+        """The smallest budget (boxes) whose branch and bound is this one, step for step, so
+        gives the same finished proof with the same units; None when only this very budget does
+        (a round it cut short, an overrun, a search gone on from a state). The run depends on
+        the budget only through the loop's test, the children a round wants and the overrun."""
+        if self._exact:
+            return None
+        return max(self._least, self.meter.units - SLACK + 1, 0)
 
     def _can_finish(self) -> bool:
         """Whether the budget (and the one round it may overrun by) could still certify every
@@ -166,6 +186,7 @@ class PairSearch:
         random states, then its closest centres (see `collision/witness.py`)."""
         from marm_setup.collision.witness import search_witness
 
+        self._exact = True  # the witness search's outcome is its seed's, starts' and budget's
         first = [] if starts is None or not len(starts) else list(self.chain.box_values(starts))
         closest = [np.array(centre) for centre in self._closest()]
         self.witness = search_witness(self, first, closest, seed, self.meter.units + self.budget.descent)
@@ -177,7 +198,7 @@ class PairSearch:
     def _result(self, outcome: str, keep: bool = True) -> PairProof:
         fraction = 1.0 if outcome == PROVED else min(1.0, float(self.certified))
         if outcome != UNPROVED:
-            return PairProof(outcome, fraction, self.witness, int(self.meter.units))
+            return PairProof(outcome, fraction, self.witness, int(self.meter.units), least=self.least())
         closest = self._closest()
         state = None
         if keep:
@@ -237,6 +258,7 @@ class PairSearch:
             if _kept(hull) - motion > self.threshold:
                 return None, np.inf
             overrun = meter.units >= self.budget.boxes + SLACK
+            self._exact = self._exact or overrun
             if hull > self.threshold and (overrun or not meter.extra_pays()):  # the hulls decide
                 self._measured(hull, center)
                 return _kept(hull) - motion, _most(hull)
@@ -321,7 +343,7 @@ def prove_pair(
         return PairSearch(scene, chain, budget).run()
     limit = Budget(prior.units + budget.boxes, budget.descent)
     search = PairSearch(scene, chain, limit, prior.state)
-    search.near = list(prior.near)
+    search.near, search._exact = list(prior.near), True  # a search gone on: its budgets' alone
     if prior.state is None:  # no boxes left to go on from (or none started): its counts stay
         search.certified, search.meter.units = prior.proved_fraction, prior.units
     proof = search.run() if budget.boxes > 0 else prior

@@ -10,10 +10,13 @@ A matrix computation (collision/cached_matrix.py) replays its own run only: ever
 screen a run left is kept under its pair's key within that run's context
 (proof_keys.run_context: every candidate pair's key, the sampled joints, the settings and the
 proof budgets), and served to the very same run, which then gives the same bytes as without the
-cache. A finished proof of another run is not served to a matrix: each pair's proof depends on
-the budget its whole run gave it (the pools the pairs share, the trial states its witness search
-starts from), so a pair proved by a variant of the robot might stay unproved here, and taking it
-would change the budgets of the others and the output with the cache's contents. Finished proofs
+cache. Of another run's proofs a matrix takes only those the screen's branch and bound finished
+alone (CachedProof.screened_alone), where its own screen budget is at least the least that
+repeats that search step for step (proof.PairSearch.least; matrix._repeated): the same proof,
+units included, as computing it. Any other proof depends on the budget its whole run gave it
+(the pools the pairs share, the trial states its witness search starts from), so a pair proved
+by a variant of the robot might stay unproved here, and taking it would change the budgets of
+the others and the output with the cache's contents. Finished proofs
 ("proved": no state of the pair's box is in contact; "collides": a state that is) are also kept
 by their pair's key alone, for validate: a proved pair needs no resampling, whatever run proved
 it. Each entry keeps what the matrix needs to account for it as the run did (its units, the
@@ -97,7 +100,9 @@ def _kept(stats: PairStats, screened: Mapping[Pair, tuple[str, int]]) -> CachedP
     proof, screen = stats.proof, screened.get(stats.pair, ("unproved", 0))
     if proof is None:
         return CachedProof(SEEN, 0.0, (), 0, screen) if stats.pair in screened else None
-    return CachedProof(proof.outcome, proof.proved_fraction, proof.witness, proof.units, screen, proof.second)
+    return CachedProof(
+        proof.outcome, proof.proved_fraction, proof.witness, proof.units, screen, proof.second, proof.least
+    )
 
 
 def _in_run(key: str, context: str) -> str:
@@ -153,6 +158,7 @@ def _fields(proof: CachedProof) -> dict:
         "units": proof.units,
         "screen": list(proof.screen),
         "second": proof.second,
+        "least": proof.least,
     }
 
 
@@ -167,6 +173,7 @@ def _parsed(value: str) -> CachedProof | None:
             int(data["units"]),
             (str(data["screen"][0]), int(data["screen"][1])),
             None if data.get("second") is None else float(data["second"]),
+            None if data.get("least") is None else int(data["least"]),
         )
     except (ValueError, TypeError, KeyError, IndexError):
         return None

@@ -52,20 +52,28 @@ def screen_pairs(
     bound of their own when the screen's pool gives each at least SCREEN_LEAST units, else they
     wait for `settle_pairs` (an unproved proof keeps its state, to go on from). The `known`
     pairs (proofs from the cache) share the pool as they would, but are not proved."""
+    far, boxes = screen_budget(scene, pairs, mode)
+    proofs = {pair: PairProof(PROVED, 1.0, units=1) for pair in pairs if pair in far and pair not in known}
+    open_pairs = [pair for pair in pairs if pair not in far and pair not in known]
+    if tally is not None:
+        tally.start(tally.proved + len(proofs), tally.in_contact, len(open_pairs) if boxes else 0)
+    if not boxes:
+        return proofs | {pair: PairProof(UNPROVED, 0.0) for pair in open_pairs}
+    return proofs | prove_pairs(scene, open_pairs, Budget(boxes, 0), seed, jobs, tally=tally)
+
+
+def screen_budget(scene: CollisionScene, pairs: Sequence[Pair], mode: str) -> tuple[set[Pair], int]:
+    """The pairs of `pairs` the reach balls prove apart, and the boxes the screen's branch and
+    bound gives each of the others from its pool (0: fewer than SCREEN's least, no branch and
+    bound before the trials)."""
     from marm_setup.collision.reach_balls import far_apart
 
     least, most, pool = SCREEN[_checked(mode)]
     levers = {link: scene.lever_points(link) for pair in pairs for link in pair}
     far = far_apart(scene.robot, pairs, levers, scene.padding + CERT_MARGIN)
-    proofs = {pair: PairProof(PROVED, 1.0, units=1) for pair in pairs if pair in far and pair not in known}
-    rest = [pair for pair in pairs if pair not in far]
-    boxes = most if pool is None else int(min(most, pool // max(1, len(rest))))
-    open_pairs = [pair for pair in rest if pair not in known]
-    if tally is not None:
-        tally.start(tally.proved + len(proofs), tally.in_contact, len(open_pairs) if boxes >= least else 0)
-    if boxes < least:
-        return proofs | {pair: PairProof(UNPROVED, 0.0) for pair in open_pairs}
-    return proofs | prove_pairs(scene, open_pairs, Budget(boxes, 0), seed, jobs, tally=tally)
+    rest = len(pairs) - len(far)
+    boxes = most if pool is None else int(min(most, pool // max(1, rest)))
+    return far, boxes if boxes >= least else 0
 
 
 def settle_pairs(

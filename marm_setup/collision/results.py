@@ -54,6 +54,8 @@ class PairProof:
     near: tuple = field(default=(), compare=False, repr=False)  # witness search: (distance, order, state)
     second: float | None = field(default=None, compare=False, repr=False)  # left open by the first
     # round of the witness search: where that round ended [m] (proving.settle_pairs)
+    least: int | None = field(default=None, compare=False, repr=False)  # a finished branch and
+    # bound's: the smallest budget that gives this very proof (proof.PairSearch.least)
 
     @property
     def reached(self) -> float:

@@ -245,3 +245,29 @@ def test_the_pair_box_folds_turning_joints_to_one_turn(tmp_path_factory):
     scene = CollisionScene(robot)
     chain = pair_chain(robot, ("a", "b"), {link: scene.lever_points(link) for link in "ab"})
     assert chain.upper[0] - chain.lower[0] == pytest.approx(2 * np.pi)
+
+
+@settings(max_examples=int(os.environ.get("PROOF_EXAMPLES", "25")), deadline=None)
+@given(data=st.data())
+def test_a_finished_branch_and_bound_is_the_same_at_every_budget_from_its_least(
+    tmp_path_factory, meshes, data
+):
+    """What lets another run take a proof the screen finished (proof_cache, matrix._repeated):
+    from `least` boxes up, the branch and bound goes step for step as it did, so its outcome,
+    share and units are the same."""
+    from marm_setup.collision.pair_chain import pair_chains
+
+    robot = _load(tmp_path_factory, data.draw(random_robots(meshes)))
+    scene = CollisionScene(robot, data.draw(st.sampled_from((0.0, 0.01))))
+    pairs = [p for p in scene.candidate_pairs if p not in robot.adjacent_geometry_pairs()]
+    chains = pair_chains(scene, pairs)
+    for pair in pairs:
+        budget = data.draw(st.sampled_from((64, 150, 600, 3000)))
+        proof = PairSearch(scene, chains[pair], Budget(budget, 0)).run()
+        if proof.outcome == UNPROVED or proof.least is None:
+            continue
+        assert proof.least <= budget
+        for again in sorted({proof.least, proof.least + 1, budget, 4 * budget}):
+            redone = PairSearch(scene, chains[pair], Budget(again, 0)).run()
+            fields = (redone.outcome, redone.proved_fraction, redone.witness, redone.units, redone.least)
+            assert fields == (proof.outcome, proof.proved_fraction, proof.witness, proof.units, proof.least)

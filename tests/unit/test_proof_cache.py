@@ -187,3 +187,40 @@ def test_progress_tells_the_proofs_as_they_end(marm):
     outcomes = [s.proof.outcome for s in matrix.stats if s.proof is not None]
     assert told and told[-1][:2] == (outcomes.count("proved"), outcomes.count("collides"))
     assert all(b[0] >= a[0] and b[1] >= a[1] for a, b in zip(told, told[1:], strict=False))
+
+
+def test_an_arm_on_a_cart_takes_the_proofs_the_screen_finished_for_the_arm_alone(marm, tmp_path, monkeypatch):
+    """The marm's pairs keep their keys on a cart (a box under base_link): the proofs its own
+    run's screen finished are taken where the cart's screen budget repeats them step for step
+    (proof.PairSearch.least), and the matrix is the one a run without the cache computes."""
+    from marm_setup.collision import compute_cached_matrix, describe_matrix
+    from marm_setup.collision import matrix as matrix_module
+    from tests.conftest import MARM_URDF
+
+    cart = tmp_path / "marm_on_a_cart.urdf.xacro"
+    cart.write_text(
+        '<robot name="marm" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        f'  <xacro:include filename="{MARM_URDF}"/>\n'
+        '  <link name="cart"><collision><origin xyz="0 0 -0.3"/><geometry><box size="0.5 0.5 0.5"/>'
+        "</geometry></collision></link>\n"
+        '  <joint name="cart_joint" type="fixed"><parent link="cart"/><child link="base_link"/></joint>\n'
+        "</robot>\n",
+        encoding="utf-8",
+    )
+    robot = load_robot(cart, package_paths=[MARM_URDF.parent.parent.parent])
+    compute_cached_matrix(marm, trials=1000, prove="on")
+    taken: dict = {}
+    real = matrix_module._repeated
+
+    def spy(*args):
+        taken.update(real(*args))
+        return taken
+
+    monkeypatch.setattr(matrix_module, "_repeated", spy)
+    reused = compute_cached_matrix(robot, trials=1000, prove="on", distances=True)
+    monkeypatch.setenv("MARM_SETUP_CACHE", "off")
+    fresh = compute_cached_matrix(robot, trials=1000, prove="on", distances=True)
+    assert taken and not any("cart" in pair for pair in taken)
+    assert reused == fresh and describe_matrix(reused, "marm", reused.disabled) == describe_matrix(
+        fresh, "marm", fresh.disabled
+    )
