@@ -70,8 +70,14 @@ def load_robot(
             expand, real[1], known, real[0], frozenset({switch.arg} if switch else ())
         )
     used = tuple((u.name, u.path, u.found_by) for u in sorted(packages.used.values(), key=lambda u: u.name))
+    unset = expanded.env_defaults if expanded is not None else ()
     return dataclasses.replace(
-        robot, packages=used, xacro_args=declared, mock_switch=switch, hardware_args=hardware_args
+        robot,
+        packages=used,
+        xacro_args=declared,
+        mock_switch=switch,
+        hardware_args=hardware_args,
+        env_defaults=unset,
     )
 
 

@@ -166,6 +166,8 @@ class RobotModel:
     # the xacro args that configure its real ros2_control hardware, with their defaults
     # (robot/hardware_args.py): the launch files offer them
     hardware_args: tuple[HardwareArg, ...] = field(default=(), compare=False)
+    # environment variables its xacro reads with optenv that were unset: their defaults made it
+    env_defaults: tuple[str, ...] = field(default=(), compare=False)
 
     # -- lookups -------------------------------------------------------------------------------
     @cached_property

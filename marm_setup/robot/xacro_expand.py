@@ -38,6 +38,10 @@ _DECLARED_IN_TEXT = re.compile(
     r"""|\$\(arg\s+([^\s)]+)\s*\)"""  # $(arg x)
     r"""|\barg\(\s*["']([^"']+)["']\s*\)"""  # arg('x') in $(eval), xacro.arg('x') in ${}
 )
+_OPTENV_IN_TEXT = re.compile(
+    r"""\$\(optenv\s+([^\s)]+)"""  # $(optenv NAME default)
+    r"""|\boptenv\(\s*["']([^"']+)["']"""  # optenv('NAME', default) in $(eval) and ${}
+)
 
 
 @dataclass(frozen=True)
@@ -50,6 +54,9 @@ class XacroOutput:
     declared: frozenset[str]
     values: tuple[tuple[str, str], ...] = ()
     stderr: str = ""
+    env_defaults: tuple[
+        str, ...
+    ] = ()  # unset environment variables it reads with optenv: their defaults used
 
 
 class _ArgTable(dict):
@@ -162,7 +169,15 @@ def _run_xacro(file: Path, text: str, args: dict[str, str], packages: PackageMap
     bounded_read.check_text_size(xml, bounded_read.XML_BYTES, shown=shown, element="xacro output")
     read = [text, *(_file_text(f) for f in xacro.all_includes[first_include:])]
     values = tuple(sorted((str(k), str(v)) for k, v in dict.items(table)))
-    return XacroOutput(xml, frozenset(table.asked) | _declared_in(read), values, captured.getvalue())
+    unset = _unset_optenv(read)
+    return XacroOutput(xml, frozenset(table.asked) | _declared_in(read), values, captured.getvalue(), unset)
+
+
+def _unset_optenv(texts: Iterable[str]) -> tuple[str, ...]:
+    """The environment variables `$(optenv NAME ...)` or `optenv('NAME', ...)` name anywhere in
+    `texts` that are not set here (xacro substitution_args.py _eval_optenv: their defaults)."""
+    names = {next(g for g in m.groups() if g) for text in texts for m in _OPTENV_IN_TEXT.finditer(text)}
+    return tuple(sorted(name for name in names if name not in os.environ))
 
 
 @contextlib.contextmanager

@@ -81,6 +81,7 @@ class Validation:
     srdf: str | None = None  # the SRDF read, relative to the package
     srdf_origin: str = ""  # which launch file sets it, or how it was chosen
     xacro_args: tuple[tuple[str, str], ...] = ()  # those the description was expanded with
+    env_defaults: tuple[str, ...] = ()  # unset environment variables its xacro read with optenv
 
     def describe(self) -> str:
         """One line: what was validated, against which robot, and whether planning ran."""
@@ -92,6 +93,9 @@ class Validation:
         launched = f"; launch files: {self.launched_by}" if self.launched_by else ""
         args = " ".join(f"{k}:={v}" for k, v in self.xacro_args)
         urdf = f"{self.urdf}{f' {args}' if args else ''} ({self.urdf_origin})"
+        if self.env_defaults:
+            names = ", ".join(self.env_defaults)
+            urdf += f" with the defaults of the unset environment variables it reads with $(optenv): {names}"
         srdf = f", SRDF {self.srdf} ({self.srdf_origin})" if self.srdf else ", no SRDF"
         return (
             f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
@@ -101,7 +105,12 @@ class Validation:
     def as_dict(self) -> dict:
         """The json `validated` object (everything but the findings)."""
         keys = ("package", "target", "layout", "urdf", "urdf_origin", "robot", "planned_pairs", "launched_by")
-        loaded = {"srdf": self.srdf, "srdf_origin": self.srdf_origin, "xacro_args": dict(self.xacro_args)}
+        loaded = {
+            "srdf": self.srdf,
+            "srdf_origin": self.srdf_origin,
+            "xacro_args": dict(self.xacro_args),
+            "env_defaults": list(self.env_defaults),
+        }
         return {**{key: getattr(self, key) for key in keys}, **loaded, "skipped": list(self.skipped)}
 
 
@@ -256,6 +265,7 @@ def _validation(
         srdf=pkg.srdf_path,
         srdf_origin=source.how if (source := pkg.source("srdf")) is not None else "",
         xacro_args=pkg.xacro_args,
+        env_defaults=robot.env_defaults if robot is not None else (),
     )
 
 

@@ -51,6 +51,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         "srdf": "config/panda_arm_hand.srdf.xacro",
         "srdf_origin": "chosen by its name",
         "xacro_args": {},
+        "env_defaults": [],
         "skipped": [],
     }
     assert (doc["errors"], doc["warnings"]) == (1, 3)

@@ -185,3 +185,29 @@ def test_a_package_uri_without_a_name_that_no_folder_holds(tmp_path):
     root = _unnamed_package_urdf(tmp_path, "package:///elsewhere/t.stl")
     with pytest.raises(InputError, match=r"mesh 'package:///elsewhere/t.stl' not found \(looked at "):
         load_robot(root / "share/robots_data/robots/talos/robots/r.urdf")
+
+
+def test_a_xacro_records_the_unset_environment_variables_it_reads_with_optenv(tmp_path, monkeypatch):
+    """kinova-movo's description builds its arms only where MOVO_HAS_KINOVA_ARM is set: the
+    robot says which variables it took the defaults of (validate's summary names them)."""
+    monkeypatch.delenv("MARM_TEST_ARM", raising=False)
+    monkeypatch.delenv("MARM_TEST_SIDE", raising=False)
+    monkeypatch.setenv("MARM_TEST_SET", "1")
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="a"/>\n'
+        '  <xacro:if value="$(optenv MARM_TEST_ARM false)"><link name="arm"/>\n'
+        '    <joint name="ja" type="fixed"><parent link="a"/><child link="arm"/></joint></xacro:if>\n'
+        '  <link name="$(optenv MARM_TEST_SIDE left)_b"/>\n'
+        '  <link name="c$(optenv MARM_TEST_SET 0)"/>\n'
+        '  <joint name="j" type="fixed"><parent link="a"/><child link="left_b"/></joint>\n'
+        '  <joint name="k" type="fixed"><parent link="a"/><child link="c1"/></joint>\n'
+        "</robot>\n",
+        encoding="utf-8",
+    )
+    robot = load_robot(path)
+    assert robot.env_defaults == ("MARM_TEST_ARM", "MARM_TEST_SIDE")
+    assert "arm" not in robot.link_map
+    monkeypatch.setenv("MARM_TEST_ARM", "true")
+    assert load_robot(path).env_defaults == ("MARM_TEST_SIDE",)
