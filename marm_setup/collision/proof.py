@@ -32,7 +32,7 @@ import numpy as np
 from marm_setup.collision.certificates import CERT_MARGIN, RELATIVE_MARGIN
 from marm_setup.collision.meter import Meter
 from marm_setup.collision.pair_chain import PairChain
-from marm_setup.collision.results import COLLIDES, PROVED, UNPROVED, PairProof
+from marm_setup.collision.results import COLLIDES, PROVED, UNPROVED, PairProof, SearchState
 
 if TYPE_CHECKING:
     from marm_setup.collision.scene import CollisionScene
@@ -88,22 +88,6 @@ SETTLE = {
     "exhaustive": Settle(0, 30_000, None, 0.0, 0.0, 0, None),
 }
 CLOSEST = 8  # closest box centres a proof keeps for the witness search
-
-
-@dataclass(frozen=True, eq=False)
-class SearchState:
-    """Where an unfinished branch and bound stopped, to go on from there (plain data: it goes
-    to and from pool processes): its open boxes (heap items), the certified share, the closest
-    centres measured, the meter's counts, the next sequence number, whether a box was too small
-    to split."""
-
-    heap: list
-    certified: float
-    measured: list
-    units: int
-    extra: tuple[int, int]
-    sequence: int
-    stuck: bool
 
 
 class PairSearch:

@@ -6,12 +6,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import astuple, dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from marm_setup.collision.pairs import DisabledPair, DisabledReason
-
-if TYPE_CHECKING:
-    from marm_setup.collision.proof import SearchState
 
 Pair = tuple[str, str]
 ROUND = 200  # samples per Always round, as MoveIt
@@ -38,6 +35,22 @@ class Work:
 
     def __sub__(self, other: Work) -> Work:
         return Work(*(a - b for a, b in zip(astuple(self), astuple(other), strict=True)))
+
+
+@dataclass(frozen=True, eq=False)
+class SearchState:
+    """Where an unfinished branch and bound stopped, to go on from there (plain data: it goes
+    to and from pool processes): its open boxes (heap items), the certified share, the closest
+    centres measured, the meter's counts, the next sequence number, whether a box was too small
+    to split."""
+
+    heap: list
+    certified: float
+    measured: list
+    units: int
+    extra: tuple[int, int]
+    sequence: int
+    stuck: bool
 
 
 @dataclass(frozen=True, slots=True)
