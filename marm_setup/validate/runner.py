@@ -450,8 +450,9 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
             "kinematics", check_kinematics, pkg.kinematics, srdf, robot, moveit1=ros1, depends=depends
         )
     if pkg.joint_limits is not None:
-        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
-        if uses_pilz(pkg.pipelines):
+        pilz = uses_pilz(pkg.pipelines)
+        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target, pilz=pilz)
+        if pilz:
             out += guarded("limits", check_cartesian_limits, pkg.joint_limits)
     if pkg.ompl is not None:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf, ompl_planners(pkg))
