@@ -485,6 +485,39 @@ def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
     return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)
 
 
+def hands_bare_to_move_group(root: Path, launch: str, rel: str) -> bool:
+    """Whether the Python launch file `launch` lists the YAML file `rel` itself as an item of a
+    move_group Node's `parameters` (`parameters=[robot_description, kinematics_yaml]` with
+    `kinematics_yaml = load_yaml("pkg", "config/kinematics.yaml")`, or the file's path): its keys
+    become move_group's own top-level parameters. A dict item (`{"robot_description_kinematics":
+    kinematics_yaml}`) puts them under its key instead; False also for an unreadable launch."""
+    from marm_setup.package.launch_xml import package_relative
+
+    try:
+        tree = parse_launch_module(root / launch, launch)
+    except Unreadable:
+        return False
+    env = _environment(tree, lambda _name: None)
+    bound = {
+        node.targets[0].id: node.value
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
+    }
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Call) and _name(node.func) == "Node"):
+            continue
+        if _try(_keyword(node, "executable"), env) != "move_group":
+            continue
+        params = _keyword(node, "parameters")
+        for item in params.elts if isinstance(params, ast.List | ast.Tuple) else ():
+            held = bound.get(item.id, item) if isinstance(item, ast.Name) else item
+            if isinstance(held, ast.Dict):
+                continue
+            if any(package_relative(path, root) == rel for path in _named_yaml(held)):
+                return True
+    return False
+
+
 PIPELINE_PLUGIN_KEYS = ("planning_plugin", "planning_plugins")
 
 

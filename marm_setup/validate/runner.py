@@ -25,7 +25,7 @@ from marm_setup.package import (
     read_package,
     undefined_unread_arg,
 )
-from marm_setup.ros import Target
+from marm_setup.ros import DISTROS, DistroRow, Target
 from marm_setup.untrusted import CodeNotRun, no_package_code, skipped_code, skips_code
 from marm_setup.validate.registry import rule_family
 from marm_setup.validate.rules.conflict_rules import check_merge_conflicts
@@ -45,7 +45,7 @@ from marm_setup.validate.rules.declared_param_rules import check_declared_parame
 from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_param_rules import check_driver_parameters
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
-from marm_setup.validate.rules.kinematics_rules import check_kinematics
+from marm_setup.validate.rules.kinematics_rules import check_kinematics, check_top_level_kinematics
 from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml
 from marm_setup.validate.rules.limits_rules import check_cartesian_limits, check_joint_limits, uses_pilz
 from marm_setup.validate.rules.name_rules import check_controller_names, check_srdf_names
@@ -449,6 +449,9 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
         out += guarded(
             "kinematics", check_kinematics, pkg.kinematics, srdf, robot, moveit1=ros1, depends=depends
         )
+        if not ros1 and pkg.kinematics.top_level_by:
+            row = kinematics_distro(pkg)
+            out += guarded("kinematics", check_top_level_kinematics, pkg.kinematics, srdf, row)
     if pkg.joint_limits is not None:
         pilz = uses_pilz(pkg.pipelines)
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target, pilz=pilz)
@@ -457,6 +460,17 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
     if pkg.ompl is not None:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf, ompl_planners(pkg))
     return out
+
+
+def kinematics_distro(pkg: MoveItPackage) -> DistroRow | None:
+    """The distro whose MoveIt reads the package's kinematics: --ros-distro or marm_setup.yaml's,
+    else the one the pipelines' parameter format shows (declared_param_rules.inferred_family),
+    else None."""
+    from marm_setup.package import received_parameters
+    from marm_setup.validate.rules.declared_param_rules import inferred_family
+
+    name = pkg.ros_distro or inferred_family(received_parameters(pkg))
+    return DISTROS.get(name) if name else None
 
 
 def ompl_planners(pkg: MoveItPackage) -> frozenset[str]:
