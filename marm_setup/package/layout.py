@@ -306,10 +306,15 @@ def read_ros2_kinds(
     """What the builder loads, then the files XML launch files hand to nodes over it."""
     kinds = Kinds()
     root = files.root
+    opaque = _opaque_kinds(builder)
+    kinds.values["opaque"] = opaque_summary(builder, opaque)
+    kinds.values["opaque_methods"] = opaque
     for kind, method, reader in (
         ("kinematics", "robot_description_kinematics", read_kinematics),
         ("joint_limits", "joint_limits", read_joint_limits),
     ):
+        if method in opaque:
+            continue
         chosen = chosen_file(builder, method, root)
         doc = _named(files, chosen.file) if chosen is not None else None
         top_level_by = ""
@@ -319,9 +324,11 @@ def read_ros2_kinds(
         if isinstance(value, KinematicsFile) and top_level_by:
             value = replace(value, top_level_by=top_level_by)
         kinds.put(kind, value, doc, chosen.how if chosen else SA_NAME)
-    _ros2_controllers(files, builder, kinds, named_yaml)
-    _ros2_pipelines(files, builder, kinds, named_yaml)
-    chosen = chosen_file(builder, "sensors_3d", root)
+    if "trajectory_execution" not in opaque:
+        _ros2_controllers(files, builder, kinds, named_yaml)
+    if "planning_pipelines" not in opaque:
+        _ros2_pipelines(files, builder, kinds, named_yaml)
+    chosen = chosen_file(builder, "sensors_3d", root) if "sensors_3d" not in opaque else None
     doc = _named(files, chosen.file) if chosen is not None else None
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, chosen.how if chosen else "")
     for rel in control_files:
@@ -341,6 +348,36 @@ def read_ros2_kinds(
     # package is another node's parameters or a MoveIt 1 leftover, never move_group's.
     kinds.values["servo"] = _servo(files, [load.file for load in loads])
     return kinds
+
+
+OPAQUE_METHODS = (  # MoveItConfigsBuilder methods whose files validate reads as one kind
+    ("robot_description_kinematics", "kinematics"),
+    ("joint_limits", "joint limits"),
+    ("trajectory_execution", "MoveIt's controller list"),
+    ("planning_pipelines", "planning pipelines"),
+    ("sensors_3d", "3D sensors"),
+)
+
+
+def _opaque_kinds(builder: BuilderFiles) -> tuple[str, ...]:
+    """The builder methods (OPAQUE_METHODS) only a foreign builder calls: what it loads for them,
+    where it puts it and what it merges in are its own code's (package/builder.py), so those
+    kinds are not read through it."""
+    return tuple(method for method, _ in OPAQUE_METHODS if builder.opaque(method) is not None)
+
+
+def opaque_summary(builder: BuilderFiles, methods: tuple[str, ...]) -> tuple[str, ...]:
+    """The summary's line per foreign builder call for what validate did not read through it."""
+    out = []
+    for call in dict.fromkeys(c for m in methods if (c := builder.opaque(m)) is not None):
+        kinds = ", ".join(
+            what for method, what in OPAQUE_METHODS if method in methods and method in call.methods
+        )
+        out.append(
+            f"the {kinds} of {call.launch}'s MoveItConfigsBuilder from {call.origin or 'no import'} "
+            "(not moveit_configs_utils': validate cannot see what it loads or where it puts it)"
+        )
+    return tuple(out)
 
 
 def _node_kinematics(

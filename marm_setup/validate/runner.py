@@ -324,6 +324,7 @@ def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str,
     elif pkg.srdf is None:
         why = "no SRDF found" if pkg.srdf_path is None else f"{pkg.srdf_path} could not be read"
         out.append(f"the {', '.join(SRDF_FAMILIES)} rules ({why})")
+    out += pkg.opaque
     return tuple(out)
 
 
@@ -540,8 +541,10 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
         out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
     moveit = pkg.moveit_controllers
     if moveit is None:
-        if pkg.fake_controllers is None and not any(
-            f.rule == "controller.runtime-only" for f in pkg.problems
+        if (
+            pkg.fake_controllers is None
+            and "trajectory_execution" not in pkg.opaque_methods  # a foreign builder's list
+            and not any(f.rule == "controller.runtime-only" for f in pkg.problems)
         ):
             msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))

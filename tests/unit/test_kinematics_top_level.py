@@ -14,7 +14,7 @@ from marm_setup.validate import validate
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="3"><name>tri_moveit_config</name><version>0.0.0</version>
-<description>t</description><maintainer email="a@b.c">a</maintainer><license>BSD</license>
+<description>t</description><maintainer email="a@example.com">a</maintainer><license>BSD</license>
 <buildtool_depend>ament_cmake</buildtool_depend><export><build_type>ament_cmake</build_type></export>
 </package>
 """
