@@ -527,10 +527,26 @@ def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     if pkg.initial_positions is not None:
         out += guarded("pose", check_initial_positions, pkg.initial_positions, robot)
     out += guarded("controller", check_controllers, pkg, robot)
+    out += guarded("controller", check_hardware_interfaces, pkg, robot)
     out += guarded("distro", check_package_runtime, pkg, robot)
     out += guarded("servo", check_servos, pkg, robot)
     out += guarded("sensors", check_sensors, pkg)
     return out
+
+
+def check_hardware_interfaces(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
+    """ROS 2: the driver's trajectory controllers against the interfaces the `<ros2_control>`
+    systems of the description the package loads list (validate/rules/interface_rules.py); in
+    our layout the package's own ros2_control xacro is part of that description."""
+    from marm_setup.robot import described_systems
+    from marm_setup.validate.rules.interface_rules import check_controller_interfaces, offered_interfaces
+
+    if pkg.target != Target.ROS2 or pkg.ros2_controllers is None:
+        return []
+    systems = list(described_systems(robot))
+    if pkg.layout == "marm_ros2":
+        systems += [s for f in pkg.ros2_control_files for s in f.systems]
+    return check_controller_interfaces(pkg.ros2_controllers, offered_interfaces(systems))
 
 
 def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
