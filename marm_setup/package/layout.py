@@ -400,7 +400,7 @@ def _node_kinematics(
         nested = params.get("robot_description_kinematics")
         if nested.is_mapping:
             return nested, ""
-        by = [lo.launch for lo in _by_preference(list(loads)) if lo.file == rel and lo.ns == MOVE_GROUP]
+        by = [lo.launch for lo in loads if lo.file == rel and lo.ns == MOVE_GROUP and not lo.conditional]
         doc = params
     else:
         by = []

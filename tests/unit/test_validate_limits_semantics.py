@@ -105,6 +105,21 @@ def test_an_integer_counts_in_ros2_only_where_moveit_reads_a_double(panda1):
     assert found(position, panda1, "ros2") == [("limits.not-float", "error", f"{joint}.max_position")]
     velocity = PANDA_LIMITS.replace("max_velocity: 2.1750", "max_velocity: 2", 1)
     assert found(velocity, panda1, "ros2") == [("limits.not-float", "error", f"{joint}.max_velocity")]
+    # Pilz reads the positions only under has_position_limits: true, and then stops move_group
+    srdf, robot = panda1
+
+    def said(text: str) -> str:
+        limits = read_joint_limits(located_text(text, "config/joint_limits.yaml"))
+        (one,) = [
+            f
+            for f in check_joint_limits(limits, srdf, robot, "ros2", pilz=True)
+            if f.rule == "limits.not-float"
+        ]
+        return one.message
+
+    pilz_reads = position.replace("max_position: 2", "has_position_limits: true\n    max_position: 2")
+    assert "Pilz" in said(pilz_reads) and "ParameterTypeException" in said(pilz_reads)
+    assert "Pilz" not in said(position)
     # roscpp converts an integer to the double MoveIt 1 asks for (param.cpp getImpl(double&))
     assert found(flagged, panda1) == []
     unknown = PANDA_LIMITS + "  no_such_joint:\n    has_velocity_limits: true\n    max_velocity: 2\n"

@@ -44,7 +44,8 @@ FLAGS = {
     "max_jerk": "has_jerk_limits",
     "max_effort": "has_effort_limits",
 }
-NUMERIC_KEYS = (*FLAGS, "min_position", "max_position")
+POSITION_KEYS = ("min_position", "max_position")
+NUMERIC_KEYS = (*FLAGS, *POSITION_KEYS)
 
 
 def _above(value: float, limit: float) -> bool:
@@ -212,13 +213,16 @@ def _read_as_double(entry: JointLimitEntry, key: str, pilz: bool) -> str:
     max_jerk each only when its flag is true, never max_effort; a ParameterTypeException ends the
     joint's loop (caught and logged, l.236-239 / l.241-244). Pilz's copy of ros2_control's
     joint_limits_rosparam.hpp (pilz_industrial_motion_planner/include/joint_limits_copy/, jazzy
-    l.150-236) reads each max_* (and max_effort) only under its true flag, unguarded: the
+    l.150-236) reads each max_* (max_effort too) and min/max_position only under its true flag
+    (has_position_limits for the positions), unguarded: the
     exception leaves CommandPlanner::initialize and PlanningPipeline's constructor
     (planning_pipeline.cpp jazzy l.170), and move_group stops."""
-    flag = FLAGS.get(key)
-    flagged = flag is not None and (set_to := entry.param(flag)) is not None and set_to.value is True
-    loader = key in ("min_position", "max_position") or (flagged and key != "max_effort")
-    stops = pilz and flagged
+
+    def flagged(flag: str | None) -> bool:
+        return flag is not None and (set_to := entry.param(flag)) is not None and set_to.value is True
+
+    loader = key in POSITION_KEYS or (key != "max_effort" and flagged(FLAGS.get(key)))
+    stops = pilz and flagged(FLAGS.get(key, "has_position_limits" if key in POSITION_KEYS else None))
     if not loader and not stops:
         return ""
     does = (
