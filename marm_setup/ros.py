@@ -98,6 +98,9 @@ class DistroRow:
     # controller_manager takes the URDF from robot_state_publisher's /robot_description topic
     # (else from its robot_description parameter)
     robot_description_topic: bool = False
+    # move_group finds a group's IK solver at `<group>.kinematics_solver` among its own top-level
+    # parameters too, not only at `robot_description_kinematics.<group>.kinematics_solver`
+    kinematics_top_level: bool = False
     launch_frontend: str = ""  # whose launch / launch_ros the ROS 2 consumer runs: humble | jazzy
 
     def controller(self, kind: str) -> ControllerKind:
@@ -181,6 +184,9 @@ _HUMBLE = DistroRow(
     ),  # fmt: skip
     control_packages=(*_CONTROL, "gripper_controllers"),
     mock_plugins=frozenset({MOCK, "fake_components/GenericSystem"}),
+    # kinematics_plugin_loader.cpp humble l.306-319: `<group>.kinematics_solver` first, then
+    # `robot_description_kinematics.<group>...`; jazzy l.258-272 (kilted, main l.260) only the latter
+    kinematics_top_level=True,
     launch_frontend="humble",
 )
 _JAZZY = DistroRow(

@@ -13,6 +13,13 @@ method's `file_path` default). `trajectory_execution` without a file takes the o
 `<robot_name>_controllers.yaml` in that order (and raises when none of those exists);
 `planning_pipelines` without `pipelines` loads every `config/*_planning.yaml` plus MoveIt's own
 defaults (ompl, chomp, pilz_industrial_motion_planner; stomp on jazzy).
+
+Only a MoveItConfigsBuilder imported from moveit_configs_utils follows these conventions. Another
+module's (xarm_ros2's `from uf_ros_lib.moveit_configs_builder import MoveItConfigsBuilder`: its
+own constructor, its own config folders and defaults merged in, controller lists wrapped under
+moveit_simple_controller_manager and renamed with a prefix) is `foreign`: validate follows the
+description and SRDF file paths it is given (`.robot_description(file_path=...)`: what a robot
+description is, whoever builds it) and reads nothing else through it (`opaque`).
 """
 
 from __future__ import annotations
@@ -42,19 +49,32 @@ class Chosen:
     how: str
 
 
+DESCRIPTION_METHODS = ("robot_description", "robot_description_semantic")
+
+
 @dataclass(frozen=True)
 class BuilderFiles:
     robot_name: str
-    calls: tuple[BuilderCall, ...]  # this package's builder calls (launch files sorted)
+    calls: tuple[BuilderCall, ...]  # this package's MoveIt builder calls (launch files sorted)
     others: tuple[str, ...] = ()  # other robots the package's launch files build (not read)
+    foreign: tuple[BuilderCall, ...] = ()  # builders of another module (launch files sorted)
 
     def explicit(self, method: str) -> Chosen | None:
-        """The file the first launch file naming one passes to `method`, if any."""
-        for call in self.calls:
+        """The file the first launch file naming one passes to `method`, if any (a foreign
+        builder's only for the robot description and SRDF)."""
+        for call in (*self.calls, *(self.foreign if method in DESCRIPTION_METHODS else ())):
             path = call.file(method)
             if path is not None:
-                return Chosen(path, f"MoveItConfigsBuilder.{method}(file_path) in {call.launch}")
+                whose = "MoveItConfigsBuilder" if call.is_moveit else f"{call.origin}.MoveItConfigsBuilder"
+                return Chosen(path, f"{whose}.{method}(file_path) in {call.launch}")
         return None
+
+    def opaque(self, method: str) -> BuilderCall | None:
+        """The first foreign builder call that calls `method` (what it loads for it, validate
+        cannot see), when no MoveIt builder call of the package does."""
+        if any(method in c.methods for c in self.calls):
+            return None
+        return next((c for c in self.foreign if method in c.methods), None)
 
     def computed(self, method: str) -> str | None:
         """The launch file of the first call passing `method` a file_path only the run time
@@ -73,7 +93,12 @@ class BuilderFiles:
         return next((c.pipelines for c in self.calls if c.pipelines is not None), None)
 
 
-def builder_files(calls: tuple[BuilderCall, ...], package: str, wanted: tuple[str, ...] = ()) -> BuilderFiles:
+def builder_files(
+    calls: tuple[BuilderCall, ...],
+    package: str,
+    wanted: tuple[str, ...] = (),
+    foreign: tuple[BuilderCall, ...] = (),
+) -> BuilderFiles:
     """The calls that build this package's config (its own name, or the default package name of
     their robot name), and the robot name they use. A package whose launch files build several
     robots (one launch file each) is read for one: the first of `wanted` (the robot names the
@@ -88,7 +113,7 @@ def builder_files(calls: tuple[BuilderCall, ...], package: str, wanted: tuple[st
     mine = tuple(c for c in mine if c.robot_name in (robot, None))
     default = package[: -len("_moveit_config")] if package.endswith("_moveit_config") else package
     others = tuple(sorted(set(robots) - {robot}))
-    return BuilderFiles(robot or default, mine, others)
+    return BuilderFiles(robot or default, mine, others, foreign)
 
 
 def chosen_file(builder: BuilderFiles, method: str, root: Path) -> Chosen | None:

@@ -5,10 +5,13 @@ driver's `arbotix.yaml` and ros2_control's `initial_positions.yaml`."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from marm_setup.moveit_params import flatten
 from marm_setup.package.where import Located, Param, Where, freeze
+
+if TYPE_CHECKING:
+    from marm_setup.robot import Ros2ControlSystem
 
 # (dotted name, value as YAML gave it) of every parameter of one node
 Settings = tuple[tuple[str, Any], ...]
@@ -176,18 +179,34 @@ def read_initial_positions(doc: Located) -> InitialPositions:
 @dataclass(frozen=True, slots=True)
 class Ros2ControlFile:
     """A package's ros2_control xacro: the joints its `<ros2_control>` systems name literally
-    (a `${...}` name is only known once xacro runs)."""
+    (a `${...}` name is only known once xacro runs), and those systems with the interfaces each
+    literally named joint lists (`plugin` '' unless one literal plugin is all it can load)."""
 
     file: str
     joints: tuple[str, ...]
+    systems: tuple[Ros2ControlSystem, ...] = ()
 
 
 def read_ros2_control(file: str, text: str) -> Ros2ControlFile:
     from lxml import etree
+
+    from marm_setup.robot import Ros2ControlSystem, joint_interfaces
 
     try:
         root = etree.fromstring(text.encode(), parser=etree.XMLParser(remove_comments=True))
     except etree.XMLSyntaxError:
         return Ros2ControlFile(file, ())
     names = [j.get("name", "") for system in root.iter("ros2_control") for j in system.findall("joint")]
-    return Ros2ControlFile(file, tuple(n for n in names if n and "${" not in n))
+    systems = []
+    for system in root.iter("ros2_control"):
+        plugins = {(p.text or "").strip() for p in system.iter("plugin")}
+        plugin = next(iter(plugins)) if len(plugins) == 1 and "${" not in next(iter(plugins)) else ""
+        found = tuple(
+            interfaces
+            for j in system.findall("joint")
+            if "${" not in (interfaces := joint_interfaces(j)).joint
+            and not any("${" in n for n in (*interfaces.command, *interfaces.state))
+        )
+        joints = tuple(i.joint for i in found)
+        systems.append(Ros2ControlSystem(system.get("name", ""), plugin, joints, interfaces=found))
+    return Ros2ControlFile(file, tuple(n for n in names if n and "${" not in n), tuple(systems))

@@ -41,10 +41,14 @@ class GroupKinematics:
 
 @dataclass(frozen=True, slots=True)
 class KinematicsFile:
-    """The groups of a kinematics file; `groups` None when the file is not a mapping of groups."""
+    """The groups of a kinematics file; `groups` None when the file is not a mapping of groups.
+    `top_level_by`: the launch file that hands the groups to move_group as its own top-level
+    parameters (`<group>.kinematics_solver`), not under `robot_description_kinematics` ('' when
+    they land under it, or where they land is not known)."""
 
     where: Where
     groups: tuple[GroupKinematics, ...] | None
+    top_level_by: str = ""
 
     def group(self, name: str) -> GroupKinematics | None:
         return next((g for g in self.groups or () if g.group == name), None)

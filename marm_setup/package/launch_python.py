@@ -1,7 +1,7 @@
 """MoveIt 2 Python launch files, read statically (parsed with `ast`, never executed).
 
 What is read: each `MoveItConfigsBuilder(robot_name, robot_description=..., package_name=...)`
-chain and the files its methods name (`.robot_description(file_path, mappings)`,
+chain (with the module the name is imported from: only moveit_configs_utils' is MoveIt's, `builder_origins`) and the files its methods name (`.robot_description(file_path, mappings)`,
 `.robot_description_semantic(file_path, mappings)`, `.robot_description_kinematics(file_path)`,
 `.joint_limits(file_path)`, `.trajectory_execution(file_path)`, `.planning_pipelines(pipelines,
 default_planning_pipeline)`, `.sensors_3d(file_path)`, `.pilz_cartesian_limits(file_path)`),
@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 BUILDER = "MoveItConfigsBuilder"
+MOVEIT_BUILDER_PACKAGE = "moveit_configs_utils"  # moveit/moveit2 moveit_configs_utils/
 FILE_METHODS = (
     "robot_description",
     "robot_description_semantic",
@@ -67,6 +68,13 @@ class BuilderCall:
     pipelines: tuple[str, ...] | None = None
     default_pipeline: str | None = None
     computed: tuple[str, ...] = ()  # methods given a file_path only the run time computes
+    origin: str = MOVEIT_BUILDER_PACKAGE  # the module the builder comes from (builder_origins)
+    methods: tuple[str, ...] = ()  # every method the chain calls
+
+    @property
+    def is_moveit(self) -> bool:
+        """MoveIt's own builder (moveit_configs_utils'), whose conventions `package.builder` holds."""
+        return is_moveit_builder(self.origin)
 
     def file(self, method: str) -> str | None:
         return dict(self.files).get(method)
@@ -102,6 +110,9 @@ class PythonLaunch:
 
     named_yaml: tuple[tuple[str, str], ...] = ()  # (a YAML path written as a literal, launch file)
     unread: tuple[tuple[str, str], ...] = ()  # (launch file, why it was not read: Unreadable)
+    # builders of another module than moveit_configs_utils (a vendor's: uf_ros_lib's), whose
+    # conventions validate does not know
+    other_builders: tuple[BuilderCall, ...] = ()
 
 
 @dataclass
@@ -124,7 +135,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
             tree = parse_launch_module(root / rel, rel)
             env = _environment(tree, find)
             found = (
-                [_builder(call, rel, env) for call in _builder_chains(tree)],
+                [_builder(chain, rel, env, origin) for chain, origin in _builder_chains(tree)],
                 [(path, rel) for path in _control_files(tree, env)],
                 xacro_commands(tree, rel, env),
                 [(path, rel) for path in _named_yaml(tree)],
@@ -140,7 +151,9 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
         control += found[1]
         commands += found[2]
         named += found[3]
-    return PythonLaunch(tuple(builders), tuple(control), tuple(commands), tuple(named), tuple(unread))
+    moveit = tuple(b for b in builders if b.is_moveit)
+    others = tuple(b for b in builders if not b.is_moveit)
+    return PythonLaunch(moveit, tuple(control), tuple(commands), tuple(named), tuple(unread), others)
 
 
 def parse_launch_module(path: Path, rel: str) -> ast.Module:
@@ -293,32 +306,70 @@ def _keyword(call: ast.Call, name: str) -> ast.AST | None:
     return next((k.value for k in call.keywords if k.arg == name), None)
 
 
-def _builder_chains(tree: ast.AST) -> Iterator[list[ast.Call]]:
-    """Each outermost call chain that starts at MoveItConfigsBuilder(...), innermost first."""
+def _builder_chains(tree: ast.AST) -> Iterator[tuple[list[ast.Call], str]]:
+    """Each outermost call chain that starts at a MoveItConfigsBuilder(...), innermost first,
+    with the module that builder comes from (`builder_origins`)."""
+    origins = builder_origins(tree)
     inner: set[int] = set()
     chains = []
     for node in ast.walk(tree):
         if not isinstance(node, ast.Call) or id(node) in inner:
             continue
-        chain = _chain(node)
+        chain = _chain(node, origins)
         if chain:
-            inner.update(id(c) for c in chain)
+            inner.update(id(c) for c in chain[0])
             chains.append(chain)
     yield from chains
 
 
-def _chain(call: ast.Call) -> list[ast.Call] | None:
+def _chain(call: ast.Call, origins: dict[str, str]) -> tuple[list[ast.Call], str] | None:
     out = [call]
     node: ast.AST = call
     while isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute):
         node = node.func.value
         if isinstance(node, ast.Call):
             out.append(node)
-    first = out[-1]
-    return list(reversed(out)) if _name(first.func) == BUILDER else None
+    first = out[-1].func
+    if isinstance(first, ast.Name) and first.id in origins:  # MoveItConfigsBuilder(...), B(...)
+        return list(reversed(out)), origins[first.id]
+    if isinstance(first, ast.Attribute) and first.attr == BUILDER:  # module.MoveItConfigsBuilder(...)
+        base: ast.AST = first.value
+        while isinstance(base, ast.Attribute):
+            base = base.value
+        module = origins.get(f"import {base.id}", "") if isinstance(base, ast.Name) else ""
+        return list(reversed(out)), module
+    if isinstance(first, ast.Name) and first.id == BUILDER:  # a name nothing imports
+        return list(reversed(out)), ""
+    return None
 
 
-def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
+def builder_origins(tree: ast.AST) -> dict[str, str]:
+    """Where the names a MoveItConfigsBuilder call may start with come from: `from M import
+    MoveItConfigsBuilder [as B]` maps B (else MoveItConfigsBuilder) to M; `import M [as A]` maps
+    'import A' (else 'import ' + M's first part) to M; a class of that name defined in the file
+    maps it to '<this launch file>'; a star import of MoveIt's module maps MoveItConfigsBuilder."""
+    out: dict[str, str] = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.module:
+            for alias in node.names:
+                if alias.name == BUILDER:
+                    out[alias.asname or BUILDER] = node.module
+                elif alias.name == "*" and is_moveit_builder(node.module):
+                    out.setdefault(BUILDER, node.module)
+        elif isinstance(node, ast.Import):
+            for alias in node.names:
+                out[f"import {alias.asname or alias.name.split('.')[0]}"] = alias.name
+        elif isinstance(node, ast.ClassDef) and node.name == BUILDER:
+            out[BUILDER] = "<this launch file>"
+    return out
+
+
+def is_moveit_builder(origin: str) -> bool:
+    """Whether a builder of that origin is MoveIt's own (moveit_configs_utils')."""
+    return origin.split(".")[0] == MOVEIT_BUILDER_PACKAGE
+
+
+def _builder(chain: list[ast.Call], rel: str, env: _Env, origin: str = MOVEIT_BUILDER_PACKAGE) -> BuilderCall:
     ctor = chain[0]
     robot = _try(ctor.args[0] if ctor.args else _keyword(ctor, "robot_name"), env)
     description = _try(ctor.args[1] if len(ctor.args) > 1 else _keyword(ctor, "robot_description"), env)
@@ -356,6 +407,8 @@ def _builder(chain: list[ast.Call], rel: str, env: _Env) -> BuilderCall:
         pipelines,
         default,
         tuple(computed),
+        origin,
+        tuple(_name(call.func) for call in chain[1:]),
     )
 
 
@@ -483,6 +536,39 @@ def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
         return None
     keys = _yaml_keys(tree)
     return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)
+
+
+def hands_bare_to_move_group(root: Path, launch: str, rel: str) -> bool:
+    """Whether the Python launch file `launch` lists the YAML file `rel` itself as an item of a
+    move_group Node's `parameters` (`parameters=[robot_description, kinematics_yaml]` with
+    `kinematics_yaml = load_yaml("pkg", "config/kinematics.yaml")`, or the file's path): its keys
+    become move_group's own top-level parameters. A dict item (`{"robot_description_kinematics":
+    kinematics_yaml}`) puts them under its key instead; False also for an unreadable launch."""
+    from marm_setup.package.launch_xml import package_relative
+
+    try:
+        tree = parse_launch_module(root / launch, launch)
+    except Unreadable:
+        return False
+    env = _environment(tree, lambda _name: None)
+    bound = {
+        node.targets[0].id: node.value
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
+    }
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Call) and _name(node.func) == "Node"):
+            continue
+        if _try(_keyword(node, "executable"), env) != "move_group":
+            continue
+        params = _keyword(node, "parameters")
+        for item in params.elts if isinstance(params, ast.List | ast.Tuple) else ():
+            held = bound.get(item.id, item) if isinstance(item, ast.Name) else item
+            if isinstance(held, ast.Dict):
+                continue
+            if any(package_relative(path, root) == rel for path in _named_yaml(held)):
+                return True
+    return False
 
 
 PIPELINE_PLUGIN_KEYS = ("planning_plugin", "planning_plugins")

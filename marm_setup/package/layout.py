@@ -32,7 +32,7 @@ from marm_setup.package.driver_file import (
 )
 from marm_setup.package.files import PackageFiles
 from marm_setup.package.joint_limits_file import read_joint_limits
-from marm_setup.package.kinematics_file import read_kinematics
+from marm_setup.package.kinematics_file import KinematicsFile, read_kinematics
 from marm_setup.package.launch_python import launch_yaml_key
 from marm_setup.package.launch_ros1 import MANAGER_PARAM, LaunchParam, YamlLoad
 from marm_setup.package.model import Source
@@ -58,6 +58,7 @@ ROS1_MOVEIT_CONTROLLERS = (
     "config/ros_controllers.yaml",  # old Setup Assistant (controller_list inside)
 )
 SA_NAME = "the Setup Assistant's file name"
+MOVE_GROUP = "move_group"  # the node (XML launch: its name, else its exec) MoveIt's parameters go to
 MARM_MOVEIT_YAML = "config/moveit.yaml"
 
 
@@ -305,18 +306,29 @@ def read_ros2_kinds(
     """What the builder loads, then the files XML launch files hand to nodes over it."""
     kinds = Kinds()
     root = files.root
+    opaque = _opaque_kinds(builder)
+    kinds.values["opaque"] = opaque_summary(builder, opaque)
+    kinds.values["opaque_methods"] = opaque
     for kind, method, reader in (
         ("kinematics", "robot_description_kinematics", read_kinematics),
         ("joint_limits", "joint_limits", read_joint_limits),
     ):
+        if method in opaque:
+            continue
         chosen = chosen_file(builder, method, root)
         doc = _named(files, chosen.file) if chosen is not None else None
+        top_level_by = ""
         if doc is not None and kind == "kinematics" and not builder.calls:
-            doc = _node_kinematics(doc)
-        kinds.put(kind, reader(doc) if doc is not None else None, doc, chosen.how if chosen else SA_NAME)
-    _ros2_controllers(files, builder, kinds, named_yaml)
-    _ros2_pipelines(files, builder, kinds, named_yaml)
-    chosen = chosen_file(builder, "sensors_3d", root)
+            doc, top_level_by = _node_kinematics(files, doc, loads, named_yaml)
+        value = reader(doc) if doc is not None else None
+        if isinstance(value, KinematicsFile) and top_level_by:
+            value = replace(value, top_level_by=top_level_by)
+        kinds.put(kind, value, doc, chosen.how if chosen else SA_NAME)
+    if "trajectory_execution" not in opaque:
+        _ros2_controllers(files, builder, kinds, named_yaml)
+    if "planning_pipelines" not in opaque:
+        _ros2_pipelines(files, builder, kinds, named_yaml)
+    chosen = chosen_file(builder, "sensors_3d", root) if "sensors_3d" not in opaque else None
     doc = _named(files, chosen.file) if chosen is not None else None
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, chosen.how if chosen else "")
     for rel in control_files:
@@ -338,17 +350,64 @@ def read_ros2_kinds(
     return kinds
 
 
-def _node_kinematics(doc: Located) -> Located:
-    """A kinematics file no MoveItConfigsBuilder wraps (a launch hands it to move_group itself):
-    a ROS 2 parameter file (`/**: ros__parameters:`) holds move_group's own parameters, where
+OPAQUE_METHODS = (  # MoveItConfigsBuilder methods whose files validate reads as one kind
+    ("robot_description_kinematics", "kinematics"),
+    ("joint_limits", "joint limits"),
+    ("trajectory_execution", "MoveIt's controller list"),
+    ("planning_pipelines", "planning pipelines"),
+    ("sensors_3d", "3D sensors"),
+)
+
+
+def _opaque_kinds(builder: BuilderFiles) -> tuple[str, ...]:
+    """The builder methods (OPAQUE_METHODS) only a foreign builder calls: what it loads for them,
+    where it puts it and what it merges in are its own code's (package/builder.py), so those
+    kinds are not read through it."""
+    return tuple(method for method, _ in OPAQUE_METHODS if builder.opaque(method) is not None)
+
+
+def opaque_summary(builder: BuilderFiles, methods: tuple[str, ...]) -> tuple[str, ...]:
+    """The summary's line per foreign builder call for what validate did not read through it."""
+    out = []
+    for call in dict.fromkeys(c for m in methods if (c := builder.opaque(m)) is not None):
+        kinds = ", ".join(
+            what for method, what in OPAQUE_METHODS if method in methods and method in call.methods
+        )
+        out.append(
+            f"the {kinds} of {call.launch}'s MoveItConfigsBuilder from {call.origin or 'no import'} "
+            "(not moveit_configs_utils': validate cannot see what it loads or where it puts it)"
+        )
+    return tuple(out)
+
+
+def _node_kinematics(
+    files: PackageFiles, doc: Located, loads: Loads, named_yaml: tuple[tuple[str, str], ...]
+) -> tuple[Located, str]:
+    """A kinematics file no MoveItConfigsBuilder wraps (a launch hands it to move_group itself),
+    and the launch file that hands its groups to move_group as top-level parameters ('' when
+    they land under robot_description_kinematics, or no launch file shows where they land).
+    A ROS 2 parameter file (`/**: ros__parameters:`) holds move_group's own parameters, where
     MoveIt reads `<group>.kinematics_solver` (Humble, before robot_description_kinematics.<group>:
-    humble kinematics_plugin_loader.cpp l.308-319) or `robot_description_kinematics.<group>`
-    (jazzy kinematics_plugin_loader.cpp l.260)."""
+    humble kinematics_plugin_loader.cpp l.306-319) or `robot_description_kinematics.<group>`
+    (humble; jazzy kinematics_plugin_loader.cpp l.260, the only place Jazzy and later look). A
+    plain file a Python launch lists itself among move_group's parameters (`load_yaml(...)`, not
+    `{"robot_description_kinematics": load_yaml(...)}`) is top-level too."""
+    from marm_setup.package.launch_python import hands_bare_to_move_group
+
+    rel = doc.where.file
     params = unwrap_parameters(doc)
-    if params is doc:
-        return doc
-    nested = params.get("robot_description_kinematics")
-    return nested if nested.is_mapping else params
+    if params is not doc:
+        nested = params.get("robot_description_kinematics")
+        if nested.is_mapping:
+            return nested, ""
+        by = [lo.launch for lo in loads if lo.file == rel and lo.ns == MOVE_GROUP and not lo.conditional]
+        doc = params
+    else:
+        by = []
+    by += [
+        launch for r, launch in named_yaml if r == rel and hands_bare_to_move_group(files.root, launch, rel)
+    ]
+    return doc, by[0] if by else ""
 
 
 def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:

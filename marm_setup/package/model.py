@@ -79,6 +79,10 @@ class MoveItPackage:
     move_group: tuple[Param, ...] | None = None  # move_group's own parameters (our moveit.yaml)
     sensors: SensorsFile | None = None
     servo: tuple[ServoConfig, ...] = ()
+    # what a MoveItConfigsBuilder not from moveit_configs_utils loads, which validate did not read
+    # (one summary line per launch file's builder; package/builder.py)
+    opaque: tuple[str, ...] = ()
+    opaque_methods: tuple[str, ...] = ()  # its methods those files come from (trajectory_execution, ...)
     launch: tuple[LaunchXml, ...] = ()  # the XML launch files, parsed
     launch_params: tuple[LaunchParam, ...] = ()  # ROS 1 `<param name value>`s, as roslaunch sets them
     python_launch_files: tuple[str, ...] = ()

@@ -290,7 +290,7 @@ def _launched(
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
     for launch_file, why in python.unread:
         files.problems.append(warning("launch.python-unread", launch_file, "", why))
-    builder = builder_files(python.builders, name, wanted)
+    builder = builder_files(python.builders, name, wanted, python.other_builders)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )

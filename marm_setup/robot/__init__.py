@@ -28,7 +28,8 @@ API = {
     "describe": "describe_robot format_tree",
     "fingerprint": "robot_fingerprint",
     "ros2_control": (
-        "ANY_MOCK HardwareArg MOCK_PLUGIN MOCK_PLUGINS on_mock_hardware Ros2ControlSystem systems_in_urdf"
+        "ANY_MOCK HardwareArg JointInterfaces joint_interfaces MOCK_PLUGIN MOCK_PLUGINS on_mock_hardware "
+        "Ros2ControlSystem systems_in_urdf"
     ),
     "urdf": "strict_float",
     "sandbox": "ChildDied kill limit_memory picklable run_limited TimeLimitExceeded",
@@ -90,7 +91,9 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.ros2_control import MOCK_PLUGIN as MOCK_PLUGIN
     from marm_setup.robot.ros2_control import MOCK_PLUGINS as MOCK_PLUGINS
     from marm_setup.robot.ros2_control import HardwareArg as HardwareArg
+    from marm_setup.robot.ros2_control import JointInterfaces as JointInterfaces
     from marm_setup.robot.ros2_control import Ros2ControlSystem as Ros2ControlSystem
+    from marm_setup.robot.ros2_control import joint_interfaces as joint_interfaces
     from marm_setup.robot.ros2_control import on_mock_hardware as on_mock_hardware
     from marm_setup.robot.ros2_control import systems_in_urdf as systems_in_urdf
     from marm_setup.robot.ros_packages import PackageIndex as PackageIndex

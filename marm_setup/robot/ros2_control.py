@@ -14,6 +14,7 @@ does not know them, so a mocked element must also be `type="system"`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from marm_setup.ros import DISTROS, MOCK
 
@@ -29,15 +30,26 @@ def mock_plugins(distro: str | None) -> frozenset[str]:
 
 
 @dataclass(frozen=True, slots=True)
+class JointInterfaces:
+    """The `<command_interface>` and `<state_interface>` names one `<joint>` of a system lists."""
+
+    joint: str
+    command: tuple[str, ...]
+    state: tuple[str, ...]
+
+
+@dataclass(frozen=True, slots=True)
 class Ros2ControlSystem:
-    """One `<ros2_control>` element: its name, hardware plugin and joints (document order), and
-    the `<param>`s of its `<hardware>` (what the plugin is configured with: address, ports...)."""
+    """One `<ros2_control>` element: its name, hardware plugin and joints (document order), the
+    `<param>`s of its `<hardware>` (what the plugin is configured with: address, ports...) and the
+    interfaces each joint lists."""
 
     name: str
     plugin: str
     joints: tuple[str, ...]
     type: str = "system"
     params: tuple[tuple[str, str], ...] = ()
+    interfaces: tuple[JointInterfaces, ...] = ()
 
     def is_mock(self, distro: str | None = None) -> bool:
         """Its plugin is mock hardware (of `distro`, or of any distro when None)."""
@@ -89,8 +101,20 @@ def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
         joints = tuple(j.get("name", "") for j in element.findall("joint"))
         kind = element.get("type", "system")
         params = tuple((p.get("name", ""), (p.text or "").strip()) for p in element.findall("hardware/param"))
-        systems.append(Ros2ControlSystem(element.get("name", ""), plugin.strip(), joints, kind, params))
+        interfaces = tuple(joint_interfaces(j) for j in element.findall("joint"))
+        systems.append(
+            Ros2ControlSystem(element.get("name", ""), plugin.strip(), joints, kind, params, interfaces)
+        )
     return tuple(systems)
+
+
+def joint_interfaces(joint: Any) -> JointInterfaces:
+    """The interfaces a `<joint>` element of a `<ros2_control>` lists (lxml element)."""
+    return JointInterfaces(
+        joint.get("name", ""),
+        tuple(i.get("name", "") for i in joint.findall("command_interface")),
+        tuple(i.get("name", "") for i in joint.findall("state_interface")),
+    )
 
 
 def on_mock_hardware(xml: str) -> str:

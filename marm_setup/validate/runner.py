@@ -25,7 +25,7 @@ from marm_setup.package import (
     read_package,
     undefined_unread_arg,
 )
-from marm_setup.ros import Target
+from marm_setup.ros import DISTROS, DistroRow, Target
 from marm_setup.untrusted import CodeNotRun, no_package_code, skipped_code, skips_code
 from marm_setup.validate.registry import rule_family
 from marm_setup.validate.rules.conflict_rules import check_merge_conflicts
@@ -45,7 +45,7 @@ from marm_setup.validate.rules.declared_param_rules import check_declared_parame
 from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_param_rules import check_driver_parameters
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
-from marm_setup.validate.rules.kinematics_rules import check_kinematics
+from marm_setup.validate.rules.kinematics_rules import check_kinematics, check_top_level_kinematics
 from marm_setup.validate.rules.launch_rules import check_launch_files, check_package_xml
 from marm_setup.validate.rules.limits_rules import check_cartesian_limits, check_joint_limits, uses_pilz
 from marm_setup.validate.rules.name_rules import check_controller_names, check_srdf_names
@@ -334,6 +334,7 @@ def skipped_families(pkg: MoveItPackage, robot: RobotModel | None) -> tuple[str,
     elif pkg.srdf is None:
         why = "no SRDF found" if pkg.srdf_path is None else f"{pkg.srdf_path} could not be read"
         out.append(f"the {', '.join(SRDF_FAMILIES)} rules ({why})")
+    out += pkg.opaque
     return tuple(out)
 
 
@@ -459,13 +460,28 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
         out += guarded(
             "kinematics", check_kinematics, pkg.kinematics, srdf, robot, moveit1=ros1, depends=depends
         )
+        if not ros1 and pkg.kinematics.top_level_by:
+            row = kinematics_distro(pkg)
+            out += guarded("kinematics", check_top_level_kinematics, pkg.kinematics, srdf, row)
     if pkg.joint_limits is not None:
-        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
-        if uses_pilz(pkg.pipelines):
+        pilz = uses_pilz(pkg.pipelines)
+        out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target, pilz=pilz)
+        if pilz:
             out += guarded("limits", check_cartesian_limits, pkg.joint_limits)
     if pkg.ompl is not None:
         out += guarded("ompl", check_ompl, pkg.ompl, srdf, ompl_planners(pkg))
     return out
+
+
+def kinematics_distro(pkg: MoveItPackage) -> DistroRow | None:
+    """The distro whose MoveIt reads the package's kinematics: --ros-distro or marm_setup.yaml's,
+    else the one the pipelines' parameter format shows (declared_param_rules.inferred_family),
+    else None."""
+    from marm_setup.package import received_parameters
+    from marm_setup.validate.rules.declared_param_rules import inferred_family
+
+    name = pkg.ros_distro or inferred_family(received_parameters(pkg))
+    return DISTROS.get(name) if name else None
 
 
 def ompl_planners(pkg: MoveItPackage) -> frozenset[str]:
@@ -521,10 +537,26 @@ def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     if pkg.initial_positions is not None:
         out += guarded("pose", check_initial_positions, pkg.initial_positions, robot)
     out += guarded("controller", check_controllers, pkg, robot)
+    out += guarded("controller", check_hardware_interfaces, pkg, robot)
     out += guarded("distro", check_package_runtime, pkg, robot)
     out += guarded("servo", check_servos, pkg, robot)
     out += guarded("sensors", check_sensors, pkg)
     return out
+
+
+def check_hardware_interfaces(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
+    """ROS 2: the driver's trajectory controllers against the interfaces the `<ros2_control>`
+    systems of the description the package loads list (validate/rules/interface_rules.py); in
+    our layout the package's own ros2_control xacro is part of that description."""
+    from marm_setup.robot import described_systems
+    from marm_setup.validate.rules.interface_rules import check_controller_interfaces, offered_interfaces
+
+    if pkg.target != Target.ROS2 or pkg.ros2_controllers is None:
+        return []
+    systems = list(described_systems(robot))
+    if pkg.layout == "marm_ros2":
+        systems += [s for f in pkg.ros2_control_files for s in f.systems]
+    return check_controller_interfaces(pkg.ros2_controllers, offered_interfaces(systems))
 
 
 def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
@@ -535,8 +567,10 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
         out += check_fake_controllers(pkg.fake_controllers, pkg.srdf, robot)
     moveit = pkg.moveit_controllers
     if moveit is None:
-        if pkg.fake_controllers is None and not any(
-            f.rule == "controller.runtime-only" for f in pkg.problems
+        if (
+            pkg.fake_controllers is None
+            and "trajectory_execution" not in pkg.opaque_methods  # a foreign builder's list
+            and not any(f.rule == "controller.runtime-only" for f in pkg.problems)
         ):
             msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))

@@ -490,7 +490,7 @@ LIMIT_CASES = [
     Case(
         "limits-int-in-ros2",
         "ros2",
-        ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].update(max_jerk=300)),
+        ydata(LIM, lambda d: d["joint_limits"]["panda_joint1"].update(has_jerk_limits=True, max_jerk=300)),
         "limits.not-float",
         match="panda_joint1.max_jerk",
     ),

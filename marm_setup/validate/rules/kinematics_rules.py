@@ -12,6 +12,16 @@ name among every installed package's plugin descriptions (moveit/moveit
 kinematics_plugin_loader.cpp l.168 at fdb79ac, `createUniqueInstance`; l.199 the error when
 none has it), and the package pluginlib names are conventionally prefixed with is installed
 with this one.
+
+Groups a launch file hands to move_group as its own top-level parameters (`<group>.
+kinematics_solver`: a ROS 2 parameter file of groups, or `load_yaml(...)` listed bare among
+move_group's parameters) are found by Humble's loader, which looks there first
+(moveit/moveit2 humble kinematics_plugin_loader.cpp l.306-319), and by no later one: Jazzy,
+Kilted and Rolling look only at `robot_description_kinematics.<group>` (jazzy l.258-272, kilted
+and main l.260) and skip a group with no solver there (l.268-272): it has no IK solver.
+MoveItConfigsBuilder puts the file under robot_description_kinematics itself
+(moveit_configs_builder.py `robot_description_kinematics`), so this is only about launch files
+that hand the file over themselves (`KinematicsFile.top_level_by`).
 """
 
 from __future__ import annotations
@@ -27,6 +37,7 @@ from marm_setup.robot import RobotModel
 from marm_setup.setup import groups_by_name, is_chain
 
 if TYPE_CHECKING:
+    from marm_setup.ros import DistroRow
     from marm_setup.setup import Group, Srdf
 
 POSITIVE_KEYS = ("kinematics_solver_timeout", "kinematics_solver_search_resolution")
@@ -158,3 +169,37 @@ def _known_solvers() -> tuple[str, ...]:
     """MoveIt 1's solver classes (the noetic table: its pluginlib files) and the known
     third-party ones (a ROS 2 package's are declared_param_rules')."""
     return load_table("noetic").classes("kinematics")
+
+
+def check_top_level_kinematics(
+    kinematics: KinematicsFile, srdf: Srdf, row: DistroRow | None
+) -> list[Finding]:
+    """Each group of the SRDF with a solver in a kinematics file a launch file hands to
+    move_group at the top level of its parameters (see the module docstring): an error for a
+    distro whose MoveIt does not look there (`row.kinematics_top_level` false), a warning when
+    the distro is not known; nothing for Humble."""
+    launch = kinematics.top_level_by
+    if not launch or (row is not None and row.kinematics_top_level):
+        return []
+    known = {g.name for g in srdf.groups}
+    out = []
+    for entry in kinematics.groups or ():
+        if entry.group not in known or entry.solver is None:
+            continue
+        name = entry.group
+        where = f"robot_description_kinematics.{name}.kinematics_solver"
+        said = f"{launch} hands the groups of this file to move_group at the top level ({name}.kinematics_solver)"
+        hint = (
+            "put the groups under robot_description_kinematics: (in a launch file: "
+            '{"robot_description_kinematics": kinematics_yaml})'
+        )
+        if row is None:
+            msg = (
+                f"{said}: Humble's MoveIt finds the solver there; Jazzy's and later look only at "
+                f"{where}, so there group '{name}' has no IK solver"
+            )
+            out.append(warning("kinematics.top-level", kinematics.where.file, entry.where.element, msg, hint))
+        else:
+            msg = f"{said}: {row.name}'s MoveIt looks only at {where}: group '{name}' has no IK solver"
+            out.append(error("kinematics.top-level", kinematics.where.file, entry.where.element, msg, hint))
+    return out

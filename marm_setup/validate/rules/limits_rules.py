@@ -1,13 +1,18 @@
 """joint_limits.yaml: every active group joint, positive limits, not above the URDF, floats in ROS 2.
 
 What MoveIt reads: MoveIt 2 `moveit_ros/planning/robot_model_loader/src/robot_model_loader.cpp`
-(`configure`, the `_planning/joint_limits/<joint>/` loop) gets max/min_position, max_velocity,
-has_velocity_limits, max_acceleration, has_acceleration_limits in that order, each as a typed
-parameter: an integer where it reads a double throws ParameterTypeException, which it logs as
-an error and which skips the rest of that joint's keys. MoveIt 1's robot_model_loader.cpp
-(same loop, `nh.getParam`) reads them in the same order: a max_acceleration sets
-has_acceleration_limits, and a later `has_acceleration_limits: false` clears it again, so
-`max_acceleration: 0` beside it (the Setup Assistant's own default) is never used.
+(`configure`, the `_planning.joint_limits.<joint>.` loop, humble l.133-239, jazzy l.138-244)
+gets max_position and min_position, then has_velocity_limits, has_acceleration_limits and
+has_jerk_limits, then max_velocity, max_acceleration and max_jerk each only when its flag is
+true (never max_effort), each as a typed parameter: an integer where it reads a double throws
+ParameterTypeException, which it logs as an error and which skips the rest of that joint's keys
+(`limits.not-float`, `_read_as_double`). MoveIt 1's robot_model_loader.cpp (same loop,
+`nh.getParam`, moveit/moveit l.120-156) reads max/min_position, max_velocity,
+has_velocity_limits, max_acceleration, has_acceleration_limits in that order, and roscpp hands an
+integer to a double (ros_comm roscpp param.cpp getImpl(double&): TypeInt is converted): no
+integer rule there. A max_acceleration sets has_acceleration_limits, and a later
+`has_acceleration_limits: false` clears it again, so `max_acceleration: 0` beside it (the Setup
+Assistant's own default) is never used.
 
 Which overrides apply (what `limits.above-urdf` compares with the URDF): min/max_position
 whenever given, in both (`has_position_limits` is never read: moveit/moveit robot_model_loader.cpp
@@ -39,7 +44,8 @@ FLAGS = {
     "max_jerk": "has_jerk_limits",
     "max_effort": "has_effort_limits",
 }
-NUMERIC_KEYS = (*FLAGS, "min_position", "max_position")
+POSITION_KEYS = ("min_position", "max_position")
+NUMERIC_KEYS = (*FLAGS, *POSITION_KEYS)
 
 
 def _above(value: float, limit: float) -> bool:
@@ -52,10 +58,11 @@ def _below(value: float, limit: float) -> bool:
 
 
 def check_joint_limits(
-    limits: JointLimitsFile, srdf: Srdf, robot: RobotModel | None, target: Target
+    limits: JointLimitsFile, srdf: Srdf, robot: RobotModel | None, target: Target, *, pilz: bool = False
 ) -> list[Finding]:
     """Every rule on a `robot_description_planning`-style file (`{joint_limits: {...}}`); without
-    the robot (a description only the run time gives) the rules that compare with it are skipped."""
+    the robot (a description only the run time gives) the rules that compare with it are skipped.
+    `pilz`: a planning pipeline loads Pilz's planner (which reads the limits too)."""
     file = limits.where.file
     if limits.joints is None:
         return [
@@ -81,7 +88,7 @@ def check_joint_limits(
             out += _check_entry(file, entry, robot.joint(entry.joint), target)
     out += _check_timing(limits)
     if target == Target.ROS2:
-        out += _check_floats(limits)
+        out += _check_floats(limits, robot, pilz)
     return out
 
 
@@ -180,32 +187,60 @@ def _number(value: object) -> TypeGuard[float]:
     return isinstance(value, Real) and not isinstance(value, bool)
 
 
-def _check_floats(limits: JointLimitsFile) -> list[Finding]:
-    """ROS 2 parameters are typed: an integer where MoveIt reads a double is an error it logs,
-    losing the joint's later keys; only a warning when the value's has_* flag is false (nothing
-    after max_acceleration is lost then but that false flag, which is the URDF's default)."""
-    out = []
-    values = [(None, p) for p in limits.settings] + [
-        (e, p) for e in limits.joints or () for p in e.params or ()
-    ]
-    for entry, param in values:
-        key = param.key.rsplit(".", 1)[-1]
-        if (
-            isinstance(param.value, int)
-            and not isinstance(param.value, bool)
-            and key in (*NUMERIC_KEYS, *_SCALARS)
-        ):
-            msg = f"{key} is the integer {param.value}; ROS 2 needs a double here"
-            flag = entry.param(FLAGS[key]) if entry is not None and key in FLAGS else None
-            unused = flag is not None and flag.value is False
-            make = warning if unused else error
-            msg += f" (MoveIt 2 logs an error; harmless while {FLAGS[key]} is false)" if unused else ""
-            out.append(
-                make(
-                    "limits.not-float", limits.where.file, param.where.element, msg, f"write {param.value}.0"
-                )
-            )
+def _check_floats(limits: JointLimitsFile, robot: RobotModel | None, pilz: bool) -> list[Finding]:
+    """ROS 2 parameters are typed: an integer where MoveIt 2 reads a double throws
+    ParameterTypeException. Only the values it reads count (`_read_as_double`); a joint the
+    robot lacks is never read (robot_model_loader loops over the model's joints)."""
+    out = [_not_float(limits, param, "") for param in limits.settings if _integer_in(param, _SCALARS)]
+    for entry in limits.joints or ():
+        if robot is not None and entry.joint not in robot.joint_map:
+            continue
+        for param in entry.params or ():
+            if _integer_in(param, NUMERIC_KEYS) and (does := _read_as_double(entry, param.key, pilz)):
+                out.append(_not_float(limits, param, does))
     return out
+
+
+def _integer_in(param: Param, keys: tuple[str, ...]) -> bool:
+    value = param.value
+    return isinstance(value, int) and not isinstance(value, bool) and param.key.rsplit(".", 1)[-1] in keys
+
+
+def _read_as_double(entry: JointLimitEntry, key: str, pilz: bool) -> str:
+    """What MoveIt 2 does with an integer at `key` of the joint's entry ('' when it never reads
+    it). robot_model_loader.cpp (humble l.133-239, jazzy and later l.138-244) reads max_position
+    and min_position always, then the has_* flags, then max_velocity, max_acceleration and
+    max_jerk each only when its flag is true, never max_effort; a ParameterTypeException ends the
+    joint's loop (caught and logged, l.236-239 / l.241-244). Pilz's copy of ros2_control's
+    joint_limits_rosparam.hpp (pilz_industrial_motion_planner/include/joint_limits_copy/, jazzy
+    l.150-236) reads each max_* (max_effort too) and min/max_position only under its true flag
+    (has_position_limits for the positions), unguarded: the
+    exception leaves CommandPlanner::initialize and PlanningPipeline's constructor
+    (planning_pipeline.cpp jazzy l.170), and move_group stops."""
+
+    def flagged(flag: str | None) -> bool:
+        return flag is not None and (set_to := entry.param(flag)) is not None and set_to.value is True
+
+    loader = key in POSITION_KEYS or (key != "max_effort" and flagged(FLAGS.get(key)))
+    stops = pilz and flagged(FLAGS.get(key, "has_position_limits" if key in POSITION_KEYS else None))
+    if not loader and not stops:
+        return ""
+    does = (
+        "MoveIt 2 logs a ParameterTypeException and keeps none of the joint's limits from there on"
+        if loader
+        else ""
+    )
+    if stops:
+        does += ("; " if does else "") + "Pilz's planner throws at start-up and move_group stops"
+    return does
+
+
+def _not_float(limits: JointLimitsFile, param: Param, does: str) -> Finding:
+    key = param.key.rsplit(".", 1)[-1]
+    msg = f"{key} is the integer {param.value}; " + (
+        f"MoveIt 2 reads a double here: {does}" if does else "ROS 2 needs a double here"
+    )
+    return error("limits.not-float", limits.where.file, param.where.element, msg, f"write {param.value}.0")
 
 
 _SCALARS = (
