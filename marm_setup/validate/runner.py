@@ -52,7 +52,7 @@ from marm_setup.validate.rules.name_rules import check_controller_names, check_s
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.perception_rules import check_sensors, check_servos
 from marm_setup.validate.rules.pose_rules import check_initial_positions
-from marm_setup.validate.rules.srdf_rules import check_srdf, check_srdf_without_robot
+from marm_setup.validate.rules.srdf_rules import check_srdf, check_srdf_without_robot, publishes_static_tfs
 from marm_setup.validate.rules.write_state_rules import check_pending_write
 from marm_setup.validate.srdf_fit import fitting_srdf
 
@@ -517,7 +517,8 @@ def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     """SRDF, poses, kinematics, limits, OMPL, controller, servo and sensor rules (no collision checking), each
     family on its own: one that fails leaves the others running."""
     assert pkg.srdf_file is not None and pkg.srdf is not None
-    out = guarded("srdf", check_srdf, pkg.srdf_file, robot) + check_srdf_files(pkg, robot)
+    out = guarded("srdf", check_srdf, pkg.srdf_file, robot, publishes_static_tfs(pkg))
+    out += check_srdf_files(pkg, robot)
     if pkg.initial_positions is not None:
         out += guarded("pose", check_initial_positions, pkg.initial_positions, robot)
     out += guarded("controller", check_controllers, pkg, robot)
