@@ -208,13 +208,14 @@ def _virtual_joint_on_own_link(r: _Rules, vj: VirtualJoint) -> Finding:
 
 
 def _virtual_joint_off_root(r: _Rules, vj: VirtualJoint, where: Where) -> list[Finding]:
-    """MoveIt's robot_model.cpp (`constructJointModel`, the URDF root) skips a virtual joint whose
-    child is not the root, with a warning ("Skipping virtual joint ... does not match the URDF
-    frame") and assumes a fixed joint. A URDF whose root is named like the parent frame already
-    holds that joint (the Gazebo `world` link): MoveIt 2 no longer warns there (moveit_core
-    CHANGELOG "Silent warning about virtual_joint in Gazebo setups"). Skipping a planar or
-    floating joint loses the base's freedom: an error; a fixed one only renames a frame."""
-    if vj.parent_frame == r.robot.root:
+    """MoveIt's robot_model.cpp (the URDF root: moveit l.931-945, moveit2 l.989-1003) skips a
+    virtual joint whose child is not the root, with a warning ("Skipping virtual joint ... does
+    not match the URDF frame"), and assumes a fixed joint. Except Gazebo's form: a fixed virtual
+    joint onto a URDF whose root is a `world` link without collision or visual geometry is built
+    silently, whatever its parent frame. Skipping a planar or floating joint loses the base's
+    freedom: an error; a fixed one only renames a frame."""
+    root = r.robot.link(r.robot.root)
+    if vj.type == "fixed" and root.name == "world" and not root.collisions and not root.has_visual:
         return []
     msg = f"child link '{vj.child_link}' is not the URDF's root link '{r.robot.root}': MoveIt skips it"
     if vj.type in ("planar", "floating"):
