@@ -41,7 +41,7 @@ from marm_setup.validate.rules.controller_rules import (
     check_ros_control_coverage,
     uses_ros_control_interface,
 )
-from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
+from marm_setup.validate.rules.declared_param_rules import check_declared_parameters, exported_classes
 from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_param_rules import check_driver_parameters
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
@@ -456,8 +456,16 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
     if pkg.kinematics is not None:
         ros1 = pkg.target == Target.ROS1  # a ROS 2 solver's class is declared_param_rules'
         depends = pkg.package_xml.dependencies if pkg.package_xml is not None else ()
+        exported = exported_classes(pkg) if ros1 else frozenset()
         out += guarded(
-            "kinematics", check_kinematics, pkg.kinematics, srdf, robot, moveit1=ros1, depends=depends
+            "kinematics",
+            check_kinematics,
+            pkg.kinematics,
+            srdf,
+            robot,
+            moveit1=ros1,
+            depends=depends,
+            exported=exported,
         )
     if pkg.joint_limits is not None:
         out += guarded("limits", check_joint_limits, pkg.joint_limits, srdf, robot, pkg.target)
