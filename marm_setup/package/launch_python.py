@@ -455,11 +455,23 @@ def _xacro_command(call: ast.Call, rel: str, parameter: str, env: _Env) -> Xacro
 
 
 def _command_part(node: ast.AST, env: _Env) -> str:
+    node = _sole_joined(node)
     if isinstance(node, ast.Call) and _name(node.func) == "FindExecutable":
         name = _try(_keyword(node, "name") or (node.args[0] if node.args else None), env)
         return str(name) if isinstance(name, str) else _UNREAD
     value = _try(node, env)
     return _text(value) if isinstance(value, str | int | float | bool) else _UNREAD
+
+
+def _sole_joined(node: ast.AST) -> ast.AST:
+    """The one part of `PathJoinSubstitution([part])`, which launch joins into that part's own
+    text (ros2/launch path_join_substitution.py `perform`: os.path.join of the parts), else `node`:
+    `PathJoinSubstitution([FindExecutable(name="xacro")])` runs xacro."""
+    if isinstance(node, ast.Call) and _name(node.func) == "PathJoinSubstitution" and len(node.args) == 1:
+        parts = node.args[0]
+        if isinstance(parts, ast.List | ast.Tuple) and len(parts.elts) == 1:
+            return parts.elts[0]
+    return node
 
 
 def undefined_unread_arg(message: str, unread: tuple[str, ...]) -> str | None:
