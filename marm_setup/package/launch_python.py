@@ -102,6 +102,8 @@ class PythonLaunch:
 
     named_yaml: tuple[tuple[str, str], ...] = ()  # (a YAML path written as a literal, launch file)
     unread: tuple[tuple[str, str], ...] = ()  # (launch file, why it was not read: Unreadable)
+    # (parameter file path, the launch arguments' defaults) of ParameterFile(..., allow_substs=True)
+    substituted: tuple[tuple[str, tuple[tuple[str, str], ...]], ...] = ()
 
 
 @dataclass
@@ -119,6 +121,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
     commands: list[XacroCommand] = []
     named: list[tuple[str, str]] = []
     unread: list[tuple[str, str]] = []
+    substituted: list[tuple[str, tuple[tuple[str, str], ...]]] = []
     for rel in files:
         try:
             tree = parse_launch_module(root / rel, rel)
@@ -128,6 +131,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
                 [(path, rel) for path in _control_files(tree, env)],
                 xacro_commands(tree, rel, env),
                 [(path, rel) for path in _named_yaml(tree)],
+                [(path, tuple(sorted(env.defaults.items()))) for path in _substituted_files(tree, env)],
             )
         except Unreadable as exc:
             if str(exc):
@@ -140,7 +144,10 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
         control += found[1]
         commands += found[2]
         named += found[3]
-    return PythonLaunch(tuple(builders), tuple(control), tuple(commands), tuple(named), tuple(unread))
+        substituted += found[4]
+    return PythonLaunch(
+        tuple(builders), tuple(control), tuple(commands), tuple(named), tuple(unread), tuple(substituted)
+    )
 
 
 def parse_launch_module(path: Path, rel: str) -> ast.Module:
@@ -396,6 +403,21 @@ def _control_files(tree: ast.AST, env: _Env) -> Iterator[str]:
             value = _try(item, env)
             if isinstance(value, str) and value.endswith((".yaml", ".yml")):
                 yield value
+
+
+def _substituted_files(tree: ast.AST, env: _Env) -> Iterator[str]:
+    """Paths of `ParameterFile(path, allow_substs=True)`: launch_ros substitutes the file's text
+    with the launch configurations before rcl reads it (launch_ros parameter_descriptions.py
+    ParameterFile.evaluate, `allow_substs`)."""
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Call) and _name(node.func) == "ParameterFile"):
+            continue
+        allow = _keyword(node, "allow_substs")
+        if not (isinstance(allow, ast.Constant) and allow.value is True):
+            continue
+        value = _try(node.args[0] if node.args else _keyword(node, "param_file"), env)
+        if isinstance(value, str) and value.endswith((".yaml", ".yml")):
+            yield value
 
 
 DESCRIPTION_PARAMETERS = ("robot_description", "robot_description_semantic")
