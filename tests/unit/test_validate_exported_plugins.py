@@ -7,7 +7,6 @@ and `pr2_arm_kinematics/PR2ArmKinematicsPlugin`). A class such a package exports
 
 from __future__ import annotations
 
-
 from marm_setup.findings import Finding
 from tests.validate_helpers import Good, generate_marm, replace_text, run
 
