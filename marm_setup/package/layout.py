@@ -313,6 +313,8 @@ def read_ros2_kinds(
         doc = _named(files, chosen.file) if chosen is not None else None
         if doc is not None and kind == "kinematics" and not builder.calls:
             doc = _node_kinematics(doc)
+        if doc is not None and kind == "joint_limits" and not builder.calls:
+            doc = _node_joint_limits(doc)
         kinds.put(kind, reader(doc) if doc is not None else None, doc, chosen.how if chosen else SA_NAME)
     _ros2_controllers(files, builder, kinds, named_yaml)
     _ros2_pipelines(files, builder, kinds, named_yaml)
@@ -348,6 +350,17 @@ def _node_kinematics(doc: Located) -> Located:
     if params is doc:
         return doc
     nested = params.get("robot_description_kinematics")
+    return nested if nested.is_mapping else params
+
+
+def _node_joint_limits(doc: Located) -> Located:
+    """A joint limits file no MoveItConfigsBuilder wraps, as a ROS 2 parameter file
+    (`/**/move_group: ros__parameters:`): move_group's own parameters, where MoveIt reads
+    `robot_description_planning.joint_limits.<joint>` (moveit2 robot_model_loader.cpp l.133)."""
+    params = unwrap_parameters(doc)
+    if params is doc:
+        return doc
+    nested = params.get("robot_description_planning")
     return nested if nested.is_mapping else params
 
 

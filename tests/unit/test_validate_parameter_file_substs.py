@@ -65,3 +65,33 @@ def test_a_parameter_file_loaded_with_allow_substs_gets_the_launch_arguments(tmp
     launch = source / "launch/move_group.launch.py"
     launch.write_text(LAUNCH.replace("allow_substs=True", "allow_substs=False"))
     assert controller_rules(source, paths) == [("controller.unknown-joint", "error")]
+
+
+LIMITS = """/**/move_group:
+  ros__parameters:
+    robot_description_planning:
+      joint_limits:
+""" + "".join(
+    f"        $(var prefix)joint_{i}:\n          has_velocity_limits: true\n          max_velocity: 0.5\n"
+    for i in range(1, 7)
+)
+
+
+def test_a_ros2_parameter_file_of_joint_limits_holds_them_under_robot_description_planning(tmp_path):
+    """Handed to move_group as a parameter file, the limits' names are move_group's own:
+    `robot_description_planning.joint_limits.<joint>`, where MoveIt reads them
+    (moveit2 robot_model_loader.cpp l.133, `<robot_description>_planning.joint_limits.<joint>.`)."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / ".setup_assistant").unlink()
+    limits = 'PathJoinSubstitution([FindPackageShare("bot_moveit_config"), "config/joint_limits.yaml"])'
+    launch = LAUNCH.replace(
+        "    return LaunchDescription([",
+        f"    limits = ParameterFile({limits}, allow_substs=True)\n    return LaunchDescription([",
+    ).replace("controllers]),", "controllers, limits]),")
+    (source / "launch/move_group.launch.py").write_text(launch)
+    (source / "config/bot_controllers.yaml").write_text(CONTROLLERS)
+    (source / "config/joint_limits.yaml").write_text(LIMITS)
+    found = list(validate(source, package_paths=paths, plan=False, matrix_trials=0).findings)
+    assert [(f.rule, f.element) for f in found if f.file == "config/joint_limits.yaml" and f.is_error] == []
+    missing = [f.element.rsplit(".", 1)[-1] for f in found if f.rule == "limits.missing-joint"]
+    assert missing == ["gripper_finger_left_joint"]  # the arm's six are read, the gripper's is not there
