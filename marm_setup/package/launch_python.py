@@ -130,7 +130,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
                 [_builder(call, rel, env) for call in _builder_chains(tree)],
                 [(path, rel) for path in _control_files(tree, env)],
                 xacro_commands(tree, rel, env),
-                [(path, rel) for path in _named_yaml(tree)],
+                [(path, rel) for path in _named_yaml(tree, env)],
                 [(path, tuple(sorted(env.defaults.items()))) for path in _substituted_files(tree, env)],
             )
         except Unreadable as exc:
@@ -508,14 +508,18 @@ def undefined_unread_arg(message: str, unread: tuple[str, ...]) -> str | None:
 def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
     """The key of the dict the Python launch file `launch` puts the YAML file `rel` under, as
     `{"moveit_simple_controller_manager": load_yaml("pkg", "config/c.yaml")}` does (also through
-    a name bound to the load); None when it hands the file over as it is (or cannot be read)."""
+    names bound to the load, or to a file opened by hand: `with open(path) as f: x =
+    yaml.safe_load(f)`); None when it hands the file over as it is (or cannot be read)."""
     from marm_setup.package.launch_xml import package_relative
+    from marm_setup.robot import package_name
 
     try:
         tree = parse_launch_module(root / launch, launch)
     except Unreadable:
         return None
-    keys = _yaml_keys(tree)
+    own = package_name(root)
+    env = _environment(tree, lambda name: str(root) if name == own else None)
+    keys = _yaml_keys(tree, env)
     return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)
 
 
@@ -557,31 +561,53 @@ def _setting(node: ast.AST) -> Any:
     return None
 
 
-def _yaml_keys(tree: ast.AST) -> dict[str, str]:
-    """YAML path literal -> the key of the innermost dict entry holding it (ast.walk goes
-    outside in, so inner entries overwrite)."""
-    bound = {
-        node.targets[0].id: node.value
-        for node in ast.walk(tree)
-        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
-    }
+def _yaml_keys(tree: ast.AST, env: _Env | None = None) -> dict[str, str]:
+    """YAML path -> the key of the innermost dict entry holding it (ast.walk goes outside in, so
+    inner entries overwrite), following names bound by `=` or `with ... as` (a few steps)."""
+    bound = _bound_names(tree)
     out: dict[str, str] = {}
     for node in ast.walk(tree):
         if not isinstance(node, ast.Dict):
             continue
         for key, value in zip(node.keys, node.values, strict=True):
             if isinstance(key, ast.Constant) and isinstance(key.value, str):
-                held = bound.get(value.id, value) if isinstance(value, ast.Name) else value
-                out.update(dict.fromkeys(_named_yaml(held), key.value))
+                for held in _through_names(value, bound):
+                    out.update(dict.fromkeys(_named_yaml(held, env), key.value))
     return out
 
 
-def _named_yaml(tree: ast.AST) -> Iterator[str]:
+def _bound_names(tree: ast.AST) -> dict[str, ast.AST]:
+    """`name = value` and `with value as name` of a module: the name -> the value's expression."""
+    bound: dict[str, ast.AST] = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            bound[node.targets[0].id] = node.value
+        elif isinstance(node, ast.With):
+            for item in node.items:
+                if isinstance(item.optional_vars, ast.Name):
+                    bound[item.optional_vars.id] = item.context_expr
+    return bound
+
+
+def _through_names(node: ast.AST, bound: dict[str, ast.AST], steps: int = 4) -> list[ast.AST]:
+    """`node`, and what the names in it are bound to, and theirs, `steps` deep."""
+    out, frontier = [node], [node]
+    for _ in range(steps):
+        names = {n.id for f in frontier for n in ast.walk(f) if isinstance(n, ast.Name) and n.id in bound}
+        frontier = [bound[name] for name in sorted(names) if bound[name] not in out]
+        out += frontier
+    return out
+
+
+def _named_yaml(tree: ast.AST, env: _Env | None = None) -> Iterator[str]:
     """YAML paths a launch file writes as string literals: the files it loads by hand
     (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder,
-    also joined from literals (`os.path.join("config", "x.yaml")`)."""
+    also joined from literals (`os.path.join("config", "x.yaml")`) or, given `env`, from what it
+    knows statically (`os.path.join(get_package_share_directory("pkg"), "config", "x.yaml")`)."""
     for node in ast.walk(tree):
         value = node.value if isinstance(node, ast.Constant) else _literal_join(node)
+        if value is None and env is not None and isinstance(node, ast.Call):
+            value = _try(node, env) if _name(node.func) in ("join", "PathJoinSubstitution") else None
         if isinstance(value, str) and value.endswith((".yaml", ".yml")):
             yield value
 
