@@ -127,7 +127,9 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
             tree = parse_launch_module(root / rel, rel)
             env = _environment(tree, find)
             found = (
-                [_builder(call, rel, env) for call in _builder_chains(tree)],
+                []
+                if _setup_assistant_only(tree)
+                else [_builder(call, rel, env) for call in _builder_chains(tree)],
                 [(path, rel) for path in _control_files(tree, env)],
                 xacro_commands(tree, rel, env),
                 [(path, rel) for path in _named_yaml(tree, env)],
@@ -148,6 +150,19 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
     return PythonLaunch(
         tuple(builders), tuple(control), tuple(commands), tuple(named), tuple(unread), tuple(substituted)
     )
+
+
+def _setup_assistant_only(tree: ast.AST) -> bool:
+    """The module hands its MoveIt config to generate_setup_assistant_launch alone: the Setup
+    Assistant node, given the package name and none of the config's parameters (moveit2
+    moveit_configs_utils launches.py generate_setup_assistant_launch), so its builder loads
+    nothing into a move_group. Any node it starts, or other generate_*_launch, and it counts."""
+    called = {_name(n.func) for n in ast.walk(tree) if isinstance(n, ast.Call)}
+    launches = {name for name in called if name.startswith("generate_") and name.endswith("_launch")}
+    return launches == {"generate_setup_assistant_launch"} and not called & {
+        "Node",
+        "IncludeLaunchDescription",
+    }
 
 
 def parse_launch_module(path: Path, rel: str) -> ast.Module:

@@ -66,3 +66,9 @@ def test_an_inline_hand_load_under_the_manager_namespace(tmp_path):
     assert "under moveit_simple_controller_manager" in how_loaded(source, paths)
     assert namespace_findings(source, paths) == []
 
+
+def test_a_builder_only_the_setup_assistant_gets_gives_move_group_nothing(tmp_path):
+    source, paths = inline_loaded(tmp_path)
+    (source / "launch/setup_assistant.launch.py").write_text(SETUP_ASSISTANT)
+    assert "under moveit_simple_controller_manager" in how_loaded(source, paths)
+    assert namespace_findings(source, paths) == []
