@@ -113,6 +113,8 @@ class PythonLaunch:
     # builders of another module than moveit_configs_utils (a vendor's: uf_ros_lib's), whose
     # conventions validate does not know
     other_builders: tuple[BuilderCall, ...] = ()
+    # (parameter file path, the launch arguments' defaults) of ParameterFile(..., allow_substs=True)
+    substituted: tuple[tuple[str, tuple[tuple[str, str], ...]], ...] = ()
 
 
 @dataclass
@@ -130,15 +132,19 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
     commands: list[XacroCommand] = []
     named: list[tuple[str, str]] = []
     unread: list[tuple[str, str]] = []
+    substituted: list[tuple[str, tuple[tuple[str, str], ...]]] = []
     for rel in files:
         try:
             tree = parse_launch_module(root / rel, rel)
             env = _environment(tree, find)
             found = (
-                [_builder(chain, rel, env, origin) for chain, origin in _builder_chains(tree)],
+                []
+                if _setup_assistant_only(tree)
+                else [_builder(chain, rel, env, origin) for chain, origin in _builder_chains(tree)],
                 [(path, rel) for path in _control_files(tree, env)],
                 xacro_commands(tree, rel, env),
-                [(path, rel) for path in _named_yaml(tree)],
+                [(path, rel) for path in _named_yaml(tree, env)],
+                [(path, tuple(sorted(env.defaults.items()))) for path in _substituted_files(tree, env)],
             )
         except Unreadable as exc:
             if str(exc):
@@ -151,9 +157,29 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
         control += found[1]
         commands += found[2]
         named += found[3]
-    moveit = tuple(b for b in builders if b.is_moveit)
-    others = tuple(b for b in builders if not b.is_moveit)
-    return PythonLaunch(moveit, tuple(control), tuple(commands), tuple(named), tuple(unread), others)
+        substituted += found[4]
+    return PythonLaunch(
+        builders=tuple(b for b in builders if b.is_moveit),
+        control_files=tuple(control),
+        commands=tuple(commands),
+        named_yaml=tuple(named),
+        unread=tuple(unread),
+        other_builders=tuple(b for b in builders if not b.is_moveit),
+        substituted=tuple(substituted),
+    )
+
+
+def _setup_assistant_only(tree: ast.AST) -> bool:
+    """The module hands its MoveIt config to generate_setup_assistant_launch alone: the Setup
+    Assistant node, given the package name and none of the config's parameters (moveit2
+    moveit_configs_utils launches.py generate_setup_assistant_launch), so its builder loads
+    nothing into a move_group. Any node it starts, or other generate_*_launch, and it counts."""
+    called = {_name(n.func) for n in ast.walk(tree) if isinstance(n, ast.Call)}
+    launches = {name for name in called if name.startswith("generate_") and name.endswith("_launch")}
+    return launches == {"generate_setup_assistant_launch"} and not called & {
+        "Node",
+        "IncludeLaunchDescription",
+    }
 
 
 def parse_launch_module(path: Path, rel: str) -> ast.Module:
@@ -451,6 +477,21 @@ def _control_files(tree: ast.AST, env: _Env) -> Iterator[str]:
                 yield value
 
 
+def _substituted_files(tree: ast.AST, env: _Env) -> Iterator[str]:
+    """Paths of `ParameterFile(path, allow_substs=True)`: launch_ros substitutes the file's text
+    with the launch configurations before rcl reads it (launch_ros parameter_descriptions.py
+    ParameterFile.evaluate, `allow_substs`)."""
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Call) and _name(node.func) == "ParameterFile"):
+            continue
+        allow = _keyword(node, "allow_substs")
+        if not (isinstance(allow, ast.Constant) and allow.value is True):
+            continue
+        value = _try(node.args[0] if node.args else _keyword(node, "param_file"), env)
+        if isinstance(value, str) and value.endswith((".yaml", ".yml")):
+            yield value
+
+
 DESCRIPTION_PARAMETERS = ("robot_description", "robot_description_semantic")
 _UNREAD = "\x00"  # stands for a part of a command only the run time gives
 
@@ -508,11 +549,23 @@ def _xacro_command(call: ast.Call, rel: str, parameter: str, env: _Env) -> Xacro
 
 
 def _command_part(node: ast.AST, env: _Env) -> str:
+    node = _sole_joined(node)
     if isinstance(node, ast.Call) and _name(node.func) == "FindExecutable":
         name = _try(_keyword(node, "name") or (node.args[0] if node.args else None), env)
         return str(name) if isinstance(name, str) else _UNREAD
     value = _try(node, env)
     return _text(value) if isinstance(value, str | int | float | bool) else _UNREAD
+
+
+def _sole_joined(node: ast.AST) -> ast.AST:
+    """The one part of `PathJoinSubstitution([part])`, which launch joins into that part's own
+    text (ros2/launch path_join_substitution.py `perform`: os.path.join of the parts), else `node`:
+    `PathJoinSubstitution([FindExecutable(name="xacro")])` runs xacro."""
+    if isinstance(node, ast.Call) and _name(node.func) == "PathJoinSubstitution" and len(node.args) == 1:
+        parts = node.args[0]
+        if isinstance(parts, ast.List | ast.Tuple) and len(parts.elts) == 1:
+            return parts.elts[0]
+    return node
 
 
 def undefined_unread_arg(message: str, unread: tuple[str, ...]) -> str | None:
@@ -527,14 +580,18 @@ def undefined_unread_arg(message: str, unread: tuple[str, ...]) -> str | None:
 def launch_yaml_key(root: Path, launch: str, rel: str) -> str | None:
     """The key of the dict the Python launch file `launch` puts the YAML file `rel` under, as
     `{"moveit_simple_controller_manager": load_yaml("pkg", "config/c.yaml")}` does (also through
-    a name bound to the load); None when it hands the file over as it is (or cannot be read)."""
+    names bound to the load, or to a file opened by hand: `with open(path) as f: x =
+    yaml.safe_load(f)`); None when it hands the file over as it is (or cannot be read)."""
     from marm_setup.package.launch_xml import package_relative
+    from marm_setup.robot import package_name
 
     try:
         tree = parse_launch_module(root / launch, launch)
     except Unreadable:
         return None
-    keys = _yaml_keys(tree)
+    own = package_name(root)
+    env = _environment(tree, lambda name: str(root) if name == own else None)
+    keys = _yaml_keys(tree, env)
     return next((key for path, key in keys.items() if package_relative(path, root) == rel), None)
 
 
@@ -609,31 +666,53 @@ def _setting(node: ast.AST) -> Any:
     return None
 
 
-def _yaml_keys(tree: ast.AST) -> dict[str, str]:
-    """YAML path literal -> the key of the innermost dict entry holding it (ast.walk goes
-    outside in, so inner entries overwrite)."""
-    bound = {
-        node.targets[0].id: node.value
-        for node in ast.walk(tree)
-        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
-    }
+def _yaml_keys(tree: ast.AST, env: _Env | None = None) -> dict[str, str]:
+    """YAML path -> the key of the innermost dict entry holding it (ast.walk goes outside in, so
+    inner entries overwrite), following names bound by `=` or `with ... as` (a few steps)."""
+    bound = _bound_names(tree)
     out: dict[str, str] = {}
     for node in ast.walk(tree):
         if not isinstance(node, ast.Dict):
             continue
         for key, value in zip(node.keys, node.values, strict=True):
             if isinstance(key, ast.Constant) and isinstance(key.value, str):
-                held = bound.get(value.id, value) if isinstance(value, ast.Name) else value
-                out.update(dict.fromkeys(_named_yaml(held), key.value))
+                for held in _through_names(value, bound):
+                    out.update(dict.fromkeys(_named_yaml(held, env), key.value))
     return out
 
 
-def _named_yaml(tree: ast.AST) -> Iterator[str]:
+def _bound_names(tree: ast.AST) -> dict[str, ast.AST]:
+    """`name = value` and `with value as name` of a module: the name -> the value's expression."""
+    bound: dict[str, ast.AST] = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            bound[node.targets[0].id] = node.value
+        elif isinstance(node, ast.With):
+            for item in node.items:
+                if isinstance(item.optional_vars, ast.Name):
+                    bound[item.optional_vars.id] = item.context_expr
+    return bound
+
+
+def _through_names(node: ast.AST, bound: dict[str, ast.AST], steps: int = 4) -> list[ast.AST]:
+    """`node`, and what the names in it are bound to, and theirs, `steps` deep."""
+    out, frontier = [node], [node]
+    for _ in range(steps):
+        names = {n.id for f in frontier for n in ast.walk(f) if isinstance(n, ast.Name) and n.id in bound}
+        frontier = [bound[name] for name in sorted(names) if bound[name] not in out]
+        out += frontier
+    return out
+
+
+def _named_yaml(tree: ast.AST, env: _Env | None = None) -> Iterator[str]:
     """YAML paths a launch file writes as string literals: the files it loads by hand
     (`load_yaml("pkg", "config/x_controllers.yaml")`) rather than through MoveItConfigsBuilder,
-    also joined from literals (`os.path.join("config", "x.yaml")`)."""
+    also joined from literals (`os.path.join("config", "x.yaml")`) or, given `env`, from what it
+    knows statically (`os.path.join(get_package_share_directory("pkg"), "config", "x.yaml")`)."""
     for node in ast.walk(tree):
         value = node.value if isinstance(node, ast.Constant) else _literal_join(node)
+        if value is None and env is not None and isinstance(node, ast.Call):
+            value = _try(node, env) if _name(node.func) in ("join", "PathJoinSubstitution") else None
         if isinstance(value, str) and value.endswith((".yaml", ".yml")):
             yield value
 

@@ -320,6 +320,8 @@ def read_ros2_kinds(
         top_level_by = ""
         if doc is not None and kind == "kinematics" and not builder.calls:
             doc, top_level_by = _node_kinematics(files, doc, loads, named_yaml)
+        if doc is not None and kind == "joint_limits" and not builder.calls:
+            doc = _node_joint_limits(doc)
         value = reader(doc) if doc is not None else None
         if isinstance(value, KinematicsFile) and top_level_by:
             value = replace(value, top_level_by=top_level_by)
@@ -408,6 +410,17 @@ def _node_kinematics(
         launch for r, launch in named_yaml if r == rel and hands_bare_to_move_group(files.root, launch, rel)
     ]
     return doc, by[0] if by else ""
+
+
+def _node_joint_limits(doc: Located) -> Located:
+    """A joint limits file no MoveItConfigsBuilder wraps, as a ROS 2 parameter file
+    (`/**/move_group: ros__parameters:`): move_group's own parameters, where MoveIt reads
+    `robot_description_planning.joint_limits.<joint>` (moveit2 robot_model_loader.cpp l.133)."""
+    params = unwrap_parameters(doc)
+    if params is doc:
+        return doc
+    nested = params.get("robot_description_planning")
+    return nested if nested.is_mapping else params
 
 
 def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:

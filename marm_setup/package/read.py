@@ -43,6 +43,7 @@ from marm_setup.package.setup_files import (
     read_setup_assistant,
 )
 from marm_setup.package.srdf_file import SrdfFile, read_srdf_file, srdf_robot_name
+from marm_setup.package.substitution import Scope
 from marm_setup.package.where import unwrap_parameters
 from marm_setup.ros import Target
 from marm_setup.untrusted import confine_reads, excerpt, readable
@@ -290,6 +291,9 @@ def _launched(
     python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
     for launch_file, why in python.unread:
         files.problems.append(warning("launch.python-unread", launch_file, "", why))
+    for path, defaults in python.substituted:  # ParameterFile(..., allow_substs=True)
+        if (rel := _relative(path, files.root)) is not None:
+            files.scopes.setdefault(rel, Scope(dict(defaults), find, ros2=True))
     builder = builder_files(python.builders, name, wanted, python.other_builders)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None

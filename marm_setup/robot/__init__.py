@@ -23,7 +23,8 @@ API = {
     ),
     "meshes": "check_robot_triangles load_mesh MAX_ROBOT_TRIANGLES",
     "ros_packages": (
-        "description_file find_package find_packages misspelt_package package_name PackageIndex PackageMap resolve_uri"
+        "description_file exported_plugin_classes find_package find_packages misspelt_package package_name PackageIndex "
+        "PackageMap resolve_uri"
     ),
     "describe": "describe_robot format_tree",
     "fingerprint": "robot_fingerprint",
@@ -99,6 +100,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.ros_packages import PackageIndex as PackageIndex
     from marm_setup.robot.ros_packages import PackageMap as PackageMap
     from marm_setup.robot.ros_packages import description_file as description_file
+    from marm_setup.robot.ros_packages import exported_plugin_classes as exported_plugin_classes
     from marm_setup.robot.ros_packages import find_package as find_package
     from marm_setup.robot.ros_packages import find_packages as find_packages
     from marm_setup.robot.ros_packages import misspelt_package as misspelt_package

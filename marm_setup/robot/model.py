@@ -77,6 +77,7 @@ class CollisionShape:
 class Link:
     name: str
     collisions: tuple[CollisionShape, ...] = ()
+    has_visual: bool = False  # a <visual> element (MoveIt's Gazebo `world` root test reads it)
 
     @property
     def has_geometry(self) -> bool:

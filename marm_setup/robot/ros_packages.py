@@ -90,6 +90,46 @@ def package_name(folder: Path) -> str | None:
     return name.strip() if name else None
 
 
+def exported_plugin_classes(packages: PackageIndex) -> frozenset[str]:
+    """The plugin lookup names the `package.xml` packages of `packages` export: each
+    `<export><base_package plugin="${prefix}/file.xml"/></export>` entry names a description
+    file whose `<class name=...>` (else `type`) pluginlib finds the class by, whatever the
+    name's prefix (pluginlib class_loader_imp.hpp getPluginXmlPaths, processXMLFile). Files
+    outside their package or unreadable are skipped."""
+    found: set[str] = set()
+    for folder in packages.manifests.values():
+        for described in _plugin_files(folder):
+            found.update(_plugin_class_names(described))
+    return frozenset(found)
+
+
+def _plugin_files(folder: Path) -> list[Path]:
+    parser = etree.XMLParser(resolve_entities=False, no_network=True)
+    try:
+        data = bounded_read.read_bytes(folder / "package.xml", bounded_read.XML_BYTES)
+        export = etree.fromstring(data, parser).find("export")
+    except (etree.XMLSyntaxError, OSError, FileTooLarge):
+        return []
+    out = []
+    for entry in export if export is not None else ():
+        plugin = entry.get("plugin") if isinstance(entry.tag, str) else None
+        if plugin:
+            path = Path(plugin.replace("${prefix}", str(folder))).resolve()
+            if path.is_relative_to(folder.resolve()):
+                out.append(path)
+    return out
+
+
+def _plugin_class_names(described: Path) -> list[str]:
+    parser = etree.XMLParser(resolve_entities=False, no_network=True)
+    try:
+        root = etree.fromstring(bounded_read.read_bytes(described, bounded_read.XML_BYTES), parser)
+    except (etree.XMLSyntaxError, OSError, FileTooLarge):
+        return []
+    classes = root.iter("class")
+    return [name for c in classes if (name := c.get("name") or c.get("type"))]
+
+
 def _subfolders(folder: Path) -> list[Path]:
     try:
         return sorted(c for c in folder.iterdir() if c.is_dir() and not c.name.startswith("."))

@@ -149,7 +149,7 @@ def _parse_link(el: etree._Element, ctx: _Ctx) -> Link:
         shapes.append(
             CollisionShape(_geometry(geom[0], element, ctx), _origin(col.find("origin"), element, ctx))
         )
-    return Link(name=name, collisions=tuple(shapes))
+    return Link(name=name, collisions=tuple(shapes), has_visual=el.find("visual") is not None)
 
 
 def _geometry(el: etree._Element, element: str, ctx: _Ctx) -> Geometry:

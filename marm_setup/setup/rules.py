@@ -99,9 +99,10 @@ class _SrdfRules:
 class _Rules(_SrdfRules):
     """Finding makers bound to one file, robot and style."""
 
-    def __init__(self, srdf: Srdf, robot: RobotModel, file: str, style: Style):
+    def __init__(self, srdf: Srdf, robot: RobotModel, file: str, style: Style, virtual_tfs: bool = True):
         super().__init__(srdf, file, style)
         self.robot = robot
+        self.virtual_tfs = virtual_tfs  # a launch file publishes the virtual joints' transforms
 
     def link(self, name: str, where: Where) -> list[Finding]:
         return self.unknown("srdf.unknown-link", "link", name, self.robot.link_map, where)
@@ -112,9 +113,12 @@ class _Rules(_SrdfRules):
         return self.unknown(rule, "joint", name, known, where)
 
 
-def check_semantics(srdf: Srdf, robot: RobotModel, file: str, style: Style = srdf_element) -> list[Finding]:
-    """Every rule, in a fixed order (the setup check raises the first error)."""
-    r = _Rules(srdf, robot, file, style)
+def check_semantics(
+    srdf: Srdf, robot: RobotModel, file: str, style: Style = srdf_element, virtual_tfs: bool = True
+) -> list[Finding]:
+    """Every rule, in a fixed order (the setup check raises the first error). `virtual_tfs`: a
+    launch file publishes the virtual joints' transforms (what we render always does)."""
+    r = _Rules(srdf, robot, file, style, virtual_tfs)
     out = check_robot_name(r)
     out += check_duplicate_groups(r)
     out += check_virtual_joints(r)
@@ -178,25 +182,40 @@ def check_virtual_joints(r: _Rules) -> list[Finding]:
         if not missing and vj.child_link != r.robot.root:
             out += _virtual_joint_off_root(r, vj, where)
         if vj.parent_frame in r.robot.link_map and vj.parent_frame not in (r.robot.root, vj.child_link):
-            # robot_state_publisher puts that link below the root; the virtual joint's TF would put
-            # the root below it: a loop tf2 refuses. A parent frame that is the child link itself
-            # is an identity: MoveIt builds the joint (robot_model.cpp l.953-968 in moveit/moveit)
-            # and tf2 ignores a self transform (buffer_core.cpp TF_SELF_TRANSFORM): no loop
-            msg = f"parent frame '{vj.parent_frame}' is one of the robot's own links: TF would form a loop"
-            out.append(
-                r.error("srdf.virtual-joint-parent", Where("virtual_joint", vj.name, ("parent_frame",)), msg)
-            )
+            out.append(_virtual_joint_on_own_link(r, vj))
     return out
 
 
+def _virtual_joint_on_own_link(r: _Rules, vj: VirtualJoint) -> Finding:
+    """robot_state_publisher puts the parent link below the root; the virtual joint's TF would
+    put the root below it: a loop tf2 refuses. A parent frame that is the child link itself is an
+    identity (robot_model.cpp l.953-968 in moveit/moveit; tf2's TF_SELF_TRANSFORM): not here.
+    For a planar or floating joint the parent frame is MoveIt's model frame, which TF places; for
+    a fixed one MoveIt keeps the root link ("for fixed frames we still use the robot root link",
+    robot_model.cpp l.963 moveit, l.1027 moveit2), so only a launch file publishing the virtual
+    joint's transform makes the loop: without one it is a likely mistake (a warning)."""
+    where = Where("virtual_joint", vj.name, ("parent_frame",))
+    msg = f"parent frame '{vj.parent_frame}' is one of the robot's own links"
+    if vj.type != "fixed" or r.virtual_tfs:
+        return r.error("srdf.virtual-joint-parent", where, f"{msg}: TF would form a loop")
+    msg += (
+        ": MoveIt ignores a fixed virtual joint's parent frame and no launch file of the package "
+        "publishes its transform; one that did would make a TF loop"
+    )
+    return r.warning(
+        "srdf.virtual-joint-parent", where, msg, 'use a parent frame outside the robot (parent_frame="world")'
+    )
+
+
 def _virtual_joint_off_root(r: _Rules, vj: VirtualJoint, where: Where) -> list[Finding]:
-    """MoveIt's robot_model.cpp (`constructJointModel`, the URDF root) skips a virtual joint whose
-    child is not the root, with a warning ("Skipping virtual joint ... does not match the URDF
-    frame") and assumes a fixed joint. A URDF whose root is named like the parent frame already
-    holds that joint (the Gazebo `world` link): MoveIt 2 no longer warns there (moveit_core
-    CHANGELOG "Silent warning about virtual_joint in Gazebo setups"). Skipping a planar or
-    floating joint loses the base's freedom: an error; a fixed one only renames a frame."""
-    if vj.parent_frame == r.robot.root:
+    """MoveIt's robot_model.cpp (the URDF root: moveit l.931-945, moveit2 l.989-1003) skips a
+    virtual joint whose child is not the root, with a warning ("Skipping virtual joint ... does
+    not match the URDF frame"), and assumes a fixed joint. Except Gazebo's form: a fixed virtual
+    joint onto a URDF whose root is a `world` link without collision or visual geometry is built
+    silently, whatever its parent frame. Skipping a planar or floating joint loses the base's
+    freedom: an error; a fixed one only renames a frame."""
+    root = r.robot.link(r.robot.root)
+    if vj.type == "fixed" and root.name == "world" and not root.collisions and not root.has_visual:
         return []
     msg = f"child link '{vj.child_link}' is not the URDF's root link '{r.robot.root}': MoveIt skips it"
     if vj.type in ("planar", "floating"):

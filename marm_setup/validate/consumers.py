@@ -341,7 +341,7 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
             if done is None:
                 out.append(_stopped(pkg, seconds))
                 continue
-            problem = _dump_problem(done)
+            problem = _shown(_dump_problem(done), xacro)
             if problem:
                 out.append(_launch_failure(rel, problem, unheld))
             elif not _static_list_namespace(pkg):
@@ -427,6 +427,18 @@ MISSING_RESOURCE = re.compile(
 )
 
 
+def _shown(problem: str, fallback: str) -> str:
+    """roslaunch's failure as the user reads it: the stand-in xacro package's folder (a temporary
+    folder, new each run: _xacro_fallback) shown as `$(find xacro)`."""
+    return problem.replace(fallback, "$(find xacro)")
+
+
+XACRO_PY_HINT = (
+    "Noetic's xacro installs no xacro.py (ros/xacro noetic-devel CMakeLists.txt installs scripts/xacro "
+    "only; melodic-devel also installed xacro.py): call $(find xacro)/xacro"
+)
+
+
 def _launch_failure(rel: str, problem: str, unheld: Callable[[str], str | None]) -> Finding:
     """A roslaunch failure: an error, but a warning when it only lacks a package validate cannot
     tell is missing from the user's machine (`unheld` says why; the user's environment, not the
@@ -436,7 +448,8 @@ def _launch_failure(rel: str, problem: str, unheld: Callable[[str], str | None])
     name = None if missing is None else missing.group(1) or missing.group(2)
     why = None if name is None else unheld(name)
     if name is None or why is None:
-        return error("ros1.launch", rel, "launch", msg)
+        hint = XACRO_PY_HINT if "no such command" in problem and "xacro.py" in problem else ""
+        return error("ros1.launch", rel, "launch", msg, hint)
     hint = f"pass --package-path DIR (the folder holding {name}){why}"
     return warning("ros1.launch", rel, "launch", msg, hint)
 

@@ -41,7 +41,7 @@ from marm_setup.validate.rules.controller_rules import (
     check_ros_control_coverage,
     uses_ros_control_interface,
 )
-from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
+from marm_setup.validate.rules.declared_param_rules import check_declared_parameters, exported_classes
 from marm_setup.validate.rules.distro_rules import check_package_runtime
 from marm_setup.validate.rules.driver_param_rules import check_driver_parameters
 from marm_setup.validate.rules.driver_rules import check_arbotix, check_driver_controllers
@@ -52,7 +52,7 @@ from marm_setup.validate.rules.name_rules import check_controller_names, check_s
 from marm_setup.validate.rules.ompl_rules import check_ompl
 from marm_setup.validate.rules.perception_rules import check_sensors, check_servos
 from marm_setup.validate.rules.pose_rules import check_initial_positions
-from marm_setup.validate.rules.srdf_rules import check_srdf, check_srdf_without_robot
+from marm_setup.validate.rules.srdf_rules import check_srdf, check_srdf_without_robot, publishes_static_tfs
 from marm_setup.validate.rules.write_state_rules import check_pending_write
 from marm_setup.validate.srdf_fit import fitting_srdf
 
@@ -457,8 +457,16 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
     if pkg.kinematics is not None:
         ros1 = pkg.target == Target.ROS1  # a ROS 2 solver's class is declared_param_rules'
         depends = pkg.package_xml.dependencies if pkg.package_xml is not None else ()
+        exported = exported_classes(pkg) if ros1 else frozenset()
         out += guarded(
-            "kinematics", check_kinematics, pkg.kinematics, srdf, robot, moveit1=ros1, depends=depends
+            "kinematics",
+            check_kinematics,
+            pkg.kinematics,
+            srdf,
+            robot,
+            moveit1=ros1,
+            depends=depends,
+            exported=exported,
         )
         if not ros1 and pkg.kinematics.top_level_by:
             row = kinematics_distro(pkg)
@@ -533,7 +541,8 @@ def check_static(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
     """SRDF, poses, kinematics, limits, OMPL, controller, servo and sensor rules (no collision checking), each
     family on its own: one that fails leaves the others running."""
     assert pkg.srdf_file is not None and pkg.srdf is not None
-    out = guarded("srdf", check_srdf, pkg.srdf_file, robot) + check_srdf_files(pkg, robot)
+    out = guarded("srdf", check_srdf, pkg.srdf_file, robot, publishes_static_tfs(pkg))
+    out += check_srdf_files(pkg, robot)
     if pkg.initial_positions is not None:
         out += guarded("pose", check_initial_positions, pkg.initial_positions, robot)
     out += guarded("controller", check_controllers, pkg, robot)

@@ -344,3 +344,21 @@ def test_a_launch_file_using_an_arg_it_never_declares_is_an_include(tmp_path, bo
     franka_control.launch (pass_all_args) sets: run alone, roslaunch stops on it."""
     root = build_file_tree(tmp_path, {"a.launch": f"<launch>{body}</launch>"})
     assert _needs_args(parse_launch(root / "a.launch", "a.launch").root) is included
+
+
+def test_a_xacro_py_command_names_noetic_and_no_temporary_folder():
+    """`$(find xacro)/xacro.py` (fanuc_lrmate200i_moveit_config): Noetic's xacro installs no
+    xacro.py (ros/xacro noetic-devel CMakeLists.txt installs scripts/xacro only; melodic-devel
+    also installed xacro.py), so roslaunch fails there; the message shows the command as the
+    package wrote it, not the path of validate's stand-in xacro (a temporary folder, new each run)."""
+    from marm_setup.validate.consumers import _launch_failure, _shown
+
+    fallback = "/tmp/marm_ros1_abc123/fallback/xacro"
+    problem = (
+        "Invalid <param> tag: Cannot load command parameter [robot_description]: no such command "
+        f"[['{fallback}/xacro.py', '--inorder', '/ws/x_support/urdf/x.xacro']]"
+    )
+    shown = _shown(problem, fallback)
+    assert fallback not in shown and "'$(find xacro)/xacro.py'" in shown
+    found = _launch_failure("launch/demo.launch", shown, lambda name: None)
+    assert found.severity == "error" and "Noetic's xacro installs no xacro.py" in found.hint

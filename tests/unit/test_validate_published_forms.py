@@ -140,6 +140,11 @@ def test_a_virtual_joint_parented_to_its_own_child_is_no_tf_loop(tmp_path):
     assert of_rule(found, "srdf.virtual-joint-parent") == []
     assert errors(found) == []  # MoveIt skips it (child is not the root): a warning of its own
     edit(srdf, 'parent_frame="link1"', 'parent_frame="link2"')
+    (
+        source / "launch/demo.launch"
+    ).write_text(  # publishes the virtual joint (tests/unit/test_validate_virtual_joint_tf.py)
+        '<launch><node pkg="tf2_ros" type="static_transform_publisher" name="vj" args="0 0 0 0 0 0 link2 link1"/></launch>\n'
+    )
     assert of_rule(findings(source, paths), "srdf.virtual-joint-parent") == [
         ("error", "virtual_joint[world_joint]")
     ]

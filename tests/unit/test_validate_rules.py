@@ -1031,3 +1031,14 @@ def test_a_global_controller_name_is_valid_in_a_moveit1_list(tmp_path):
     assert "names.invalid" not in {f.rule for f in run(good.path, good)}
     replace_text(good.path, "config/controllers.yaml", "name: /arm_controller", "name: /arm controller")
     assert "names.invalid" in {f.rule for f in run(good.path, good)}
+
+
+def test_a_trailing_slash_in_a_moveit1_controller_name_is_valid(tmp_path):
+    """roscpp cleans the action name `<name>/<action_ns>` it resolves (ros_comm names.cpp
+    `resolve` l.177 -> `clean` l.99-116: '//' collapsed, a trailing '/' dropped): MoveIt's own
+    prbt_moveit_config names `prbt/manipulator_joint_trajectory_controller/`."""
+    good = Good(generate_marm(tmp_path, "ros1"))
+    replace_text(good.path, "config/controllers.yaml", "name: arm_controller", "name: arm_controller/")
+    assert "names.invalid" not in {f.rule for f in run(good.path, good)}
+    replace_text(good.path, "config/controllers.yaml", "name: arm_controller/", "name: arm-controller/")
+    assert "names.invalid" in {f.rule for f in run(good.path, good)}

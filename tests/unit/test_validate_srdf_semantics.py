@@ -42,7 +42,9 @@ def test_a_group_may_name_the_virtual_joint(tmp_path):
 
 
 def test_a_virtual_joint_below_a_urdf_root_named_like_its_parent_frame(tmp_path):
-    """A URDF that already has the `world` root (Gazebo's fixed joint): MoveIt 2 does not warn."""
+    """The panda's root is panda_link0, not an empty `world` link: MoveIt skips a virtual joint
+    onto panda_link1 with a warning whatever its parent frame (robot_model.cpp, moveit2
+    l.989-1003; the Gazebo `world` root is tests/unit/test_validate_virtual_joint_world_root.py)."""
     good = panda("ros1")
     pkg = copy_package(good, tmp_path)
     replace_text(
@@ -53,7 +55,9 @@ def test_a_virtual_joint_below_a_urdf_root_named_like_its_parent_frame(tmp_path)
             'parent_frame="world"', 'parent_frame="panda_link0"'
         ),
     )
-    assert found(pkg, good, "srdf.virtual") == []
+    assert found(pkg, good, "srdf.virtual") == [
+        ("srdf.virtual-joint-child", "warning", "virtual_joint[virtual_joint]")
+    ]
     replace_text(pkg, SRDF, 'parent_frame="panda_link0"', 'parent_frame="world"')
     assert found(pkg, good, "srdf.virtual") == [
         ("srdf.virtual-joint-child", "warning", "virtual_joint[virtual_joint]")

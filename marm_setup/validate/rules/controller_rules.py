@@ -156,16 +156,20 @@ def check_ros1_manager_plugins(pkg: MoveItPackage) -> list[Finding]:
     logs "Exception while loading controller manager" and executes nothing
     (trajectory_execution_manager.cpp noetic l.160-169 at fdb79ac)."""
     from marm_setup.package import Received
-    from marm_setup.validate.rules.declared_param_rules import check_plugin_param, package_finder
+    from marm_setup.validate.rules.declared_param_rules import (
+        check_plugin_param,
+        exported_classes,
+        package_finder,
+    )
 
-    table, built = load_table("noetic"), package_finder(pkg)
+    table, built, exported = load_table("noetic"), package_finder(pkg), exported_classes(pkg)
     out: list[Finding] = []
     for launch, value in dict.fromkeys((p.launch, p.value.strip()) for p in pkg.controller_managers):
         if value and "$(" not in value:
             param = Received(
                 "move_group", "moveit_controller_manager", value, launch, "moveit_controller_manager"
             )
-            out += check_plugin_param(param, table, built)
+            out += check_plugin_param(param, table, built, exported)
     return out
 
 

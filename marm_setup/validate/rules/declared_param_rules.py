@@ -72,13 +72,13 @@ def check_declared_parameters(pkg: MoveItPackage, distro: str | None) -> list[Fi
     """The findings on every parameter move_group and servo receive from a ROS 2 package; with
     no known distro, the family its format shows, else only what Jazzy's and Humble's agree on."""
     received = [r for r in received_parameters(pkg) if not _unread_group(r, pkg)]
-    built = package_finder(pkg)
+    built, exported = package_finder(pkg), exported_classes(pkg)
     family = family_of(distro) or inferred_family(received)
     given = {r.name: r for r in received if r.node == "move_group"}
     listed = check_default_pipeline(given) + check_listed_pipelines(given, family, pkg.files)
     if family is not None:
-        return _check_all(received, load_table(family), built) + listed
-    found = [_check_all(received, load_table(f), built) for f in ("jazzy", "humble")]
+        return _check_all(received, load_table(family), built, exported) + listed
+    found = [_check_all(received, load_table(f), built, exported) for f in ("jazzy", "humble")]
     agreed = {(f.rule, f.file, f.element) for f in found[1]}
     return [f for f in found[0] if (f.rule, f.file, f.element) in agreed] + listed
 
@@ -166,11 +166,20 @@ def package_finder(pkg: MoveItPackage) -> Callable[[str], bool]:
     return lambda name: name in packages
 
 
-def _check_all(received: list[Received], table: Table, built: Callable[[str], bool]) -> list[Finding]:
+def exported_classes(pkg: MoveItPackage) -> frozenset[str]:
+    """The plugin classes the packages on the package paths export (robot.exported_plugin_classes)."""
+    from marm_setup.robot import exported_plugin_classes, find_packages
+
+    return exported_plugin_classes(find_packages(pkg.package_paths))
+
+
+def _check_all(
+    received: list[Received], table: Table, built: Callable[[str], bool], exported: frozenset[str]
+) -> list[Finding]:
     instances = _instances(received)
     out: list[Finding] = []
     for r in received:
-        out += check_plugin_param(r, table, built)
+        out += check_plugin_param(r, table, built, exported)
         if not _elsewhere(r, instances):
             out += _check_one(r, table, instances)
     return out
@@ -314,9 +323,13 @@ def _short(names: list[str]) -> str:
     return ", ".join(tails[:12]) + (", ..." if len(tails) > 12 else "")
 
 
-def check_plugin_param(r: Received, table: Table, built: Callable[[str], bool]) -> list[Finding]:
+def check_plugin_param(
+    r: Received, table: Table, built: Callable[[str], bool], exported: frozenset[str] = frozenset()
+) -> list[Finding]:
     """Plugin class names pluginlib cannot load in this family: an error, but a warning for a
-    class of another package the package paths hold (pluginlib loads it once that is built)."""
+    class of another package the package paths hold (pluginlib loads it once that is built), and
+    nothing for a class a package on the package paths exports (`exported`: pluginlib finds a
+    class by its lookup name in the exported description files, whatever its prefix)."""
     kind = next((k for pattern, k in PLUGIN_KEYS if pattern.fullmatch(r.name)), None)
     if kind is None:
         return []
@@ -325,6 +338,7 @@ def check_plugin_param(r: Received, table: Table, built: Callable[[str], bool]) 
     for name in _plugin_names(r.value):
         if (
             name in known
+            or name in exported
             or (kind == "kinematics" and IKFAST.fullmatch(name))
             or _other_family(name, kind, table)
         ):

@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING
 from marm_setup.findings import Finding, error, warning
 from marm_setup.package import GroupPlanning, MoveItPackage, Param, PlanningPipeline, Ros2ControlFile
 from marm_setup.ros import DISTROS, Distro, Target, distro_row
-from marm_setup.setup import active_group_joints, groups_by_name
+from marm_setup.setup import active_group_joints, group_joints, groups_by_name
 
 if TYPE_CHECKING:
     from marm_setup.robot import RobotModel
@@ -177,7 +177,10 @@ def check_projection_evaluators(ompl: PlanningPipeline, srdf: Srdf, robot: Robot
         joints = active_group_joints(by_name[entry.group], by_name, robot, tuple(srdf.passive_joints))
         given = entry.param("projection_evaluator")
         if given is not None:
-            out += _projection_problem(ompl.where.file, entry, str(given.value), joints, robot, kind)
+            members = group_joints(by_name[entry.group], by_name, robot)
+            out += _projection_problem(
+                ompl.where.file, entry, str(given.value), (joints, members), robot, kind
+            )
             continue
         if kind in PROJECTION_PLANNERS and len(joints) >= 2:
             msg = f"default planner {kind} needs a projection_evaluator: every plan of this group fails"
@@ -187,35 +190,49 @@ def check_projection_evaluators(ompl: PlanningPipeline, srdf: Srdf, robot: Robot
 
 
 def _projection_problem(
-    file: str, entry: GroupPlanning, given: str, joints: Sequence[str], robot: RobotModel, kind: str
+    file: str,
+    entry: GroupPlanning,
+    given: str,
+    joints: tuple[Sequence[str], Sequence[str]],
+    robot: RobotModel,
+    kind: str,
 ) -> list[Finding]:
     """`link(<link>)` of a link of the robot, or `joints(<a>,<b>,...)` of joints of the group:
     anything else MoveIt logs as an error and the group has no projection
     (model_based_planning_context.cpp getProjectionEvaluator, jazzy l.166-231, the same in
-    humble and moveit/moveit noetic); a joint outside the group is logged and skipped. An error
-    when the group's default planner needs the projection, else a warning."""
+    humble and moveit/moveit noetic). `joints` is (the group's active joints, every joint of the
+    group): MoveIt takes any joint the group has (JointModelGroup::hasJointModel, mimic and
+    passive ones included) with variables, skips a fixed one ("Ignoring joint ... since it has 0
+    DOF", a warning) and logs an error for one outside the group. An error when the group's
+    default planner needs the projection and none is left, else a warning."""
+    active, members = joints
     text = given.strip()
     element = f"{entry.where.element}.projection_evaluator"
     if text.startswith("link(") and text.endswith(")"):
-        bad = [] if text[5:-1] in robot.link_map else [text[5:-1]]
+        bad = [] if text[5:-1] in robot.link_map else [f"'{text[5:-1]}' (not a link of the robot)"]
         usable = not bad
     elif text.startswith("joints(") and text.endswith(")"):
         names = text[7:-1].replace(",", " ").split()
-        bad = [n for n in names if n not in joints]
-        usable = len(bad) < len(names)
+        moving = [n for n in names if n in members and robot.joint(n).type != "fixed"]
+        bad = [
+            f"'{n}' (a fixed joint, 0 DOF)" if n in members else f"'{n}' (not a joint of the group)"
+            for n in names
+            if n not in moving
+        ]
+        usable = bool(moving)
     else:
-        bad, usable = [text], False
+        bad, usable = [f"'{text}'"], False
     if not bad:
         return []
-    what = "not a link of the robot" if text.startswith("link(") else "not a joint of the group"
-    said = ", ".join(f"'{b}'" for b in bad) + (f" ({what})" if text.startswith(("link(", "joints(")) else "")
-    hint = f"projection_evaluator: joints({','.join(joints[:2])})" if len(joints) >= 2 else ""
+    said = ", ".join(bad)
+    hint = f"projection_evaluator: joints({','.join(active[:2])})" if len(active) >= 2 else ""
     if not usable and kind in PROJECTION_PLANNERS:
         msg = (
             f"MoveIt cannot project on {said}: the default planner {kind} has no projection, every plan fails"
         )
         return [error("ompl.projection-invalid", file, element, msg, hint)]
-    tail = "the group has no projection" if not usable else "MoveIt logs an error and skips it"
+    logged = "logs an error" if any("(a fixed joint" not in b for b in bad) else "warns"
+    tail = "the group has no projection" if not usable else f"MoveIt {logged} and skips it"
     return [
         warning("ompl.projection-invalid", file, element, f"MoveIt cannot project on {said}: {tail}", hint)
     ]

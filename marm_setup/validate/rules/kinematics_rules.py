@@ -50,12 +50,15 @@ def check_kinematics(
     *,
     moveit1: bool = True,
     depends: tuple[str, ...] = (),
+    exported: frozenset[str] = frozenset(),
 ) -> list[Finding]:
     """Every rule on a kinematics file (`{group: {kinematics_solver: ..., ...}}`); without the
     robot (a description only the run time gives) whether a group is a chain is not checked.
     `moveit1`: a MoveIt 1 package, whose solver class names (and ignored attempts) are this
     rule's to check (a ROS 2 package's classes are declared_param_rules', against MoveIt 2's
-    plugin description files); `depends`: the packages package.xml depends on."""
+    plugin description files); `depends`: the packages package.xml depends on; `exported`: the
+    plugin classes packages on the package paths export (pluginlib loads those, whatever the
+    prefix of their name)."""
     file = kinematics.where.file
     if kinematics.groups is None:
         return [error("kinematics.malformed", file, kinematics.where.element, "expected a mapping of groups")]
@@ -72,7 +75,7 @@ def check_kinematics(
         elif entry.params is None:
             out.append(error("kinematics.malformed", file, where, "expected a mapping"))
         else:
-            names = moveit1 and not _declared(entry.solver, depends)
+            names = moveit1 and not _declared(entry.solver, depends) and entry.solver not in exported
             out += _check_entry(file, entry, by_name[entry.group], by_name, srdf, robot, names)
             out += _attempts(file, entry) if moveit1 else []
     return out

@@ -26,14 +26,22 @@ def check_controller_names(controllers: Iterable, file: str, *, global_names: bo
     `global_names` (MoveIt 1's `controller_list`): a controller name may be a global ROS name
     (`/robot/limb/right`, Baxter's): the simple manager only prefixes the action it connects to
     with it (moveit/moveit moveit_simple_controller_manager action_based_controller_handle.h
-    l.77 and l.140-145 at fdb79ac, `name + "/" + action_ns`), and roscpp takes a leading '/'."""
+    l.77 and l.140-145 at fdb79ac, `name + "/" + action_ns`), and roscpp takes a leading '/' and
+    cleans the name it resolves (ros_comm names.cpp `resolve` l.177 -> `clean` l.99-116: '//'
+    collapsed, a trailing '/' dropped)."""
     out = []
     for ctrl in controllers:
-        name = ctrl.name[1:] if global_names and ctrl.name.startswith("/") else ctrl.name
+        name = _roscpp_clean(ctrl.name) if global_names else ctrl.name
         for kind, text in (("controller", name), ("action_ns", ctrl.action_ns)):
             if text and (problem := name_problem(kind, text)):
                 out.append(_finding(file, ctrl.element, problem))
     return out
+
+
+def _roscpp_clean(name: str) -> str:
+    """`name` as roscpp resolves a global or relative name: without its leading '/', repeated
+    '/' collapsed, a trailing '/' dropped ('' stays '')."""
+    return "/".join(part for part in name.split("/") if part) if name.strip("/") else name
 
 
 def _finding(file: str, where: str, problem: str) -> Finding:

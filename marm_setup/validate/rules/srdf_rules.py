@@ -3,20 +3,47 @@ end effectors, virtual and passive joints, disabled pairs), plus what only a fil
 
 from __future__ import annotations
 
+from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
 from marm_setup.findings import Finding, error, warning
-from marm_setup.package import SrdfFile
+from marm_setup.package import MoveItPackage, SrdfFile
 from marm_setup.robot import RobotModel
 from marm_setup.setup import check_semantics, check_semantics_without_robot, srdf_element
 
 
-def check_srdf(srdf_file: SrdfFile, robot: RobotModel) -> list[Finding]:
-    """Every SRDF-vs-URDF rule, named pose values included (the SRDF must have been read)."""
+def check_srdf(srdf_file: SrdfFile, robot: RobotModel, virtual_tfs: bool = True) -> list[Finding]:
+    """Every SRDF-vs-URDF rule, named pose values included (the SRDF must have been read);
+    `virtual_tfs`: a launch file publishes the virtual joints' transforms."""
     assert srdf_file.srdf is not None
     file = srdf_file.path
-    out = check_semantics(srdf_file.srdf, robot, file, srdf_element)
+    out = check_semantics(srdf_file.srdf, robot, file, srdf_element, virtual_tfs)
     out += _duplicate_pairs(srdf_file)
     out += _nested_passive_joints(srdf_file, robot)
     return out
+
+
+STATIC_TF_WORDS = ("static_transform_publisher", "static_virtual_joint_tfs")
+
+
+def publishes_static_tfs(pkg: MoveItPackage) -> bool:
+    """A launch file of the package starts a static_transform_publisher (the Setup Assistant's
+    MoveIt 1 demo.launch `virtual_joint_broadcaster_N`) or runs or includes MoveIt 2's
+    static_virtual_joint_tfs launch (moveit_configs_utils launches.py: one publisher per virtual
+    joint, parent_frame to child_link; generate_demo_launch includes it when the file exists).
+    A launch file that could not be read counts as one that does."""
+    for launch in pkg.launch:
+        if launch.root is None:
+            return True
+        for element in launch.root.iter():
+            if any(word in str(value) for value in element.attrib.values() for word in STATIC_TF_WORDS):
+                return True
+    for rel in pkg.python_launch_files:
+        try:
+            text = read_text(pkg.path(rel), XML_BYTES)
+        except (OSError, UnicodeDecodeError, FileTooLarge):
+            return True
+        if any(word in text for word in STATIC_TF_WORDS):
+            return True
+    return False
 
 
 def check_srdf_without_robot(srdf_file: SrdfFile) -> list[Finding]:
