@@ -52,6 +52,10 @@ EDITS = (
     ("humble", CONTROLLERS, "update_rate: 100", "update_rate: 100.0", "ros2_control_node dies at start-up"),
     ("jazzy", CONTROLLERS, "allow_nonzero_velocity_at_trajectory_end: true",
      "allow_nonzero_velocity_at_trajectory_end: 1", "the arm controller does not load: nothing executes"),
+    ("jazzy", CONTROLLERS, "    command_interfaces:\n      - position", "    command_interfaces:\n      - effort",
+     "the arm controller never activates (mock hardware offers position only)"),
+    ("humble", MOVEIT, "          max_velocity: 1.0\n", "          max_velocity: 1\n",
+     "move_group drops the joint's limits (an integer where robot_model_loader reads a double)"),
 )  # fmt: skip
 
 
