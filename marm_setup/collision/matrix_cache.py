@@ -184,8 +184,11 @@ def _gltf_digests(robot: RobotModel) -> list[tuple[str, str]]:
 
 
 def _code() -> tuple[str, str, str]:
-    """A digest of the source the matrix comes from, and the coal and numpy versions."""
-    digest = hashlib.sha256()
+    """A digest of marm-setup's version and the source the matrix comes from (an install without
+    its .py files still keys by version), and the coal and numpy versions."""
+    from marm_setup import __version__
+
+    digest = hashlib.sha256(__version__.encode())
     for folder in CODE:
         for path in sorted((PACKAGE / folder).glob("*.py")):
             digest.update(path.name.encode())
