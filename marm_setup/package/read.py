@@ -294,6 +294,9 @@ def _launched(
     for path, defaults in python.substituted:  # ParameterFile(..., allow_substs=True)
         if (rel := _relative(path, files.root)) is not None:
             files.scopes.setdefault(rel, Scope(dict(defaults), find, ros2=True))
+    for path, pairs in python.replaced:  # nav2_common's ReplaceString(source_file, replacements)
+        if (rel := _relative(path, files.root)) is not None:
+            files.replacements.setdefault(rel, pairs)
     builder = builder_files(python.builders, name, wanted, python.other_builders)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
