@@ -278,7 +278,38 @@ def _drivers(files: PackageFiles, kinds: Kinds, loads: Loads = ()) -> None:
         loaded = next((lo for lo in _by_preference(list(loads)) if Path(lo.file).name == base), None)
         if doc is None and loaded is not None:
             doc, how = files.yaml(loaded.file), _loaded_by(loaded)
+        if (
+            kind == "initial_positions"
+            and how == SA_NAME
+            and doc is not None
+            and not _names_initial_positions(files)
+        ):
+            doc = None
         kinds.put(kind, readers[kind](doc) if doc is not None else None, doc, how)
+
+
+INITIAL_POSITIONS_READERS = (".xacro", ".urdf", ".py", ".xml", ".launch")
+
+
+def _names_initial_positions(files: PackageFiles) -> bool:
+    """Whether a xacro, URDF or launch file of the package names `initial_positions`: the mock
+    hardware takes initial values from the URDF only (ros2_control mock_components
+    generic_system.cpp, `initial_value`), and config/initial_positions.yaml gets there through
+    a xacro loading it (moveit2 moveit_setup_assistant/moveit_setup_controllers
+    templates/config/ros2_control.xacro l.3-4, src/control_xacro_config.cpp l.94). A file no
+    such file names is read by nothing. A file too large to read counts as naming it."""
+    from marm_setup.package.files import FileProblem
+
+    for rel in files.listing():
+        if not rel.endswith(INITIAL_POSITIONS_READERS):
+            continue
+        try:
+            text = files.text(rel)
+        except FileProblem:
+            return True
+        if text is not None and "initial_positions" in text:
+            return True
+    return False
 
 
 def _servo(files: PackageFiles, loaded: list[str]) -> tuple[ServoConfig, ...]:
