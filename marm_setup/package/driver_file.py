@@ -49,12 +49,13 @@ class DriverFile:
 
 def read_ros2_controllers(doc: Located) -> DriverFile:
     """`controller_manager.ros__parameters.<name>.type`, each controller's own parameters under
-    `<name>.ros__parameters` (ros2_control controller_manager)."""
-    manager = doc.get("controller_manager").get("ros__parameters")
+    `<name>.ros__parameters` (ros2_control controller_manager); each node under any key rcl
+    matches to it in the root namespace (`node_entry`)."""
+    manager = node_entry(doc, "controller_manager").get("ros__parameters")
     out = []
     for name, entry in manager.items():
         if entry.is_mapping and "type" in entry.data:
-            params = doc.get(name).get("ros__parameters")
+            params = node_entry(doc, str(name)).get("ros__parameters")
             joints, others = _joints(params), _others(params)
             out.append(
                 DriverController(
@@ -62,6 +63,17 @@ def read_ros2_controllers(doc: Located) -> DriverFile:
                 )
             )
     return DriverFile(doc.where, tuple(out), manager.is_mapping, _settings(manager))
+
+
+def node_entry(doc: Located, name: str) -> Located:
+    """The entry of a ROS 2 parameter file for the root-namespace node `name`: under `name`,
+    `/name` or `/**/name` (rclcpp parameter_map.cpp `parameter_map_from` gives a key without a
+    leading slash one, and matches `/**` as any namespace), the first present."""
+    for key in (name, f"/{name}", f"/**/{name}"):
+        entry = doc.get(key)
+        if entry.data is not None:
+            return entry
+    return doc.get(name)
 
 
 def read_ros_controllers(doc: Located) -> DriverFile:

@@ -47,6 +47,8 @@ class PackageFiles:
         self.problems = problems
         self.allowed = allowed
         self.scopes: dict[str, Scope] = {}  # files a launch file loads with subst_value
+        # files a launch file reads through ReplaceString: (key, value) pairs, in order
+        self.replacements: dict[str, tuple[tuple[str, str], ...]] = {}
         self._yaml: dict[str, Located | None] = {}
         self._refused: set[tuple[str, str]] = set()
 
@@ -112,6 +114,8 @@ class PackageFiles:
             text = self.text(rel)
             if text is None:
                 return None
+            if rel in self.replacements:
+                text = replaced(text, self.replacements[rel])
             if rel in self.scopes:
                 text = substitute(text, self.scopes[rel])
             data, lines = load_yaml_lines(text, RosparamLoader)
@@ -130,6 +134,25 @@ class PackageFiles:
             self.problems.append(error("yaml.parse", rel, "", f"cannot read: {exc}"))
             return None
         return Located(Where(rel), {} if data is None else data, lines)
+
+
+def replaced(text: str, pairs: tuple[tuple[str, str], ...]) -> str:
+    """`text` as nav2_common's ReplaceString writes it: each line gets each (key, value) pair's
+    replacement in turn (ros-navigation/navigation2 nav2_common/launch/replace_string.py
+    `ReplaceString.replace`). FileProblem past the YAML files' bound, measured before each
+    replacement is made."""
+    out, size = [], 0
+    for line in text.splitlines(keepends=True):
+        for key, value in pairs:
+            grown = len(line) + line.count(key) * (len(value) - len(key))
+            if size + grown > YAML_BYTES:
+                raise FileProblem(
+                    f"its text after the launch file's ReplaceString is over {YAML_BYTES:,} bytes"
+                )
+            line = line.replace(key, value)
+        out.append(line)
+        size += len(line)
+    return "".join(out)
 
 
 def located_text(text: str, file: str) -> Located:

@@ -115,6 +115,8 @@ class PythonLaunch:
     other_builders: tuple[BuilderCall, ...] = ()
     # (parameter file path, the launch arguments' defaults) of ParameterFile(..., allow_substs=True)
     substituted: tuple[tuple[str, tuple[tuple[str, str], ...]], ...] = ()
+    # (YAML path, its (key, value) replacements) of ReplaceString(source_file, replacements)
+    replaced: tuple[tuple[str, tuple[tuple[str, str], ...]], ...] = ()
 
 
 @dataclass
@@ -133,6 +135,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
     named: list[tuple[str, str]] = []
     unread: list[tuple[str, str]] = []
     substituted: list[tuple[str, tuple[tuple[str, str], ...]]] = []
+    replaced: list[tuple[str, tuple[tuple[str, str], ...]]] = []
     for rel in files:
         try:
             tree = parse_launch_module(root / rel, rel)
@@ -145,6 +148,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
                 xacro_commands(tree, rel, env),
                 [(path, rel) for path in _named_yaml(tree, env)],
                 [(path, tuple(sorted(env.defaults.items()))) for path in _substituted_files(tree, env)],
+                list(_replaced_files(tree, env)),
             )
         except Unreadable as exc:
             if str(exc):
@@ -158,6 +162,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
         commands += found[2]
         named += found[3]
         substituted += found[4]
+        replaced += found[5]
     return PythonLaunch(
         builders=tuple(b for b in builders if b.is_moveit),
         control_files=tuple(control),
@@ -166,6 +171,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
         unread=tuple(unread),
         other_builders=tuple(b for b in builders if not b.is_moveit),
         substituted=tuple(substituted),
+        replaced=tuple(replaced),
     )
 
 
@@ -490,6 +496,37 @@ def _substituted_files(tree: ast.AST, env: _Env) -> Iterator[str]:
         value = _try(node.args[0] if node.args else _keyword(node, "param_file"), env)
         if isinstance(value, str) and value.endswith((".yaml", ".yml")):
             yield value
+
+
+def _replaced_files(tree: ast.AST, env: _Env) -> Iterator[tuple[str, tuple[tuple[str, str], ...]]]:
+    """(path, (key, value) pairs) of `ReplaceString(source_file=path, replacements={key: value})`
+    (nav2_common's substitution, ros-navigation/navigation2 nav2_common/launch/replace_string.py):
+    it writes a copy of the file with each key replaced by its value, line by line
+    (`ReplaceString.replace`), and evaluates to that copy's path. Only a call whose path and every
+    value are known statically, and without a `condition` (a false one hands over the file as it
+    is, `ReplaceString.perform`)."""
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Call) and _name(node.func) == "ReplaceString"):
+            continue
+        if _keyword(node, "condition") is not None or len(node.args) > 2:
+            continue
+        source = _try(node.args[0] if node.args else _keyword(node, "source_file"), env)
+        pairs = _try(node.args[1] if len(node.args) > 1 else _keyword(node, "replacements"), env)
+        if not (isinstance(source, str) and source.endswith((".yaml", ".yml")) and isinstance(pairs, dict)):
+            continue
+        known = [(key, _substitutions_text(value)) for key, value in pairs.items()]
+        if all(isinstance(key, str) and key and value is not None for key, value in known):
+            yield source, tuple((key, str(value)) for key, value in known)
+
+
+def _substitutions_text(value: Any) -> str | None:
+    """What launch performs a value to: a string, or a list of them joined
+    (launch.utilities.perform_substitutions); None when not known statically."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, list) and all(isinstance(v, str) for v in value):
+        return "".join(value)
+    return None
 
 
 DESCRIPTION_PARAMETERS = ("robot_description", "robot_description_semantic")

@@ -278,7 +278,38 @@ def _drivers(files: PackageFiles, kinds: Kinds, loads: Loads = ()) -> None:
         loaded = next((lo for lo in _by_preference(list(loads)) if Path(lo.file).name == base), None)
         if doc is None and loaded is not None:
             doc, how = files.yaml(loaded.file), _loaded_by(loaded)
+        if (
+            kind == "initial_positions"
+            and how == SA_NAME
+            and doc is not None
+            and not _names_initial_positions(files)
+        ):
+            doc = None
         kinds.put(kind, readers[kind](doc) if doc is not None else None, doc, how)
+
+
+INITIAL_POSITIONS_READERS = (".xacro", ".urdf", ".py", ".xml", ".launch")
+
+
+def _names_initial_positions(files: PackageFiles) -> bool:
+    """Whether a xacro, URDF or launch file of the package names `initial_positions`: the mock
+    hardware takes initial values from the URDF only (ros2_control mock_components
+    generic_system.cpp, `initial_value`), and config/initial_positions.yaml gets there through
+    a xacro loading it (moveit2 moveit_setup_assistant/moveit_setup_controllers
+    templates/config/ros2_control.xacro l.3-4, src/control_xacro_config.cpp l.94). A file no
+    such file names is read by nothing. A file too large to read counts as naming it."""
+    from marm_setup.package.files import FileProblem
+
+    for rel in files.listing():
+        if not rel.endswith(INITIAL_POSITIONS_READERS):
+            continue
+        try:
+            text = files.text(rel)
+        except FileProblem:
+            return True
+        if text is not None and "initial_positions" in text:
+            return True
+    return False
 
 
 def _servo(files: PackageFiles, loaded: list[str]) -> tuple[ServoConfig, ...]:
@@ -321,7 +352,7 @@ def read_ros2_kinds(
         if doc is not None and kind == "kinematics" and not builder.calls:
             doc, top_level_by = _node_kinematics(files, doc, loads, named_yaml)
         if doc is not None and kind == "joint_limits" and not builder.calls:
-            doc = _node_joint_limits(doc)
+            doc = _node_joint_limits(files, doc, named_yaml)
         value = reader(doc) if doc is not None else None
         if isinstance(value, KinematicsFile) and top_level_by:
             value = replace(value, top_level_by=top_level_by)
@@ -397,6 +428,9 @@ def _node_kinematics(
     from marm_setup.package.launch_python import hands_bare_to_move_group
 
     rel = doc.where.file
+    bare = _bare_namespace(files, doc, "robot_description_kinematics", named_yaml)
+    if bare is not None:
+        return bare, ""
     params = unwrap_parameters(doc)
     if params is not doc:
         nested = params.get("robot_description_kinematics")
@@ -412,15 +446,37 @@ def _node_kinematics(
     return doc, by[0] if by else ""
 
 
-def _node_joint_limits(doc: Located) -> Located:
+def _node_joint_limits(files: PackageFiles, doc: Located, named_yaml: tuple[tuple[str, str], ...]) -> Located:
     """A joint limits file no MoveItConfigsBuilder wraps, as a ROS 2 parameter file
     (`/**/move_group: ros__parameters:`): move_group's own parameters, where MoveIt reads
-    `robot_description_planning.joint_limits.<joint>` (moveit2 robot_model_loader.cpp l.133)."""
+    `robot_description_planning.joint_limits.<joint>` (moveit2 robot_model_loader.cpp l.133);
+    or a plain file a launch hands over as it is, holding that namespace itself."""
+    bare = _bare_namespace(files, doc, "robot_description_planning", named_yaml)
+    if bare is not None:
+        return bare
     params = unwrap_parameters(doc)
     if params is doc:
         return doc
     nested = params.get("robot_description_planning")
     return nested if nested.is_mapping else params
+
+
+def _bare_namespace(
+    files: PackageFiles, doc: Located, key: str, named_yaml: tuple[tuple[str, str], ...]
+) -> Located | None:
+    """The `key` section of a plain YAML file (no `ros__parameters`) whose top level holds that
+    parameter namespace, when the Python launch files that name it hand its dict over as it is
+    (`params.update(load_yaml(path))`, not `{key: load_yaml(path)}`): its top-level keys become
+    the node's parameters, so `key.<...>` is where MoveIt reads. None otherwise."""
+    from marm_setup.package.launch_python import launch_yaml_key
+
+    if unwrap_parameters(doc) is not doc or not doc.get(key).is_mapping:
+        return None
+    rel = doc.where.file
+    launches = {launch for r, launch in named_yaml if r == rel}
+    if not launches or any(launch_yaml_key(files.root, launch, rel) is not None for launch in launches):
+        return None
+    return doc.get(key)
 
 
 def _ros2_sensor_loads(files: PackageFiles, loads: Loads, kinds: Kinds) -> None:

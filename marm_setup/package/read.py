@@ -133,7 +133,8 @@ def _read_package(
     )
     kinds = _kinds(files, found.target, launched, problems)
     unread = launched.unread_args("robot_description_semantic")
-    srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems)
+    srdf_args, built = _built_srdf_args(files, srdf_rel, srdf_args, launched)
+    srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems, built)
     return MoveItPackage(
         root=root,
         shown=shown,
@@ -294,6 +295,9 @@ def _launched(
     for path, defaults in python.substituted:  # ParameterFile(..., allow_substs=True)
         if (rel := _relative(path, files.root)) is not None:
             files.scopes.setdefault(rel, Scope(dict(defaults), find, ros2=True))
+    for path, pairs in python.replaced:  # nav2_common's ReplaceString(source_file, replacements)
+        if (rel := _relative(path, files.root)) is not None:
+            files.replacements.setdefault(rel, pairs)
     builder = builder_files(python.builders, name, wanted, python.other_builders)
     control = tuple(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
@@ -637,13 +641,35 @@ def _srdf(
     user_args: Mapping[str, str] | None,
     paths: tuple[Path, ...],
     problems: list[Finding],
+    built: tuple[tuple[str, str], ...] = (),
 ) -> SrdfFile | None:
     """The SRDF at `rel`, expanded with (the launch files' args, those whose value is unknown)
-    and the user's --xacro-arg."""
+    and the user's --xacro-arg; `built` the build's REMAP args whose value only CMake knows."""
     if rel is None:
         return None
     known, unread = args
-    return read_srdf_file(root, rel, paths, problems, {**dict(known), **dict(user_args or {})}, unread)
+    merged = {**dict(known), **dict(user_args or {})}
+    return read_srdf_file(root, rel, paths, problems, merged, unread, built)
+
+
+def _built_srdf_args(
+    files: PackageFiles,
+    rel: str | None,
+    args: tuple[tuple[str, str], ...],
+    launched: _Launched,
+) -> tuple[tuple[tuple[str, str], ...], tuple[tuple[str, str], ...]]:
+    """(`args` with the literal REMAP args the package's CMakeLists.txt builds the `.srdf.xacro`
+    `rel` with under them, the REMAP args whose value is a CMake variable) when no launch file
+    names `rel` itself: the build expands it into the SRDF it installs (package.cmake_xacro), so
+    that is what a launch loads. A launch file naming the xacro gives MoveIt what it passes."""
+    from marm_setup.package.cmake_xacro import build_remaps
+
+    if rel is None or not rel.endswith(".xacro") or (launched.semantic and launched.semantic.file == rel):
+        return args, ()
+    remaps = build_remaps(files, rel)
+    literal = {k: v for k, v in remaps.items() if "${" not in v}
+    built = tuple(sorted((k, v) for k, v in remaps.items() if "${" in v and k not in dict(args)))
+    return tuple(sorted({**literal, **dict(args)}.items())), built
 
 
 def _srdf_source(srdf: SrdfFile | None, launched: _Launched, guessed: bool) -> tuple[Source, ...]:

@@ -50,10 +50,12 @@ def read_srdf_file(
     problems: list[Finding],
     args: dict[str, str],
     unread: tuple[str, ...] = (),
+    built: tuple[tuple[str, str], ...] = (),
 ) -> SrdfFile:
     """The SRDF at `rel`; what cannot be read becomes findings in `problems` (`srdf.parse`,
     `srdf.unsupported`; `srdf.runtime-arg` when its xacro needs one of the `unread` args, whose
-    value only the launch file's run time gives)."""
+    value only the launch file's run time gives, or one of the `built` args, whose value only
+    the package's CMake build gives)."""
     from marm_setup.setup import parse_srdf_document
 
     xacro_args = tuple(sorted(args.items()))
@@ -64,7 +66,7 @@ def read_srdf_file(
     except CodeNotRun:  # --untrusted: its xacro did not run (the summary says so)
         return SrdfFile(rel, xacro_args)
     except MarmError as exc:
-        problems.append(_unreadable(rel, exc, unread))
+        problems.append(_unreadable(rel, exc, unread, built))
         return SrdfFile(rel, xacro_args)
     problems += [_skipped_element(rel, exc) for exc in skipped]
     gone = frozenset(_group_name(exc.element or "") for exc in skipped) - {None}
@@ -80,11 +82,25 @@ def read_srdf_file(
     )
 
 
-def _unreadable(rel: str, exc: MarmError, unread: tuple[str, ...]) -> Finding:
+def _unreadable(
+    rel: str, exc: MarmError, unread: tuple[str, ...], built: tuple[tuple[str, str], ...] = ()
+) -> Finding:
     """An SRDF that does not expand: an error, unless what it lacks is an arg the launch file
-    passes a value validate cannot read (then the run time has it: a warning)."""
+    passes a value validate cannot read (then the run time has it: a warning), or one the
+    package's build gives it from a CMake variable (`xacro_add_files(... REMAP name:=${var})`,
+    package.cmake_xacro: the installed SRDF has it, a warning too)."""
     from marm_setup.package.launch_python import undefined_unread_arg
 
+    cmake = undefined_unread_arg(exc.message, tuple(name for name, _ in built))
+    if cmake is not None:
+        msg = (
+            f"not read: its xacro needs {cmake}:=, which the package's build gives it "
+            f"(CMakeLists.txt xacro_add_files REMAP {cmake}:={dict(built)[cmake]}) from a value validate "
+            "does not know"
+        )
+        return warning(
+            "srdf.runtime-arg", rel, exc.element or "", msg, f"pass --xacro-arg {cmake}:=VALUE to read it"
+        )
     arg = undefined_unread_arg(exc.message, unread)
     if arg is None:
         return error("srdf.parse", rel, exc.element or "", exc.message, remedy(exc.needs))
