@@ -847,6 +847,28 @@ def test_break_one_thing(case: Case, goods, baseline, tmp_path_factory):
 
 
 @pytest.mark.parametrize(
+    ("base", "old", "new", "severities"),
+    [
+        ("ros1", "default_planner_config: RRTConnect", 'default_planner_config: ""', []),
+        ("ros2", "\npanda_arm:\n", '\npanda_arm:\n  default_planner_config: ""\n', ["warning"]),
+    ],
+)
+def test_an_empty_default_planner_config_is_none_chosen_on_moveit_1(
+    goods, tmp_path, base, old, new, severities
+):
+    """MoveIt 1 reads '' as `planner_configs/`, which roscpp cleans to the planner_configs map
+    itself (names.cpp clean): loadPlannerConfiguration finds it, logs nothing, and the group gets
+    RRTConnect as with no key (ompl_interface.cpp noetic l.135, l.224-238). MoveIt 2 lists
+    `planner_configs.` + '', finds nothing and logs 'Could not find the planner configuration'
+    (moveit2 ompl_interface.cpp l.132-138)."""
+    good = goods(base)
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, OMPL, old, new)
+    found = [f for f in run(pkg, good) if f.rule == "ompl.unknown-default-planner"]
+    assert [str(f.severity) for f in found] == severities
+
+
+@pytest.mark.parametrize(
     ("base", "tip"), [("panda_link8", "panda_link0"), ("panda_rightfinger", "panda_link3")]
 )
 def test_a_chain_through_the_common_root_is_what_moveit_builds(goods, baseline, tmp_path, base, tip):
