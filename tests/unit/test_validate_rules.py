@@ -868,6 +868,23 @@ def test_an_empty_default_planner_config_is_none_chosen_on_moveit_1(
     assert [str(f.severity) for f in found] == severities
 
 
+def test_a_fake_controller_on_the_srdf_virtual_joint_names_a_joint_moveit_knows(goods, tmp_path):
+    """The Setup Assistant lists a group's active joints in fake_controllers.yaml, the SRDF's
+    planar or floating virtual joint too (moveit_config_data.cpp outputFakeControllersYAML
+    l.551-567); MoveIt's model has it as its root joint, and the fake controller manager takes
+    any name (moveit_fake_controller_manager.cpp l.83-122)."""
+    good = goods("ros1")
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, SRDF1, 'name="virtual_joint" type="fixed"', 'name="virtual_joint" type="planar"')
+    replace_text(pkg, FAKE, "      - panda_joint1\n", "      - virtual_joint\n      - panda_joint1\n")
+    found = [f for f in run(pkg, good) if f.rule == "controller.unknown-joint"]
+    assert found == []
+    replace_text(pkg, FAKE, "      - virtual_joint\n", "      - no_such_joint\n")
+    assert [f.message for f in run(pkg, good) if f.rule == "controller.unknown-joint"] == [
+        "unknown joint 'no_such_joint'"
+    ]
+
+
 @pytest.mark.parametrize(
     ("base", "tip"), [("panda_link8", "panda_link0"), ("panda_rightfinger", "panda_link3")]
 )
