@@ -171,9 +171,18 @@ def evaluate_ros1(
 
 def first_taken(found: list[tuple[DescriptionLoad, bool]]) -> DescriptionLoad | None:
     """The first load on a branch the arg defaults take, else the first at all (a launch that
-    loads the description only with `load_robot_description:=true` still names MoveIt's robot)."""
-    taken = next((d for d, conditional in found if not conditional), None)
-    return taken or next((dataclasses.replace(d, conditional=True) for d, _ in found), None)
+    loads the description only with `load_robot_description:=true` still names MoveIt's robot).
+    Of the taken ones, the package's own before another package's launch file: a launch that
+    includes that file and then sets the param itself keeps its own (roslaunch config.py
+    add_param l.301-313 keeps the last value a param is given); the reverse order, rarer, is
+    read the same way."""
+    taken = [d for d, conditional in found if not conditional]
+    own = next((d for d in taken if not _foreign(d.launch)), None)
+    return (
+        own
+        or next(iter(taken), None)
+        or next((dataclasses.replace(d, conditional=True) for d, _ in found), None)
+    )
 
 
 def _walk_file(

@@ -250,3 +250,24 @@ def test_a_description_loaded_by_another_packages_launch_file_is_the_robot(tmp_p
     assert pkg.urdf_origin == "robot_description in ../vd_description/launch/upload.launch"
     assert dict(pkg.xacro_args) == {"prefix": "left_", "limited": "true"}
     assert validate(root, plan=False).robot == "vd"
+
+
+def test_the_packages_own_description_load_comes_before_another_packages(tmp_path):
+    """A demo.launch that includes another package's upload.launch and then sets robot_description
+    itself: roslaunch's later param wins (a param set twice keeps the last value), so the
+    package's own load, as before other packages' launch files were read, is the robot."""
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    build_file_tree(
+        tmp_path,
+        {
+            "vd_description/launch/upload.launch": UPLOAD_LAUNCH.format(
+                description='textfile="$(find other_description)/urdf/other.urdf"'
+            ),
+            "vd_moveit_config/launch/demo.launch": DEMO.replace(
+                "<launch>\n", '<launch>\n  <include file="$(find vd_description)/launch/upload.launch"/>\n'
+            ),
+        },
+    )
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+    assert pkg.urdf_origin == "robot_description in launch/planning_context.launch"
