@@ -13,7 +13,10 @@ a launch may load instead, e.g. with `gazebo_sim:=true`). What it records:
 - the URDF a `robot_description` param loads and the SRDF its `_semantic` loads, from
   `textfile=` or a xacro `command=` read as xacro reads it (`$(find xacro)/xacro --inorder
   a:=b FILE c:=d`: robot/xacro_cli.py), with those xacro args, in this package or another one
-  `$(find)` leads to (MoveIt 1 planning_context.launch; move_group reads both params);
+  `$(find)` leads to (MoveIt 1 planning_context.launch; move_group reads both params), also
+  when a launch file of another package sets it (`<include file="$(find x_description)/launch/
+  upload.launch">`: roslaunch includes any file, xmlloader.py `_include_tag`); of such a file
+  only these two params are kept, the rest being that package's business;
 - `<param name value>` values (their full names), and every `moveit_controller_manager` value;
 - the full name of each `move_group` node (`<node type="move_group">` below the enclosing
   `<group ns>` / `<include ns>` / its own `ns`): the private namespace its plugins read `~`
@@ -29,7 +32,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from marm_setup.package.launch_xml import LaunchXml, condition, package_file, substituted
+from marm_setup.package.launch_xml import LaunchXml, condition, package_file, parse_launch, substituted
 from marm_setup.package.substitution import Scope, SubstitutionError, substitute, truth
 
 if TYPE_CHECKING:
@@ -107,6 +110,7 @@ class _Walk:
     managers: list[str] = field(default_factory=list)
     taken_managers: list[LaunchParam] = field(default_factory=list)
     included: set[str] = field(default_factory=set)
+    foreign: dict[str, LaunchXml] = field(default_factory=dict)  # other packages' files, parsed once
     walked: set[tuple] = field(default_factory=set)  # (file, args, ns, conditional, manager) walked
     visits: int = 0
 
@@ -167,15 +171,24 @@ def evaluate_ros1(
 
 def first_taken(found: list[tuple[DescriptionLoad, bool]]) -> DescriptionLoad | None:
     """The first load on a branch the arg defaults take, else the first at all (a launch that
-    loads the description only with `load_robot_description:=true` still names MoveIt's robot)."""
-    taken = next((d for d, conditional in found if not conditional), None)
-    return taken or next((dataclasses.replace(d, conditional=True) for d, _ in found), None)
+    loads the description only with `load_robot_description:=true` still names MoveIt's robot).
+    Of the taken ones, the package's own before another package's launch file: a launch that
+    includes that file and then sets the param itself keeps its own (roslaunch config.py
+    add_param l.301-313 keeps the last value a param is given); the reverse order, rarer, is
+    read the same way."""
+    taken = [d for d, conditional in found if not conditional]
+    own = next((d for d in taken if not _foreign(d.launch)), None)
+    return (
+        own
+        or next(iter(taken), None)
+        or next((dataclasses.replace(d, conditional=True) for d, _ in found), None)
+    )
 
 
 def _walk_file(
     walk: _Walk, rel: str, passed: Mapping[str, str], ns: str, conditional: bool, manager: str, depth: int
 ) -> None:
-    tree = walk.trees.get(rel)
+    tree = _tree(walk, rel)
     if (
         tree is None
         or tree.root is None
@@ -187,6 +200,24 @@ def _walk_file(
     scope = Scope(dict(passed), walk.find, dirname)
     ctx = _Context(rel, scope, ns, conditional, manager, depth)
     _walk_children(walk, tree.root, ctx, dict(passed), set())
+
+
+def _tree(walk: _Walk, rel: str) -> LaunchXml | None:
+    """The package's launch file `rel`, or another package's (`../` from the package root),
+    parsed on first reach; None when there is none."""
+    if rel in walk.trees or not _foreign(rel):
+        return walk.trees.get(rel)
+    if rel not in walk.foreign:
+        path = walk.root / rel
+        if not path.is_file():
+            return None
+        walk.foreign[rel] = parse_launch(path, rel)
+    return walk.foreign[rel]
+
+
+def _foreign(rel: str) -> bool:
+    """A file outside the package (its path relative to the package root leaves it)."""
+    return rel == ".." or rel.startswith("../")
 
 
 def _first_walk(walk: _Walk, rel: str, passed: Mapping[str, str], *how: object) -> bool:
@@ -259,7 +290,7 @@ def _node(
 ) -> None:
     name = _text(elem.get("name"), ctx) or ""
     inner = replace(ctx, ns=_ns(replace(ctx, ns=_ns(ctx, elem.get("ns"))), name))
-    if elem.get("type") == MOVE_GROUP and name:
+    if elem.get("type") == MOVE_GROUP and name and not _foreign(ctx.file):
         walk.move_groups.append(inner.ns)  # its private namespace (`~`), on any branch
     _walk_children(walk, elem, inner, passed, set(declared))
 
@@ -267,8 +298,9 @@ def _node(
 def _include(
     walk: _Walk, elem: etree._Element, ctx: _Context, passed: dict[str, str], declared: set[str]
 ) -> None:
-    target = _package_file(elem.get("file"), ctx, walk.root)
-    if target is None or target not in walk.trees:
+    text = _text(elem.get("file"), ctx) if elem.get("file") else None
+    target = _relative_anywhere(text, walk.root) if text else None
+    if target is None or not (target in walk.trees or _foreign(target)):
         return
     given = dict(ctx.scope.args) if truth(elem.get("pass_all_args") or "") else {}
     for arg in elem.iterchildren("arg"):
@@ -286,7 +318,7 @@ def _include(
 def _rosparam(
     walk: _Walk, elem: etree._Element, ctx: _Context, passed: dict[str, str], declared: set[str]
 ) -> None:
-    if (elem.get("command") or "load") != "load":
+    if (elem.get("command") or "load") != "load" or _foreign(ctx.file):
         return
     target = _package_file(elem.get("file"), ctx, walk.root)
     if target is None:
@@ -313,7 +345,7 @@ def _param(
             kept = walk.semantic if leaf.endswith("_semantic") else walk.description
             kept.append((found, ctx.conditional))
     value = _text(elem.get("value"), ctx) if elem.get("value") is not None else None
-    if value is None:
+    if value is None or _foreign(ctx.file):
         return ctx
     if not ctx.conditional:
         walk.params.append(LaunchParam(full, value, ctx.file))

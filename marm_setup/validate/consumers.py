@@ -424,6 +424,7 @@ def _parent_tag(element: etree._Element) -> str | None:
 MISSING_RESOURCE = re.compile(
     r"(?:ResourceNotFound|[Rr]esource not found|Unable to load file [^:]+): ([A-Za-z][\w]*)$"
     r"|\$\(find ([A-Za-z]\w*)\): unknown package '\2'"  # a robot_description command's xacro
+    r"|The following package was not found in [\s\S]*: ([A-Za-z]\w*)$"  # an <arg> default (xmlloader.py _arg_tag)
 )
 
 
@@ -445,7 +446,7 @@ def _launch_failure(rel: str, problem: str, unheld: Callable[[str], str | None])
     package)."""
     msg = f"roslaunch fails: {problem}"[:MESSAGE_CHARS]
     missing = MISSING_RESOURCE.search(problem)
-    name = None if missing is None else missing.group(1) or missing.group(2)
+    name = None if missing is None else missing.group(1) or missing.group(2) or missing.group(3)
     why = None if name is None else unheld(name)
     if name is None or why is None:
         hint = XACRO_PY_HINT if "no such command" in problem and "xacro.py" in problem else ""

@@ -477,7 +477,8 @@ def check_srdf_files(pkg: MoveItPackage, robot: RobotModel | None) -> list[Findi
         if pilz:
             out += guarded("limits", check_cartesian_limits, pkg.joint_limits)
     if pkg.ompl is not None:
-        out += guarded("ompl", check_ompl, pkg.ompl, srdf, ompl_planners(pkg))
+        moveit1 = pkg.target == Target.ROS1
+        out += guarded("ompl", check_ompl, pkg.ompl, srdf, ompl_planners(pkg), moveit1=moveit1)
     return out
 
 

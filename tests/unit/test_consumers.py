@@ -309,6 +309,22 @@ def test_a_robot_description_xacro_lacking_a_package_reads_as_that_package():
     assert _launch_failure("launch/demo.launch", problem, lambda name: None).severity == "error"
 
 
+def test_a_package_an_arg_default_finds_that_no_path_holds_is_that_package_missing():
+    """roslaunch words a missing package in an <arg> tag's default its own way (xmlloader.py
+    _arg_tag: 'The following package was not found in <arg .../>: pkg'); the tag's text holds
+    ':' and '/', so the package name is only the last word."""
+    from marm_setup.validate.consumers import _launch_failure
+
+    problem = (
+        "Unable to load file /ws/x_moveit_config/launch/gazebo.launch: The following package was not "
+        'found in <arg name="urdf_path" default="$(find x_description)/urdf/x.urdf.xacro"/>: x_description'
+    )
+    unheld = lambda name: "" if name == "x_description" else None  # noqa: E731
+    found = _launch_failure("launch/gazebo.launch", problem, unheld)
+    assert (found.severity, "the folder holding x_description" in found.hint) == ("warning", True)
+    assert _launch_failure("launch/gazebo.launch", problem, lambda name: None).severity == "error"
+
+
 def test_a_misspelling_is_one_or_two_letters_from_a_name_the_package_declares():
     from marm_setup.robot import misspelt_package
 

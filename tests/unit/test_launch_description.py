@@ -212,3 +212,62 @@ def test_a_missing_description_file_only_a_non_default_branch_loads_is_a_warning
     found = [f for f in validate(root, plan=False).findings if f.rule == "urdf.missing"]
     assert [(f.severity, f.file) for f in found] == [("warning", "launch/planning_context.launch")]
     assert "only other args take" in found[0].message
+
+
+UPLOAD_LAUNCH = """<launch>
+  <arg name="prefix" default="up_"/>
+  <param name="robot_description" {description}/>
+  <rosparam command="load" file="$(find vd_description)/config/other.yaml"/>
+</launch>
+"""
+INCLUDING_CONTEXT = """<launch>
+  <arg name="load_robot_description" default="false"/>
+  <arg name="prefix" default="left_"/>
+  <include if="$(arg load_robot_description)" file="$(find vd_description)/launch/upload.launch">
+    <arg name="prefix" value="$(arg prefix)"/>
+  </include>
+  <param name="robot_description_semantic" {semantic}/>
+</launch>
+"""
+
+
+def test_a_description_loaded_by_another_packages_launch_file_is_the_robot(tmp_path):
+    """iiwa_moveit's case: planning_context.launch includes `$(find x_description)/launch/
+    upload.launch`, which sets robot_description; roslaunch includes files of any package
+    (xmlloader.py _include_tag), so that is the URDF move_group reads, not .setup_assistant's."""
+    root = vendor(tmp_path, 'value=""', TEXTFILE_SRDF)
+    build_file_tree(
+        tmp_path,
+        {
+            "vd_moveit_config/launch/planning_context.launch": INCLUDING_CONTEXT.format(
+                semantic=TEXTFILE_SRDF
+            ),
+            "vd_description/launch/upload.launch": UPLOAD_LAUNCH.format(description=XACRO_COMMAND),
+        },
+    )
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+    assert pkg.urdf_origin == "robot_description in ../vd_description/launch/upload.launch"
+    assert dict(pkg.xacro_args) == {"prefix": "left_", "limited": "true"}
+    assert validate(root, plan=False).robot == "vd"
+
+
+def test_the_packages_own_description_load_comes_before_another_packages(tmp_path):
+    """A demo.launch that includes another package's upload.launch and then sets robot_description
+    itself: roslaunch's later param wins (a param set twice keeps the last value), so the
+    package's own load, as before other packages' launch files were read, is the robot."""
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    build_file_tree(
+        tmp_path,
+        {
+            "vd_description/launch/upload.launch": UPLOAD_LAUNCH.format(
+                description='textfile="$(find other_description)/urdf/other.urdf"'
+            ),
+            "vd_moveit_config/launch/demo.launch": DEMO.replace(
+                "<launch>\n", '<launch>\n  <include file="$(find vd_description)/launch/upload.launch"/>\n'
+            ),
+        },
+    )
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+    assert pkg.urdf_origin == "robot_description in launch/planning_context.launch"

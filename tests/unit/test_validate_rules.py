@@ -847,6 +847,45 @@ def test_break_one_thing(case: Case, goods, baseline, tmp_path_factory):
 
 
 @pytest.mark.parametrize(
+    ("base", "old", "new", "severities"),
+    [
+        ("ros1", "default_planner_config: RRTConnect", 'default_planner_config: ""', []),
+        ("ros2", "\npanda_arm:\n", '\npanda_arm:\n  default_planner_config: ""\n', ["warning"]),
+    ],
+)
+def test_an_empty_default_planner_config_is_none_chosen_on_moveit_1(
+    goods, tmp_path, base, old, new, severities
+):
+    """MoveIt 1 reads '' as `planner_configs/`, which roscpp cleans to the planner_configs map
+    itself (names.cpp clean): loadPlannerConfiguration finds it, logs nothing, and the group gets
+    RRTConnect as with no key (ompl_interface.cpp noetic l.135, l.224-238). MoveIt 2 lists
+    `planner_configs.` + '', finds nothing and logs 'Could not find the planner configuration'
+    (moveit2 ompl_interface.cpp l.132-138)."""
+    good = goods(base)
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, OMPL, old, new)
+    found = [f for f in run(pkg, good) if f.rule == "ompl.unknown-default-planner"]
+    assert [str(f.severity) for f in found] == severities
+
+
+def test_a_fake_controller_on_the_srdf_virtual_joint_names_a_joint_moveit_knows(goods, tmp_path):
+    """The Setup Assistant lists a group's active joints in fake_controllers.yaml, the SRDF's
+    planar or floating virtual joint too (moveit_config_data.cpp outputFakeControllersYAML
+    l.551-567); MoveIt's model has it as its root joint, and the fake controller manager takes
+    any name (moveit_fake_controller_manager.cpp l.83-122)."""
+    good = goods("ros1")
+    pkg = copy_package(good, tmp_path)
+    replace_text(pkg, SRDF1, 'name="virtual_joint" type="fixed"', 'name="virtual_joint" type="planar"')
+    replace_text(pkg, FAKE, "      - panda_joint1\n", "      - virtual_joint\n      - panda_joint1\n")
+    found = [f for f in run(pkg, good) if f.rule == "controller.unknown-joint"]
+    assert found == []
+    replace_text(pkg, FAKE, "      - virtual_joint\n", "      - no_such_joint\n")
+    assert [f.message for f in run(pkg, good) if f.rule == "controller.unknown-joint"] == [
+        "unknown joint 'no_such_joint'"
+    ]
+
+
+@pytest.mark.parametrize(
     ("base", "tip"), [("panda_link8", "panda_link0"), ("panda_rightfinger", "panda_link3")]
 )
 def test_a_chain_through_the_common_root_is_what_moveit_builds(goods, baseline, tmp_path, base, tip):

@@ -3,7 +3,7 @@ controller selection), and MoveIt 1's fake controllers. The driver side is `driv
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import TYPE_CHECKING
 
 from marm_setup.findings import Finding, Location, error, warning
@@ -178,15 +178,16 @@ def _list_at(ns: str) -> str:
 
 
 def check_moveit_controllers(
-    controllers: ControllersFile, robot: RobotModel | None, real: bool = True
+    controllers: ControllersFile, robot: RobotModel | None, real: bool = True, virtual: Collection[str] = ()
 ) -> list[Finding]:
-    """Joints exist (when the robot is known); for real (non-fake) controllers: known type,
-    action_ns present and plausible."""
+    """Joints exist (when the robot is known; `virtual`: the SRDF's virtual joints, joints of
+    MoveIt's model too); for real (non-fake) controllers: known type, action_ns present and
+    plausible."""
     out: list[Finding] = []
     file = controllers.where.file
     for c in controllers.controllers:
         for joint in c.joints:
-            if robot is not None and joint not in robot.joint_map:
+            if robot is not None and joint not in robot.joint_map and joint not in virtual:
                 out.append(error("controller.unknown-joint", file, c.element, f"unknown joint '{joint}'"))
         if real:
             out += _check_type(file, c)
@@ -279,8 +280,12 @@ def _group_joints(srdf: Srdf, robot: RobotModel) -> dict[str, list[str]]:
 
 
 def check_fake_controllers(fake: ControllersFile, srdf: Srdf, robot: RobotModel) -> list[Finding]:
-    """Joints exist, every group's active joints are covered, `initial` poses exist."""
-    out = check_listed(fake) + check_moveit_controllers(fake, robot, real=False)
+    """Joints exist, every group's active joints are covered, `initial` poses exist. The SRDF's
+    virtual joint is a joint of MoveIt's model (its root joint), which the Setup Assistant lists
+    when a group holds it (moveit_config_data.cpp outputFakeControllersYAML l.551-567) and the
+    fake controller manager takes like any name (moveit_fake_controller_manager.cpp l.83-122); robot_model.cpp buildJointModel l.932-960 makes it the root joint."""
+    virtual = {v.name for v in srdf.virtual_joints}
+    out = check_listed(fake) + check_moveit_controllers(fake, robot, real=False, virtual=virtual)
     covered = {j for c in fake.controllers for j in c.joints}
     for joint, groups in sorted(_group_joints(srdf, robot).items()):
         if joint not in covered:

@@ -19,9 +19,12 @@ if TYPE_CHECKING:
     from marm_setup.setup import Srdf
 
 
-def check_ompl(ompl: PlanningPipeline, srdf: Srdf, planners: Collection[str] = ()) -> list[Finding]:
+def check_ompl(
+    ompl: PlanningPipeline, srdf: Srdf, planners: Collection[str] = (), *, moveit1: bool = False
+) -> list[Finding]:
     """Every rule on an OMPL pipeline (`{planner_configs: {...}, <group>: {...}}`); `planners`:
-    the planner types this MoveIt's OMPL registers (none given: not checked)."""
+    the planner types this MoveIt's OMPL registers (none given: not checked); `moveit1`: MoveIt 1
+    reads the file."""
     file = ompl.where.file
     if not ompl.is_mapping:
         return [error("ompl.malformed", file, ompl.where.element, "expected a mapping")]
@@ -40,7 +43,7 @@ def check_ompl(ompl: PlanningPipeline, srdf: Srdf, planners: Collection[str] = (
             hint = "a leftover or a typo: rename it to a group of the SRDF, or remove it"
             out.append(warning("ompl.unknown-group", file, entry.where.element, msg, hint, at=at))
             continue
-        out += _check_group(file, entry, configs)
+        out += _check_group(file, entry, configs, moveit1)
     return out + (_check_types(ompl, groups, planners) if planners else [])
 
 
@@ -74,7 +77,7 @@ def _check_types(ompl: PlanningPipeline, groups: set[str], planners: Collection[
     return out
 
 
-def _check_group(file: str, entry: GroupPlanning, configs: set[str]) -> list[Finding]:
+def _check_group(file: str, entry: GroupPlanning, configs: set[str], moveit1: bool) -> list[Finding]:
     out: list[Finding] = []
     where = entry.where.element
     param = entry.param("planner_configs")
@@ -87,7 +90,12 @@ def _check_group(file: str, entry: GroupPlanning, configs: set[str]) -> list[Fin
             msg = f"planner config '{name}' is not defined under planner_configs"
             out.append(error("ompl.unknown-planner-config", file, f"{where}.planner_configs", msg))
     default = entry.param("default_planner_config")
-    if default is not None and str(default.value) not in configs:
+    if default is not None and str(default.value) not in configs and not (moveit1 and default.value == ""):
+        # MoveIt 1 reads '' as `planner_configs/`, which roscpp cleans to the planner_configs map
+        # itself (ros_comm names.cpp clean l.99-116, resolve l.177): loadPlannerConfiguration
+        # finds it and logs nothing, and the group gets RRTConnect as with no key
+        # (ompl_interface.cpp noetic l.135, l.227-237). MoveIt 2 lists `planner_configs.` + '',
+        # finds nothing and logs the error (moveit2 ompl_interface.cpp l.132-138).
         # MoveIt logs "Could not find the planner configuration" and plans the group with
         # geometric::RRTConnect instead (ompl_interface.cpp noetic l.224-238, jazzy l.216-229)
         msg = (
