@@ -44,6 +44,8 @@ def compute_cached_matrix(
     key = matrix_key(robot, padding if scene is None else scene.padding, options)
     stored = load_matrix(key)
     if stored is not None:
+        if (progress := options.get("progress")) is not None:  # a stage shown done, not skipped
+            progress(stored.trials, stored.trials)
         return stored
     matrix = _with_proof_cache(robot, _scene(robot, scene, padding), options)
     store_matrix(key, matrix)

@@ -95,3 +95,14 @@ def test_a_broken_cache_file_is_skipped_and_only_the_newest_results_are_kept(pro
     with sqlite3.connect(tmp_path / FILE) as db:
         db.execute("UPDATE matrices SET value = '{\"disabled\": 1}'")
     assert load_matrix(f"k{KEEP}") is None
+
+
+def test_a_stored_matrix_tells_the_progress_it_is_done(marm):
+    """A report's or init's progress shows the matrix stage done, not skipped, when the result
+    is stored (tests/cli/test_progress.py reads the stages off a terminal)."""
+    compute_cached_matrix(marm, trials=300, prove="on")
+    told: list[tuple[int, int]] = []
+    stored = compute_cached_matrix(
+        marm, trials=300, prove="on", progress=lambda done, total: told.append((done, total))
+    )
+    assert stored.stored and told == [(300, 300)]
