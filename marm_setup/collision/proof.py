@@ -112,6 +112,7 @@ class PairSearch:
         self.near: list = []  # the witness search's nearest end states (see witness.py)
         self._least = 0  # the smallest budget whose run is this one, step for step (see `least`)
         self._exact = state is not None  # only this very budget gives this run
+        self._checked = 0  # the most units an overrun test saw (each passed: budget + SLACK above)
         if state is not None:
             self._heap, self.certified, self.measured = (
                 list(state.heap),
@@ -155,7 +156,7 @@ class PairSearch:
         the budget only through the loop's test, the children a round wants and the overrun."""
         if self._exact:
             return None
-        return max(self._least, self.meter.units - SLACK + 1, 0)
+        return max(self._least, self._checked - SLACK + 1, 0)
 
     def _can_finish(self) -> bool:
         """Whether the budget (and the one round it may overrun by) could still certify every
@@ -243,6 +244,7 @@ class PairSearch:
                 return None, np.inf
             overrun = meter.units >= self.budget.boxes + SLACK
             self._exact = self._exact or overrun
+            self._checked = max(self._checked, meter.units)
             if hull > self.threshold and (overrun or not meter.extra_pays()):  # the hulls decide
                 self._measured(hull, center)
                 return _kept(hull) - motion, _most(hull)
