@@ -61,7 +61,7 @@ def _scene(robot: RobotModel, scene: CollisionScene | None, padding: float) -> C
 def _with_proof_cache(robot: RobotModel, scene: CollisionScene, options: dict[str, Any]) -> CollisionMatrix:
     """The matrix with the proof cache's proofs, its new proofs kept there."""
     from marm_setup.collision.matrix import compute_collision_matrix
-    from marm_setup.collision.proof_cache import cache_dir, known_proofs, remember_proofs
+    from marm_setup.collision.proof_cache import cache_dir, remember_proofs, run_proofs
     from marm_setup.collision.proof_keys import run_context
 
     if options.get("prove", "off") == "off":
@@ -70,8 +70,7 @@ def _with_proof_cache(robot: RobotModel, scene: CollisionScene, options: dict[st
     if cache_dir() is None:
         return compute_collision_matrix(robot, scene, proof_progress=told, **options)
     context = run_context(scene, {name: options.get(name, value) for name, value in RUN_SETTINGS.items()})
-    known = known_proofs(scene, context=context)
-    others = {p: c for p, c in known_proofs(scene).items() if c.screened_alone and p not in known}
+    known, others = run_proofs(scene, context)
     matrix = compute_collision_matrix(
         robot, scene, known=known, proof_progress=told, reusable=others, **options
     )

@@ -102,12 +102,16 @@ def compute_collision_matrix(
     remaining = tuple(p for p in scene.candidate_pairs if p not in reasons)
     seen = {p for p, (hits, _) in counts.items() if hits}  # hit in an Always round: no more checks
     unseen_pairs = tuple(p for p in remaining if p not in seen)
+    budget = None  # the screen's, when the reusable proofs need it first
     if reusable and prove != "off":
-        known = {**_repeated(scene, unseen_pairs, prove, reusable), **(known or {})}
+        from marm_setup.collision.proving import screen_budget
+
+        budget = screen_budget(scene, unseen_pairs, prove)
+        known = {**_repeated(unseen_pairs, budget[1], reusable), **(known or {})}
     screens = {p: known[p] for p in unseen_pairs if p in known} if known and prove != "off" else {}
     cached = {p: c for p, c in screens.items() if c.outcome != "seen"}  # "seen": its screen only
     tally = _tally(proof_progress, cached, prove)
-    screened = _screen(scene, unseen_pairs, prove, seed, jobs, frozenset(screens), tally)
+    screened = _screen(scene, unseen_pairs, prove, (seed, jobs), frozenset(screens), tally, budget)
     screened.update({p: PairProof(c.screen[0], 0.0, units=c.screen[1]) for p, c in screens.items()})
     proofs = {p: proof for p, proof in screened.items() if proof.outcome != UNPROVED and p not in screens}
     proofs.update(
@@ -149,19 +153,18 @@ def compute_collision_matrix(
 
 
 def _repeated(
-    scene, pairs: tuple[Pair, ...], prove: str, reusable: Mapping[Pair, CachedProof]
+    pairs: tuple[Pair, ...], boxes: int, reusable: Mapping[Pair, CachedProof]
 ) -> dict[Pair, CachedProof]:
     """The `reusable` proofs of `pairs` this run's screen would repeat step for step: its budget
-    (proving.screen_budget) at least the least that gives each (proof.PairSearch.least)."""
-    from marm_setup.collision.proving import screen_budget
-
-    wanted = [p for p in pairs if p in reusable]
-    if not wanted:
+    `boxes` (proving.screen_budget; 0: no branch and bound) at least the least that gives each
+    (proof.PairSearch.least)."""
+    if not boxes:
         return {}
-    _, boxes = screen_budget(scene, pairs, prove)
-    if not boxes:  # this run's screen runs no branch and bound
-        return {}
-    return {p: reusable[p] for p in wanted if (least := reusable[p].least) is not None and least <= boxes}
+    return {
+        p: reusable[p]
+        for p in pairs
+        if p in reusable and (least := reusable[p].least) is not None and least <= boxes
+    }
 
 
 def _followed(
@@ -193,15 +196,22 @@ def _tally(report, cached: Mapping[Pair, CachedProof], prove: str):
 
 
 def _screen(
-    scene, pairs: tuple[Pair, ...], prove: str, seed: int, jobs: int, known: frozenset[Pair], tally
+    scene,
+    pairs: tuple[Pair, ...],
+    prove: str,
+    run: tuple[int, int],
+    known: frozenset[Pair],
+    tally,
+    budget=None,
 ) -> dict[Pair, PairProof]:
     """The branch and bound of `pairs` before the trials (but of the `known` ones, which count
-    for the budgets only); none when `prove` is "off"."""
+    for the budgets only); none when `prove` is "off". `run`: (seed, jobs); `budget`: the
+    screen's (proving.screen_budget), when already known."""
     if prove == "off" or all(p in known for p in pairs):  # nothing to prove: no budget to share
         return {}
     from marm_setup.collision.proving import screen_pairs
 
-    return screen_pairs(scene, pairs, prove, seed, jobs, known, tally)
+    return screen_pairs(scene, pairs, prove, *run, known, tally, budget)
 
 
 def _settle(

@@ -79,6 +79,28 @@ def known_proofs(
     return {pair: found[key] for pair, key in keys.items() if key in found and found[key].outcome in OUTCOMES}
 
 
+def run_proofs(
+    scene: CollisionScene, context: str
+) -> tuple[dict[Pair, CachedProof], dict[Pair, CachedProof]]:
+    """For every candidate pair of `scene`, in one read: what the very run `context` left
+    (known_proofs with a context), and of the others the proofs another run's screen finished
+    alone (CachedProof.screened_alone), which a matrix may take where its screen repeats them."""
+    if cache_dir() is None:
+        return {}, {}
+    from marm_setup.collision.proof_keys import pair_keys
+
+    keys = pair_keys(scene, scene.candidate_pairs)
+    runs = {pair: _in_run(key, context) for pair, key in keys.items()}
+    found = load_proofs([*runs.values(), *keys.values()])
+    own = {pair: found[key] for pair, key in runs.items() if key in found}
+    others = {
+        pair: proof
+        for pair, key in keys.items()
+        if pair not in own and (proof := found.get(key)) is not None and proof.screened_alone
+    }
+    return own, others
+
+
 def remember_proofs(scene: CollisionScene, matrix: CollisionMatrix, context: str | None = None) -> None:
     """Keep the finished proofs of `matrix` (computed on `scene`) in the cache by their pair's
     key, and with `context` every proof and the screens of the pairs its trials saw in collision

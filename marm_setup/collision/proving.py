@@ -46,13 +46,14 @@ def screen_pairs(
     jobs: int = 1,
     known: frozenset[Pair] = frozenset(),
     tally: ProofTally | None = None,
+    budget: tuple[set[Pair], int] | None = None,
 ) -> dict[Pair, PairProof]:
     """Pair -> its proof before the trials (see proof.SCREEN): pairs whose links' reach balls
     are apart are proved at once (`collision/reach_balls.py`); the others get a branch and
     bound of their own when the screen's pool gives each at least SCREEN_LEAST units, else they
     wait for `settle_pairs` (an unproved proof keeps its state, to go on from). The `known`
     pairs (proofs from the cache) share the pool as they would, but are not proved."""
-    far, boxes = screen_budget(scene, pairs, mode)
+    far, boxes = budget or screen_budget(scene, pairs, mode)
     proofs = {pair: PairProof(PROVED, 1.0, units=1) for pair in pairs if pair in far and pair not in known}
     open_pairs = [pair for pair in pairs if pair not in far and pair not in known]
     if tally is not None:
