@@ -216,6 +216,17 @@ class RobotModel:
         return tuple(j.name for j in self.active_joints)
 
     @cached_property
+    def rigid_body_of(self) -> dict[str, frozenset[str]]:
+        """Link -> its rigid body: the links joined to it through fixed joints only."""
+        body_root = {self.root: self.root}
+        for joint in self.joints_in_tree_order:
+            body_root[joint.child] = body_root[joint.parent] if joint.type in FIXED_TYPES else joint.child
+        bodies: dict[str, set[str]] = {}
+        for link, top in body_root.items():
+            bodies.setdefault(top, set()).add(link)
+        return {link: frozenset(bodies[top]) for link, top in body_root.items()}
+
+    @cached_property
     def geometry_links(self) -> tuple[str, ...]:
         """Names of links that have collision geometry, sorted."""
         return tuple(sorted(link.name for link in self.links if link.has_geometry))

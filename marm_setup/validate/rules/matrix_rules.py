@@ -131,28 +131,12 @@ def covering_pairs(
 ) -> list[tuple[str, str]]:
     """The enabled pairs between the rigid bodies of `pair`'s two links (each body: the links
     joined to it by fixed joints), the pair itself excepted."""
-    body_a, body_b = rigid_body(robot, pair[0]), rigid_body(robot, pair[1])
+    body_a, body_b = robot.rigid_body_of[pair[0]], robot.rigid_body_of[pair[1]]
     return [
         p
         for p in enabled
         if p != pair and ((p[0] in body_a and p[1] in body_b) or (p[0] in body_b and p[1] in body_a))
     ]
-
-
-def rigid_body(robot: RobotModel, link: str) -> frozenset[str]:
-    """`link` and every link joined to it through fixed joints only."""
-    joined: dict[str, list[str]] = {}
-    for joint in robot.joints:
-        if joint.type == "fixed":
-            joined.setdefault(joint.parent, []).append(joint.child)
-            joined.setdefault(joint.child, []).append(joint.parent)
-    body, todo = {link}, [link]
-    while todo:
-        for other in joined.get(todo.pop(), ()):
-            if other not in body:
-                body.add(other)
-                todo.append(other)
-    return frozenset(body)
 
 
 def _uncovered_rows(
