@@ -471,16 +471,21 @@ def _try(node: ast.AST | None, env: _Env) -> Any:
 
 def _control_files(tree: ast.AST, env: _Env) -> Iterator[str]:
     """Parameter files of `Node(package="controller_manager", executable="ros2_control_node")`."""
+    for item in _node_parameters(tree, env, "ros2_control_node"):
+        value = _try(item, env)
+        if isinstance(value, str) and value.endswith((".yaml", ".yml")):
+            yield value
+
+
+def _node_parameters(tree: ast.AST, env: _Env, executable: str) -> Iterator[ast.expr]:
+    """The items of the `parameters=[...]` list of each `Node(executable=...)` in `tree`."""
     for node in ast.walk(tree):
         if not (isinstance(node, ast.Call) and _name(node.func) == "Node"):
             continue
-        if _try(_keyword(node, "executable"), env) != "ros2_control_node":
+        if _try(_keyword(node, "executable"), env) != executable:
             continue
         params = _keyword(node, "parameters")
-        for item in params.elts if isinstance(params, ast.List | ast.Tuple) else ():
-            value = _try(item, env)
-            if isinstance(value, str) and value.endswith((".yaml", ".yml")):
-                yield value
+        yield from params.elts if isinstance(params, ast.List | ast.Tuple) else ()
 
 
 def _substituted_files(tree: ast.AST, env: _Env) -> Iterator[str]:
@@ -650,18 +655,12 @@ def hands_bare_to_move_group(root: Path, launch: str, rel: str) -> bool:
         for node in ast.walk(tree)
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
     }
-    for node in ast.walk(tree):
-        if not (isinstance(node, ast.Call) and _name(node.func) == "Node"):
-            continue
-        if _try(_keyword(node, "executable"), env) != "move_group":
-            continue
-        params = _keyword(node, "parameters")
-        for item in params.elts if isinstance(params, ast.List | ast.Tuple) else ():
-            held = bound.get(item.id, item) if isinstance(item, ast.Name) else item
-            if isinstance(held, ast.Dict):
-                continue
-            if any(package_relative(path, root) == rel for path in _named_yaml(held)):
-                return True
+    for item in _node_parameters(tree, env, "move_group"):
+        held = bound.get(item.id, item) if isinstance(item, ast.Name) else item
+        if not isinstance(held, ast.Dict) and any(
+            package_relative(path, root) == rel for path in _named_yaml(held)
+        ):
+            return True
     return False
 
 
