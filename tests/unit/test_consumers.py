@@ -294,35 +294,33 @@ def test_a_misspelt_package_roslaunch_lacks_is_an_error_even_with_no_ros_sourced
     assert all(severity == "error" for _, severity in found)
 
 
-def test_a_robot_description_xacro_lacking_a_package_reads_as_that_package():
-    """roslaunch runs the description's xacro command; its `$(find pkg): unknown package` is the
-    same want of a package as roslaunch's own ResourceNotFound."""
+@pytest.mark.parametrize(
+    ("problem", "missing"),
+    [
+        # roslaunch runs the description's xacro command; its `$(find pkg): unknown package` is
+        # the same want of a package as roslaunch's own ResourceNotFound
+        (
+            "xacro: /ws/x_support/urdf/x.xacro: $(find x_resources): unknown package 'x_resources' "
+            "(no package.xml or folder of that name; known packages: x_support)",
+            "x_resources",
+        ),
+        # roslaunch words a missing package in an <arg> tag's default its own way (xmlloader.py
+        # _arg_tag: 'The following package was not found in <arg .../>: pkg'); the tag's text
+        # holds ':' and '/', so the package name is only the last word
+        (
+            "Unable to load file /ws/x_moveit_config/launch/gazebo.launch: The following package was not "
+            'found in <arg name="urdf_path" default="$(find x_description)/urdf/x.urdf.xacro"/>: x_description',
+            "x_description",
+        ),
+    ],
+)
+def test_a_roslaunch_failure_for_want_of_a_package_no_path_holds_is_that_package_missing(problem, missing):
     from marm_setup.validate.consumers import _launch_failure
 
-    problem = (
-        "xacro: /ws/x_support/urdf/x.xacro: $(find x_resources): unknown package 'x_resources' "
-        "(no package.xml or folder of that name; known packages: x_support)"
-    )
-    unheld = lambda name: "" if name == "x_resources" else None  # noqa: E731
+    unheld = lambda name: "" if name == missing else None  # noqa: E731
     found = _launch_failure("launch/demo.launch", problem, unheld)
-    assert (found.severity, "the folder holding x_resources" in found.hint) == ("warning", True)
+    assert (found.severity, f"the folder holding {missing}" in found.hint) == ("warning", True)
     assert _launch_failure("launch/demo.launch", problem, lambda name: None).severity == "error"
-
-
-def test_a_package_an_arg_default_finds_that_no_path_holds_is_that_package_missing():
-    """roslaunch words a missing package in an <arg> tag's default its own way (xmlloader.py
-    _arg_tag: 'The following package was not found in <arg .../>: pkg'); the tag's text holds
-    ':' and '/', so the package name is only the last word."""
-    from marm_setup.validate.consumers import _launch_failure
-
-    problem = (
-        "Unable to load file /ws/x_moveit_config/launch/gazebo.launch: The following package was not "
-        'found in <arg name="urdf_path" default="$(find x_description)/urdf/x.urdf.xacro"/>: x_description'
-    )
-    unheld = lambda name: "" if name == "x_description" else None  # noqa: E731
-    found = _launch_failure("launch/gazebo.launch", problem, unheld)
-    assert (found.severity, "the folder holding x_description" in found.hint) == ("warning", True)
-    assert _launch_failure("launch/gazebo.launch", problem, lambda name: None).severity == "error"
 
 
 def test_a_misspelling_is_one_or_two_letters_from_a_name_the_package_declares():

@@ -16,7 +16,7 @@ from marm_setup.package import read_package
 from marm_setup.validate.rules.declared_param_rules import check_declared_parameters
 from tests.conftest import FIXTURES
 from tests.render_helpers import written_ros2_marms
-from tests.validate_helpers import validate_package
+from tests.validate_helpers import replace_text, validate_package
 
 MOVEIT_YAML = "config/moveit.yaml"
 SERVO_YAML = "config/arm_servo.yaml"
@@ -33,9 +33,7 @@ def fresh(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
 def edited(fresh: dict[str, Path], tmp_path: Path, distro: str, rel: str, old: str, new: str) -> Path:
     pkg = tmp_path / "marm_moveit_config"
     shutil.copytree(fresh[distro], pkg)
-    text = (pkg / rel).read_text(encoding="utf-8")
-    assert old in text, old
-    (pkg / rel).write_text(text.replace(old, new, 1), encoding="utf-8")
+    replace_text(pkg, rel, old, new)
     return pkg
 
 

@@ -14,6 +14,7 @@ from marm_setup.moveit_params import CONTROLLER_MANAGER, driver_rows
 from marm_setup.package import read_package
 from marm_setup.validate.rules.driver_param_rules import check_driver_parameters
 from tests.render_helpers import written_ros2_marms
+from tests.validate_helpers import replace_text
 
 CONTROLLERS = "config/ros2_controllers.yaml"
 JTC = "joint_trajectory_controller/JointTrajectoryController"
@@ -28,9 +29,7 @@ def fresh(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
 def edited(fresh: dict[str, Path], tmp_path: Path, distro: str, old: str, new: str) -> Path:
     pkg = tmp_path / "marm_moveit_config"
     shutil.copytree(fresh[distro], pkg)
-    text = (pkg / CONTROLLERS).read_text(encoding="utf-8")
-    assert old in text, old
-    (pkg / CONTROLLERS).write_text(text.replace(old, new, 1), encoding="utf-8")
+    replace_text(pkg, CONTROLLERS, old, new)
     return pkg
 
 

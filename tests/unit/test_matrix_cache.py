@@ -19,7 +19,7 @@ from marm_setup.collision.matrix_cache import (
     matrix_to_json,
     store_matrix,
 )
-from tests.helpers import urdf as make_urdf
+from tests.helpers import TWO_BOXES
 
 pytestmark = pytest.mark.usefixtures("own_proof_cache")
 
@@ -63,15 +63,14 @@ def test_the_key_follows_the_robot_and_its_mesh_bytes(tmp_path):
         encoding="utf-8",
     )
     path = tmp_path / "r.urdf"
-    body = f"""
-    <link name="a"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-    <link name="b"><collision><geometry><mesh filename="file://{mesh}"/></geometry></collision></link>
-    <joint name="j" type="revolute">
-      <parent link="a"/><child link="b"/><origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" velocity="1" effort="1"/>
-    </joint>
-    """
-    path.write_text(make_urdf(body), encoding="utf-8")
+    box_b = '<link name="b"><collision><geometry><box size="0.1 0.1 0.1"/>'
+    path.write_text(
+        TWO_BOXES.replace(
+            box_b, box_b.replace('<box size="0.1 0.1 0.1"/>', f'<mesh filename="file://{mesh}"/>')
+        ),
+        encoding="utf-8",
+    )
+    assert "part.stl" in path.read_text()
     key = matrix_key(load_robot(path), 0.0, {"trials": 10})
     mesh.write_text(mesh.read_text().replace("vertex 0 1 0", "vertex 0 2 0"), encoding="utf-8")
     assert matrix_key(load_robot(path), 0.0, {"trials": 10}) != key
