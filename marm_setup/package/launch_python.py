@@ -717,25 +717,26 @@ def _yaml_keys(tree: ast.AST, env: _Env | None = None) -> dict[str, str]:
     return out
 
 
-def _bound_names(tree: ast.AST) -> dict[str, ast.AST]:
-    """`name = value` and `with value as name` of a module: the name -> the value's expression."""
-    bound: dict[str, ast.AST] = {}
+def _bound_names(tree: ast.AST) -> dict[str, list[ast.AST]]:
+    """`name = value` and `with value as name` of a module: the name -> every expression bound to
+    it (the branches of an `if` each bind theirs: `x = load_yaml(a)` / `else: x = load_yaml(b)`)."""
+    bound: dict[str, list[ast.AST]] = {}
     for node in ast.walk(tree):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-            bound[node.targets[0].id] = node.value
+            bound.setdefault(node.targets[0].id, []).append(node.value)
         elif isinstance(node, ast.With):
             for item in node.items:
                 if isinstance(item.optional_vars, ast.Name):
-                    bound[item.optional_vars.id] = item.context_expr
+                    bound.setdefault(item.optional_vars.id, []).append(item.context_expr)
     return bound
 
 
-def _through_names(node: ast.AST, bound: dict[str, ast.AST], steps: int = 4) -> list[ast.AST]:
+def _through_names(node: ast.AST, bound: dict[str, list[ast.AST]], steps: int = 4) -> list[ast.AST]:
     """`node`, and what the names in it are bound to, and theirs, `steps` deep."""
     out, frontier = [node], [node]
     for _ in range(steps):
         names = {n.id for f in frontier for n in ast.walk(f) if isinstance(n, ast.Name) and n.id in bound}
-        frontier = [bound[name] for name in sorted(names) if bound[name] not in out]
+        frontier = [value for name in sorted(names) for value in bound[name] if value not in out]
         out += frontier
     return out
 

@@ -68,3 +68,34 @@ def test_a_list_the_packages_builder_loads_is_an_error(tmp_path):
     assert [(f.rule, f.severity) for f in check_ros2_namespace(moveit)] == [
         ("controller.no-namespace", "error")
     ]
+
+
+BRANCHED_LAUNCH = """import os
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def load_yaml(package_name, file_path):
+    return {}
+
+
+def generate_launch_description():
+    if not os.environ.get("TRI_GRIPPER"):
+        controllers_yaml = load_yaml("tri_moveit_config", "config/moveit_controllers.yaml")
+    else:
+        controllers_yaml = load_yaml("tri_moveit_config", "config/gripper_controllers.yaml")
+    moveit_controllers = {"moveit_simple_controller_manager": controllers_yaml}
+    return LaunchDescription([Node(package="moveit_ros_move_group", executable="move_group",
+                                   parameters=[moveit_controllers])])
+"""
+
+
+def test_a_list_a_launch_loads_in_either_branch_of_an_if_lands_under_its_key(tmp_path):
+    """IFRA-Cranfield's irb120_ros2_moveit2 binds its controller YAML in both branches of an if
+    and hands it over under moveit_simple_controller_manager: each branch's file lands there."""
+    pkg = _package(tmp_path, launch=False)
+    (pkg / "launch").mkdir()
+    (pkg / "launch" / "tri.launch.py").write_text(BRANCHED_LAUNCH, encoding="utf-8")
+    moveit = read_package(pkg, urdf=tmp_path / "tri.urdf").moveit_controllers
+    assert moveit is not None
+    assert check_ros2_namespace(moveit) == []
