@@ -540,7 +540,8 @@ _UNREAD = "\x00"  # stands for a part of a command only the run time gives
 
 def xacro_commands(tree: ast.AST, rel: str, env: _Env) -> list[XacroCommand]:
     """`{"robot_description": <xacro Command>}` dicts of a module (the value directly, through a
-    name bound to it, or wrapped in `ParameterValue(..., value_type=str)`)."""
+    name bound to it, or wrapped in `ParameterValue(..., value_type=str)`), and those whose value
+    is the XML of xacro's Python API (`_xacro_api`)."""
     bound: dict[str, ast.AST] = {
         n.targets[0].id: n.value
         for n in ast.walk(tree)
@@ -556,7 +557,69 @@ def xacro_commands(tree: ast.AST, rel: str, env: _Env) -> list[XacroCommand]:
                 command = _command_call(value, bound)
                 if command is not None and (found := _xacro_command(command, rel, parameter, env)):
                     out.append(found)
+                elif (api := _xacro_api(value, bound, tree, env)) is not None:
+                    out.append(XacroCommand(rel, parameter, *api))
     return out
+
+
+def _xacro_api(
+    value: ast.AST, bound: dict[str, ast.AST], tree: ast.AST, env: _Env
+) -> tuple[str | None, tuple[tuple[str, str], ...], tuple[str, ...]] | None:
+    """(file, args, unread args) of `xacro.process_file(path, mappings={...}).toxml()`, or of
+    `doc = xacro.parse(open(path))`, `xacro.process_doc(doc, mappings={...})`, `doc.toxml()`
+    (xacro's Python API: xacro/__init__.py process_file, parse, process_doc), directly or through
+    names; None when `value` is neither."""
+    xml = _followed(value, bound)
+    if not (isinstance(xml, ast.Call) and _name(xml.func) == "toxml" and isinstance(xml.func, ast.Attribute)):
+        return None
+    made = _followed(xml.func.value, bound)
+    if not isinstance(made, ast.Call) or not made.args:
+        return None
+    path: ast.AST | None
+    if _name(made.func) == "process_file":
+        path, mappings = made.args[0], _keyword(made, "mappings")
+    elif (
+        _name(made.func) == "parse"
+        and isinstance(opened := made.args[0], ast.Call)
+        and _name(opened.func) == "open"
+    ):
+        doc = xml.func.value.id if isinstance(xml.func.value, ast.Name) else None
+        path, mappings = opened.args[0] if opened.args else None, _process_doc_mappings(tree, doc)
+    else:
+        return None
+    file = _try(path, env)
+    given = mappings.keys if isinstance(mappings, ast.Dict) else []
+    pairs = [
+        (_try(k, env), _try(v, env)) for k, v in zip(given, getattr(mappings, "values", []), strict=True)
+    ]
+    args = tuple(
+        sorted(
+            (k, _text(v)) for k, v in pairs if isinstance(k, str) and isinstance(v, str | int | float | bool)
+        )
+    )
+    unread = tuple(
+        sorted(k for k, v in pairs if isinstance(k, str) and not isinstance(v, str | int | float | bool))
+    )
+    return (file if isinstance(file, str) and os.path.isabs(file) else None), args, unread
+
+
+def _followed(node: ast.AST, bound: dict[str, ast.AST]) -> ast.AST:
+    """`node`, or what the name it is is bound to (a few steps)."""
+    for _ in range(8):
+        if not (isinstance(node, ast.Name) and node.id in bound):
+            break
+        node = bound[node.id]
+    return node
+
+
+def _process_doc_mappings(tree: ast.AST, doc: str | None) -> ast.AST | None:
+    """The `mappings=` of the `xacro.process_doc(doc, mappings=...)` call on the name `doc`."""
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Call) and _name(node.func) == "process_doc" and node.args):
+            continue
+        if isinstance(node.args[0], ast.Name) and node.args[0].id == doc:
+            return _keyword(node, "mappings")
+    return None
 
 
 def _command_call(node: ast.AST, bound: dict[str, ast.AST]) -> ast.Call | None:

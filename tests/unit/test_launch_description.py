@@ -271,3 +271,42 @@ def test_the_packages_own_description_load_comes_before_another_packages(tmp_pat
     pkg = read_package(root)
     assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
     assert pkg.urdf_origin == "robot_description in launch/planning_context.launch"
+
+
+XACRO_API_LAUNCH = """import os
+import xacro
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    xacro_file = os.path.join(get_package_share_directory("vd_description"), "urdf", "vd.urdf.xacro")
+    {make}
+    robot_description = {{"robot_description": doc.toxml()}}
+    return LaunchDescription([Node(package="moveit_ros_move_group", executable="move_group",
+                                   parameters=[robot_description])])
+"""
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        'doc = xacro.process_file(xacro_file, mappings={"prefix": "right_"})',
+        'doc = xacro.parse(open(xacro_file))\n    xacro.process_doc(doc, mappings={"prefix": "right_"})',
+    ],
+)
+def test_a_python_launch_running_xacros_python_api_gives_move_group_its_description(tmp_path, make):
+    """IFRA-Cranfield's ros2_RobotSimulation packages expand the description with xacro's
+    Python API (xacro/__init__.py process_file; parse + process_doc) inside the launch file."""
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    for rel in ("launch/planning_context.launch", "launch/demo.launch"):
+        (root / rel).unlink()
+    (root / "launch/move_group.launch.py").write_text(XACRO_API_LAUNCH.format(make=make))
+    (root / "package.xml").write_text(AMENT.format(name="vd_moveit_config"))
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+    assert (pkg.urdf_origin, dict(pkg.xacro_args)) == (
+        "xacro command in launch/move_group.launch.py",
+        {"prefix": "right_"},
+    )
