@@ -104,8 +104,9 @@ class PairChain:
         """Both links' frames at the states `q` (K, m) of the box's variables."""
         return self.kinematics[0].frames(q), self.kinematics[1].frames(q)
 
-    def evaluate(self, centers: np.ndarray, halves: np.ndarray) -> BoxBounds:
-        """Bounds of the pair over the boxes `centers` +- `halves` (K, m)."""
+    def evaluate(self, centers: np.ndarray, halves: np.ndarray, enough: float = np.inf) -> BoxBounds:
+        """Bounds of the pair over the boxes `centers` +- `halves` (K, m); a box whose balls'
+        gap exceeds `enough` [m] is decided, and its axis gap is not worked out (-inf)."""
         frames = self.frames(centers)
         path = _path(frames)
         half = np.abs(path.multipliers) * halves[:, path.columns]  # (K, n) per path joint
@@ -123,9 +124,13 @@ class PairChain:
         for i, column in enumerate(path.columns):  # a column may drive several joints (mimic)
             shares[:, column] += per_joint[:, i]
         apart = balls_a[0] - balls_b[0]
-        gaps = np.sqrt(np.vecdot(apart, apart)) - balls_a[1] - balls_b[1]
-        axis_gap = _axis_gap(path, frames, self.levers, moved_a, moved_b)
-        return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, gaps.max(axis=1), axis_gap)
+        ball_gap = (np.sqrt(np.vecdot(apart, apart)) - balls_a[1] - balls_b[1]).max(axis=1)
+        axis_gap = np.full(len(centers), -np.inf)
+        if (open_rows := np.flatnonzero(ball_gap <= enough)).size:  # (each row's own arithmetic)
+            poses = (frames[0].pose[open_rows], frames[1].pose[open_rows])
+            moved = (moved_a[open_rows], moved_b[open_rows])
+            axis_gap[open_rows] = _axis_gap(path.axes[open_rows], path.turning, poses, self.levers, moved)
+        return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, ball_gap, axis_gap)
 
 
 def pair_chains(scene: CollisionScene, pairs: Sequence[tuple[str, str]]) -> dict[tuple[str, str], PairChain]:
@@ -298,26 +303,27 @@ def _times_points(rows: np.ndarray, points: np.ndarray) -> np.ndarray:
 
 
 def _axis_gap(
-    path: _Path,
-    frames: tuple[Frames, Frames],
+    axes: np.ndarray,
+    turning: np.ndarray,
+    poses: tuple[np.ndarray, np.ndarray],
     levers: tuple[LeverPoints, LeverPoints],
-    moved_a: np.ndarray,
-    moved_b: np.ndarray,
+    moved: tuple[np.ndarray, np.ndarray],
 ) -> np.ndarray:
     """(K,): the separating-direction bound (see the module doc) over the turning axes' directions
     u at the centre: the gap between the links' projections on u, less what each joint can move
     a point along u (its displacement bound times |sin| of its axis' angle to u when it turns,
-    times |cos| when it slides), for the best pivot; -inf when no joint turns."""
-    turning = path.turning
+    times |cos| when it slides), for the best pivot; -inf when no joint turns. The path's joints
+    at K states: `axes` (K, n, 3), `turning` (n,); the links' poses (K, 4, 4) and each path
+    joint's displacement bound of each link (K, n)."""
     if not turning.any():
-        return np.full(len(frames[0].pose), -np.inf)
-    directions = path.axes[:, turning]  # (K, D, 3)
-    low_a, high_a = _projection(frames[0].pose, levers[0], directions)
-    low_b, high_b = _projection(frames[1].pose, levers[1], directions)
+        return np.full(len(axes), -np.inf)
+    directions = axes[:, turning]  # (K, D, 3)
+    low_a, high_a = _projection(poses[0], levers[0], directions)
+    low_b, high_b = _projection(poses[1], levers[1], directions)
     gap = np.maximum(low_b - high_a, low_a - high_b)  # (K, D)
-    cosine = path.axes @ directions.transpose(0, 2, 1)  # (K, n, D)
+    cosine = axes @ directions.transpose(0, 2, 1)  # (K, n, D)
     along = np.where(turning[None, :, None], np.sqrt(np.maximum(0.0, 1.0 - cosine**2)), np.abs(cosine))
-    shrink_a, shrink_b = moved_a[..., None] * along, moved_b[..., None] * along  # (K, n, D)
+    shrink_a, shrink_b = moved[0][..., None] * along, moved[1][..., None] * along  # (K, n, D)
     zeros = np.zeros((len(gap), 1, gap.shape[1]))
     before_a = np.concatenate([zeros, np.cumsum(shrink_a, axis=1)], axis=1)
     after_b = np.concatenate([np.cumsum(shrink_b[:, ::-1], axis=1)[:, ::-1], zeros], axis=1)

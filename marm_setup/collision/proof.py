@@ -133,7 +133,7 @@ class PairSearch:
             batch = [heapq.heappop(self._heap) for _ in range(min(BATCH, len(self._heap)))]
             wanted = min(MIN_CHILDREN, self.budget.boxes - self.meter.units)  # no more than is left
             levels = max(1, min(MAX_LEVELS, int(np.ceil(np.log2(max(1.0, wanted / len(batch)))))))
-            splittable = [item for item in batch if len(item[2]) and item[4].max(initial=0.0) >= TINY]
+            splittable = [item for item in batch if item[6]]
             self._stuck = self._stuck or len(splittable) < len(batch)
             if splittable:
                 self._evaluate(*_split(splittable, levels))
@@ -203,17 +203,22 @@ class PairSearch:
         a box whose motion exceeds it cannot be certified, so it is split without a query
         (its lower bound stays `floor`, its parent's)."""
         centers, halves = (lo + hi) / 2.0, (hi - lo) / 2.0
-        bounds = self.chain.evaluate(centers, halves)
-        gaps, motion, shares = np.maximum(bounds.ball_gap, bounds.axis_gap), bounds.motion, bounds.shares
+        bounds = self.chain.evaluate(centers, halves, self.threshold)
+        shares = bounds.shares
         batch = self.meter.batch(bounds.frames[0].pose, bounds.frames[1].pose)
-        volumes = np.prod((hi - lo) / self.width, axis=1)
         self.meter.units += len(lo)  # a box's kinematics and bounds cost about a hull query
+        # the loop reads Python floats (numpy's scalars cost far more per test; same values)
+        gaps = np.maximum(bounds.ball_gap, bounds.axis_gap).tolist()
+        motion, reach, floor = bounds.motion.tolist(), reach.tolist(), floor.tolist()
+        volumes = np.prod((hi - lo) / self.width, axis=1).tolist()
+        splittable = (shares.max(axis=1, initial=0.0) >= TINY).tolist()
         for k in range(len(lo)):
             if gaps[k] > self.threshold:
                 self.certified += volumes[k]
                 continue
+            box = (lo[k], hi[k], shares[k])
             if reach[k] - motion[k] <= self.threshold:
-                self._push(floor[k], lo[k], hi[k], shares[k], reach[k])
+                self._push(floor[k], box, reach[k], splittable[k])
                 continue
             bound, measured = self._distance_bound(batch, k, motion[k], centers[k])
             if self.witness:
@@ -221,10 +226,12 @@ class PairSearch:
             if bound is None:
                 self.certified += volumes[k]
             else:
-                self._push(bound, lo[k], hi[k], shares[k], measured)
+                self._push(bound, box, measured, splittable[k])
 
-    def _push(self, bound: float, lo: np.ndarray, hi: np.ndarray, shares: np.ndarray, reach: float) -> None:
-        heapq.heappush(self._heap, (bound, self._sequence, lo, hi, shares, reach))
+    def _push(self, bound: float, box: tuple, reach: float, splittable: bool) -> None:
+        """A box (lo, hi, shares) on the heap with its lower bound, reach and whether any of
+        its shares is worth a split (at least TINY)."""
+        heapq.heappush(self._heap, (bound, self._sequence, *box, reach, splittable))
         self._sequence += 1
 
     def _distance_bound(
