@@ -144,6 +144,45 @@ def test_without_controller_files_an_unmatched_output_is_a_warning(tmp_path):
     assert [m.split()[0] for m in found["servo.no-controller"]] == ["warning"]
 
 
+MOVEIT_LIST = """controller_list:
+  - name: arm_controller
+    action_ns: follow_joint_trajectory
+    type: FollowJointTrajectory
+    default: true
+    joints: [j1, j2, j3]
+"""
+
+
+@pytest.mark.parametrize(
+    ("target", "topic"), [("ros1", "/arm_controller/command"), ("ros2", "arm_controller/joint_trajectory")]
+)
+def test_without_controller_files_the_topic_of_moveits_trajectory_controller_passes(tmp_path, target, topic):
+    """The trajectory controller a driver runs for MoveIt's `arm_controller/follow_joint_trajectory`
+    subscribes its `command` (ROS 1) / `joint_trajectory` (ROS 2) topic too: no warning; another
+    topic still warns."""
+    if target == "ros1":
+        pkg = ros1_package(tmp_path / "bot_moveit_config", topic, POINTCLOUD)
+        (pkg / "config/ros_controllers.yaml").unlink()
+        listed = MOVEIT_LIST
+    else:
+        pkg = ros2_package(tmp_path / "bot_moveit_config", {"topic": topic}, controllers=False)
+        listed = "moveit_simple_controller_manager:\n" + "".join(
+            f"  {line}\n" for line in MOVEIT_LIST.splitlines()
+        )
+        listed += (
+            "moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager\n"
+        )
+    (
+        pkg / "config/controllers.yaml" if target == "ros1" else pkg / "config/moveit_controllers.yaml"
+    ).write_text(listed, encoding="utf-8")
+    assert rules(pkg, ("servo.",)) == {}
+    servo = pkg / "config/arm_servo.yaml"
+    servo.write_text(
+        servo.read_text(encoding="utf-8").replace("arm_controller", "other_controller"), encoding="utf-8"
+    )
+    assert [m.split()[0] for m in rules(pkg, ("servo.",))["servo.no-controller"]] == ["warning"]
+
+
 def test_frames_that_are_no_link_and_an_unknown_output_type(tmp_path):
     found = rules(
         ros2_package(tmp_path / "bot_moveit_config", {"frame": "tool0", "out_type": "geometry_msgs/Twist"})

@@ -20,7 +20,8 @@ Servo:
   JointTrajectoryController and JointGroup*Controller, and ArbotiX's follow_controller,
   `<name>/command`. An error when the package's controller files define no controller there (the
   robot does not move); a warning when the package has no controller file (its driver may run
-  one elsewhere).
+  one elsewhere), unless the topic is that of a FollowJointTrajectory controller of MoveIt's own
+  controller list (the trajectory controller a driver runs for MoveIt subscribes it too).
 Sensors (occupancy map monitor; the Setup Assistant's updaters, pluginlib names in
 moveit_ros/perception/*_plugin_description.xml, identical on the three branches):
 - sensors.unknown-plugin (error): no sensor_plugin, or an `occupancy_map_monitor/` plugin that is
@@ -143,15 +144,42 @@ def _output(servo: ServoConfig, topics: dict[str, tuple[str, str]], pkg: MoveItP
     match = next((v for t, v in topics.items() if name == t or name.endswith(f"/{t}")), None)
     file, element = topic.where.file, topic.where.element
     if match is None:
-        return [_no_controller(topic, out_type, pkg, topics)]
+        return [] if _moveit_drives(name, out_type, pkg) else [_no_controller(topic, out_type, pkg, topics)]
     if match[0] != out_type:
         msg = f"{match[1]} takes {match[0]} on {topic.value}, moveit_servo publishes {out_type}: they never connect"
         return [error("servo.no-controller", file, element, msg, "set command_out_type or command_out_topic")]
     return []
 
 
+# what a trajectory controller `<name>` subscribes beside the `<name>/follow_joint_trajectory`
+# action MoveIt sends: ros_control's JointTrajectoryController `command` (ros_controllers
+# joint_trajectory_controller_impl.h, init(): subscribe("command") and ActionServer
+# "follow_joint_trajectory" in the controller's namespace), ros2_control's `~/joint_trajectory`
+# (ros2_controllers joint_trajectory_controller.cpp on_configure)
+TRAJECTORY_TOPIC = {Target.ROS1: "command", Target.ROS2: "joint_trajectory"}
+
+
+def _moveit_drives(topic: str, out_type: str, pkg: MoveItPackage) -> bool:
+    """Whether `topic` (no leading slash) is the trajectory topic of a controller MoveIt's own
+    controller list drives through `<name>/follow_joint_trajectory` while the package defines no
+    controller: the driver must run that controller for MoveIt anyway, and servo reaches it."""
+    if out_type != TRAJECTORY or pkg.moveit_controllers is None or _driver_files(pkg):
+        return False
+    suffix = TRAJECTORY_TOPIC[pkg.target]
+    return any(
+        c.type == "FollowJointTrajectory"
+        and c.action_ns == "follow_joint_trajectory"
+        and topic in (f"{c.name}/{suffix}", f"{c.name.strip('/')}/{suffix}")
+        for c in pkg.moveit_controllers.controllers
+    )
+
+
+def _driver_files(pkg: MoveItPackage) -> list[str]:
+    return [f.where.file for f in (pkg.ros2_controllers, pkg.ros_controllers, pkg.arbotix) if f is not None]
+
+
 def _no_controller(topic: Param, out_type: str, pkg: MoveItPackage, topics: dict) -> Finding:
-    files = [f.where.file for f in (pkg.ros2_controllers, pkg.ros_controllers, pkg.arbotix) if f is not None]
+    files = _driver_files(pkg)
     wanted = "joint_trajectory_controller" if out_type == TRAJECTORY else "forward command controller"
     if not files:
         msg = f"no controller file of the package defines a {wanted} on {topic.value}"
