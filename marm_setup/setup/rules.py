@@ -368,17 +368,25 @@ def check_passive_joints(r: _Rules) -> list[Finding]:
 
 def check_disabled_links(r: _Rules) -> list[Finding]:
     """srdfdom model.cpp `loadCollisionPairs` only warns about a pair naming an unknown link and
-    drops it ("Cannot disable/enable collisions"): a warning, the pair does nothing."""
+    drops it ("Cannot disable/enable collisions"): a warning, the pair does nothing. One warning
+    per unknown link, at its first pair, counting the pairs that name it (an SRDF written for
+    another variant of the robot names a few links in hundreds of pairs)."""
     out: list[Finding] = []
+    unknown: dict[str, list[int]] = {}  # link -> [its finding's place in out, pairs naming it]
     for i, pair in enumerate(r.srdf.disabled):
         name = f"{pair.link1} {pair.link2}"
         if pair.link1 == pair.link2:
             out.append(_self_pair(r, name, i))
-        for n, link in ((1, pair.link1), (2, pair.link2)):
-            out += [
-                warning(f.rule, f.file, f.element, f"{f.message} (srdfdom ignores the pair)", f.hint)
-                for f in r.link(link, Where("disable_collisions", name, (f"link{n}",), i))
-            ]
+        for n, link in ((1, pair.link1), (2, pair.link2))[: 1 if pair.link1 == pair.link2 else 2]:
+            if link in unknown:
+                unknown[link][1] += 1
+            elif found := r.link(link, Where("disable_collisions", name, (f"link{n}",), i)):
+                unknown[link] = [len(out), 1]
+                out.append(found[0])
+    for at, count in unknown.values():
+        f = out[at]
+        named = "the pair" if count == 1 else f"the {count} pairs naming it"
+        out[at] = warning(f.rule, f.file, f.element, f"{f.message} (srdfdom ignores {named})", f.hint)
     return out
 
 

@@ -194,3 +194,34 @@ def test_findings_carry_their_element_and_what_they_name_as_data(marm_setup):
     found = {f.rule: f.location for f in check_semantics(setup_to_srdf(broken), marm, "x.srdf", srdf_element)}
     assert found["srdf.unknown-subgroup"] == Location("group", "both", ("group", "gone"))
     assert found["srdf.ee-unknown-group"] == Location("end_effector", "ee", ("group", "nothere"))
+
+
+def test_an_unknown_link_in_many_disabled_pairs_is_one_warning(marm_setup):
+    """An SRDF for another variant names a few links in many pairs: one warning per link, at its
+    first pair, saying how many pairs srdfdom drops."""
+    _model, robot = marm_setup
+    pairs = [
+        ("link1", "ghost"),
+        ("ghost", "link3"),
+        ("link2", "spook"),
+        ("link4", "ghost"),
+        ("link1", "link3"),
+    ]
+    body = "".join(f'<disable_collisions link1="{a}" link2="{b}" reason="Never"/>' for a, b in pairs)
+    found = check_semantics(
+        parse_srdf_string(f'<robot name="marm">{body}</robot>'), robot, "x.srdf", srdf_element
+    )
+    assert [(f.rule, f.severity, f.element, f.message) for f in found] == [
+        (
+            "srdf.unknown-link",
+            "warning",
+            "disable_collisions[ghost link1]",
+            "unknown link 'ghost' (srdfdom ignores the 3 pairs naming it)",
+        ),
+        (
+            "srdf.unknown-link",
+            "warning",
+            "disable_collisions[link2 spook]",
+            "unknown link 'spook' (srdfdom ignores the pair)",
+        ),
+    ]
