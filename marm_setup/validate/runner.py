@@ -96,10 +96,23 @@ class Validation:
         if self.env_defaults:
             names = ", ".join(self.env_defaults)
             urdf += f" with the defaults of the unset environment variables it reads with $(optenv): {names}"
+            urdf += self._variant_hint()
         srdf = f", SRDF {self.srdf} ({self.srdf_origin})" if self.srdf else ", no SRDF"
         return (
             f"validated {self.package} ({self.target}, {self.layout} layout) with {robot} "
             f"from {urdf}{srdf}; {runtime}{launched}{skipped}"
+        )
+
+    def _variant_hint(self) -> str:
+        """What to do when findings name joints or links the robot lacks while its xacro took
+        environment variables' defaults: the package may be for the variant they select."""
+        lacking = sum(f.rule.endswith(("unknown-joint", "unknown-link")) for f in self.findings)
+        if not lacking:
+            return ""
+        example = f"{self.env_defaults[0]}=... marm-setup validate ..."
+        return (
+            f" ({lacking} finding{'' if lacking == 1 else 's'} name joints or links it lacks: if the"
+            f" package is for a variant those variables select, set them as the robot's setup does: {example})"
         )
 
     def as_dict(self) -> dict:

@@ -4,6 +4,7 @@ package's launch files set them (xacro command lines read as xacro reads them, `
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import pytest
@@ -310,3 +311,25 @@ def test_a_python_launch_running_xacros_python_api_gives_move_group_its_descript
         "xacro command in launch/move_group.launch.py",
         {"prefix": "right_"},
     )
+
+
+def test_the_summary_says_what_to_set_when_an_optenv_robot_lacks_the_names_found():
+    """A robot built with $(optenv) defaults that lacks the joints the package names: the summary
+    says to set the variables; with no such finding it only names them."""
+    from marm_setup.findings import error
+    from marm_setup.ros import Target
+    from marm_setup.validate.runner import Validation
+
+    lacking = (
+        error("pose.unknown-joint", "config/r.srdf", "group_state[home]", "unknown joint 'arm_j1'"),
+        error("srdf.unknown-link", "config/r.srdf", "group[arm]", "unknown link 'arm_l1'"),
+        error("ompl.unknown-group", "config/ompl_planning.yaml", "arm", "unknown group"),
+    )
+    found = Validation(
+        lacking, "r_moveit_config", Target.ROS1, "moveit1", "r.urdf.xacro", "launch", "r", None
+    )
+    found = dataclasses.replace(found, env_defaults=("R_HAS_ARM", "R_SIDE"))
+    described = found.describe()
+    assert "$(optenv): R_HAS_ARM, R_SIDE (2 findings name joints or links it lacks:" in described
+    assert "R_HAS_ARM=... marm-setup validate ..." in described
+    assert "lacks" not in dataclasses.replace(found, findings=lacking[2:]).describe()
