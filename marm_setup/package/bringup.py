@@ -36,6 +36,7 @@ if TYPE_CHECKING:
     from marm_setup.package.launch_ros1 import DescriptionLoad
     from marm_setup.robot import PackageIndex
 
+
 Found = tuple[Path, tuple[tuple[str, str], ...], tuple[str, ...]]  # (file, xacro args, unread args)
 
 MOVEIT_NODE_WORDS = ("move_group", "robot_description_semantic")
@@ -103,7 +104,7 @@ def _package_robots(
 
     out = []
     for rel in (*python_launch_names(folder), *launch_file_names(folder)):
-        if not readable(folder / rel):
+        if not readable(folder / rel) or not _mentions(folder / rel, name):
             continue
         asked: set[str] = set()
 
@@ -116,6 +117,17 @@ def _package_robots(
         if robot is not None:
             out.append((rel, BringupRobot(*robot[0], robot[1], launch=f"{package}/{rel}")))
     return out
+
+
+def _mentions(path: Path, name: str) -> bool:
+    """Whether the launch file's text holds the package name at all (every form above writes
+    it literally): the cheap test before any file is parsed."""
+    from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_bytes
+
+    try:
+        return name.encode() in read_bytes(path, XML_BYTES)
+    except (OSError, FileTooLarge):
+        return False
 
 
 def _python_robot(

@@ -123,3 +123,23 @@ def test_without_a_launch_file_starting_moveit_with_it_the_exit_2_message_stays(
     with pytest.raises(InputError, match="cannot find the robot description") as info:
         read_package(config)
     assert info.value.needs == "--urdf"
+
+
+XML_BRINGUP = """<launch>
+  <arg name="robot_ip" default="10.0.0.3"/>
+  <node pkg="moveit_ros_move_group" exec="move_group">
+    <param name="robot_description"
+      value="$(command 'xacro $(find-pkg-share tri_description)/urdf/tri.urdf.xacro robot_ip:=$(var robot_ip)')"/>
+    <param from="$(find-pkg-share tri_moveit_config)/config/kinematics.yaml"/>
+  </node>
+</launch>
+"""
+
+
+def test_a_ros2_xml_bringup_gives_its_robot_too(tmp_path: Path):
+    config = _repository(tmp_path, {})
+    _package(config.parent / "tri_bringup", {"launch/move_group.launch.xml": XML_BRINGUP})
+    found = read_package(config)
+    assert found.urdf == config.parent / "tri_description" / "urdf" / "tri.urdf.xacro"
+    assert found.urdf_origin.startswith("robot_description in tri_bringup/launch/move_group.launch.xml (")
+    assert found.xacro_args == (("robot_ip", "10.0.0.3"),)
