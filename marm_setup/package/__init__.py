@@ -18,7 +18,7 @@ API = {
     "description": "marm_package_paths setup_assistant_description srdfs_by_name SRDF_GUESSED",
     "controllers_file": "ControllersFile MoveItController SIMPLE_MANAGER SIMPLE_MANAGER_CLASS SkippedController",
     "control_manager": "ROS2_CONTROL_HANDLES",
-    "driver_file": "ArbotixFile ArbotixServo DriverController DriverFile InitialPositions Ros2ControlFile Settings",
+    "driver_file": "ArbotixFile ArbotixServo DriverController DriverFile InitialPositions read_simulator_drivers Ros2ControlFile Settings",
     "kinematics_file": "GroupKinematics KinematicsFile",
     "joint_limits_file": "JointLimitEntry JointLimitsFile",
     "perception_files": "Sensor ServoConfig",
@@ -52,6 +52,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.package.driver_file import InitialPositions as InitialPositions
     from marm_setup.package.driver_file import Ros2ControlFile as Ros2ControlFile
     from marm_setup.package.driver_file import Settings as Settings
+    from marm_setup.package.driver_file import read_simulator_drivers as read_simulator_drivers
     from marm_setup.package.joint_limits_file import JointLimitEntry as JointLimitEntry
     from marm_setup.package.joint_limits_file import JointLimitsFile as JointLimitsFile
     from marm_setup.package.kinematics_file import GroupKinematics as GroupKinematics

@@ -2,7 +2,8 @@
 
 URDF: `--urdf`, else `marm_setup.yaml`'s, else the file MoveItConfigsBuilder loads (a launch
 file's `.robot_description(file_path)`, else `config/<robot>.urdf.xacro`, paired by the builder's
-or the SRDF's robot name), else `.setup_assistant`'s. SRDF: `--srdf`, `marm_setup.yaml`'s, the
+or the SRDF's robot name), else `.setup_assistant`'s, else the one a launch file of another
+package sets when it starts MoveIt with this package (`package.bringup`). SRDF: `--srdf`, `marm_setup.yaml`'s, the
 builder's `.robot_description_semantic(file_path)`, the one a launch file sets as `*_semantic`
 (with the xacro args it passes: what move_group loads), `.setup_assistant`'s,
 `config/<robot>.srdf` of the builder, then by name among `config/*.srdf`, `srdf/*.srdf`, their
@@ -17,12 +18,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from marm_setup.errors import InputError
 from marm_setup.findings import Finding, warning
 from marm_setup.package.setup_files import MarmSetupFile, PackageXml, SetupAssistantFile
 from marm_setup.ros import Target
 from marm_setup.untrusted import relative_inside
+
+if TYPE_CHECKING:
+    from marm_setup.package.bringup import BringupRobot
 
 SRDF_GLOBS = (
     "config/*.srdf",
@@ -44,6 +49,7 @@ class Description:
     origin: str
     xacro_args: tuple[tuple[str, str], ...]
     unreadable: bool = False  # named, but its package or file is not there (a finding says so)
+    bringup: BringupRobot | None = None  # the bringup launch file of another package it came from
 
 
 def detect_target(root: Path, package_xml: PackageXml | None, marm: MarmSetupFile | None) -> Target:
@@ -140,12 +146,14 @@ def find_description(
     robot_names: tuple[str | None, ...],
     builder: tuple[str | None, tuple[tuple[str, str], ...] | None, str],
     refused: Callable[[str, str, str], bool] = lambda _rel, _file, _element: False,
+    launched_by: Callable[[], Description | None] = lambda: None,
 ) -> Description:
     """The robot description (see the module docstring); InputError when there is none, except
     for a ROS 2 package whose Python launch files take it at run time (`RUNTIME_ONLY`).
     `given` is (--urdf, --xacro-arg pairs); `builder` the builder's (explicit file, mappings,
     where it was named); `refused` as for `choose_srdf` (a package's own description file
-    leading outside it is not taken)."""
+    leading outside it is not taken); `launched_by` the description a bringup launch file of
+    another package gives when the package names none itself."""
     urdf, args = given
     if urdf is not None:
         if not Path(urdf).is_file():
@@ -163,6 +171,9 @@ def find_description(
         return Description((named or xacros)[0], "config/<robot>.urdf.xacro", args or mappings or ())
     if sa is not None and sa.urdf_package and sa.urdf_path:
         return setup_assistant_description(sa, paths, shown, args or mappings or sa.urdf_xacro_args)
+    bringup = launched_by()
+    if bringup is not None:
+        return bringup
     if _runtime_only(root, marm, sa):
         return Description(None, RUNTIME_ONLY, args)
     raise InputError(

@@ -4,7 +4,9 @@ driver's `arbotix.yaml` and ros2_control's `initial_positions.yaml`."""
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from marm_setup.moveit_params import flatten
@@ -222,3 +224,28 @@ def read_ros2_control(file: str, text: str) -> Ros2ControlFile:
         joints = tuple(i.joint for i in found)
         systems.append(Ros2ControlSystem(system.get("name", ""), plugin, joints, interfaces=found))
     return Ros2ControlFile(file, tuple(n for n in names if n and "${" not in n), tuple(systems))
+
+
+def read_simulator_drivers(files: tuple[str, ...], root: Path) -> tuple[DriverFile, ...]:
+    """The controller_manager parameter files a ros2_control simulator plugin of the robot
+    description names (`simulator_parameter_files`), read as `ros2_controllers.yaml` and shown
+    relative to the package at `root`; a file that is not absolute (rcl resolves it against the
+    simulator's working directory), absent, unreadable (--untrusted) or not YAML is left out."""
+    import yaml
+
+    from marm_setup.bounded_read import YAML_BYTES, FileTooLarge, read_text
+    from marm_setup.package.files import located_text
+    from marm_setup.untrusted import readable
+
+    out = []
+    for file in files:
+        path = Path(file)
+        if not path.is_absolute() or not path.is_file() or not readable(path):
+            continue
+        shown = Path(os.path.relpath(path, root)).as_posix()
+        try:
+            doc = located_text(read_text(path, YAML_BYTES, shown=shown), shown)
+        except (OSError, UnicodeDecodeError, FileTooLarge, yaml.YAMLError):
+            continue
+        out.append(read_ros2_controllers(doc))
+    return tuple(out)

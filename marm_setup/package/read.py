@@ -16,6 +16,7 @@ from typing import Any
 from marm_setup.bounded_read import XML_BYTES
 from marm_setup.errors import InputError, PackageNotFound
 from marm_setup.findings import Finding, Location, error, warning
+from marm_setup.package.bringup import BringupRobot
 from marm_setup.package.builder import BuilderFiles, Chosen, builder_files, chosen_file
 from marm_setup.package.description import (
     MARM_MOVEIT_YAML,
@@ -128,11 +129,13 @@ def _read_package(
     srdf_rel, srdf_args, guessed = _srdf_choice(files, srdf, found, launched, wanted)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
-    description = _readable_description(
-        files, _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
-    )
+    chosen = _description(files, shown, urdf, xacro_args, found, srdf_rel, launched)
+    description = _readable_description(files, chosen)
+    bringup_srdf = _bringup_srdf(files, found.paths, chosen, launched) if srdf is None else None
+    if bringup_srdf is not None:
+        srdf_rel, srdf_args, guessed = bringup_srdf[0], bringup_srdf[1], False
     kinds = _kinds(files, found.target, launched, problems)
-    unread = launched.unread_args("robot_description_semantic")
+    unread = (*launched.unread_args("robot_description_semantic"), *(bringup_srdf[2] if bringup_srdf else ()))
     srdf_args, built = _built_srdf_args(files, srdf_rel, srdf_args, launched)
     srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems, built)
     return MoveItPackage(
@@ -145,7 +148,9 @@ def _read_package(
         urdf_origin=description.origin,
         description_unreadable=description.unreadable,
         xacro_args=description.xacro_args,
-        unread_xacro_args=launched.unread_args("robot_description") if urdf is None else (),
+        unread_xacro_args=_unread_args(launched, description, "robot_description", xacro_args)
+        if urdf is None
+        else (),
         package_paths=found.paths,
         package_xml=found.package_xml,
         setup_assistant=found.sa,
@@ -156,7 +161,10 @@ def _read_package(
         python_launch_files=files.inside_only(python_launch_names(root)),
         ros2_control_files=_ros2_control_files(files) if found.target == Target.ROS2 else (),
         files=files.listing(),
-        sources=(*kinds.sources, *_srdf_source(srdf_file, launched, guessed)),
+        sources=(
+            *kinds.sources,
+            *_srdf_source(srdf_file, launched, guessed, chosen.bringup if bringup_srdf else None),
+        ),
         problems=tuple(problems),
         **kinds.values,  # type: ignore[arg-type]
     )
@@ -473,6 +481,7 @@ def _description(
             robots,
             (rel, mappings, how),
             files.refused,
+            lambda: _bringup_description(files, found, given[1]),
         )
     except PackageNotFound as exc:  # .setup_assistant's or marm_setup.yaml's package: a finding
         return _missing_package(files, exc)
@@ -484,6 +493,47 @@ def _description(
         )
         return Description(None, why, ())
     return found_description
+
+
+def _bringup_srdf(
+    files: PackageFiles, paths: tuple[Path, ...], chosen: Description, launched: _Launched
+) -> tuple[str, tuple[tuple[str, str], ...], tuple[str, ...]] | None:
+    """(path relative to the package, xacro args, args of unknown value) of the SRDF the bringup
+    launch file that gave the robot sets beside it, when the package's own launch files set
+    none: move_group gets both from that launch file (rdf_loader.cpp l.86-99)."""
+    from marm_setup.untrusted import inside
+
+    own = launched.semantic is not None or launched.command("robot_description_semantic") is not None
+    builder = launched.builder
+    own = own or bool(builder and builder.explicit("robot_description_semantic"))
+    semantic = chosen.bringup.semantic if chosen.bringup is not None else None
+    if own or semantic is None or not inside(semantic[0], (files.root, *paths)) or not readable(semantic[0]):
+        return None
+    rel = Path(os.path.relpath(semantic[0], files.root)).as_posix()
+    return rel, semantic[1], semantic[2]
+
+
+def _bringup_description(
+    files: PackageFiles, found: _Setup, args: tuple[tuple[str, str], ...]
+) -> Description | None:
+    """The robot a bringup launch file of another package gives this one (package.bringup),
+    with --xacro-arg on top; None when no launch file does."""
+    from marm_setup.package.bringup import find_bringup_robot
+
+    robot = find_bringup_robot(found.name, files.root, found.paths, found.target)
+    if robot is None:
+        return None
+    merged = tuple(sorted({**dict(robot.args), **dict(args)}.items()))
+    return Description(robot.urdf, robot.origin, merged, bringup=robot)
+
+
+def _unread_args(
+    launched: _Launched, description: Description, parameter: str, given: Mapping[str, str] | None
+) -> tuple[str, ...]:
+    """Xacro args `parameter`'s file is passed with values only the run time gives: by the
+    package's launch files, or by the bringup launch file the robot came from (less --xacro-arg)."""
+    bringup = description.bringup.unread_args if description.bringup is not None else ()
+    return tuple(sorted({*launched.unread_args(parameter), *(a for a in bringup if a not in (given or {}))}))
 
 
 def _readable_description(files: PackageFiles, description: Description) -> Description:
@@ -672,11 +722,15 @@ def _built_srdf_args(
     return tuple(sorted({**literal, **dict(args)}.items())), built
 
 
-def _srdf_source(srdf: SrdfFile | None, launched: _Launched, guessed: bool) -> tuple[Source, ...]:
+def _srdf_source(
+    srdf: SrdfFile | None, launched: _Launched, guessed: bool, bringup: BringupRobot | None = None
+) -> tuple[Source, ...]:
     if srdf is None:
         return ()
     how = (
-        f"set as the semantic description by {launched.semantic.launch}"
+        f"set as the semantic description by {bringup.launch}, beside the robot"
+        if bringup is not None
+        else f"set as the semantic description by {launched.semantic.launch}"
         if launched.semantic and launched.semantic.file == srdf.path
         else SRDF_GUESSED
         if guessed

@@ -30,7 +30,7 @@ API = {
     "fingerprint": "robot_fingerprint",
     "ros2_control": (
         "ANY_MOCK HardwareArg JointInterfaces joint_interfaces MOCK_PLUGIN MOCK_PLUGINS on_mock_hardware "
-        "Ros2ControlSystem systems_in_urdf"
+        "Ros2ControlSystem simulator_parameter_files SIMULATOR_CONTROL_PLUGINS systems_in_urdf"
     ),
     "urdf": "strict_float",
     "sandbox": "ChildDied kill limit_memory picklable run_limited TimeLimitExceeded",
@@ -91,11 +91,13 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.ros2_control import ANY_MOCK as ANY_MOCK
     from marm_setup.robot.ros2_control import MOCK_PLUGIN as MOCK_PLUGIN
     from marm_setup.robot.ros2_control import MOCK_PLUGINS as MOCK_PLUGINS
+    from marm_setup.robot.ros2_control import SIMULATOR_CONTROL_PLUGINS as SIMULATOR_CONTROL_PLUGINS
     from marm_setup.robot.ros2_control import HardwareArg as HardwareArg
     from marm_setup.robot.ros2_control import JointInterfaces as JointInterfaces
     from marm_setup.robot.ros2_control import Ros2ControlSystem as Ros2ControlSystem
     from marm_setup.robot.ros2_control import joint_interfaces as joint_interfaces
     from marm_setup.robot.ros2_control import on_mock_hardware as on_mock_hardware
+    from marm_setup.robot.ros2_control import simulator_parameter_files as simulator_parameter_files
     from marm_setup.robot.ros2_control import systems_in_urdf as systems_in_urdf
     from marm_setup.robot.ros_packages import PackageIndex as PackageIndex
     from marm_setup.robot.ros_packages import PackageMap as PackageMap

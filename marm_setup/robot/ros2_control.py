@@ -108,6 +108,38 @@ def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
     return tuple(systems)
 
 
+# The simulator plugins that run a controller manager inside Gazebo Classic (gazebo_ros2_control)
+# and Gazebo / Ignition (gz_ros2_control, named ign_ros2_control on Humble), as a URDF's
+# `<gazebo><plugin filename=...>` names them ("lib" prefix and ".so" suffix optional).
+SIMULATOR_CONTROL_PLUGINS = frozenset(
+    {"gazebo_ros2_control", "gz_ros2_control-system", "ign_ros2_control-system"}
+)
+
+
+def simulator_parameter_files(xml: str) -> tuple[str, ...]:
+    """The parameter files a ros2_control simulator plugin of the URDF hands its controller
+    manager: each `<parameters>` of the `<plugin>` (under `<gazebo>`), passed as `--params-file`
+    (ros-controls/gazebo_ros2_control gazebo_ros2_control/src/gazebo_ros2_control_plugin.cpp
+    l.269-277 at 3e6d3f4; ros-controls/gz_ros2_control gz_ros2_control/src/gz_ros2_control_plugin.cpp
+    l.281-300 at e19b0ef), in document order; empty for unparsable XML."""
+    if not xml:
+        return ()
+    from lxml import etree
+
+    from marm_setup.robot.tinyxml import tinyxml_comments
+
+    try:
+        root = etree.fromstring(tinyxml_comments(xml).encode(), parser=etree.XMLParser(remove_comments=True))
+    except etree.XMLSyntaxError:
+        return ()
+    out = []
+    for plugin in root.iterfind("gazebo/plugin"):
+        name = plugin.get("filename", "").strip().rsplit("/", 1)[-1].removesuffix(".so").removeprefix("lib")
+        if name in SIMULATOR_CONTROL_PLUGINS:
+            out += [text for p in plugin.findall("parameters") if (text := (p.text or "").strip())]
+    return tuple(dict.fromkeys(out))
+
+
 def joint_interfaces(joint: Any) -> JointInterfaces:
     """The interfaces a `<joint>` element of a `<ros2_control>` lists (lxml element)."""
     return JointInterfaces(

@@ -19,6 +19,7 @@ from marm_setup.errors import InputError, MarmError, MeshNotFound, PackageNotFou
 from marm_setup.findings import INTERNAL, Finding, Location, error, sort_findings, warning
 from marm_setup.package import (
     ControllersFile,
+    DriverFile,
     MoveItPackage,
     launch_nodes,
     package_start_values,
@@ -598,23 +599,42 @@ def check_controllers(pkg: MoveItPackage, robot: RobotModel) -> list[Finding]:
             msg = "no MoveIt controller configuration (controllers.yaml / moveit_controllers.yaml)"
             out.append(warning("controller.none", "config", "", msg, "MoveIt can plan but not execute"))
         return out
+    simulated = simulator_drivers(pkg, robot)
     if uses_ros_control_interface(moveit):
         driver = pkg.ros2_controllers or pkg.ros_controllers
+        if driver is None and simulated:
+            driver, simulated = simulated[0], simulated[1:]
         out += check_ros_control_coverage(moveit, driver, pkg.srdf, robot)
         ros1 = driver is pkg.ros_controllers
         return out + (
-            check_driver_controllers(moveit, driver, robot, ros1=ros1) if driver is not None else []
+            check_driver_controllers(moveit, driver, robot, ros1=ros1, simulated=simulated)
+            if driver is not None
+            else []
         )
     out += _listed_controller_rules(pkg, moveit)
     out += check_moveit_controllers(moveit, robot)
     out += check_coverage(moveit, pkg.srdf, robot, pkg.alt_moveit_controllers)
     if pkg.ros2_controllers is not None:
-        out += check_driver_controllers(moveit, pkg.ros2_controllers, robot)
+        out += check_driver_controllers(moveit, pkg.ros2_controllers, robot, simulated=simulated)
+    elif simulated and pkg.ros_controllers is None:
+        out += check_driver_controllers(moveit, simulated[0], robot, simulated=simulated[1:])
     if pkg.ros_controllers is not None and pkg.ros_controllers.where.file != moveit.where.file:
         out += check_driver_controllers(moveit, pkg.ros_controllers, robot, ros1=True)
     if pkg.arbotix is not None:
         out += check_arbotix(pkg.arbotix, moveit, robot, gripper_nodes(pkg))
     return out
+
+
+def simulator_drivers(pkg: MoveItPackage, robot: RobotModel) -> tuple[DriverFile, ...]:
+    """ROS 2: the controller_manager parameter files the robot description's ros2_control
+    simulator plugin loads (`<gazebo><plugin filename="libgazebo_ros2_control.so">
+    <parameters>`, or gz_ros2_control's): in simulation, the controllers that run."""
+    from marm_setup.package import read_simulator_drivers
+    from marm_setup.robot import simulator_parameter_files
+
+    if pkg.target != Target.ROS2:
+        return ()
+    return read_simulator_drivers(simulator_parameter_files(robot.urdf_xml), pkg.root)
 
 
 def gripper_nodes(pkg: MoveItPackage) -> dict[str, tuple[str, str]]:

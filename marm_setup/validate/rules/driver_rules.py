@@ -27,9 +27,17 @@ NO_ACTION_CONTROLLERS = frozenset(
 
 
 def check_driver_controllers(
-    moveit: ControllersFile, driver: DriverFile, robot: RobotModel, *, ros1: bool = False
+    moveit: ControllersFile,
+    driver: DriverFile,
+    robot: RobotModel,
+    *,
+    ros1: bool = False,
+    simulated: tuple[DriverFile, ...] = (),
 ) -> list[Finding]:
-    """MoveIt's controllers exist in the driver file with a matching type, joints and action.
+    """MoveIt's controllers exist in the driver file with a matching type, joints and action;
+    one the driver file lacks is checked against the files the robot description's ros2_control
+    simulator plugin loads (`simulated`), where the controller manager that runs in simulation
+    finds it (gazebo_ros2_control_plugin.cpp l.269-277: each `<parameters>` is a --params-file).
 
     A driver file without controllers (the Setup Assistant's ROS 1 `ros_controllers.yaml` with
     only `hardware_interface` / `generic_hw_control_loop`, moveit/moveit `moveit_setup_assistant/
@@ -58,7 +66,11 @@ def check_driver_controllers(
     if ros1 and not any(_may_serve_action(d) for d in driver.controllers):
         return out
     for c in moveit.controllers:
-        out += _check_against_driver(moveit, driver, c)
+        sim = next((f for f in simulated if f.controller(c.name) is not None), None)
+        if driver.controller(c.name) is None and sim is not None:
+            out += _check_against_driver(moveit, sim, c)
+        else:
+            out += _check_against_driver(moveit, driver, c, simulated)
     return out
 
 
@@ -68,11 +80,13 @@ def _may_serve_action(d: DriverController) -> bool:
     return d.type.rsplit("/", 1)[-1] not in NO_ACTION_CONTROLLERS
 
 
-def _check_against_driver(moveit: ControllersFile, driver: DriverFile, c: MoveItController) -> list[Finding]:
+def _check_against_driver(
+    moveit: ControllersFile, driver: DriverFile, c: MoveItController, simulated: tuple[DriverFile, ...] = ()
+) -> list[Finding]:
     file = driver.where.file
     d: DriverController | None = driver.controller(c.name)
     if d is None:
-        return [_missing(moveit, driver, c)]
+        return [_missing(moveit, driver, c, simulated)]
     suffix = d.type.rsplit("/", 1)[-1]
     served = DRIVER_CONTROLLER_TYPES.get(d.type) or DRIVER_CONTROLLERS.get(suffix)
     if served is None:
@@ -94,7 +108,9 @@ def _check_against_driver(moveit: ControllersFile, driver: DriverFile, c: MoveIt
     return out
 
 
-def _missing(moveit: ControllersFile, driver: DriverFile, c: MoveItController) -> Finding:
+def _missing(
+    moveit: ControllersFile, driver: DriverFile, c: MoveItController, simulated: tuple[DriverFile, ...] = ()
+) -> Finding:
     """MoveIt's controller `c` is not in the driver file. MoveIt's simple controller manager
     connects to the action `<name>/<action_ns>` whoever serves it (moveit2 humble
     `moveit_simple_controller_manager/src/moveit_simple_controller_manager.cpp` l.111-182: one
@@ -107,6 +123,8 @@ def _missing(moveit: ControllersFile, driver: DriverFile, c: MoveItController) -
     package's launch file), which validate cannot see: a warning."""
     known = ", ".join(sorted(x.name for x in driver.controllers)) or "none"
     msg = f"controller '{c.name}' is not in {driver.where.file} (has: {known})"
+    if simulated:
+        msg += f" nor in {', '.join(f.where.file for f in simulated)}, which the simulator plugin loads"
     joints = set(c.joints)
     if any(_may_drive(d, joints) for d in driver.controllers):
         return error("controller.driver-missing", moveit.where.file, c.element, msg)

@@ -1,0 +1,145 @@
+"""A config package with no launch file of its own (denso_robot_moveit_config, flexiv_moveit_config,
+tm_moveit_config_*): a bringup package's launch file starts move_group with the config's SRDF and
+YAML and its own `robot_description`, which is what MoveIt loads (moveit2 rdf_loader.cpp
+l.86-99 reads the node's `robot_description` and `robot_description_semantic`). validate exited
+2 asking for --urdf; it now takes that launch file's robot, says which file, and without such a
+launch file keeps the exit-2 message."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from marm_setup.errors import InputError
+from marm_setup.package import read_package
+
+URDF = """<robot name="{name}"><link name="base"/><link name="l1"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+  <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>
+"""
+SRDF_XACRO = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="$(arg name)">
+  <xacro:arg name="name" default=""/>
+  <group name="arm"><joint name="j1"/></group>
+</robot>
+"""
+BRINGUP = """from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import Command, FindExecutable, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    config_package = LaunchConfiguration("moveit_config_package")
+    description = Command([
+        PathJoinSubstitution([FindExecutable(name="xacro")]), " ",
+        PathJoinSubstitution([FindPackageShare("tri_description"), "urdf", "tri.urdf.xacro"]),
+        " robot_ip:=", LaunchConfiguration("robot_ip"),
+    ])
+    semantic = Command([
+        PathJoinSubstitution([FindExecutable(name="xacro")]), " ",
+        PathJoinSubstitution([FindPackageShare(config_package), "srdf", "tri.srdf.xacro"]),
+        " name:=tri",
+    ])
+    return LaunchDescription([
+        DeclareLaunchArgument("moveit_config_package", default_value="tri_moveit_config"),
+        DeclareLaunchArgument("robot_ip"),
+        Node(
+            package="moveit_ros_move_group",
+            executable="move_group",
+            parameters=[{"robot_description": description}, {"robot_description_semantic": semantic}],
+        ),
+    ])
+"""
+URDF_XACRO = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="tri">
+  <xacro:arg name="robot_ip" default=""/>
+  <link name="base"/><link name="l1"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
+  <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>
+"""
+
+
+def _package_xml(name: str) -> str:
+    return (
+        f'<?xml version="1.0"?><package format="3"><name>{name}</name><version>0.0.0</version>'
+        '<description>t</description><maintainer email="a@b.c">a</maintainer><license>BSD</license>'
+        "<buildtool_depend>ament_cmake</buildtool_depend><export><build_type>ament_cmake</build_type></export>"
+        "</package>\n"
+    )
+
+
+def _package(folder: Path, files: dict[str, str]) -> Path:
+    for rel, text in {"package.xml": _package_xml(folder.name), **files}.items():
+        (folder / rel).parent.mkdir(parents=True, exist_ok=True)
+        (folder / rel).write_text(text, encoding="utf-8")
+    return folder
+
+
+def _repository(tmp_path: Path, bringups: dict[str, str]) -> Path:
+    """A vendor repository: description, config (no launch folder) and bringup packages."""
+    repo = tmp_path / "vendor_ros2"
+    _package(repo / "tri_description", {"urdf/tri.urdf.xacro": URDF_XACRO, "urdf/old.urdf": URDF})
+    for name, launch in bringups.items():
+        _package(repo / name, {f"launch/{name}.launch.py": launch})
+    return _package(
+        repo / "tri_moveit_config",
+        {"srdf/tri.srdf.xacro": SRDF_XACRO, "config/kinematics.yaml": "arm: {}\n"},
+    )
+
+
+def test_the_bringups_robot_and_srdf_are_what_move_group_loads(tmp_path: Path):
+    config = _repository(tmp_path, {"tri_bringup": BRINGUP})
+    found = read_package(config)
+    assert found.urdf == config.parent / "tri_description" / "urdf" / "tri.urdf.xacro"
+    assert found.urdf_origin.startswith("robot_description in tri_bringup/launch/tri_bringup.launch.py (")
+    assert found.unread_xacro_args == ("robot_ip",)
+    assert found.srdf_file is not None and found.srdf_file.path == "srdf/tri.srdf.xacro"
+    assert found.srdf_file.srdf is not None and found.srdf_file.srdf.robot_name == "tri"  # name:=tri
+    assert not [f for f in found.problems if f.severity == "error"]
+
+
+def test_of_several_bringups_the_fewest_unknown_args_win_and_the_summary_says_so(tmp_path: Path):
+    known = BRINGUP.replace('LaunchConfiguration("robot_ip")', '"10.0.0.2"')
+    config = _repository(tmp_path, {"a_bringup": BRINGUP, "b_bringup": known})
+    found = read_package(config)
+    assert found.urdf_origin.startswith("robot_description in b_bringup/launch/b_bringup.launch.py (")
+    assert "chosen among 2 such files" in found.urdf_origin
+    assert found.xacro_args == (("robot_ip", "10.0.0.2"),)
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        ("tri_moveit_config", "other_moveit_config"),  # launches another config package
+        ('executable="move_group"', 'executable="talker"'),  # starts no MoveIt node...
+    ],
+)
+def test_without_a_launch_file_starting_moveit_with_it_the_exit_2_message_stays(tmp_path: Path, change):
+    launch = BRINGUP.replace(*change)
+    if change[1] == 'executable="talker"':  # ...and hands no semantic description to one
+        launch = launch.replace(', {"robot_description_semantic": semantic}', "")
+    config = _repository(tmp_path, {"tri_bringup": launch})
+    with pytest.raises(InputError, match="cannot find the robot description") as info:
+        read_package(config)
+    assert info.value.needs == "--urdf"
+
+
+XML_BRINGUP = """<launch>
+  <arg name="robot_ip" default="10.0.0.3"/>
+  <node pkg="moveit_ros_move_group" exec="move_group">
+    <param name="robot_description"
+      value="$(command 'xacro $(find-pkg-share tri_description)/urdf/tri.urdf.xacro robot_ip:=$(var robot_ip)')"/>
+    <param from="$(find-pkg-share tri_moveit_config)/config/kinematics.yaml"/>
+  </node>
+</launch>
+"""
+
+
+def test_a_ros2_xml_bringup_gives_its_robot_too(tmp_path: Path):
+    config = _repository(tmp_path, {})
+    _package(config.parent / "tri_bringup", {"launch/move_group.launch.xml": XML_BRINGUP})
+    found = read_package(config)
+    assert found.urdf == config.parent / "tri_description" / "urdf" / "tri.urdf.xacro"
+    assert found.urdf_origin.startswith("robot_description in tri_bringup/launch/move_group.launch.xml (")
+    assert found.xacro_args == (("robot_ip", "10.0.0.3"),)
