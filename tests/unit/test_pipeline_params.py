@@ -6,6 +6,7 @@ by validate in any package whose distro is known."""
 from __future__ import annotations
 
 import dataclasses
+import re
 from pathlib import Path
 
 import pytest
@@ -80,7 +81,8 @@ def test_a_sub_namespace_is_written_nested_and_doubles_as_doubles():
     ("distro", "params", "element", "message"),
     [
         ("humble", (("ompl", (("jigle_fraction", 0.1),)),), "pipeline_parameters.ompl.jigle_fraction",
-         "unknown parameter 'jigle_fraction' of pipeline ompl (valid on humble: request_adapters, start_state_max_bounds_error"),
+         "unknown parameter 'jigle_fraction' of pipeline ompl (valid on humble: request_adapters, path_tolerance, "
+         "resample_dt, min_angle_change, start_state_max_bounds_error, start_state_max_dt, jiggle_fraction"),
         ("humble", (("stomp", (("stomp_moveit.num_timesteps", 60),)),), "pipeline_parameters.stomp.stomp_moveit.num_timesteps",
          "STOMP declares its parameters in the pipeline's namespace: write num_timesteps"),
         ("humble", (("stomp", (("num_timesteps", 60.0),)),), "pipeline_parameters.stomp.num_timesteps",
@@ -122,6 +124,26 @@ def test_the_setup_file_takes_them_nested_or_dotted_and_writes_them_back():
     nested = {**data, "pipeline_parameters": {"ompl": {"totg": {"path_tolerance": 0.2}}}}
     assert setup_from_dict(nested).pipeline_parameters == (("ompl", (("totg.path_tolerance", 0.2),)),)
     assert setup_from_dict(data) == model
+
+
+def test_the_parameters_are_moveits_declarations_with_their_sources():
+    """Each parameter MoveIt reads comes from the declared-parameter tables with its source line;
+    CHOMP's defaults marm-setup writes are CHOMP's own fallbacks; STOMP on Humble (built from
+    source) is declared as on Jazzy."""
+    from marm_setup.moveit_params.pipeline_params import CHOMP_DEFAULTS, parameter
+
+    for distro in ("humble", "jazzy", "rolling"):
+        for p in known_parameters("chomp", distro) + known_parameters("stomp", distro):
+            assert re.fullmatch(r"[\w./-]+:\d+", p.source) or p.name == "capabilities", (distro, p)
+    chomp = {p.name: p for p in known_parameters("chomp", "humble")}
+    assert {name: chomp[name].default for name, _ in CHOMP_DEFAULTS} == dict(CHOMP_DEFAULTS)
+    assert chomp["max_iterations"].source.startswith(
+        "moveit_planners/chomp/chomp_interface/src/chomp_interface.cpp:"
+    )
+    assert known_parameters("stomp", "humble")[-9:] == known_parameters("stomp", "jazzy")[-9:]
+    jiggle = parameter("ompl", "humble", "jiggle_fraction")
+    assert jiggle is not None and (jiggle.type, jiggle.default) == ("double", 0.02)
+    assert jiggle.source.endswith("fix_start_state_collision.cpp:61")
 
 
 def test_defaults_are_moveits_own_on_humble():

@@ -1,5 +1,6 @@
 """A planning pipeline's parameters as its distro's MoveIt reads them (ROS 2 packages whose
-distro is known; names, types and sources: moveit_params/pipeline_params.py).
+distro is known; names, types, bounds and sources: MoveIt's declared-parameter tables,
+moveit_params/data/<family>.yaml, as moveit_params/pipeline_params.py reads them).
 
 - A value of another type than MoveIt reads is an error: Humble's rclcpp typed getters throw
   "expected [double] got [integer]" (its adapters' getParam, planning_request_adapter.h l.99;
@@ -22,14 +23,16 @@ from typing import TYPE_CHECKING
 from marm_setup.findings import Finding, error, warning
 from marm_setup.moveit_params import (
     ADAPTER_FAMILIES,
+    LOGS,
     PIPELINES,
     STRUCTURE_KEYS,
+    bounds_problem,
     flatten,
+    kind_problem,
     known_parameters,
     other_distros_reading,
     parameter,
     unknown_name_hint,
-    value_problem,
 )
 
 if TYPE_CHECKING:
@@ -70,11 +73,11 @@ def _check_one(
             return []
         msg = f"MoveIt reads no {name} in a {key} pipeline's namespace on {distro}"
         return [warning("pipeline.unknown-parameter", file, where, msg, unknown_name_hint(key, distro, name))]
-    problem = value_problem(known, value, int_as_double=False)
+    problem = kind_problem(known, value, int_as_double=False)
+    if problem is None and (problem := bounds_problem(known, value)) is not None and known.on_wrong == LOGS:
+        return [warning("pipeline.parameter-value", file, where, problem)]  # MoveIt takes its default
     if problem is None:
         return []
-    if known.choices and isinstance(value, str):  # MoveIt takes its default instead
-        return [warning("pipeline.parameter-value", file, where, problem)]
     return [error("pipeline.parameter-type", file, where, f"{problem}: the pipeline fails to load")]
 
 
