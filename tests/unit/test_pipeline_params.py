@@ -193,3 +193,24 @@ def test_validate_reads_the_parameters_as_the_distro_does(tmp_path):
     assert not nested.is_error and nested.element.endswith("stomp.stomp_moveit.num_timesteps")
     (jazzy_only,) = found["pipeline.other-distro-parameter"]
     assert not jazzy_only.is_error and "jazzy's does" in jazzy_only.message
+
+
+def test_validate_a_chomp_setting_in_a_pipeline_not_named_chomp_is_never_read(tmp_path):
+    """CHOMP reads `chomp.<name>` whatever its pipeline's name (chomp_interface.cpp jazzy
+    l.57-87): in a pipeline named otherwise each setting is unread (a warning), and a value of
+    the wrong type there stops nothing."""
+    out = tmp_path / "marm_moveit_config"
+    model, robot = with_params("jazzy", (), ("ompl", "chomp"))
+    model = with_collision_matrix(model, robot, trials=200, seed=0)
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    moveit = out / "config" / "moveit.yaml"
+    assert not [r for r in rules(out) if r.startswith("pipeline.")]
+    edit(moveit, "      - chomp\n", "      - chomp_fast\n")
+    edit(moveit, "    chomp:\n", "    chomp_fast:\n")
+    edit(moveit, "max_iterations: 200", "max_iterations: 2.5")
+    found = rules(out)
+    assert "pipeline.parameter-type" not in found
+    unread = {f.element.rsplit(".", 1)[-1]: f for f in found["pipeline.unknown-parameter"]}
+    assert {"max_iterations", "planning_time_limit", "learning_rate"} <= set(unread)
+    assert not unread["max_iterations"].is_error
+    assert "CHOMP reads chomp.max_iterations" in unread["max_iterations"].message

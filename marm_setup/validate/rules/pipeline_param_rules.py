@@ -12,7 +12,9 @@ moveit_params/data/<family>.yaml, as moveit_params/pipeline_params.py reads them
 - A `stomp_moveit:` block in a STOMP pipeline: a warning, STOMP never reads it (its parameters
   are declared in the pipeline's namespace).
 - A name only the other distro reads, or, where every adapter is MoveIt's own (an adapter of the
-  user's own may read any name), a name MoveIt reads nowhere there: a warning.
+  user's own may read any name), a name MoveIt reads nowhere there: a warning. So is a CHOMP
+  setting in a pipeline not named chomp: CHOMP reads `chomp.<name>` whatever its pipeline's name
+  (chomp_interface.cpp humble l.50-80, jazzy l.57-87), so the value is never read.
 """
 
 from __future__ import annotations
@@ -56,8 +58,28 @@ def check_pipeline_parameters(pipeline: PlanningPipeline, distro: str) -> list[F
             msg = f"STOMP never reads {name}: it declares {name.split('.', 1)[1]} in the pipeline's namespace"
             out.append(warning("pipeline.stomp-namespace", file, where, msg, f"move it up one level ({key})"))
             continue
-        out += _check_one(file, key, distro, name, value, where, own_adapters_only(data))
+        unread = _fixed_namespace(file, key, distro, name, where, pipeline.name)
+        out += unread or _check_one(file, key, distro, name, value, where, own_adapters_only(data))
     return out
+
+
+def _fixed_namespace(
+    file: str, key: str, distro: str, name: str, where: str, namespace: str
+) -> list[Finding]:
+    """A parameter the planner reads in a namespace of its own whatever its pipeline's name
+    (CHOMP: `chomp.<name>`, chomp_interface.cpp humble l.50-80, jazzy l.57-87), given in a
+    pipeline of another name: never read, the planner keeps its default."""
+    known = parameter(key, distro, name)
+    if known is None or not known.namespace or known.namespace == namespace:
+        return []
+    msg = (
+        f"{key.upper()} reads {known.namespace}.{name} whatever its pipeline's name: "
+        f"{namespace}.{name} is never read (it uses {known.default!r})"
+    )
+    hint = (
+        f"give it under {known.namespace}: at move_group's top level, or name the pipeline {known.namespace}"
+    )
+    return [warning("pipeline.unknown-parameter", file, where, msg, hint)]
 
 
 def _check_one(
