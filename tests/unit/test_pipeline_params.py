@@ -214,3 +214,27 @@ def test_validate_a_chomp_setting_in_a_pipeline_not_named_chomp_is_never_read(tm
     assert {"max_iterations", "planning_time_limit", "learning_rate"} <= set(unread)
     assert not unread["max_iterations"].is_error
     assert "CHOMP reads chomp.max_iterations" in unread["max_iterations"].message
+
+
+def test_validate_checks_jazzys_declarations_types_bounds_and_choices(tmp_path):
+    """Jazzy's generate_parameter_library declarations (the jazzy table): an integer for the
+    double totg.path_tolerance (default_response_adapter_params.yaml) and a negative
+    exponentiated_cost_sensitivity (stomp_moveit.yaml gt_eq 0.0) stop the pipeline; an unknown
+    CHOMP initialization method is logged and quintic-spline kept (chomp_interface.cpp)."""
+    out = tmp_path / "marm_moveit_config"
+    chomp = (("chomp", (("trajectory_initialization_method", "linear"),)),)
+    model, robot = with_params("jazzy", SEED_LIKE[1:] + chomp, ("ompl", "stomp", "chomp"))
+    model = with_collision_matrix(model, robot, trials=200, seed=0)
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    moveit = out / "config" / "moveit.yaml"
+    assert not [r for r in rules(out) if r.startswith("pipeline.")]
+    edit(moveit, "    ompl:\n", "    ompl:\n      totg:\n        path_tolerance: 1\n")
+    edit(moveit, "exponentiated_cost_sensitivity: 0.8", "exponentiated_cost_sensitivity: -0.5")
+    edit(moveit, "trajectory_initialization_method: linear", "trajectory_initialization_method: spline")
+    found = rules(out)
+    errors = {f.element.rsplit(".", 1)[-1]: f.message for f in found["pipeline.parameter-type"]}
+    assert errors.keys() == {"path_tolerance", "exponentiated_cost_sensitivity"}
+    assert errors["path_tolerance"].startswith("expected a double, got 1")
+    assert errors["exponentiated_cost_sensitivity"].startswith("must be at least 0, got -0.5")
+    (method,) = found["pipeline.parameter-value"]
+    assert not method.is_error and "uses quintic-spline" in method.message
