@@ -25,9 +25,9 @@ API = {
         "DRIVERS FORWARD_POSITION KDL_PLUGIN SERVO_COMMAND_IN_TYPES SERVO_OUTPUTS"
     ),
     "pipeline_params": (
-        "ADAPTER_FAMILIES effective_parameters flatten known_parameters other_distros_reading parameter "
-        "STRUCTURE_KEYS infinite_problem unknown_name_hint value_problem PipelineParameterValue "
-        "parameter_problem"
+        "ADAPTER_FAMILIES bounds_problem effective_parameters flatten kind_problem known_parameters "
+        "other_distros_reading parameter planner_of STRUCTURE_KEYS infinite_problem unknown_name_hint value_problem "
+        "PipelineParameter PipelineParameterValue parameter_problem"
     ),
     "driver_params": "CONTROLLER_MANAGER driver_rows",
     "move_group_params": (
@@ -49,14 +49,18 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.moveit_params.move_group_params import written_values as written_values
     from marm_setup.moveit_params.pipeline_params import ADAPTER_FAMILIES as ADAPTER_FAMILIES
     from marm_setup.moveit_params.pipeline_params import STRUCTURE_KEYS as STRUCTURE_KEYS
+    from marm_setup.moveit_params.pipeline_params import PipelineParameter as PipelineParameter
     from marm_setup.moveit_params.pipeline_params import PipelineParameterValue as PipelineParameterValue
+    from marm_setup.moveit_params.pipeline_params import bounds_problem as bounds_problem
     from marm_setup.moveit_params.pipeline_params import effective_parameters as effective_parameters
     from marm_setup.moveit_params.pipeline_params import flatten as flatten
     from marm_setup.moveit_params.pipeline_params import infinite_problem as infinite_problem
+    from marm_setup.moveit_params.pipeline_params import kind_problem as kind_problem
     from marm_setup.moveit_params.pipeline_params import known_parameters as known_parameters
     from marm_setup.moveit_params.pipeline_params import other_distros_reading as other_distros_reading
     from marm_setup.moveit_params.pipeline_params import parameter as parameter
     from marm_setup.moveit_params.pipeline_params import parameter_problem as parameter_problem
+    from marm_setup.moveit_params.pipeline_params import planner_of as planner_of
     from marm_setup.moveit_params.pipeline_params import unknown_name_hint as unknown_name_hint
     from marm_setup.moveit_params.pipeline_params import value_problem as value_problem
     from marm_setup.moveit_params.tables import FAMILIES as FAMILIES

@@ -229,3 +229,19 @@ def test_a_plugin_of_a_package_on_the_package_path_is_a_warning(fresh, tmp_path)
         "<package><name>zeta_arm_kinematics</name></package>\n"
     )
     assert only(findings(pkg)) == ("params.plugin", "warning", MOVEIT_YAML, element)
+
+
+def test_chomps_own_namespace_is_checked_where_a_pipeline_loads_chomp(fresh, tmp_path):
+    """CHOMP reads `chomp.<name>` with get_parameter_or whatever its pipeline's name
+    (chomp_interface.cpp jazzy l.57-87; the table's rows, curated.yaml): a pipeline of another
+    name loading CHOMP makes it read the top-level `chomp.max_iterations`, an int, and a double
+    there throws; with no pipeline loading CHOMP nothing reads it."""
+    top = "    default_planning_pipeline: ompl\n"
+    pkg = edited(fresh, tmp_path, "jazzy", MOVEIT_YAML, top, top + "    chomp:\n      max_iterations: 2.5\n")
+    assert findings(pkg) == []
+    replace_text(
+        pkg, MOVEIT_YAML, "pilz_industrial_motion_planner/CommandPlanner", "chomp_interface/CHOMPPlanner"
+    )
+    found = findings(pkg)
+    assert only(found) == ("params.type", "error", MOVEIT_YAML, f"{PARAMS}chomp.max_iterations")
+    assert "chomp_interface.cpp:58" in found[0].hint

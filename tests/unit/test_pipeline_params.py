@@ -6,6 +6,7 @@ by validate in any package whose distro is known."""
 from __future__ import annotations
 
 import dataclasses
+import re
 from pathlib import Path
 
 import pytest
@@ -80,7 +81,8 @@ def test_a_sub_namespace_is_written_nested_and_doubles_as_doubles():
     ("distro", "params", "element", "message"),
     [
         ("humble", (("ompl", (("jigle_fraction", 0.1),)),), "pipeline_parameters.ompl.jigle_fraction",
-         "unknown parameter 'jigle_fraction' of pipeline ompl (valid on humble: request_adapters, start_state_max_bounds_error"),
+         "unknown parameter 'jigle_fraction' of pipeline ompl (valid on humble: request_adapters, path_tolerance, "
+         "resample_dt, min_angle_change, start_state_max_bounds_error, start_state_max_dt, jiggle_fraction"),
         ("humble", (("stomp", (("stomp_moveit.num_timesteps", 60),)),), "pipeline_parameters.stomp.stomp_moveit.num_timesteps",
          "STOMP declares its parameters in the pipeline's namespace: write num_timesteps"),
         ("humble", (("stomp", (("num_timesteps", 60.0),)),), "pipeline_parameters.stomp.num_timesteps",
@@ -122,6 +124,26 @@ def test_the_setup_file_takes_them_nested_or_dotted_and_writes_them_back():
     nested = {**data, "pipeline_parameters": {"ompl": {"totg": {"path_tolerance": 0.2}}}}
     assert setup_from_dict(nested).pipeline_parameters == (("ompl", (("totg.path_tolerance", 0.2),)),)
     assert setup_from_dict(data) == model
+
+
+def test_the_parameters_are_moveits_declarations_with_their_sources():
+    """Each parameter MoveIt reads comes from the declared-parameter tables with its source line;
+    CHOMP's defaults marm-setup writes are CHOMP's own fallbacks; STOMP on Humble (built from
+    source) is declared as on Jazzy."""
+    from marm_setup.moveit_params.pipeline_params import CHOMP_DEFAULTS, parameter
+
+    for distro in ("humble", "jazzy", "rolling"):
+        for p in known_parameters("chomp", distro) + known_parameters("stomp", distro):
+            assert re.fullmatch(r"[\w./-]+:\d+", p.source) or p.name == "capabilities", (distro, p)
+    chomp = {p.name: p for p in known_parameters("chomp", "humble")}
+    assert {name: chomp[name].default for name, _ in CHOMP_DEFAULTS} == dict(CHOMP_DEFAULTS)
+    assert chomp["max_iterations"].source.startswith(
+        "moveit_planners/chomp/chomp_interface/src/chomp_interface.cpp:"
+    )
+    assert known_parameters("stomp", "humble")[-9:] == known_parameters("stomp", "jazzy")[-9:]
+    jiggle = parameter("ompl", "humble", "jiggle_fraction")
+    assert jiggle is not None and (jiggle.type, jiggle.default) == ("double", 0.02)
+    assert jiggle.source.endswith("fix_start_state_collision.cpp:61")
 
 
 def test_defaults_are_moveits_own_on_humble():
@@ -171,3 +193,48 @@ def test_validate_reads_the_parameters_as_the_distro_does(tmp_path):
     assert not nested.is_error and nested.element.endswith("stomp.stomp_moveit.num_timesteps")
     (jazzy_only,) = found["pipeline.other-distro-parameter"]
     assert not jazzy_only.is_error and "jazzy's does" in jazzy_only.message
+
+
+def test_validate_a_chomp_setting_in_a_pipeline_not_named_chomp_is_never_read(tmp_path):
+    """CHOMP reads `chomp.<name>` whatever its pipeline's name (chomp_interface.cpp jazzy
+    l.57-87): in a pipeline named otherwise each setting is unread (a warning), and a value of
+    the wrong type there stops nothing."""
+    out = tmp_path / "marm_moveit_config"
+    model, robot = with_params("jazzy", (), ("ompl", "chomp"))
+    model = with_collision_matrix(model, robot, trials=200, seed=0)
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    moveit = out / "config" / "moveit.yaml"
+    assert not [r for r in rules(out) if r.startswith("pipeline.")]
+    edit(moveit, "      - chomp\n", "      - chomp_fast\n")
+    edit(moveit, "    chomp:\n", "    chomp_fast:\n")
+    edit(moveit, "max_iterations: 200", "max_iterations: 2.5")
+    found = rules(out)
+    assert "pipeline.parameter-type" not in found
+    unread = {f.element.rsplit(".", 1)[-1]: f for f in found["pipeline.unknown-parameter"]}
+    assert {"max_iterations", "planning_time_limit", "learning_rate"} <= set(unread)
+    assert not unread["max_iterations"].is_error
+    assert "CHOMP reads chomp.max_iterations" in unread["max_iterations"].message
+
+
+def test_validate_checks_jazzys_declarations_types_bounds_and_choices(tmp_path):
+    """Jazzy's generate_parameter_library declarations (the jazzy table): an integer for the
+    double totg.path_tolerance (default_response_adapter_params.yaml) and a negative
+    exponentiated_cost_sensitivity (stomp_moveit.yaml gt_eq 0.0) stop the pipeline; an unknown
+    CHOMP initialization method is logged and quintic-spline kept (chomp_interface.cpp)."""
+    out = tmp_path / "marm_moveit_config"
+    chomp = (("chomp", (("trajectory_initialization_method", "linear"),)),)
+    model, robot = with_params("jazzy", SEED_LIKE[1:] + chomp, ("ompl", "stomp", "chomp"))
+    model = with_collision_matrix(model, robot, trials=200, seed=0)
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    moveit = out / "config" / "moveit.yaml"
+    assert not [r for r in rules(out) if r.startswith("pipeline.")]
+    edit(moveit, "    ompl:\n", "    ompl:\n      totg:\n        path_tolerance: 1\n")
+    edit(moveit, "exponentiated_cost_sensitivity: 0.8", "exponentiated_cost_sensitivity: -0.5")
+    edit(moveit, "trajectory_initialization_method: linear", "trajectory_initialization_method: spline")
+    found = rules(out)
+    errors = {f.element.rsplit(".", 1)[-1]: f.message for f in found["pipeline.parameter-type"]}
+    assert errors.keys() == {"path_tolerance", "exponentiated_cost_sensitivity"}
+    assert errors["path_tolerance"].startswith("expected a double, got 1")
+    assert errors["exponentiated_cost_sensitivity"].startswith("must be at least 0, got -0.5")
+    (method,) = found["pipeline.parameter-value"]
+    assert not method.is_error and "uses quintic-spline" in method.message

@@ -12,6 +12,9 @@ parameters of the package's distro family (marm_setup/moveit_params, pinned Move
   the ParamListener throws, the node stops; severity as for params.type.
 - params.unknown (warning): a key MoveIt never reads inside a namespace it owns
   (trajectory_execution, moveit_simple_controller_manager.<controller>, ...), with a did-you-mean.
+- A planner's parameters in a namespace of its own (CHOMP reads `chomp.<name>` whatever its
+  pipeline's name: chomp_interface.cpp humble l.50-80, jazzy l.57-87) are checked only where a
+  pipeline loads that planner; with none, nothing reads them.
 - params.plugin (error): a planner, adapter, kinematics solver, controller manager, capability
   or servo smoothing filter class that the family's pluginlib files do not export and that is no
   known third-party plugin: pluginlib cannot load it.
@@ -33,10 +36,12 @@ from typing import TYPE_CHECKING
 from marm_setup.findings import Finding, error, warning
 from marm_setup.moveit_params import (
     LOGS,
+    PIPELINES,
     ParamRow,
     Table,
     family_of,
     load_table,
+    planner_of,
     type_problem,
     validator_problem,
 )
@@ -192,13 +197,13 @@ def _instances(received: list[Received]) -> dict[str, set[str]]:
         values = [r.value for r in received if r.node == "move_group" and r.name == name]
         return {str(v) for value in values if isinstance(value, list) for v in value}
 
-    pipelines = listed("planning_pipelines") | {
-        r.name.split(".", 1)[0]
-        for r in received
-        if r.name.endswith((".planning_plugin", ".planning_plugins"))
-    }
+    loading = [r for r in received if r.name.endswith((".planning_plugin", ".planning_plugins"))]
     return {
-        "pipeline": pipelines,
+        "pipeline": listed("planning_pipelines") | {r.name.split(".", 1)[0] for r in loading},
+        # not a placeholder: the planner plugins the pipelines load
+        "planner_plugin": {
+            str(v) for r in loading for v in (r.value if isinstance(r.value, list) else [r.value])
+        },
         "sensor": listed("sensors"),
         "controller": listed("moveit_simple_controller_manager.controller_names"),
         "plugin_package": {"moveit_simple_controller_manager", "moveit_ros_control_interface"},
@@ -229,6 +234,8 @@ def _check_one(r: Received, table: Table, instances: dict[str, set[str]]) -> lis
     row = _row(r, table, instances)
     if row is None:
         return _unknown(r, table, instances)
+    if _unloaded_planner(row, instances):
+        return []
     if row.name.endswith(CHECKED_ELSEWHERE) or r.value in ([], {}, None):  # empty: ros2_params_rules
         return []
     problem = type_problem(row, r.value)
@@ -241,6 +248,15 @@ def _check_one(r: Received, table: Table, instances: dict[str, set[str]]) -> lis
             return []  # kinematics_rules reports non-positive timeouts and resolutions
     make = warning if row.on_wrong == LOGS else error
     return [make(rule, r.file, r.element, f"{problem}: {_consequence(row)}", _cite(row, table))]
+
+
+def _unloaded_planner(row: ParamRow, instances: dict[str, set[str]]) -> bool:
+    """A row a planner reads in a namespace of its own (CHOMP's `chomp.<name>`, whatever its
+    pipeline's name: chomp_interface.cpp) while no pipeline loads that planner: nothing reads it."""
+    planner = planner_of(row)
+    if planner is None or not row.name.startswith(f"{PIPELINES[planner].namespace}."):
+        return False
+    return PIPELINES[planner].plugin_ros2 not in instances["planner_plugin"]
 
 
 def _limits_rules_integer(r: Received, row: ParamRow) -> bool:

@@ -1,5 +1,6 @@
 """A planning pipeline's parameters as its distro's MoveIt reads them (ROS 2 packages whose
-distro is known; names, types and sources: moveit_params/pipeline_params.py).
+distro is known; names, types, bounds and sources: MoveIt's declared-parameter tables,
+moveit_params/data/<family>.yaml, as moveit_params/pipeline_params.py reads them).
 
 - A value of another type than MoveIt reads is an error: Humble's rclcpp typed getters throw
   "expected [double] got [integer]" (its adapters' getParam, planning_request_adapter.h l.99;
@@ -11,7 +12,9 @@ distro is known; names, types and sources: moveit_params/pipeline_params.py).
 - A `stomp_moveit:` block in a STOMP pipeline: a warning, STOMP never reads it (its parameters
   are declared in the pipeline's namespace).
 - A name only the other distro reads, or, where every adapter is MoveIt's own (an adapter of the
-  user's own may read any name), a name MoveIt reads nowhere there: a warning.
+  user's own may read any name), a name MoveIt reads nowhere there: a warning. So is a CHOMP
+  setting in a pipeline not named chomp: CHOMP reads `chomp.<name>` whatever its pipeline's name
+  (chomp_interface.cpp humble l.50-80, jazzy l.57-87), so the value is never read.
 """
 
 from __future__ import annotations
@@ -22,14 +25,16 @@ from typing import TYPE_CHECKING
 from marm_setup.findings import Finding, error, warning
 from marm_setup.moveit_params import (
     ADAPTER_FAMILIES,
+    LOGS,
     PIPELINES,
     STRUCTURE_KEYS,
+    bounds_problem,
     flatten,
+    kind_problem,
     known_parameters,
     other_distros_reading,
     parameter,
     unknown_name_hint,
-    value_problem,
 )
 
 if TYPE_CHECKING:
@@ -53,8 +58,28 @@ def check_pipeline_parameters(pipeline: PlanningPipeline, distro: str) -> list[F
             msg = f"STOMP never reads {name}: it declares {name.split('.', 1)[1]} in the pipeline's namespace"
             out.append(warning("pipeline.stomp-namespace", file, where, msg, f"move it up one level ({key})"))
             continue
-        out += _check_one(file, key, distro, name, value, where, own_adapters_only(data))
+        unread = _fixed_namespace(file, key, distro, name, where, pipeline.name)
+        out += unread or _check_one(file, key, distro, name, value, where, own_adapters_only(data))
     return out
+
+
+def _fixed_namespace(
+    file: str, key: str, distro: str, name: str, where: str, namespace: str
+) -> list[Finding]:
+    """A parameter the planner reads in a namespace of its own whatever its pipeline's name
+    (CHOMP: `chomp.<name>`, chomp_interface.cpp humble l.50-80, jazzy l.57-87), given in a
+    pipeline of another name: never read, the planner keeps its default."""
+    known = parameter(key, distro, name)
+    if known is None or not known.namespace or known.namespace == namespace:
+        return []
+    msg = (
+        f"{key.upper()} reads {known.namespace}.{name} whatever its pipeline's name: "
+        f"{namespace}.{name} is never read (it uses {known.default!r})"
+    )
+    hint = (
+        f"give it under {known.namespace}: at move_group's top level, or name the pipeline {known.namespace}"
+    )
+    return [warning("pipeline.unknown-parameter", file, where, msg, hint)]
 
 
 def _check_one(
@@ -70,11 +95,11 @@ def _check_one(
             return []
         msg = f"MoveIt reads no {name} in a {key} pipeline's namespace on {distro}"
         return [warning("pipeline.unknown-parameter", file, where, msg, unknown_name_hint(key, distro, name))]
-    problem = value_problem(known, value, int_as_double=False)
+    problem = kind_problem(known, value, int_as_double=False)
+    if problem is None and (problem := bounds_problem(known, value)) is not None and known.on_wrong == LOGS:
+        return [warning("pipeline.parameter-value", file, where, problem)]  # MoveIt takes its default
     if problem is None:
         return []
-    if known.choices and isinstance(value, str):  # MoveIt takes its default instead
-        return [warning("pipeline.parameter-value", file, where, problem)]
     return [error("pipeline.parameter-type", file, where, f"{problem}: the pipeline fails to load")]
 
 
