@@ -106,31 +106,43 @@ class PairChain:
 
     def evaluate(self, centers: np.ndarray, halves: np.ndarray, enough: float = np.inf) -> BoxBounds:
         """Bounds of the pair over the boxes `centers` +- `halves` (K, m); a box whose balls'
-        gap exceeds `enough` [m] is decided, and its axis gap is not worked out (-inf)."""
+        gap exceeds `enough` [m] is decided: its displacement bound, shares (0) and axis gap
+        (-inf) are not worked out."""
         frames = self.frames(centers)
         path = _path(frames)
         half = np.abs(path.multipliers) * halves[:, path.columns]  # (K, n) per path joint
-        (moved_a, balls_a), (moved_b, balls_b) = _sweeps(path, self.levers, frames, half)
+        balls_a, balls_b = _balls(path, self.levers, frames, half)
+        apart = balls_a[0] - balls_b[0]
+        ball_gap = (np.sqrt(np.vecdot(apart, apart)) - balls_a[1] - balls_b[1]).max(axis=1)
+        count = len(centers)
+        motion, shares, axis_gap = np.zeros(count), np.zeros(halves.shape), np.full(count, -np.inf)
+        open_rows = np.flatnonzero(ball_gap <= enough)  # each row's arithmetic is its own
+        if open_rows.size:
+            rows = slice(None) if open_rows.size == count else open_rows
+            some = _rows(path, rows), (frames[0].pose[rows], frames[1].pose[rows])
+            motion[rows], shares[rows], axis_gap[rows] = self._moved(*some, half[rows])
+        return BoxBounds(frames, motion, shares, ball_gap, axis_gap)
+
+    def _moved(
+        self, path: _Path, poses: tuple[np.ndarray, np.ndarray], half: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """At K states of the path: the best pivot's displacement bound (K,), its share per box
+        column (K, m), and the axis gap (K,)."""
+        moved_a, moved_b = _displacements(path, self.levers, poses, half)
         # pivot k: the path's first k joints move a, the others move b
-        before_a = np.concatenate([np.zeros((len(centers), 1)), np.cumsum(moved_a, axis=1)], axis=1)
+        before_a = np.concatenate([np.zeros((len(half), 1)), np.cumsum(moved_a, axis=1)], axis=1)
         after_b = np.concatenate(
-            [np.cumsum(moved_b[:, ::-1], axis=1)[:, ::-1], np.zeros((len(centers), 1))], axis=1
+            [np.cumsum(moved_b[:, ::-1], axis=1)[:, ::-1], np.zeros((len(half), 1))], axis=1
         )
         totals = before_a + after_b  # (K, n + 1)
         best = np.argmin(totals, axis=1)
         on_a = np.arange(path.count)[None, :] < best[:, None]
         per_joint = np.where(on_a, moved_a, moved_b)
-        shares = np.zeros(halves.shape)
+        shares = np.zeros((len(half), self.dims))
         for i, column in enumerate(path.columns):  # a column may drive several joints (mimic)
             shares[:, column] += per_joint[:, i]
-        apart = balls_a[0] - balls_b[0]
-        ball_gap = (np.sqrt(np.vecdot(apart, apart)) - balls_a[1] - balls_b[1]).max(axis=1)
-        axis_gap = np.full(len(centers), -np.inf)
-        if (open_rows := np.flatnonzero(ball_gap <= enough)).size:  # (each row's own arithmetic)
-            poses = (frames[0].pose[open_rows], frames[1].pose[open_rows])
-            moved = (moved_a[open_rows], moved_b[open_rows])
-            axis_gap[open_rows] = _axis_gap(path.axes[open_rows], path.turning, poses, self.levers, moved)
-        return BoxBounds(frames, totals[np.arange(len(centers)), best], shares, ball_gap, axis_gap)
+        axis_gap = _axis_gap(path.axes, path.turning, poses, self.levers, (moved_a, moved_b))
+        return totals[np.arange(len(half)), best], shares, axis_gap
 
 
 def pair_chains(scene: CollisionScene, pairs: Sequence[tuple[str, str]]) -> dict[tuple[str, str], PairChain]:
@@ -231,41 +243,57 @@ def _path(frames: tuple[Frames, Frames]) -> _Path:
     )
 
 
-def _sweeps(
+def _rows(path: _Path, rows: slice | np.ndarray) -> _Path:
+    """`path` at the states `rows` only."""
+    return _Path(path.origins[rows], path.axes[rows], path.columns, path.multipliers, path.turning)
+
+
+def _balls(
     path: _Path, levers: tuple[LeverPoints, LeverPoints], frames: tuple[Frames, Frames], half: np.ndarray
-) -> tuple[tuple[np.ndarray, tuple[np.ndarray, np.ndarray]], ...]:
-    """Both links moved by the path's joints, each nearest it first (a forward, b backward; see
-    the module doc): per link, each joint's displacement bound (K, n), and its ball swept by the
-    joints on its side of each pivot k (k = how many path joints move a), as centres
-    (K, n + 1, 3) and radii (K, n + 1). The two links go through one loop, stacked (side, K,
-    ...) in the order each meets the joints: a batch of boxes costs numpy calls per joint."""
+) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """Each link's ball swept by the joints on its side of each pivot k (k = how many path
+    joints move a; see the module doc), nearest it first (a forward, b backward), as centres
+    (K, n + 1, 3) and radii (K, n + 1), in path order. The two links go through one loop,
+    stacked (side, K, ...) in the order each meets the joints: numpy calls per joint, not per box."""
     count, n = len(half), path.count
-    reach = np.stack(
-        [_reach(frames[0].pose, levers[0], path), _reach(frames[1].pose, levers[1], path)[:, ::-1]]
-    )
     halves = np.stack([half, half[:, ::-1]])  # (2, K, n), in each side's order
     turning = np.stack([path.turning, path.turning[::-1]])[:, None, :]  # (2, 1, n)
     origins = np.stack([path.origins, path.origins[:, ::-1]])  # (2, K, n, 3)
     axes = np.stack([path.axes, path.axes[:, ::-1]])
-    chord = 2.0 * np.sin(np.minimum(halves, np.pi) / 2.0)  # per unit of distance from the axis
     keep, grow = _sweep_factors(halves, turning)
     slide = np.where(turning, 0.0, halves)  # a sliding joint moves every point by its half
     centers, radii = np.zeros((2, count, n + 1, 3)), np.zeros((2, count, n + 1))
     for side, (levers_side, frame) in enumerate(zip(levers, frames, strict=True)):
         center, radius = ball_round(levers_side)
         centers[side, :, 0], radii[side, :, 0] = frame.pose[:, :3, :3] @ center + frame.pose[:, :3, 3], radius
-    moved, total = np.zeros((2, count, n)), np.zeros((2, count))
     for t in range(n):
-        moved[:, :, t] = np.where(turning[:, :, t], (reach[:, :, t] + total) * chord[:, :, t], slide[:, :, t])
-        total = total + moved[:, :, t]
         offset = centers[:, :, t] - origins[:, :, t]
         radial = offset - np.vecdot(offset, axes[:, :, t])[..., None] * axes[:, :, t]
         centers[:, :, t + 1] = centers[:, :, t] - radial * keep[:, :, t, None]
         grown = np.sqrt(np.vecdot(radial, radial)) * grow[:, :, t]
         radii[:, :, t + 1] = radii[:, :, t] + grown + slide[:, :, t]
-    side_a = moved[0], (centers[0], radii[0])
-    side_b = moved[1][:, ::-1], (centers[1][:, ::-1], radii[1][:, ::-1])  # back in path order
-    return side_a, side_b
+    return (centers[0], radii[0]), (centers[1][:, ::-1], radii[1][:, ::-1])  # back in path order
+
+
+def _displacements(
+    path: _Path,
+    levers: tuple[LeverPoints, LeverPoints],
+    poses: tuple[np.ndarray, np.ndarray],
+    half: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Each link's displacement bound per path joint (K, n) in path order, the joints moving it
+    nearest it first (see the module doc); both links in one loop, as `_balls`."""
+    count, n = len(half), path.count
+    reach = np.stack([_reach(poses[0], levers[0], path), _reach(poses[1], levers[1], path)[:, ::-1]])
+    halves = np.stack([half, half[:, ::-1]])  # (2, K, n), in each side's order
+    turning = np.stack([path.turning, path.turning[::-1]])[:, None, :]  # (2, 1, n)
+    chord = 2.0 * np.sin(np.minimum(halves, np.pi) / 2.0)  # per unit of distance from the axis
+    slide = np.where(turning, 0.0, halves)  # a sliding joint moves every point by its half
+    moved, total = np.zeros((2, count, n)), np.zeros((2, count))
+    for t in range(n):
+        moved[:, :, t] = np.where(turning[:, :, t], (reach[:, :, t] + total) * chord[:, :, t], slide[:, :, t])
+        total = total + moved[:, :, t]
+    return moved[0], moved[1][:, ::-1]
 
 
 def _sweep_factors(half: np.ndarray, turning: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
