@@ -22,6 +22,7 @@ wins, then the package path order, then the file path.
 from __future__ import annotations
 
 import ast
+import dataclasses
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -54,6 +55,10 @@ class BringupRobot:
     semantic: Found | None  # the SRDF the same launch file sets, when validate can read it
     launch: str
     qualified: int = 1
+    launch_path: Path | None = None  # the launch file itself
+    # the config package's YAML files (relative to it) the launch file loads by hand, when it
+    # loads none through MoveItConfigsBuilder: what MoveIt gets of the package (None: unknown)
+    hand_loaded: tuple[str, ...] | None = None
 
     @property
     def origin(self) -> str:
@@ -85,7 +90,7 @@ def find_bringup_robot(name: str, root: Path, paths: tuple[Path, ...], target: T
         return None
     found.sort(key=lambda item: item[0])
     best = found[0][1]
-    return BringupRobot(best.urdf, best.args, best.unread_args, best.semantic, best.launch, len(found))
+    return dataclasses.replace(best, qualified=len(found))
 
 
 def _finder(index: PackageIndex) -> Callable[[str], str | None]:
@@ -115,7 +120,9 @@ def _package_robots(
         read = _python_robot if rel.endswith(".py") else _xml_robot
         robot = read(folder, rel, name, root, recording, target, asked)
         if robot is not None:
-            out.append((rel, BringupRobot(*robot[0], robot[1], launch=f"{package}/{rel}")))
+            (urdf, args, unread), semantic, hand = robot
+            label, path = f"{package}/{rel}", folder / rel
+            out.append((rel, BringupRobot(urdf, args, unread, semantic, label, 1, path, hand)))
     return out
 
 
@@ -138,7 +145,7 @@ def _python_robot(
     find: Callable[[str], str | None],
     _target: Target,
     asked: set[str],
-) -> tuple[Found, Found | None] | None:
+) -> tuple[Found, Found | None, tuple[str, ...] | None] | None:
     from marm_setup.package.launch_python import Unreadable, parse_launch_module, read_python_launch
 
     try:
@@ -153,7 +160,23 @@ def _python_robot(
     if name not in asked and name not in words and not builders:
         return None
     robot = _python_file(launch, builders, root, "robot_description")
-    return (robot, _python_file(launch, builders, root, "robot_description_semantic")) if robot else None
+    if robot is None:
+        return None
+    hand = None if builders else _hand_loaded(launch, root)
+    return robot, _python_file(launch, builders, root, "robot_description_semantic"), hand
+
+
+def _hand_loaded(launch: PythonLaunch, root: Path) -> tuple[str, ...]:
+    """The YAML files of the config package at `root` (relative to it) that the launch file
+    names by hand (`load_yaml("X", "config/kinematics.yaml")`, a path joined to its share
+    folder): a relative path is taken as the package's when the package holds it."""
+    out = set()
+    for path, _ in launch.named_yaml:
+        file = Path(path)
+        rel = file.relative_to(root).as_posix() if file.is_absolute() and inside(file, (root,)) else path
+        if not Path(rel).is_absolute() and readable(root / rel) and (root / rel).is_file():
+            out.add(Path(rel).as_posix())
+    return tuple(sorted(out))
 
 
 def _python_file(
@@ -195,7 +218,7 @@ def _xml_robot(
     find: Callable[[str], str | None],
     target: Target,
     asked: set[str],
-) -> tuple[Found, Found | None] | None:
+) -> tuple[Found, Found | None, tuple[str, ...] | None] | None:
     from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
     from marm_setup.package.launch_ros1 import evaluate_ros1
     from marm_setup.package.launch_ros2 import evaluate_ros2_xml
@@ -212,7 +235,7 @@ def _xml_robot(
     launch = evaluate(folder, trees, find)
     named = name in asked or re.search(rf"\$\((find|find-pkg-share)\s+{re.escape(name)}\)", text)
     robot = _xml_file(folder, launch.description)
-    return (robot, _xml_file(folder, launch.semantic)) if robot is not None and named else None
+    return (robot, _xml_file(folder, launch.semantic), None) if robot is not None and named else None
 
 
 def _xml_file(folder: Path, load: DescriptionLoad | None) -> Found | None:

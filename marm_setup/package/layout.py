@@ -333,8 +333,12 @@ def read_ros2_kinds(
     builder: BuilderFiles,
     control_files: tuple[str, ...],
     named_yaml: tuple[tuple[str, str], ...] = (),
+    by_hand: tuple[str, ...] | None = None,
 ) -> Kinds:
-    """What the builder loads, then the files XML launch files hand to nodes over it."""
+    """What the builder loads, then the files XML launch files hand to nodes over it. `by_hand`:
+    the files the launch file of another package that starts MoveIt with this one loads by hand
+    (no MoveItConfigsBuilder): a file of the Setup Assistant's name it does not load is not
+    MoveIt's (None: how the package is launched is not known)."""
     kinds = Kinds()
     root = files.root
     opaque = _opaque_kinds(builder)
@@ -346,7 +350,7 @@ def read_ros2_kinds(
     ):
         if method in opaque:
             continue
-        chosen = chosen_file(builder, method, root)
+        chosen = _loaded(chosen_file(builder, method, root), by_hand)
         doc = _named(files, chosen.file) if chosen is not None else None
         top_level_by = ""
         if doc is not None and kind == "kinematics" and not builder.calls:
@@ -361,7 +365,9 @@ def read_ros2_kinds(
         _ros2_controllers(files, builder, kinds, named_yaml)
     if "planning_pipelines" not in opaque:
         _ros2_pipelines(files, builder, kinds, named_yaml)
-    chosen = chosen_file(builder, "sensors_3d", root) if "sensors_3d" not in opaque else None
+    chosen = (
+        _loaded(chosen_file(builder, "sensors_3d", root), by_hand) if "sensors_3d" not in opaque else None
+    )
     doc = _named(files, chosen.file) if chosen is not None else None
     kinds.put("sensors", read_sensors(doc) if doc is not None else None, doc, chosen.how if chosen else "")
     for rel in control_files:
@@ -381,6 +387,13 @@ def read_ros2_kinds(
     # package is another node's parameters or a MoveIt 1 leftover, never move_group's.
     kinds.values["servo"] = _servo(files, [load.file for load in loads])
     return kinds
+
+
+def _loaded(chosen: Chosen | None, by_hand: tuple[str, ...] | None) -> Chosen | None:
+    """`chosen`, unless the package's launcher loads files by hand and not this one."""
+    if chosen is None or by_hand is None or chosen.file in by_hand:
+        return chosen
+    return None
 
 
 OPAQUE_METHODS = (  # MoveItConfigsBuilder methods whose files validate reads as one kind

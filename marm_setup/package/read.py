@@ -134,7 +134,7 @@ def _read_package(
     bringup_srdf = _bringup_srdf(files, found.paths, chosen, launched) if srdf is None else None
     if bringup_srdf is not None:
         srdf_rel, srdf_args, guessed = bringup_srdf[0], bringup_srdf[1], False
-    kinds = _kinds(files, found.target, launched, problems)
+    kinds = _kinds(files, found.target, launched, problems, chosen.bringup)
     unread = (*launched.unread_args("robot_description_semantic"), *(bringup_srdf[2] if bringup_srdf else ()))
     srdf_args, built = _built_srdf_args(files, srdf_rel, srdf_args, launched)
     srdf_file = _srdf(root, srdf_rel, (srdf_args, unread), xacro_args, found.paths, problems, built)
@@ -626,15 +626,24 @@ def _command_description(
     return Description(Path(command.file), f"xacro command in {command.launch}", merged)
 
 
-def _kinds(files: PackageFiles, target: Target, launched: _Launched, problems: list[Finding]) -> Kinds:
+def _kinds(
+    files: PackageFiles,
+    target: Target,
+    launched: _Launched,
+    problems: list[Finding],
+    bringup: BringupRobot | None = None,
+) -> Kinds:
     if target == Target.ROS1:
         return read_ros1_kinds(
             files, launched.loads, launched.move_groups, launched.managers, launched.taken_managers
         )
     assert launched.builder is not None
-    kinds = read_ros2_kinds(
-        files, launched.loads, launched.builder, launched.control_files, launched.named_yaml
-    )
+    named, by_hand = launched.named_yaml, None
+    if bringup is not None and bringup.hand_loaded is not None and not launched.builder.calls:
+        # the package's files as the bringup launch file that starts MoveIt loads them by hand
+        by_hand = bringup.hand_loaded
+        named += tuple((rel, str(bringup.launch_path)) for rel in by_hand)
+    kinds = read_ros2_kinds(files, launched.loads, launched.builder, launched.control_files, named, by_hand)
     done = set()
     for load in sorted(launched.loads, key=lambda lo: lo.conditional):
         if load.file not in done and _holds_moveit_params(files, load.file):

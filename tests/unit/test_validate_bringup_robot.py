@@ -143,3 +143,52 @@ def test_a_ros2_xml_bringup_gives_its_robot_too(tmp_path: Path):
     assert found.urdf == config.parent / "tri_description" / "urdf" / "tri.urdf.xacro"
     assert found.urdf_origin.startswith("robot_description in tri_bringup/launch/move_group.launch.xml (")
     assert found.xacro_args == (("robot_ip", "10.0.0.3"),)
+
+
+HAND_LOADS = """
+import os
+import yaml
+from ament_index_python.packages import get_package_share_directory
+
+
+def load_yaml(package_name, file_path):
+    with open(os.path.join(get_package_share_directory(package_name), file_path)) as file:
+        return yaml.safe_load(file)
+
+
+def moveit_parameters():
+    controllers = {"moveit_simple_controller_manager": load_yaml("tri_moveit_config", "config/controllers.yaml")}
+    return [{"robot_description_kinematics": load_yaml("tri_moveit_config", "config/kinematics.yaml")}, controllers]
+"""
+MOVEIT1_SENSORS = """sensors:
+  - sensor_plugin: occupancy_map_monitor/PointCloudOctomapUpdater
+    point_cloud_topic: /camera/points
+"""
+CONTROLLERS = (
+    "controller_names: [arm_controller]\narm_controller:\n  type: FollowJointTrajectory\n  joints: [j1]\n"
+)
+
+
+def test_the_package_files_a_bringup_loads_by_hand_are_what_moveit_gets(tmp_path: Path):
+    """A bringup that loads the config's kinematics and controllers by hand (the controller list
+    under moveit_simple_controller_manager) and no sensors file: the MoveIt 1 sensors_3d.yaml the
+    package keeps is not read (MoveIt never loads it), and the list is where the bringup puts it."""
+    from marm_setup.validate.runner import validate
+
+    launch = BRINGUP.replace(
+        "def generate_launch_description():", HAND_LOADS + "\n\ndef generate_launch_description():"
+    )
+    launch = launch.replace(
+        '{"robot_description_semantic": semantic}]',
+        '{"robot_description_semantic": semantic}, *moveit_parameters()]',
+    )
+    config = _repository(tmp_path, {"tri_bringup": launch})
+    _package(config, {"config/sensors_3d.yaml": MOVEIT1_SENSORS, "config/controllers.yaml": CONTROLLERS})
+    found = read_package(config)
+    assert found.sensors is None
+    assert (
+        found.moveit_controllers is not None
+        and found.moveit_controllers.loaded_into == "moveit_simple_controller_manager"
+    )
+    rules = {f.rule for f in validate(config, plan=False).findings}
+    assert not rules & {"params.type", "controller.no-namespace", "sensors.unknown-plugin"}, rules
