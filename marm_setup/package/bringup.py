@@ -24,7 +24,7 @@ from __future__ import annotations
 import ast
 import dataclasses
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -72,9 +72,12 @@ class BringupRobot:
         return f"robot_description in {self.launch} ({why})"
 
 
-def find_bringup_robot(name: str, root: Path, paths: tuple[Path, ...], target: Target) -> BringupRobot | None:
+def find_bringup_robot(
+    name: str, root: Path, paths: tuple[Path, ...], target: Target, args: Mapping[str, str] | None = None
+) -> BringupRobot | None:
     """The robot the bringup launch files of the packages under `paths` give the config
-    package `name` at `root` (module docstring), or None when no launch file qualifies."""
+    package `name` at `root` (module docstring), each launch file given the launch arguments
+    `args`, or None when no launch file qualifies."""
     from marm_setup.robot import find_packages
 
     index = find_packages(paths, environ={})
@@ -84,7 +87,7 @@ def find_bringup_robot(name: str, root: Path, paths: tuple[Path, ...], target: T
         order = next((i for i, p in enumerate(paths) if inside(folder, (p,))), None)
         if order is None or folder.resolve() == root.resolve():
             continue
-        for rel, robot in _package_robots(folder, package, name, root, find, target):
+        for rel, robot in _package_robots(folder, package, name, root, find, (target, args or {})):
             found.append(((len(robot.unread_args), order, f"{package}/{rel}"), robot))
     if not found:
         return None
@@ -103,7 +106,7 @@ def _package_robots(
     name: str,
     root: Path,
     find: Callable[[str], str | None],
-    target: Target,
+    how: tuple[Target, Mapping[str, str]],
 ) -> list[tuple[str, BringupRobot]]:
     from marm_setup.package.launch_xml import launch_file_names, python_launch_names
 
@@ -118,7 +121,7 @@ def _package_robots(
             return find(pkg)
 
         read = _python_robot if rel.endswith(".py") else _xml_robot
-        robot = read(folder, rel, name, root, recording, target, asked)
+        robot = read(folder, rel, name, root, recording, how, asked)
         if robot is not None:
             (urdf, args, unread), semantic, hand = robot
             label, path = f"{package}/{rel}", folder / rel
@@ -143,7 +146,7 @@ def _python_robot(
     name: str,
     root: Path,
     find: Callable[[str], str | None],
-    _target: Target,
+    how: tuple[Target, Mapping[str, str]],
     asked: set[str],
 ) -> tuple[Found, Found | None, tuple[str, ...] | None] | None:
     from marm_setup.package.launch_python import Unreadable, parse_launch_module, read_python_launch
@@ -155,7 +158,7 @@ def _python_robot(
     words = _call_strings(tree)
     if not any(w in MOVEIT_NODE_WORDS for w in _strings(tree)):
         return None
-    launch = read_python_launch(folder, (rel,), find)
+    launch = read_python_launch(folder, (rel,), find, how[1])
     builders = [b for b in launch.builders if b.package_name == name]
     if name not in asked and name not in words and not builders:
         return None
@@ -216,7 +219,7 @@ def _xml_robot(
     name: str,
     root: Path,
     find: Callable[[str], str | None],
-    target: Target,
+    how: tuple[Target, Mapping[str, str]],
     asked: set[str],
 ) -> tuple[Found, Found | None, tuple[str, ...] | None] | None:
     from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
@@ -231,8 +234,8 @@ def _xml_robot(
     if not any(w in text for w in MOVEIT_NODE_WORDS):
         return None
     trees = {rel: parse_launch(folder / rel, rel)}
-    evaluate = evaluate_ros1 if target == Target.ROS1 else evaluate_ros2_xml
-    launch = evaluate(folder, trees, find)
+    evaluate = evaluate_ros1 if how[0] == Target.ROS1 else evaluate_ros2_xml
+    launch = evaluate(folder, trees, find, how[1])
     named = name in asked or re.search(rf"\$\((find|find-pkg-share)\s+{re.escape(name)}\)", text)
     robot = _xml_file(folder, launch.description)
     return (robot, _xml_file(folder, launch.semantic), None) if robot is not None and named else None

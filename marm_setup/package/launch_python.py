@@ -21,7 +21,7 @@ from __future__ import annotations
 import ast
 import os
 import shlex
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -128,7 +128,14 @@ class _Env:
     find: Callable[[str], str | None] = lambda _name: None
 
 
-def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str], str | None]) -> PythonLaunch:
+def read_python_launch(
+    root: Path,
+    files: tuple[str, ...],
+    find: Callable[[str], str | None],
+    args: Mapping[str, str] | None = None,
+) -> PythonLaunch:
+    """What the Python launch files `files` load, with the launch arguments `args` given as
+    `ros2 launch` takes them (over their declared defaults)."""
     builders: list[BuilderCall] = []
     control: list[tuple[str, str]] = []
     commands: list[XacroCommand] = []
@@ -139,7 +146,7 @@ def read_python_launch(root: Path, files: tuple[str, ...], find: Callable[[str],
     for rel in files:
         try:
             tree = parse_launch_module(root / rel, rel)
-            env = _environment(tree, find)
+            env = _environment(tree, find, args)
             found = (
                 []
                 if _setup_assistant_only(tree)
@@ -218,7 +225,11 @@ def _check_tree_size(tree: ast.AST) -> None:
         stack += [(child, depth + 1) for child in ast.iter_child_nodes(node)]
 
 
-def _environment(tree: ast.AST, find: Callable[[str], str | None]) -> _Env:
+def _environment(
+    tree: ast.AST, find: Callable[[str], str | None], args: Mapping[str, str] | None = None
+) -> _Env:
+    """The names a launch module binds and its launch arguments' values: their declared
+    defaults, `args` (given on the command line) over them."""
     env = _Env(find=find)
     _bind(tree, env)  # names first: `DeclareLaunchArgument(ip_name, ...)` names its argument by one
     for node in ast.walk(tree):
@@ -230,7 +241,8 @@ def _environment(tree: ast.AST, find: Callable[[str], str | None]) -> _Env:
                     env.defaults[name] = _scalar(static(default, env))
             except Unknown:
                 continue
-    _bind(tree, env)  # again, now with the launch arguments' defaults
+    env.defaults.update(args or {})
+    _bind(tree, env)  # again, now with the launch arguments' values
     return env
 
 

@@ -126,12 +126,15 @@ class _Context:
 
 
 def evaluate_ros1(
-    root: Path, trees: Mapping[str, LaunchXml], find: Callable[[str], str | None]
+    root: Path,
+    trees: Mapping[str, LaunchXml],
+    find: Callable[[str], str | None],
+    args: Mapping[str, str] | None = None,
 ) -> Ros1Launch:
     """Walk every launch file as an entry point and merge what they load: first the files no
     other launch file includes (what a user starts: demo.launch, move_group.launch, in name
     order), whose args reach the included ones as roslaunch passes them, then the included
-    files on their own defaults."""
+    files on their own defaults; each entry point given `args` as `roslaunch FILE name:=value`."""
     loads: dict[tuple[str, str], YamlLoad] = {}
     semantic: list[tuple[DescriptionLoad, bool]] = []
     description: list[tuple[DescriptionLoad, bool]] = []
@@ -141,7 +144,7 @@ def evaluate_ros1(
     taken_managers: dict[LaunchParam, None] = {}
     walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
     for rel, walk in walks.items():
-        _walk_file(walk, rel, {}, "", False, "", 0)
+        _walk_file(walk, rel, dict(args or {}), "", False, "", 0)
     stopped = tuple(rel for rel, walk in walks.items() if walk.visits > MAX_VISITS)
     included = set().union(*(w.included for w in walks.values()))
     for rel in sorted(walks, key=lambda r: (r in included, r)):

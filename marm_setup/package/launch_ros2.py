@@ -64,15 +64,19 @@ class _Walk:
 
 
 def evaluate_ros2_xml(
-    root: Path, trees: Mapping[str, LaunchXml], find: Callable[[str], str | None]
+    root: Path,
+    trees: Mapping[str, LaunchXml],
+    find: Callable[[str], str | None],
+    args: Mapping[str, str] | None = None,
 ) -> Ros2XmlLaunch:
+    """Walk every XML launch file as an entry point given `args` (as `ros2 launch` passes them)."""
     loads: dict[tuple[str, str], YamlLoad] = {}
     semantic: list[tuple[DescriptionLoad, bool]] = []
     description: list[tuple[DescriptionLoad, bool]] = []
     stopped: list[str] = []
     for rel in sorted(trees):
         walk = _Walk(root, trees)
-        _walk_file(walk, find, rel, {}, False, 0)
+        _walk_file(walk, find, rel, dict(args or {}), False, 0)
         if walk.visits > MAX_VISITS:
             stopped.append(rel)
         for load in walk.loads:

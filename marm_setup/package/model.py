@@ -54,6 +54,7 @@ class MoveItPackage:
         str  # --urdf, marm_setup.yaml, .setup_assistant, config/<robot>.urdf.xacro, ... (or why None)
     )
     xacro_args: tuple[tuple[str, str], ...] = ()
+    launch_args: tuple[tuple[str, str], ...] = ()  # given to the launch files (--launch-arg)
     description_unreadable: bool = False  # the description named is not there (urdf is None)
     unread_xacro_args: tuple[str, ...] = ()  # the launch files pass these with run-time values
     package_paths: tuple[Path, ...] = ()  # for $(find): this package first, then the user's, ...

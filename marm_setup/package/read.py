@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -65,6 +65,7 @@ class _Launched:
     move_groups: tuple[str, ...] = ()  # ROS 1 move_group nodes' full names
     managers: tuple[str, ...] = ()  # ROS 1 moveit_controller_manager values
     taken_managers: tuple[LaunchParam, ...] = ()  # ROS 1: those set on branches the defaults take
+    args: tuple[tuple[str, str], ...] = ()  # the launch arguments given (--launch-arg)
 
     def command(self, parameter: str) -> XacroCommand | None:
         return next((c for c in self.commands if c.parameter == parameter), None)
@@ -97,13 +98,22 @@ def read_package(
     srdf: str | Path | None = None,
     xacro_args: Mapping[str, str] | None = None,
     package_paths: Iterable[str | Path] = (),
+    launch_args: Mapping[str, str] | None = None,
 ) -> MoveItPackage:
     """Read the config package at `path`; InputError when it is not one. Its `$(eval)`s run in
-    one child process (package/eval_child.py), killed once it is read."""
+    one child process (package/eval_child.py), killed once it is read. `launch_args`: the
+    launch files' arguments as `roslaunch` / `ros2 launch` would be given them."""
     from marm_setup.package.eval_child import eval_session
 
     with eval_session():
-        return _read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
+        return _read_package(
+            path,
+            urdf=urdf,
+            srdf=srdf,
+            xacro_args=xacro_args,
+            package_paths=package_paths,
+            launch_args=launch_args or {},
+        )
 
 
 def _read_package(
@@ -113,6 +123,7 @@ def _read_package(
     srdf: str | Path | None,
     xacro_args: Mapping[str, str] | None,
     package_paths: Iterable[str | Path],
+    launch_args: Mapping[str, str],
 ) -> MoveItPackage:
     shown, root = str(path), Path(path).resolve()
     if not root.is_dir():
@@ -124,7 +135,8 @@ def _read_package(
     found = _setup(files, shown, package_paths)
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
     wanted = _wanted_robots(srdf, urdf)
-    launched = _launched(files, trees, found.paths, found.target, found.name, wanted)
+    launched = _launched(files, trees, found.paths, found.target, found.name, wanted, launch_args)
+    launched = replace(launched, args=tuple(sorted(launch_args.items())))
     problems += _other_robots(launched.builder)
     srdf_rel, srdf_args, guessed = _srdf_choice(files, srdf, found, launched, wanted)
     if found.package_xml is None and srdf_rel is None:
@@ -148,6 +160,7 @@ def _read_package(
         urdf_origin=description.origin,
         description_unreadable=description.unreadable,
         xacro_args=description.xacro_args,
+        launch_args=tuple(sorted(launch_args.items())),
         unread_xacro_args=_unread_args(launched, description, "robot_description", xacro_args)
         if urdf is None
         else (),
@@ -277,11 +290,13 @@ def _launched(
     target: Target,
     name: str,
     wanted: tuple[str, ...] = (),
+    args: Mapping[str, str] | None = None,
 ) -> _Launched:
-    """What the launch files load; subst_value files get their launch args before any is read."""
+    """What the launch files load, given the launch arguments `args`; subst_value files get
+    their launch args before any is read."""
     find = _finder(paths)
     if target == Target.ROS1:
-        ros1: Ros1Launch = evaluate_ros1(files.root, trees, find)
+        ros1: Ros1Launch = evaluate_ros1(files.root, trees, find, args)
         _stopped_walks(files, ros1.stopped)
         for load in sorted(ros1.loads, key=lambda lo: lo.conditional):
             if load.scope is not None:
@@ -295,9 +310,9 @@ def _launched(
             managers=ros1.managers,
             taken_managers=ros1.taken_managers,
         )
-    xml = evaluate_ros2_xml(files.root, trees, find)
+    xml = evaluate_ros2_xml(files.root, trees, find, args)
     _stopped_walks(files, xml.stopped)
-    python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find)
+    python = read_python_launch(files.root, files.inside_only(python_launch_names(files.root)), find, args)
     for launch_file, why in python.unread:
         files.problems.append(warning("launch.python-unread", launch_file, "", why))
     for path, defaults in python.substituted:  # ParameterFile(..., allow_substs=True)
@@ -481,7 +496,7 @@ def _description(
             robots,
             (rel, mappings, how),
             files.refused,
-            lambda: _bringup_description(files, found, given[1]),
+            lambda: _bringup_description(files, found, given[1], dict(launched.args)),
         )
     except PackageNotFound as exc:  # .setup_assistant's or marm_setup.yaml's package: a finding
         return _missing_package(files, exc)
@@ -514,13 +529,13 @@ def _bringup_srdf(
 
 
 def _bringup_description(
-    files: PackageFiles, found: _Setup, args: tuple[tuple[str, str], ...]
+    files: PackageFiles, found: _Setup, args: tuple[tuple[str, str], ...], launch_args: Mapping[str, str]
 ) -> Description | None:
     """The robot a bringup launch file of another package gives this one (package.bringup),
-    with --xacro-arg on top; None when no launch file does."""
+    given `launch_args`, with --xacro-arg on top; None when no launch file does."""
     from marm_setup.package.bringup import find_bringup_robot
 
-    robot = find_bringup_robot(found.name, files.root, found.paths, found.target)
+    robot = find_bringup_robot(found.name, files.root, found.paths, found.target, launch_args)
     if robot is None:
         return None
     merged = tuple(sorted({**dict(robot.args), **dict(args)}.items()))

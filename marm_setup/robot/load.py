@@ -23,13 +23,13 @@ from marm_setup.robot.xacro_expand import expand_xacro, run_xacro
 __all__ = ["expand_xacro", "load_robot", "parse_xacro_args", "parse_xml", "xml_syntax_message"]
 
 
-def parse_xacro_args(items: Iterable[str]) -> dict[str, str]:
-    """`NAME:=VALUE` strings -> mapping; a malformed item is an InputError."""
+def parse_xacro_args(items: Iterable[str], option: str = "--xacro-arg") -> dict[str, str]:
+    """`NAME:=VALUE` strings (of `option`) -> mapping; a malformed item is an InputError."""
     out: dict[str, str] = {}
     for item in items:
         name, sep, value = item.partition(":=")
         if not sep or not name:
-            raise InputError(f"expected NAME:=VALUE, got '{item}'", element="--xacro-arg")
+            raise InputError(f"expected NAME:=VALUE, got '{item}'", element=option)
         out[name] = value
     return out
 

@@ -226,6 +226,7 @@ def run_ros2(
         argv = [python, str(script), str(pkg.root), "--out", out]
         argv += [f"--package={n}={p}" for n, p in sorted(_packages(pkg, robot).items())]
         argv += [f"--launch={rel}" for rel in launch_files]
+        argv += [f"--arg={name}:={value}" for name, value in pkg.launch_args]
         done = _run(argv, _environment(home), seconds)
         launcher = f"ROS 2 launch {version} and rcl ({python})"
         if done is None:
@@ -327,12 +328,16 @@ def run_ros1(pkg: MoveItPackage, roslaunch: str, seconds: float) -> ConsumerRun:
             "ROS_PACKAGE_PATH": os.pathsep.join(r for r in roots if r),
             "PATH": _ros1_path(xacro),
         }
+        given = frozenset(name for name, _ in pkg.launch_args)
         files = [
             launch.file
             for launch in pkg.launch
-            if launch.file.endswith(".launch") and launch.root is not None and not _needs_args(launch.root)
+            if launch.file.endswith(".launch")
+            and launch.root is not None
+            and not _needs_args(launch.root, given)
         ]
-        argvs = [[roslaunch, "--dump-params", str(pkg.path(rel))] for rel in files]
+        args = [f"{name}:={value}" for name, value in pkg.launch_args]
+        argvs = [[roslaunch, "--dump-params", str(pkg.path(rel)), *args] for rel in files]
         unheld = _unheld_packages(pkg, os.environ.get("ROS_PACKAGE_PATH", ""))
         with ThreadPoolExecutor(max_workers=max(1, min(len(files), os.cpu_count() or 1))) as pool:
             runs = list(pool.map(lambda argv: _run(argv, env, seconds), argvs))  # each a process
@@ -401,19 +406,23 @@ USED_ARG = re.compile(
 )  # $(arg x), $(eval arg('x'))
 
 
-def _needs_args(root: etree._Element) -> bool:
-    """The file is meant to be included: it declares an arg with neither default nor value, or
-    uses an arg it never declares (`$(arg x)`, `arg('x')` in `$(eval)`), which only an includer
-    passing its own (`pass_all_args`) sets. roslaunch run on it alone stops at either
-    (xmlloader.py: ArgException, "requires the 'x' arg to be set"; with --dump-params its
-    handler fails first on a loader attribute --dump-params never sets, ignore_unset_args)."""
-    if any(a.get("default") is None and a.get("value") is None for a in root.findall("arg")):
+def _needs_args(root: etree._Element, given: frozenset[str] = frozenset()) -> bool:
+    """The file is meant to be included, or needs args the user did not give (`given`, the
+    --launch-arg names): it declares an arg with neither default nor value, or uses an arg it
+    never declares (`$(arg x)`, `arg('x')` in `$(eval)`), which only an includer passing its own
+    (`pass_all_args`) sets. roslaunch run on it alone stops at either (xmlloader.py:
+    ArgException, "requires the 'x' arg to be set"; with --dump-params its handler fails first on
+    a loader attribute --dump-params never sets, ignore_unset_args)."""
+    required = {
+        a.get("name") for a in root.findall("arg") if a.get("default") is None and a.get("value") is None
+    }
+    if required - given:
         return True
     elements = [e for e in root.iter() if isinstance(e.tag, str)]
     declared = {e.get("name") for e in elements if e.tag == "arg" and _parent_tag(e) != "include"}
     texts = [v for e in elements for v in (*e.attrib.values(), e.text or "")]
     used = {m.group(1) or m.group(2) for text in texts for m in USED_ARG.finditer(text)}
-    return bool(used - declared)
+    return bool(used - declared - given)
 
 
 def _parent_tag(element: etree._Element) -> str | None:

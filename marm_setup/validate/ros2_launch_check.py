@@ -153,8 +153,9 @@ def ros2_control_plugins(urdf: str) -> dict[str, str]:
     }
 
 
-def run_launch(path: str) -> tuple[int, list[str], list]:
-    """(return code, error messages, node actions) of one launch file, nothing started."""
+def run_launch(path: str, arguments: list[tuple[str, str]] | None = None) -> tuple[int, list[str], list]:
+    """(return code, error messages, node actions) of one launch file given `arguments` (as
+    `ros2 launch` includes it with them), nothing started."""
     import launch
     import launch.actions
     from launch.launch_description_sources import AnyLaunchDescriptionSource
@@ -176,7 +177,13 @@ def run_launch(path: str) -> tuple[int, list[str], list]:
     screen.addFilter(keep)
     service = launch.LaunchService(argv=[])
     service.include_launch_description(
-        launch.LaunchDescription([launch.actions.IncludeLaunchDescription(AnyLaunchDescriptionSource(path))])
+        launch.LaunchDescription(
+            [
+                launch.actions.IncludeLaunchDescription(
+                    AnyLaunchDescriptionSource(path), launch_arguments=list(arguments or [])
+                )
+            ]
+        )
     )
     try:
         code = service.run()
@@ -253,7 +260,12 @@ def versions() -> dict[str, str]:
     return out
 
 
-def check(pkg_dir: str, packages: dict[str, str], launch_files: list[str]) -> dict[str, Any]:
+def check(
+    pkg_dir: str,
+    packages: dict[str, str],
+    launch_files: list[str],
+    arguments: list[tuple[str, str]] | None = None,
+) -> dict[str, Any]:
     name = package_name(pkg_dir)
     prefix, stubbed = make_prefix(pkg_dir, name, packages)
     prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
@@ -266,7 +278,7 @@ def check(pkg_dir: str, packages: dict[str, str], launch_files: list[str]) -> di
     params: dict[str, list[str]] = {}
     try:
         for rel in launch_files:
-            code, messages, started = run_launch(os.path.join(pkg_dir, rel))
+            code, messages, started = run_launch(os.path.join(pkg_dir, rel), arguments)
             launched[rel] = {
                 "code": code,
                 "errors": [m.replace(prefix, "<install>") for m in messages],
@@ -289,10 +301,12 @@ def main(argv: list[str] | None = None) -> int:
         "--package", action="append", default=[], help="NAME=DIR of a package the launch files use"
     )
     parser.add_argument("--launch", action="append", default=[], help="launch file, relative to PKG_DIR")
+    parser.add_argument("--arg", action="append", default=[], help="NAME:=VALUE launch argument")
     args = parser.parse_args(argv)
     os.dup2(2, 1)  # launch, rcl and xacro print to stdout: keep it for nothing
     packages = dict(p.split("=", 1) for p in args.package)
-    report = check(os.path.abspath(args.pkg_dir), packages, args.launch)
+    arguments = [(name, value) for name, _, value in (a.partition(":=") for a in args.arg)]
+    report = check(os.path.abspath(args.pkg_dir), packages, args.launch, arguments)
     with open(args.out, "w", encoding="utf-8") as f:
         json.dump(report, f)
     return 0

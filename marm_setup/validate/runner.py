@@ -83,6 +83,7 @@ class Validation:
     srdf_origin: str = ""  # which launch file sets it, or how it was chosen
     xacro_args: tuple[tuple[str, str], ...] = ()  # those the description was expanded with
     env_defaults: tuple[str, ...] = ()  # unset environment variables its xacro read with optenv
+    launch_args: tuple[tuple[str, str], ...] = ()  # given to the launch files (--launch-arg)
 
     def describe(self) -> str:
         """One line: what was validated, against which robot, and whether planning ran."""
@@ -92,6 +93,8 @@ class Validation:
         runtime += " (no group has two usable named poses)" if n == 0 else ""
         skipped = "".join(f"; skipped {s}" for s in self.skipped)
         launched = f"; launch files: {self.launched_by}" if self.launched_by else ""
+        if self.launch_args:
+            launched += f"; launch args {' '.join(f'{k}:={v}' for k, v in self.launch_args)}"
         args = " ".join(f"{k}:={v}" for k, v in self.xacro_args)
         urdf = f"{self.urdf}{f' {args}' if args else ''} ({self.urdf_origin})"
         if self.env_defaults:
@@ -124,6 +127,7 @@ class Validation:
             "srdf_origin": self.srdf_origin,
             "xacro_args": dict(self.xacro_args),
             "env_defaults": list(self.env_defaults),
+            "launch_args": dict(self.launch_args),
         }
         return {**{key: getattr(self, key) for key in keys}, **loaded, "skipped": list(self.skipped)}
 
@@ -165,6 +169,7 @@ def validate(
     progress: Progress | None = None,
     untrusted: bool = False,
     ros_distro: str | None = None,
+    launch_args: Mapping[str, str] | None = None,
 ) -> Validation:
     """Validate the package at `path`: its findings and what was checked (`validate_package`).
 
@@ -181,6 +186,7 @@ def validate(
         progress=progress,
         untrusted=untrusted,
         ros_distro=ros_distro,
+        launch_args=launch_args,
     ).validation
 
 
@@ -196,15 +202,24 @@ def validate_package(
     progress: Progress | None = None,
     untrusted: bool = False,
     ros_distro: str | None = None,
+    launch_args: Mapping[str, str] | None = None,
 ) -> ValidatedPackage:
     """Validate the package at `path`, keeping what was read and planned; `progress(done, total)`
     hears of each pose pair the runtime checks plan. `untrusted`: no package code runs (no
     xacro, `$(eval)`, `$(command)` or launch file); the summary names what was skipped.
+    `launch_args`: the launch files' arguments, as `roslaunch` / `ros2 launch` would get them.
 
     Raises InputError (exit 2) only when `path` is not a readable config package at all.
     """
     with no_package_code() if untrusted else nullcontext():
-        pkg = read_package(path, urdf=urdf, srdf=srdf, xacro_args=xacro_args, package_paths=package_paths)
+        pkg = read_package(
+            path,
+            urdf=urdf,
+            srdf=srdf,
+            xacro_args=xacro_args,
+            package_paths=package_paths,
+            launch_args=launch_args,
+        )
         pkg = pkg.for_distro(ros_distro)  # --ros-distro over marm_setup.yaml's
         return validate_read(
             pkg, xacro_args=xacro_args, plan=plan, matrix_trials=matrix_trials, progress=progress
@@ -280,6 +295,7 @@ def _validation(
         srdf_origin=source.how if (source := pkg.source("srdf")) is not None else "",
         xacro_args=pkg.xacro_args,
         env_defaults=robot.env_defaults if robot is not None else (),
+        launch_args=pkg.launch_args,
     )
 
 

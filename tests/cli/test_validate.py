@@ -52,6 +52,7 @@ def test_says_what_was_validated_and_how_many_pose_pairs_were_planned(tmp_path):
         "srdf_origin": "chosen by its name",
         "xacro_args": {},
         "env_defaults": [],
+        "launch_args": {},
         "skipped": [],
     }
     assert (doc["errors"], doc["warnings"]) == (1, 3)
@@ -110,6 +111,20 @@ def test_explicit_urdf(tmp_path):
     pkg = generate_marm(tmp_path, "ros1")
     result = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--urdf", str(MARM_URDF)])
     assert result.exit_code == 0, result.output
+
+
+def test_launch_args_reach_the_launch_files_and_the_summary(tmp_path):
+    pkg = generate_marm(tmp_path, "ros1")
+    result = runner.invoke(
+        app, ["validate", str(pkg), "--no-plan", "--launch-arg", "debug:=true", "--format", "json"]
+    )
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["validated"]["launch_args"] == {"debug": "true"}
+    result = runner.invoke(app, ["validate", str(pkg), "--no-plan", "--launch-arg", "debug"])
+    assert (
+        result.exit_code == 2
+        and result.stderr.strip() == "error: --launch-arg: expected NAME:=VALUE, got 'debug'"
+    )
 
 
 def test_unreadable_input_exits_2_with_one_line(tmp_path):

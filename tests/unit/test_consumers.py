@@ -166,6 +166,7 @@ def test_a_launch_file_with_an_arg_without_value_is_an_include(tmp_path):
     )
     a, b = (parse_launch(root / rel, rel).root for rel in ("a.launch", "b.launch"))
     assert _needs_args(a) and not _needs_args(b)
+    assert not _needs_args(a, frozenset({"x"}))  # --launch-arg x:=...: roslaunch runs it alone
 
 
 @pytest.mark.parametrize(

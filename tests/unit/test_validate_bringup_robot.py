@@ -192,3 +192,10 @@ def test_the_package_files_a_bringup_loads_by_hand_are_what_moveit_gets(tmp_path
     )
     rules = {f.rule for f in validate(config, plan=False).findings}
     assert not rules & {"params.type", "controller.no-namespace", "sensors.unknown-plugin"}, rules
+
+
+def test_launch_args_given_reach_the_bringup_launch_file(tmp_path: Path):
+    """`--launch-arg robot_ip:=...` is what the user starts the bringup with: its xacro arg is known."""
+    config = _repository(tmp_path, {"tri_bringup": BRINGUP})
+    found = read_package(config, launch_args={"robot_ip": "10.0.0.9"})
+    assert found.xacro_args == (("robot_ip", "10.0.0.9"),) and found.unread_xacro_args == ()

@@ -88,6 +88,23 @@ def test_srdf_xacro_args_come_from_the_entry_launch_files_defaults(tmp_path):
     assert errors(found) == []
 
 
+def test_roslaunch_args_given_pick_the_variant_the_launch_files_load(tmp_path):
+    """`--launch-arg dof:=7 --launch-arg load_robot_description:=true`, as `roslaunch
+    vx_moveit_config move_group.launch dof:=7 load_robot_description:=true` takes them: the 7-dof
+    SRDF, joint limits and controllers, and the 7-dof robot the launch files then load."""
+    source, paths = PACKAGES["arg_selected"](tmp_path)
+    six = read_package(source, package_paths=paths)
+    assert (six.srdf_path, six.urdf.name) == ("config/6dof/vx.srdf", "vx6.urdf")
+    given = {"dof": "7", "load_robot_description": "true"}
+    seven = read_package(source, package_paths=paths, launch_args=given)
+    assert (seven.srdf_path, seven.urdf.name) == ("config/7dof/vx.srdf", "vx7.urdf")
+    assert (
+        seven.joint_limits is not None
+        and seven.joint_limits.where.file == "config/7dof/default_joint_limits.yaml"
+    )
+    assert errors(findings(source, paths, launch_args=given)) == []
+
+
 # -- 2: groups in kinematics.yaml / ompl_planning.yaml the SRDF lacks --------------------------------
 
 
@@ -410,6 +427,42 @@ def test_an_srdf_xacro_arg_only_the_run_time_gives_is_a_warning(tmp_path):
     assert errors(findings(source, paths)) == [
         ("controller.missing-action-ns", "moveit_simple_controller_manager.bot_hand_controller")
     ]
+
+
+def test_launch_args_given_as_ros2_launch_takes_them_fill_what_only_the_run_time_gave(tmp_path):
+    """`--launch-arg NAME:=VALUE` (`ros2 launch pkg file ur_type:=ur5e`): a launch argument
+    without default is known, so the SRDF xacro's name:= and the description's xacro arg are read
+    instead of left to the run time; a given value beats a declared default."""
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    (source / ".setup_assistant").unlink()
+    srdf = (source / "config/bot.srdf").read_text().replace('name="bot"', 'name="$(arg name)"', 1)
+    (source / "config/bot.srdf.xacro").write_text(
+        srdf.replace("<robot ", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" ', 1)
+    )
+    (source / "config/bot.srdf").unlink()
+    edit(
+        source / "launch/move_group.launch.py",
+        ".robot_description(mappings=mappings)",
+        '.robot_description_semantic("config/bot.srdf.xacro", {"name": LaunchConfiguration("robot_ip")})',
+    )
+    given = validate(
+        source, package_paths=paths, plan=False, matrix_trials=0, launch_args={"robot_ip": "bot"}
+    )
+    assert not [f for f in given.findings if f.rule == "srdf.runtime-arg"]
+    assert given.as_dict()["launch_args"] == {"robot_ip": "bot"}
+    assert "; launch args robot_ip:=bot" in given.describe()
+    pkg = read_package(source, package_paths=paths, launch_args={"robot_ip": "bot"})
+    assert (
+        pkg.srdf_file is not None
+        and pkg.srdf_file.srdf is not None
+        and pkg.srdf_file.srdf.robot_name == "bot"
+    )
+    (source / "launch/move_group.launch.py").write_text(
+        COMMAND_LAUNCH.replace('hw_name, default_value="mock"', "hw_name")
+    )
+    assert read_package(source, package_paths=paths).unread_xacro_args == ("hw", "robot_ip")
+    pkg = read_package(source, package_paths=paths, launch_args={"hw": "mock", "robot_ip": "10.0.0.2"})
+    assert dict(pkg.xacro_args) == {"hw": "mock", "robot_ip": "10.0.0.2"} and pkg.unread_xacro_args == ()
 
 
 # -- a controller list a Python launch puts under the simple manager's namespace itself ----------

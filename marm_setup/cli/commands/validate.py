@@ -70,6 +70,16 @@ def validate(
             "packages holding them, nothing when none does.",
         ),
     ] = False,
+    launch_arg: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--launch-arg",
+            help="Launch argument NAME:=VALUE, as roslaunch / ros2 launch take it (repeatable): for "
+            "the launch files' arguments without a default (ur_type:=ur5e), or another variant.",
+            metavar="NAME:=VALUE",
+            show_default=False,
+        ),
+    ] = None,
     ros_distro: Annotated[
         str | None,
         typer.Option(
@@ -84,7 +94,9 @@ def validate(
     controllers, OMPL, launch files. Exit 0 clean, 1 with errors (or warnings with --strict),
     2 when a package cannot be read."""
     from marm_setup.cli.changed_packages import changed_packages
+    from marm_setup.robot import parse_xacro_args
 
+    launch_args = parse_xacro_args(launch_arg or (), option="--launch-arg")
     folders = changed_packages(packages) if changed_files else packages
     if not folders:
         echo_err(f"no MoveIt config package holds the {len(packages)} changed file(s): nothing to validate")
@@ -97,6 +109,7 @@ def validate(
         plan=not no_plan,
         untrusted=robot.untrusted,
         ros_distro=ros_distro,
+        launch_args=launch_args,
     )
     machine = format is not ValidateFormat.text
     outcomes = [
