@@ -102,14 +102,18 @@ def builder_files(
     """The calls that build this package's config (its own name, or the default package name of
     their robot name), and the robot name they use. A package whose launch files build several
     robots (one launch file each) is read for one: the first of `wanted` (the robot names the
-    user's --srdf / --urdf suggest) it builds, else the first launch file's."""
+    user's --srdf / --urdf suggest) it builds, else the first of a launch file that starts
+    move_group (the robot MoveIt loads: a controller_manager.launch.py building another name
+    for ros2_control_node alone sorts first, and move_group never sees it), else the first
+    launch file's."""
     mine = tuple(
         c
         for c in calls
         if (c.package_name or (f"{c.robot_name}_moveit_config" if c.robot_name else None)) in (package, None)
     )
     robots = [c.robot_name for c in mine if c.robot_name]
-    robot = next((r for r in wanted if r in robots), robots[0] if robots else None)
+    movers = [c.robot_name for c in mine if c.robot_name and c.starts_move_group]
+    robot = next((r for r in wanted if r in robots), (movers or robots or [None])[0])
     mine = tuple(c for c in mine if c.robot_name in (robot, None))
     default = package[: -len("_moveit_config")] if package.endswith("_moveit_config") else package
     others = tuple(sorted(set(robots) - {robot}))
