@@ -7,10 +7,10 @@ read that robot's files and named it as the one MoveIt loads."""
 
 from __future__ import annotations
 
-from marm_setup.package.builder import builder_files
+from marm_setup.package.builder import builder_files, builds_same_robot
 from marm_setup.package.launch_python import BuilderCall, read_python_launch
 from marm_setup.validate.runner import validate
-from tests.vendor_packages import PACKAGES
+from tests.vendor_packages import LAUNCH_PY, PACKAGES
 
 CONTROL_ONLY = """from launch import LaunchDescription
 from launch_ros.actions import Node
@@ -77,3 +77,42 @@ def generate_launch_description():
     moveit_config = MoveItConfigsBuilder("bot").to_moveit_configs()
     return Node(package="moveit_ros_move_group", executable="move_group", parameters=[moveit_config.to_dict()])
 """
+
+
+def test_another_robot_name_loading_the_same_files_is_the_same_robot(tmp_path):
+    """comau_racer5_080_description_moveit_config: MoveItConfigsBuilder("<robot>_description")
+    given config/<robot>.urdf.xacro and config/<robot>.srdf by file_path, beside the Setup
+    Assistant's MoveItConfigsBuilder("<robot>"), which takes those same files by default: one
+    robot, no launch.several-robots warning. Another file, or other xacro mappings, is another
+    robot and keeps it."""
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config/bot.urdf.xacro").write_text("<robot/>")
+    urdf, srdf = (
+        ("robot_description", "config/bot.urdf.xacro"),
+        ("robot_description_semantic", "config/bot.srdf"),
+    )
+    mover = BuilderCall("launch/move_group.launch.py", "bot", "p", starts_move_group=True)
+
+    def chosen(*files: tuple[str, str], mappings=()) -> object:
+        control = BuilderCall(
+            "launch/controller_manager.launch.py", "bot_d", "p", files=files, mappings=mappings
+        )
+        return builder_files((control, mover), "p")
+
+    assert builds_same_robot(chosen(urdf, srdf), "bot_d", tmp_path, None)
+    assert not builds_same_robot(chosen(urdf), "bot_d", tmp_path, None)  # config/bot_d.srdf
+    assert not builds_same_robot(
+        chosen(("robot_description", "config/x.urdf"), srdf), "bot_d", tmp_path, None
+    )
+    mapped = chosen(urdf, srdf, mappings=(("robot_description", (("arm", "left"),)),))
+    assert not builds_same_robot(mapped, "bot_d", tmp_path, None)
+
+
+def test_no_several_robots_warning_for_the_same_files(tmp_path):
+    source, paths = PACKAGES["python_launch"](tmp_path)
+    same = LAUNCH_PY.replace('Builder("bot"', 'Builder("bot_description"').replace(
+        'executable="move_group"', 'executable="ros2_control_node"'
+    )
+    (source / "launch/controller_manager.launch.py").write_text(same)
+    found = validate(source, package_paths=paths, plan=False, matrix_trials=0).findings
+    assert [f for f in found if f.rule == "launch.several-robots"] == []
