@@ -134,7 +134,8 @@ def evaluate_ros1(
     """Walk every launch file as an entry point and merge what they load: first the files no
     other launch file includes (what a user starts: demo.launch, move_group.launch, in name
     order), whose args reach the included ones as roslaunch passes them, then the included
-    files on their own defaults; each entry point given `args` as `roslaunch FILE name:=value`."""
+    files on their own defaults; each entry point given `args` as `roslaunch FILE name:=value`;
+    the robot description in `_description_order`."""
     loads: dict[tuple[str, str], YamlLoad] = {}
     semantic: list[tuple[DescriptionLoad, bool]] = []
     description: list[tuple[DescriptionLoad, bool]] = []
@@ -154,12 +155,13 @@ def evaluate_ros1(
             if known is None or (known.conditional and not load.conditional):
                 loads[load.file, load.ns] = replace(load, entry=rel)
         semantic += walk.semantic
-        description += walk.description
         for p in walk.params:
             params.setdefault(p.name, p)
         move_groups.update(dict.fromkeys(walk.move_groups))
         managers.update(dict.fromkeys(walk.managers))
         taken_managers.update(dict.fromkeys(walk.taken_managers))
+    for rel in sorted(walks, key=lambda r: _description_order(r, walks, included)):
+        description += walks[rel].description
     return Ros1Launch(
         tuple(loads.values()),
         first_taken(semantic),
@@ -170,6 +172,20 @@ def evaluate_ros1(
         tuple(managers),
         tuple(taken_managers),
     )
+
+
+def _description_order(rel: str, walks: Mapping[str, _Walk], included: set[str]) -> tuple[int, str]:
+    """Where `rel`'s walk comes in the search for robot_description: first a launch starting
+    move_group that another launch starting move_group includes (the demo.launch that the
+    Setup Assistant's demo_gazebo.launch wraps after its gazebo.launch sets the gazebo copy of
+    the URDF, passing load_robot_description:=false: moveit_setup_assistant templates/
+    moveit_config_pkg_template/launch/demo_gazebo.launch l.13-20; the wrapper is a variant of
+    the demo a user starts), then the files no launch file includes, then the other included
+    files on their own defaults."""
+    wrapped = bool(walks[rel].move_groups) and any(
+        rel in w.included for other, w in walks.items() if other != rel and w.move_groups
+    )
+    return (0 if wrapped else 1 if rel not in included else 2, rel)
 
 
 def first_taken(found: list[tuple[DescriptionLoad, bool]]) -> DescriptionLoad | None:
