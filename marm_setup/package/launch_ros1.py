@@ -111,6 +111,7 @@ class _Walk:
     taken_managers: list[LaunchParam] = field(default_factory=list)
     included: set[str] = field(default_factory=set)
     foreign: dict[str, LaunchXml] = field(default_factory=dict)  # other packages' files, parsed once
+    names: frozenset[str] = frozenset({DESCRIPTION})  # the description params (_description_names)
     walked: set[tuple] = field(default_factory=set)  # (file, args, ns, conditional, manager) walked
     visits: int = 0
 
@@ -143,7 +144,8 @@ def evaluate_ros1(
     move_groups: dict[str, None] = {}
     managers: dict[str, None] = {}
     taken_managers: dict[LaunchParam, None] = {}
-    walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
+    names = _description_names(trees)
+    walks = {rel: _Walk(root, trees, find, names=names) for rel in sorted(trees)}
     for rel, walk in walks.items():
         _walk_file(walk, rel, dict(args or {}), "", False, "", 0)
     stopped = tuple(rel for rel, walk in walks.items() if walk.visits > MAX_VISITS)
@@ -172,6 +174,28 @@ def evaluate_ros1(
         tuple(managers),
         tuple(taken_managers),
     )
+
+
+def _description_names(trees: Mapping[str, LaunchXml]) -> frozenset[str]:
+    """robot_description, and the name a `<remap from="robot_description" to="...">` gives it
+    for move_group (a child of a move_group `<node>`, or beside one in its file): MoveIt 1 then
+    reads the URDF from that name and the SRDF from that name + `_semantic` (moveit
+    rdf_loader.cpp RDFLoader l.67-81: `searchParam` applies the node's remappings, ros_comm
+    roscpp param.cpp search l.757-765). human_moveit_config's move_group.launch remaps it to
+    human_description, the name its planning_context.launch loads."""
+    names = {DESCRIPTION}
+    for tree in trees.values():
+        if tree.root is None or not any(n.get("type") == MOVE_GROUP for n in tree.root.iter("node")):
+            continue
+        for remap in tree.root.iter("remap"):
+            parent = remap.getparent()
+            other_node = parent is not None and parent.tag == "node" and parent.get("type") != MOVE_GROUP
+            if remap.get("from") != DESCRIPTION or other_node:
+                continue
+            to = remap.get("to") or ""
+            if to and "$(" not in to:
+                names.add(to.rsplit("/", 1)[-1])
+    return frozenset(names)
 
 
 def _description_order(rel: str, walks: Mapping[str, _Walk], included: set[str]) -> tuple[int, str]:
@@ -358,7 +382,7 @@ def _param(
         return ctx
     full = _ns(ctx, name)
     leaf = full.rsplit("/", 1)[-1]
-    if leaf in (DESCRIPTION, f"{DESCRIPTION}_semantic"):
+    if leaf in walk.names or leaf.removesuffix("_semantic") in walk.names:
         found = _description(elem, ctx, walk.root)
         if found is not None:
             kept = walk.semantic if leaf.endswith("_semantic") else walk.description

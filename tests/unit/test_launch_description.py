@@ -373,3 +373,25 @@ def test_a_launch_wrapping_the_demo_with_its_own_description_does_not_choose_the
     pkg = read_package(root)
     assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
     assert pkg.urdf_origin == "robot_description in launch/planning_context.launch"
+
+
+@pytest.mark.parametrize(("where", "found"), [("move_group", True), ("robot_state_publisher", False)])
+def test_a_description_remapped_for_move_group_is_the_robot(tmp_path, where, found):
+    """move_group started with `<remap from="robot_description" to="vd_robot"/>` reads its URDF
+    from vd_robot and its SRDF from vd_robot_semantic (moveit rdf_loader.cpp: searchParam
+    applies the node's remappings), the names planning_context.launch loads under its
+    robot_description arg: that load is the robot, not the stale `.setup_assistant`'s file
+    (human_moveit_config). A remap on another node says nothing about move_group."""
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    context = root / "launch/planning_context.launch"
+    context.write_text(context.read_text().replace('default="robot_description"', 'default="vd_robot"'))
+    node = f'  <node pkg="x" type="{where}" name="n">\n    <remap from="robot_description" to="vd_robot"/>\n  </node>\n'
+    if where != "move_group":
+        node += '  <node pkg="moveit_ros_move_group" type="move_group" name="move_group"/>\n'
+    (root / "launch/demo.launch").write_text(DEMO.replace("</launch>", node + "</launch>"))
+    pkg = read_package(root)
+    if found:
+        assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+        assert pkg.urdf_origin.endswith(" in launch/planning_context.launch")
+    else:
+        assert pkg.urdf == (tmp_path / "other_description/urdf/other.urdf").resolve()
