@@ -27,9 +27,13 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from marm_setup.package.launch_python import BuilderCall
 from marm_setup.package.launch_xml import package_relative
+
+if TYPE_CHECKING:
+    from marm_setup.package.setup_files import SetupAssistantFile
 
 CONTROLLERS_FILE = re.compile(r"^(.*)_controllers\.yaml$")
 PLANNING_FILE = re.compile(r"^(.*)_planning\.yaml$")
@@ -58,6 +62,7 @@ class BuilderFiles:
     calls: tuple[BuilderCall, ...]  # this package's MoveIt builder calls (launch files sorted)
     others: tuple[str, ...] = ()  # other robots the package's launch files build (not read)
     foreign: tuple[BuilderCall, ...] = ()  # builders of another module (launch files sorted)
+    rivals: tuple[BuilderCall, ...] = ()  # this package's builder calls of the `others`
 
     def explicit(self, method: str) -> Chosen | None:
         """The file the first launch file naming one passes to `method`, if any (a foreign
@@ -102,18 +107,55 @@ def builder_files(
     """The calls that build this package's config (its own name, or the default package name of
     their robot name), and the robot name they use. A package whose launch files build several
     robots (one launch file each) is read for one: the first of `wanted` (the robot names the
-    user's --srdf / --urdf suggest) it builds, else the first launch file's."""
+    user's --srdf / --urdf suggest) it builds, else the first of a launch file that starts
+    move_group (the robot MoveIt loads: a controller_manager.launch.py building another name
+    for ros2_control_node alone sorts first, and move_group never sees it), else the first
+    launch file's."""
     mine = tuple(
         c
         for c in calls
         if (c.package_name or (f"{c.robot_name}_moveit_config" if c.robot_name else None)) in (package, None)
     )
     robots = [c.robot_name for c in mine if c.robot_name]
-    robot = next((r for r in wanted if r in robots), robots[0] if robots else None)
+    movers = [c.robot_name for c in mine if c.robot_name and c.starts_move_group]
+    robot = next((r for r in (*wanted, *movers, *robots) if r in robots), None)
+    rivals = tuple(c for c in mine if c.robot_name not in (robot, None))
     mine = tuple(c for c in mine if c.robot_name in (robot, None))
     default = package[: -len("_moveit_config")] if package.endswith("_moveit_config") else package
     others = tuple(sorted(set(robots) - {robot}))
-    return BuilderFiles(robot or default, mine, others, foreign)
+    return BuilderFiles(robot or default, mine, others, foreign, rivals)
+
+
+def builds_same_robot(builder: BuilderFiles, other: str, root: Path, sa: SetupAssistantFile | None) -> bool:
+    """The calls of robot name `other` load the description (file and xacro mappings) and the
+    SRDF the chosen robot's calls load: the same robot under another name."""
+    theirs = BuilderFiles(other, tuple(c for c in builder.rivals if c.robot_name == other))
+    return _robot_files(builder, root, sa) == _robot_files(theirs, root, sa)
+
+
+def _robot_files(builder: BuilderFiles, root: Path, sa: SetupAssistantFile | None) -> tuple[object, ...]:
+    """(URDF, its mappings, SRDF) as MoveItConfigsBuilder picks them: a `file_path` given, else
+    `config/<robot_name>.urdf.xacro` when it exists, else `.setup_assistant`'s URDF (with its
+    xacro_args), else `config/<robot_name>.urdf`; the SRDF a `file_path`, else
+    `.setup_assistant`'s, else `config/<robot_name>.srdf` (moveit2 moveit_configs_utils
+    moveit_configs_builder.py l.163-210, robot_description l.213-240)."""
+    name = builder.robot_name
+    urdf, srdf = builder.explicit("robot_description"), builder.explicit("robot_description_semantic")
+    modified = f"config/{name}.urdf.xacro"
+    if urdf is not None:
+        description = package_relative(urdf.file, root) or urdf.file
+    elif (root / modified).is_file():
+        description = modified
+    elif sa is not None and sa.urdf_package and sa.urdf_path:
+        description = f"{sa.urdf_package}/{sa.urdf_path}"
+    else:
+        description = f"config/{name}.urdf"
+    mappings = (builder.mappings("robot_description"), builder.unread_args("robot_description"))
+    if srdf is not None:
+        semantic = package_relative(srdf.file, root) or srdf.file
+    else:
+        semantic = sa.srdf_path if sa is not None and sa.srdf_path else f"config/{name}.srdf"
+    return description, mappings, semantic
 
 
 def chosen_file(builder: BuilderFiles, method: str, root: Path) -> Chosen | None:

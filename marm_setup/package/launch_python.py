@@ -22,7 +22,7 @@ import ast
 import os
 import shlex
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -70,6 +70,7 @@ class BuilderCall:
     computed: tuple[str, ...] = ()  # methods given a file_path only the run time computes
     origin: str = MOVEIT_BUILDER_PACKAGE  # the module the builder comes from (builder_origins)
     methods: tuple[str, ...] = ()  # every method the chain calls
+    starts_move_group: bool = False  # its launch file starts move_group (_starts_move_group)
 
     @property
     def is_moveit(self) -> bool:
@@ -147,10 +148,14 @@ def read_python_launch(
         try:
             tree = parse_launch_module(root / rel, rel)
             env = _environment(tree, find, args)
+            mover = _starts_move_group(tree, env)
             found = (
                 []
                 if _setup_assistant_only(tree)
-                else [_builder(chain, rel, env, origin) for chain, origin in _builder_chains(tree)],
+                else [
+                    replace(_builder(chain, rel, env, origin), starts_move_group=mover)
+                    for chain, origin in _builder_chains(tree)
+                ],
                 [(path, rel) for path in _control_files(tree, env)],
                 xacro_commands(tree, rel, env),
                 [(path, rel) for path in _named_yaml(tree, env)],
@@ -193,6 +198,22 @@ def _setup_assistant_only(tree: ast.AST) -> bool:
         "Node",
         "IncludeLaunchDescription",
     }
+
+
+def _starts_move_group(tree: ast.AST, env: _Env) -> bool:
+    """The module starts move_group: it calls generate_move_group_launch (a move_group Node
+    given `moveit_config.to_dict()`; moveit2 moveit_configs_utils launches.py l.190-255) or
+    starts one itself (`Node(executable="move_group")`, `add_debuggable_node(...)`).
+    generate_demo_launch starts none of its own: it includes the package's
+    launch/move_group.launch.py (launches.py l.258-318)."""
+    return any(
+        isinstance(node, ast.Call)
+        and (
+            _name(node.func) == "generate_move_group_launch"
+            or _try(_keyword(node, "executable"), env) == "move_group"
+        )
+        for node in ast.walk(tree)
+    )
 
 
 def parse_launch_module(path: Path, rel: str) -> ast.Module:

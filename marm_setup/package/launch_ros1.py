@@ -111,6 +111,7 @@ class _Walk:
     taken_managers: list[LaunchParam] = field(default_factory=list)
     included: set[str] = field(default_factory=set)
     foreign: dict[str, LaunchXml] = field(default_factory=dict)  # other packages' files, parsed once
+    names: frozenset[str] = frozenset({DESCRIPTION})  # the description params (_description_names)
     walked: set[tuple] = field(default_factory=set)  # (file, args, ns, conditional, manager) walked
     visits: int = 0
 
@@ -134,7 +135,8 @@ def evaluate_ros1(
     """Walk every launch file as an entry point and merge what they load: first the files no
     other launch file includes (what a user starts: demo.launch, move_group.launch, in name
     order), whose args reach the included ones as roslaunch passes them, then the included
-    files on their own defaults; each entry point given `args` as `roslaunch FILE name:=value`."""
+    files on their own defaults; each entry point given `args` as `roslaunch FILE name:=value`;
+    the robot description in `_description_order`."""
     loads: dict[tuple[str, str], YamlLoad] = {}
     semantic: list[tuple[DescriptionLoad, bool]] = []
     description: list[tuple[DescriptionLoad, bool]] = []
@@ -142,7 +144,8 @@ def evaluate_ros1(
     move_groups: dict[str, None] = {}
     managers: dict[str, None] = {}
     taken_managers: dict[LaunchParam, None] = {}
-    walks = {rel: _Walk(root, trees, find) for rel in sorted(trees)}
+    names = _description_names(trees)
+    walks = {rel: _Walk(root, trees, find, names=names) for rel in sorted(trees)}
     for rel, walk in walks.items():
         _walk_file(walk, rel, dict(args or {}), "", False, "", 0)
     stopped = tuple(rel for rel, walk in walks.items() if walk.visits > MAX_VISITS)
@@ -154,12 +157,13 @@ def evaluate_ros1(
             if known is None or (known.conditional and not load.conditional):
                 loads[load.file, load.ns] = replace(load, entry=rel)
         semantic += walk.semantic
-        description += walk.description
         for p in walk.params:
             params.setdefault(p.name, p)
         move_groups.update(dict.fromkeys(walk.move_groups))
         managers.update(dict.fromkeys(walk.managers))
         taken_managers.update(dict.fromkeys(walk.taken_managers))
+    for rel in sorted(walks, key=lambda r: _description_order(r, walks, included)):
+        description += walks[rel].description
     return Ros1Launch(
         tuple(loads.values()),
         first_taken(semantic),
@@ -170,6 +174,42 @@ def evaluate_ros1(
         tuple(managers),
         tuple(taken_managers),
     )
+
+
+def _description_names(trees: Mapping[str, LaunchXml]) -> frozenset[str]:
+    """robot_description, and the name a `<remap from="robot_description" to="...">` gives it
+    for move_group (a child of a move_group `<node>`, or beside one in its file): MoveIt 1 then
+    reads the URDF from that name and the SRDF from that name + `_semantic` (moveit
+    rdf_loader.cpp RDFLoader l.67-81: `searchParam` applies the node's remappings, ros_comm
+    roscpp param.cpp search l.757-765). human_moveit_config's move_group.launch remaps it to
+    human_description, the name its planning_context.launch loads."""
+    names = {DESCRIPTION}
+    for tree in trees.values():
+        if tree.root is None or not any(n.get("type") == MOVE_GROUP for n in tree.root.iter("node")):
+            continue
+        for remap in tree.root.iter("remap"):
+            parent = remap.getparent()
+            other_node = parent is not None and parent.tag == "node" and parent.get("type") != MOVE_GROUP
+            if remap.get("from") != DESCRIPTION or other_node:
+                continue
+            to = remap.get("to") or ""
+            if to and "$(" not in to:
+                names.add(to.rsplit("/", 1)[-1])
+    return frozenset(names)
+
+
+def _description_order(rel: str, walks: Mapping[str, _Walk], included: set[str]) -> tuple[int, str]:
+    """Where `rel`'s walk comes in the search for robot_description: first a launch starting
+    move_group that another launch starting move_group includes (the demo.launch that the
+    Setup Assistant's demo_gazebo.launch wraps after its gazebo.launch sets the gazebo copy of
+    the URDF, passing load_robot_description:=false: moveit_setup_assistant templates/
+    moveit_config_pkg_template/launch/demo_gazebo.launch l.13-20; the wrapper is a variant of
+    the demo a user starts), then the files no launch file includes, then the other included
+    files on their own defaults."""
+    wrapped = bool(walks[rel].move_groups) and any(
+        rel in w.included for other, w in walks.items() if other != rel and w.move_groups
+    )
+    return (0 if wrapped else 1 if rel not in included else 2, rel)
 
 
 def first_taken(found: list[tuple[DescriptionLoad, bool]]) -> DescriptionLoad | None:
@@ -342,7 +382,7 @@ def _param(
         return ctx
     full = _ns(ctx, name)
     leaf = full.rsplit("/", 1)[-1]
-    if leaf in (DESCRIPTION, f"{DESCRIPTION}_semantic"):
+    if leaf in walk.names or leaf.removesuffix("_semantic") in walk.names:
         found = _description(elem, ctx, walk.root)
         if found is not None:
             kept = walk.semantic if leaf.endswith("_semantic") else walk.description

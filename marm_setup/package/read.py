@@ -17,7 +17,7 @@ from marm_setup.bounded_read import XML_BYTES
 from marm_setup.errors import InputError, PackageNotFound
 from marm_setup.findings import Finding, Location, error, warning
 from marm_setup.package.bringup import BringupRobot
-from marm_setup.package.builder import BuilderFiles, Chosen, builder_files, chosen_file
+from marm_setup.package.builder import BuilderFiles, Chosen, builder_files, builds_same_robot, chosen_file
 from marm_setup.package.description import (
     MARM_MOVEIT_YAML,
     SRDF_GUESSED,
@@ -137,7 +137,7 @@ def _read_package(
     wanted = _wanted_robots(srdf, urdf)
     launched = _launched(files, trees, found.paths, found.target, found.name, wanted, launch_args)
     launched = replace(launched, args=tuple(sorted(launch_args.items())))
-    problems += _other_robots(launched.builder)
+    problems += _other_robots(launched.builder, root, found.sa)
     srdf_rel, srdf_args, guessed = _srdf_choice(files, srdf, found, launched, wanted)
     if found.package_xml is None and srdf_rel is None:
         raise InputError("not a MoveIt config package (no package.xml and no config/*.srdf)", path=shown)
@@ -263,13 +263,15 @@ def _wanted_robots(srdf: str | Path | None, urdf: str | Path | None) -> tuple[st
     return tuple(out)
 
 
-def _other_robots(builder: BuilderFiles | None) -> list[Finding]:
-    """A package whose launch files build several robots is validated for one of them."""
-    if builder is None or not builder.others:
+def _other_robots(builder: BuilderFiles | None, root: Path, sa: SetupAssistantFile | None) -> list[Finding]:
+    """A package whose launch files build several robots is validated for one of them; a robot
+    name whose calls load the same description and SRDF is the same robot."""
+    others = [o for o in builder.others if not builds_same_robot(builder, o, root, sa)] if builder else []
+    if builder is None or not others:
         return []
     launch = builder.calls[0].launch if builder.calls else "its launch files"
     msg = (
-        f"the launch files also build {', '.join(builder.others)}: validated {builder.robot_name} "
+        f"the launch files also build {', '.join(others)}: validated {builder.robot_name} "
         f"(what {launch} loads)"
     )
     return [

@@ -27,7 +27,7 @@ from marm_setup.plan.planner import (
     plan_joint_path,
 )
 from marm_setup.plan.timing import JointLimits, TimedTrajectory, limits_from_config, time_parameterize
-from marm_setup.robot import RobotModel, wrap_continuous
+from marm_setup.robot import RobotModel, onto_bounds, wrap_continuous
 from marm_setup.ros import Target
 from marm_setup.setup import (
     active_group_joints,
@@ -124,7 +124,7 @@ def planning_problem(
     _check_timeable(limits, scale_v, scale_a, _limits_file(package))
     start = package_start_values(package, robot)
     poses = {
-        s.name: wrap_continuous(robot, pose_configuration(s, robot, start))
+        s.name: onto_bounds(robot, wrap_continuous(robot, pose_configuration(s, robot, start)))
         for s in srdf.group_states
         if s.group == group
     }

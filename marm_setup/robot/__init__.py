@@ -18,8 +18,8 @@ API = {
         "Mesh MIN_RATE RobotModel Sphere"
     ),
     "kinematics": (
-        "bounds default_configuration forward_kinematics link_index origin_matrix sample_configurations "
-        "wrap_continuous"
+        "bounds default_configuration forward_kinematics link_index onto_bounds origin_matrix "
+        "sample_configurations wrap_continuous"
     ),
     "meshes": "check_robot_triangles load_mesh MAX_ROBOT_TRIANGLES",
     "ros_packages": (
@@ -50,6 +50,7 @@ if TYPE_CHECKING:  # the same names, for type checkers
     from marm_setup.robot.kinematics import default_configuration as default_configuration
     from marm_setup.robot.kinematics import forward_kinematics as forward_kinematics
     from marm_setup.robot.kinematics import link_index as link_index
+    from marm_setup.robot.kinematics import onto_bounds as onto_bounds
     from marm_setup.robot.kinematics import origin_matrix as origin_matrix
     from marm_setup.robot.kinematics import sample_configurations as sample_configurations
     from marm_setup.robot.kinematics import wrap_continuous as wrap_continuous

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from marm_setup.robot.model import Joint, Origin, RobotModel
+from marm_setup.robot.model import GOAL_JOINT_TOLERANCE, Joint, Origin, RobotModel
 
 
 def origin_matrix(origin: Origin) -> np.ndarray:
@@ -140,6 +140,15 @@ def wrap_continuous(robot: RobotModel, q: np.ndarray) -> np.ndarray:
     cols = [i for i, j in enumerate(robot.active_joints) if j.type == "continuous"]
     q[..., cols] = (q[..., cols] + np.pi) % (2.0 * np.pi) - np.pi
     return q
+
+
+def onto_bounds(robot: RobotModel, q: np.ndarray) -> np.ndarray:
+    """`q` with each value at most GOAL_JOINT_TOLERANCE past a bound moved onto it: the state
+    that meets a joint goal there within its tolerance and the bounds (`Joint.reaches`)."""
+    lower, upper = bounds(robot)
+    q = np.array(q, dtype=float)
+    near = (q >= lower - GOAL_JOINT_TOLERANCE) & (q <= upper + GOAL_JOINT_TOLERANCE)
+    return np.where(near, np.clip(q, lower, upper), q)
 
 
 def sample_configurations(robot: RobotModel, rng: np.random.Generator, n: int) -> np.ndarray:

@@ -24,6 +24,11 @@ MIN_RATE = 1e-6  # [rad/s, m/s, /s^2] slower than any joint moves (1 rad in 11.6
 # Limits in YAML files are written rounded (2.0944 for the URDF's 2.0943951): a value within this
 # fraction of a limit is that limit.
 LIMIT_ROUNDING = 1e-4
+# [rad] or [m]: MoveIt's default goal_joint_tolerance (moveit move_group_interface.h
+# DEFAULT_GOAL_JOINT_TOLERANCE l.78, read per group from robot_description_kinematics): a joint
+# goal is met by any state that close to it, so a named pose that far past a bound is met by the
+# state on the bound (a pose written rounded, 0.1745 for a limit of 0.174533).
+GOAL_JOINT_TOLERANCE = 1e-4
 
 
 def limit_slack(limit: float) -> float:
@@ -139,6 +144,17 @@ class Joint:
             return True
         lo, hi = self.bounds
         return lo - LIMIT_TOLERANCE <= value <= hi + LIMIT_TOLERANCE
+
+    def reaches(self, value: float) -> bool:
+        """MoveIt meets `value` as a joint goal: within the bounds, or past one by no more than
+        GOAL_JOINT_TOLERANCE, as the goal constraint's tolerance then holds the state on the
+        bound (moveit kinematic_constraint.cpp JointConstraint::configure l.217-237 moves only a
+        goal farther out onto the bound, with a warning; move_group_interface.cpp
+        setJointValueTarget checks satisfiesBounds(goal_joint_tolerance))."""
+        if self.type == "continuous" or not self.is_actuated:
+            return True
+        lo, hi = self.bounds
+        return lo - GOAL_JOINT_TOLERANCE <= value <= hi + GOAL_JOINT_TOLERANCE
 
     @property
     def default_position(self) -> float:

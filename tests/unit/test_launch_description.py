@@ -333,3 +333,65 @@ def test_the_summary_says_what_to_set_when_an_optenv_robot_lacks_the_names_found
     assert "$(optenv): R_HAS_ARM, R_SIDE (2 findings name joints or links it lacks:" in described
     assert "R_HAS_ARM=... marm-setup validate ..." in described
     assert "lacks" not in dataclasses.replace(found, findings=lacking[2:]).describe()
+
+
+def test_a_launch_wrapping_the_demo_with_its_own_description_does_not_choose_the_robot(tmp_path):
+    """The Setup Assistant's demo_gazebo.launch (MoveIt 1, moveit_setup_assistant templates/
+    moveit_config_pkg_template/launch/demo_gazebo.launch l.13-20) includes gazebo.launch, which
+    sets robot_description to the gazebo copy of the URDF, and demo.launch with
+    load_robot_description:=false. demo.launch is then included by another file, yet it is the
+    demo a user starts, and its planning_context.launch gives move_group the package's URDF:
+    a launch starting move_group that another launch starting move_group includes is walked
+    first for the robot description; the wrapper is a variant of it. demo_gazebo.launch sorted
+    before every other entry and the gazebo copy was validated (khi_rs030n_moveit_config)."""
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    node = '  <node pkg="moveit_ros_move_group" type="move_group" name="move_group"/>\n</launch>'
+    build_file_tree(
+        tmp_path,
+        {
+            "vd_moveit_config/launch/demo.launch": DEMO.replace("</launch>", node),
+            "vd_moveit_config/launch/gazebo.launch": (
+                '<launch>\n  <param name="robot_description" textfile="$(find other_description)/urdf/other.urdf"/>\n'
+                "</launch>\n"
+            ),
+            "vd_moveit_config/launch/demo_gazebo.launch": (
+                '<launch>\n  <include file="$(dirname)/gazebo.launch"/>\n'
+                '  <include file="$(dirname)/demo.launch">\n'
+                '    <arg name="load_robot_description" value="false"/>\n  </include>\n</launch>\n'
+            ),
+        },
+    )
+    demo = (root / "launch/demo.launch").read_text()
+    (root / "launch/demo.launch").write_text(
+        demo.replace(
+            "<launch>\n", '<launch>\n  <arg name="load_robot_description" default="true"/>\n'
+        ).replace(
+            '<arg name="load_robot_description" value="true"/>',
+            '<arg name="load_robot_description" value="$(arg load_robot_description)"/>',
+        )
+    )
+    pkg = read_package(root)
+    assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+    assert pkg.urdf_origin == "robot_description in launch/planning_context.launch"
+
+
+@pytest.mark.parametrize(("where", "found"), [("move_group", True), ("robot_state_publisher", False)])
+def test_a_description_remapped_for_move_group_is_the_robot(tmp_path, where, found):
+    """move_group started with `<remap from="robot_description" to="vd_robot"/>` reads its URDF
+    from vd_robot and its SRDF from vd_robot_semantic (moveit rdf_loader.cpp: searchParam
+    applies the node's remappings), the names planning_context.launch loads under its
+    robot_description arg: that load is the robot, not the stale `.setup_assistant`'s file
+    (human_moveit_config). A remap on another node says nothing about move_group."""
+    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
+    context = root / "launch/planning_context.launch"
+    context.write_text(context.read_text().replace('default="robot_description"', 'default="vd_robot"'))
+    node = f'  <node pkg="x" type="{where}" name="n">\n    <remap from="robot_description" to="vd_robot"/>\n  </node>\n'
+    if where != "move_group":
+        node += '  <node pkg="moveit_ros_move_group" type="move_group" name="move_group"/>\n'
+    (root / "launch/demo.launch").write_text(DEMO.replace("</launch>", node + "</launch>"))
+    pkg = read_package(root)
+    if found:
+        assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
+        assert pkg.urdf_origin.endswith(" in launch/planning_context.launch")
+    else:
+        assert pkg.urdf == (tmp_path / "other_description/urdf/other.urdf").resolve()

@@ -225,3 +225,35 @@ def test_an_unknown_link_in_many_disabled_pairs_is_one_warning(marm_setup):
             "unknown link 'spook' (srdfdom ignores the pair)",
         ),
     ]
+
+
+def test_a_pose_past_its_bound_within_moveits_goal_tolerance_is_reached(marm_setup):
+    """A named pose written rounded (0.1745 for a lower limit of 0.174533, braccio_moveit_config):
+    MoveIt's joint goal has a tolerance (goal_joint_tolerance, 1e-4 by default: moveit
+    move_group_interface.h l.78), so the state on the bound meets it and the plan goes there; no
+    pose.out-of-limits. Past the tolerance MoveIt moves the goal onto the bound with a warning
+    (kinematic_constraint.cpp JointConstraint::configure): still an error. The runtime plans to
+    the state on the bound."""
+    import numpy as np
+
+    from marm_setup.robot import onto_bounds
+    from marm_setup.robot.model import GOAL_JOINT_TOLERANCE
+
+    model, robot = marm_setup
+    lo, hi = robot.joint("joint2").bounds
+    home = next(s for s in model.group_states if s.group == "arm")
+
+    def rules(value: float) -> list[str]:
+        values = tuple((j, value if j == "joint2" else v) for j, v in home.values)
+        srdf = setup_to_srdf(dataclasses.replace(model, group_states=(GroupState(home.name, "arm", values),)))
+        return [f.rule for f in check_semantics(srdf, robot, "x.srdf", srdf_element)]
+
+    assert "pose.out-of-limits" not in rules(lo - GOAL_JOINT_TOLERANCE / 3)
+    assert "pose.out-of-limits" not in rules(hi + GOAL_JOINT_TOLERANCE / 3)
+    assert "pose.out-of-limits" in rules(hi + 3 * GOAL_JOINT_TOLERANCE)
+    i = robot.active_joint_names.index("joint2")
+    q = np.zeros(len(robot.active_joint_names))
+    q[i] = hi + GOAL_JOINT_TOLERANCE / 3
+    assert onto_bounds(robot, q)[i] == hi
+    q[i] = hi + 3 * GOAL_JOINT_TOLERANCE
+    assert onto_bounds(robot, q)[i] == q[i]

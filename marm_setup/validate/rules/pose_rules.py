@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from marm_setup.findings import Evidence, Finding, error
+from marm_setup.findings import Evidence, Finding, error, warning
 from marm_setup.package import InitialPositions
 from marm_setup.robot import RobotModel
 from marm_setup.setup import (
@@ -80,7 +80,8 @@ def check_initial_positions(positions: InitialPositions, robot: RobotModel) -> l
     for param in sorted(positions.values, key=lambda p: p.key):
         joint, value, where = param.key, param.value, param.where.element
         if joint not in robot.joint_map:
-            out.append(error("pose.initial-unknown-joint", file, where, f"unknown joint '{joint}'"))
+            msg = f"unknown joint '{joint}': no joint reads this value"
+            out.append(warning("pose.initial-unknown-joint", file, where, msg))
         elif isinstance(value, bool) or not isinstance(value, (int, float)):
             out.append(error("pose.initial-malformed", file, where, f"not a number: {value!r}"))
         elif not robot.joint(joint).within_limits(value):
