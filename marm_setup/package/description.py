@@ -234,7 +234,7 @@ def _runtime_only(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile
     will be loaded from /robot_description topic"), or the launch file builds it from another
     package. A `.setup_assistant` naming no package names a file outside any package (moveit/moveit
     moveit_setup_assistant/src/tools/moveit_config_data.cpp l.1730-1734), which move_group never
-    reads: with launch files that load no description, move_group takes /robot_description as
+    reads: with ROS 1 launch files that load no description, move_group takes /robot_description as
     something else sets it (moveit/moveit moveit_ros/planning/rdf_loader/src/rdf_loader.cpp
     l.67: searchParam/getParam, whoever loaded it)."""
     if marm is not None or (root / "marm_setup.yaml").exists():
@@ -242,8 +242,9 @@ def _runtime_only(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile
     if sa is None and not (root / ".setup_assistant").exists():
         return RUNTIME_ONLY if any(root.glob("launch/*.py")) else None
     outside = sa is not None and sa.readable and sa.urdf_package is None and bool(sa.urdf_path)
-    launch = any(root.glob("launch/*.py")) or any(root.glob("launch/*.launch"))
-    return SETUP_ASSISTANT_OUTSIDE if outside and launch else None
+    # ROS 1 launch files only: MoveIt 2's MoveItConfigsBuilder asks the ament index for the
+    # empty package (moveit_configs_builder.py l.180-183) and stops the launch
+    return SETUP_ASSISTANT_OUTSIDE if outside and any(root.glob("launch/*.launch")) else None
 
 
 def _why_no_urdf(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> str:

@@ -432,3 +432,24 @@ def test_a_setup_assistant_naming_no_package_and_launch_files_loading_no_descrip
     ]
     assert ".setup_assistant names no package" in runtime[0].message
     assert not [f for f in result.findings if f.severity == "error"]
+
+
+def test_a_ros2_package_whose_setup_assistant_names_no_package_stays_exit_2(tmp_path):
+    """MoveItConfigsBuilder looks the empty package up in the ament index and stops the launch:
+    no run time description to wait for."""
+    from marm_setup.errors import InputError
+
+    build_file_tree(
+        tmp_path,
+        {
+            "vd_moveit_config/package.xml": AMENT.format(name="vd_moveit_config"),
+            "vd_moveit_config/launch/demo.launch.py": "from moveit_configs_utils import MoveItConfigsBuilder\n",
+            "vd_moveit_config/config/vd.srdf": _srdf("vd", 6, False),
+            "vd_moveit_config/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  urdf:\n    package: ''\n"
+                "    relative_path: /home/someone/vd.urdf\n  srdf:\n    relative_path: config/vd.srdf\n"
+            ),
+        },
+    )
+    with pytest.raises(InputError, match="gives no URDF package"):
+        read_package(tmp_path / "vd_moveit_config")
