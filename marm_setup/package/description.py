@@ -174,8 +174,9 @@ def find_description(
     bringup = launched_by()
     if bringup is not None:
         return bringup
-    if _runtime_only(root, marm, sa):
-        return Description(None, RUNTIME_ONLY, args)
+    runtime = _runtime_only(root, marm, sa)
+    if runtime is not None:
+        return Description(None, runtime, args)
     raise InputError(
         f"cannot find the robot description of package '{name}' ({_why_no_urdf(root, marm, sa)})",
         path=shown,
@@ -218,14 +219,32 @@ RUNTIME_ONLY = (
 )
 
 
-def _runtime_only(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> bool:
-    """A package with Python launch files and nothing else naming its robot description: MoveIt
-    2 takes it at run time (moveit/moveit2 moveit_configs_utils/moveit_configs_builder.py
-    `robot_description`, l.213-243: a file that does not exist leaves robot_description unset,
-    "The robot description will be loaded from /robot_description topic"), or the launch file
-    builds it from another package."""
-    absent = not (root / "marm_setup.yaml").exists() and not (root / ".setup_assistant").exists()
-    return absent and marm is None and sa is None and any(root.glob("launch/*.py"))
+SETUP_ASSISTANT_OUTSIDE = (
+    "no description file validate can read: .setup_assistant names no package (the Setup "
+    "Assistant then reads relative_path as a file outside any package) and the launch files load "
+    "none (at run time another package's launch file loads /robot_description)"
+)
+
+
+def _runtime_only(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> str | None:
+    """Why the robot description comes only at run time, or None. A package with Python launch
+    files and nothing else naming its robot description: MoveIt 2 takes it at run time
+    (moveit/moveit2 moveit_configs_utils/moveit_configs_builder.py `robot_description`,
+    l.213-243: a file that does not exist leaves robot_description unset, "The robot description
+    will be loaded from /robot_description topic"), or the launch file builds it from another
+    package. A `.setup_assistant` naming no package names a file outside any package (moveit/moveit
+    moveit_setup_assistant/src/tools/moveit_config_data.cpp l.1730-1734), which move_group never
+    reads: with ROS 1 launch files that load no description, move_group takes /robot_description as
+    something else sets it (moveit/moveit moveit_ros/planning/rdf_loader/src/rdf_loader.cpp
+    l.67: searchParam/getParam, whoever loaded it)."""
+    if marm is not None or (root / "marm_setup.yaml").exists():
+        return None
+    if sa is None and not (root / ".setup_assistant").exists():
+        return RUNTIME_ONLY if any(root.glob("launch/*.py")) else None
+    outside = sa is not None and sa.readable and sa.urdf_package is None and bool(sa.urdf_path)
+    # ROS 1 launch files only: MoveIt 2's MoveItConfigsBuilder asks the ament index for the
+    # empty package (moveit_configs_builder.py l.180-183) and stops the launch
+    return SETUP_ASSISTANT_OUTSIDE if outside and any(root.glob("launch/*.launch")) else None
 
 
 def _why_no_urdf(root: Path, marm: MarmSetupFile | None, sa: SetupAssistantFile | None) -> str:

@@ -12,7 +12,8 @@ value, ...])}` (also through a name, `ParameterValue(...)`, and for `robot_descr
 known without running anything: literals, names bound to literals, `+`, f-strings, `Path(...) /
 ...`, `os.path.join`, `get_package_share_directory("pkg")`, `FindPackageShare("pkg")`,
 `PathJoinSubstitution([...])` and a `LaunchConfiguration` whose `DeclareLaunchArgument` has a
-literal default; a xacro argument whose value is not known is listed as such (`unread_args`). The builder's conventions for what it loads
+literal default; a xacro argument whose value is not known is listed as such (`unread_args`),
+and a command file under a package no package path holds names that package (`unheld`). The builder's conventions for what it loads
 when a method is not called are in `package.builder`.
 """
 
@@ -20,6 +21,7 @@ from __future__ import annotations
 
 import ast
 import os
+import re
 import shlex
 from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field, replace
@@ -48,6 +50,15 @@ STATIC_ITEMS = 1 << 20  # characters of a string, items of a list, computed with
 
 class Unknown(Exception):
     """A value only running the launch file would give."""
+
+
+class UnheldPackage(Unknown):
+    """A value under `get_package_share_directory("pkg")` / `FindPackageShare("pkg")` of a
+    package no package path holds (`package`): known once that package is found."""
+
+    def __init__(self, package: str) -> None:
+        super().__init__(package)
+        self.package = package
 
 
 class Unreadable(Exception):
@@ -97,6 +108,7 @@ class XacroCommand:
     file: str | None
     args: tuple[tuple[str, str], ...] = ()
     unread_args: tuple[str, ...] = ()
+    unheld: str | None = None  # the package no package path holds that its file lies in
 
 
 @dataclass(frozen=True)
@@ -126,6 +138,7 @@ class _Env:
 
     values: dict[str, Any] = field(default_factory=dict)
     defaults: dict[str, str] = field(default_factory=dict)
+    unheld: dict[str, str] = field(default_factory=dict)  # name -> the unheld package its value needs
     find: Callable[[str], str | None] = lambda _name: None
 
 
@@ -270,10 +283,16 @@ def _environment(
 def _bind(tree: ast.AST, env: _Env) -> None:
     for node in ast.walk(tree):  # simple `name = value` bindings, in source order
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            name = node.targets[0].id
             try:
-                env.values[node.targets[0].id] = static(node.value, env)
+                env.values[name] = static(node.value, env)
+                env.unheld.pop(name, None)
+            except UnheldPackage as exc:
+                env.values.pop(name, None)
+                env.unheld[name] = exc.package
             except Unknown:
-                env.values.pop(node.targets[0].id, None)
+                env.values.pop(name, None)
+                env.unheld.pop(name, None)
 
 
 def static(node: ast.AST | None, env: _Env) -> Any:
@@ -282,6 +301,8 @@ def static(node: ast.AST | None, env: _Env) -> Any:
         return node.value
     if isinstance(node, ast.Name) and node.id in env.values:
         return env.values[node.id]
+    if isinstance(node, ast.Name) and node.id in env.unheld:
+        raise UnheldPackage(env.unheld[node.id])
     if isinstance(node, ast.List | ast.Tuple):
         return [static(e, env) for e in node.elts]
     if isinstance(node, ast.Dict):
@@ -318,7 +339,7 @@ def _static_call(node: ast.Call, env: _Env) -> Any:
     if name in ("get_package_share_directory", "FindPackageShare") and len(args) == 1:
         found = env.find(str(args[0]))
         if found is None:
-            raise Unknown
+            raise UnheldPackage(str(args[0]))
         return found
     if name == "LaunchConfiguration" and len(args) == 1 and str(args[0]) in env.defaults:
         return env.defaults[str(args[0])]
@@ -683,15 +704,32 @@ def _xacro_command(call: ast.Call, rel: str, parameter: str, env: _Env) -> Xacro
     # a relative file is relative to where the user starts the launch: not known statically
     file = files[0] if files and _UNREAD not in files[0] and os.path.isabs(files[0]) else None
     args = tuple(sorted((k, v) for k, v in pairs if _UNREAD not in v))
-    return XacroCommand(rel, parameter, file, args, tuple(sorted(k for k, v in pairs if _UNREAD in v)))
+    unheld = next((m[1] for m in _UNHELD.finditer(files[0])), None) if files else None
+    unread = tuple(sorted(k for k, v in pairs if _UNREAD in v))
+    return XacroCommand(rel, parameter, file, args, unread, unheld)
+
+
+_UNHELD = re.compile("\x00\x01([^\x01]+)\x01")  # a part under a package no package path holds
 
 
 def _command_part(node: ast.AST, env: _Env) -> str:
+    try:
+        return _known_part(node, env)
+    except UnheldPackage as exc:  # unknown like _UNREAD, naming the package
+        return f"{_UNREAD}\x01{exc.package}\x01"
+
+
+def _known_part(node: ast.AST, env: _Env) -> str:
     node = _sole_joined(node)
     if isinstance(node, ast.Call) and _name(node.func) == "FindExecutable":
         name = _try(_keyword(node, "name") or (node.args[0] if node.args else None), env)
         return str(name) if isinstance(name, str) else _UNREAD
-    value = _try(node, env)
+    try:
+        value = static(node, env)
+    except UnheldPackage:
+        raise
+    except Unknown:
+        return _UNREAD
     return _text(value) if isinstance(value, str | int | float | bool) else _UNREAD
 
 

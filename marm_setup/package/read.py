@@ -400,7 +400,9 @@ def _launched_file(
     if load is None or (load.file is None and load.missing_package is None):
         return None
     if load.missing_package is not None:
-        files.problems.append(missing_package(load, param, _own_names(files)))
+        files.problems.append(
+            missing_package(str(load.missing_package), load.launch, param, _own_names(files))
+        )
         return None
     assert load.file is not None
     path = files.root / load.file
@@ -431,7 +433,7 @@ def _kind(param: str) -> str:
     return "srdf" if param.endswith("_semantic") else "urdf"
 
 
-def missing_package(load: DescriptionLoad, param: str, own: tuple[str, ...] = ()) -> Finding:
+def missing_package(package: str, launch: str, param: str, own: tuple[str, ...] = ()) -> Finding:
     """A description in a package no package path holds: validate cannot read what MoveIt loads
     (the rules needing it are skipped); the user passes the folder holding it. An error when
     the name nearly spells one of `own` (the package's name and those its package.xml depends
@@ -439,21 +441,19 @@ def missing_package(load: DescriptionLoad, param: str, own: tuple[str, ...] = ()
     _find)."""
     from marm_setup.robot import misspelt_package
 
-    meant = misspelt_package(str(load.missing_package), own)
+    meant = misspelt_package(package, own)
     what = "SRDF" if param.endswith("_semantic") else "robot description"
-    at = Location("package", str(load.missing_package))
+    at = Location("package", package)
     if meant is not None:
-        msg = f"loads its {what} from package '{load.missing_package}', which does not exist: roslaunch stops before move_group starts"
-        return error(
-            f"{_kind(param)}.package-missing", load.launch, param, msg, f"did you mean '{meant}'?", at=at
-        )
+        msg = f"loads its {what} from package '{package}', which does not exist: roslaunch stops before move_group starts"
+        return error(f"{_kind(param)}.package-missing", launch, param, msg, f"did you mean '{meant}'?", at=at)
     msg = (
         f"loads its {'SRDF' if param.endswith('_semantic') else 'robot description'} from package "
-        f"'{load.missing_package}', which no package path holds: the rules needing it are skipped"
+        f"'{package}', which no package path holds: the rules needing it are skipped"
     )
-    hint = f"pass --package-path DIR (the folder holding {load.missing_package})"
-    at = Location("package", str(load.missing_package))
-    return warning(f"{_kind(param)}.package-missing", load.launch, param, msg, hint, at=at)
+    hint = f"pass --package-path DIR (the folder holding {package})"
+    at = Location("package", package)
+    return warning(f"{_kind(param)}.package-missing", launch, param, msg, hint, at=at)
 
 
 def _description(
@@ -502,6 +502,12 @@ def _description(
         )
     except PackageNotFound as exc:  # .setup_assistant's or marm_setup.yaml's package: a finding
         return _missing_package(files, exc)
+    if found_description.urdf is None and command is not None and command.unheld is not None:
+        files.problems.append(
+            missing_package(command.unheld, command.launch, "robot_description", _own_names(files))
+        )
+        why = f"xacro command in {command.launch}, from package '{command.unheld}' not found"
+        return Description(None, why, (), unreadable=True)
     if found_description.urdf is None and command is not None:
         why = (
             f"{command.launch} builds it with xacro from {command.file}, outside the package and the folders named"
@@ -592,7 +598,9 @@ def _launch_description(
     description is then unknown (None file), never another robot's."""
     origin = f"robot_description in {load.launch}"
     if load.missing_package is not None:
-        files.problems.append(missing_package(load, "robot_description", _own_names(files)))
+        files.problems.append(
+            missing_package(str(load.missing_package), load.launch, "robot_description", _own_names(files))
+        )
         return Description(
             None, f"{origin}, from package '{load.missing_package}' not found", (), unreadable=True
         )

@@ -51,7 +51,7 @@ def read_setup_assistant(doc: Located | None) -> SetupAssistantFile:
     args = str(urdf.get("xacro_args") or "").split()
     return SetupAssistantFile(
         True,
-        _text(urdf.get("package")),
+        _package(urdf.get("package")),
         _text(urdf.get("relative_path")),
         xacro_pairs(args),
         _text(srdf.get("relative_path")) if isinstance(srdf.get("relative_path"), str) else None,
@@ -64,6 +64,14 @@ def read_setup_assistant(doc: Located | None) -> SetupAssistantFile:
 
 def _text(value: Any) -> str | None:
     return str(value) if value not in (None, "") else None
+
+
+def _package(value: Any) -> str | None:
+    """URDF.package as the MoveIt 1 Setup Assistant reads it: trimmed, and empty or `""` names
+    no package (relative_path is then the file itself; moveit/moveit
+    moveit_setup_assistant/src/tools/moveit_config_data.cpp l.1727-1734)."""
+    text = _text(value)
+    return None if text is None or text.strip() in ("", '""') else text.strip()
 
 
 def xacro_pairs(value: Any) -> tuple[tuple[str, str], ...]:

@@ -183,10 +183,24 @@ def _folder_below(root: Path, name: str, depth: int) -> Path | None:
     visited: dict[tuple[int, int], int] = {}
     for remaining in range(depth, -1, -1):
         for folder in level:
-            if folder.name == name and folder.is_dir():
+            if folder.name == name and folder.is_dir() and not _holds_packages(folder):
                 return folder
         level = [c for f in level if _first_visit(f, remaining, visited) for c in _subfolders(f)]
     return None
+
+
+def _holds_packages(folder: Path, depth: int = 2) -> bool:
+    """`folder` has no package.xml but packages lie below it (within `depth` levels): a
+    repository or workspace folder, never a package, as packages do not nest (catkin_pkg
+    src/catkin_pkg/packages.py `find_package_paths`: a package.xml ends the descent)."""
+    if (folder / "package.xml").is_file():
+        return False
+    level = _subfolders(folder)
+    for _ in range(depth):
+        if any((child / "package.xml").is_file() for child in level):
+            return True
+        level = [c for f in level for c in _subfolders(f)]
+    return False
 
 
 def _env_roots(environ: Mapping[str, str]) -> list[Path]:

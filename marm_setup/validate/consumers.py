@@ -412,17 +412,23 @@ def _needs_args(root: etree._Element, given: frozenset[str] = frozenset()) -> bo
     never declares (`$(arg x)`, `arg('x')` in `$(eval)`), which only an includer passing its own
     (`pass_all_args`) sets. roslaunch run on it alone stops at either (xmlloader.py:
     ArgException, "requires the 'x' arg to be set"; with --dump-params its handler fails first on
-    a loader attribute --dump-params never sets, ignore_unset_args)."""
+    a loader attribute --dump-params never sets, ignore_unset_args). roslaunch reads the tags in
+    order (xmlloader.py `_recurse_load`) and resolves an arg's attributes before declaring it
+    (`_arg_tag`: opt_attrs, then context.add_arg), so an arg used before its declaration, or in
+    its own default (`<arg name="x" default="$(arg x)"/>`), is one only an includer sets too."""
     required = {
         a.get("name") for a in root.findall("arg") if a.get("default") is None and a.get("value") is None
     }
     if required - given:
         return True
-    elements = [e for e in root.iter() if isinstance(e.tag, str)]
-    declared = {e.get("name") for e in elements if e.tag == "arg" and _parent_tag(e) != "include"}
-    texts = [v for e in elements for v in (*e.attrib.values(), e.text or "")]
-    used = {m.group(1) or m.group(2) for text in texts for m in USED_ARG.finditer(text)}
-    return bool(used - declared - given)
+    declared: set[str | None] = set(given)
+    for element in (e for e in root.iter() if isinstance(e.tag, str)):
+        texts = (*element.attrib.values(), element.text or "")
+        if {m.group(1) or m.group(2) for text in texts for m in USED_ARG.finditer(text)} - declared:
+            return True
+        if element.tag == "arg" and _parent_tag(element) != "include":
+            declared.add(element.get("name"))
+    return False
 
 
 def _parent_tag(element: etree._Element) -> str | None:

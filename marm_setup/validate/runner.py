@@ -448,10 +448,10 @@ RUNTIME_ONLY_SKIPPED = (
 
 
 def runtime_only_description(pkg: MoveItPackage) -> Finding:
-    """A ROS 2 package whose robot description only the run time gives (package.description
+    """A package whose robot description only the run time gives (package.description
     `RUNTIME_ONLY`): MoveIt loads it then, so nothing is wrong; validate says what it could not
     read and which checks it skipped (a warning, never an error: DESIGN §5)."""
-    launch = ", ".join(pkg.python_launch_files) or "launch/*.py"
+    launch = ", ".join(pkg.python_launch_files) or ("launch/*.launch" if pkg.launch else "launch/*.py")
     msg = f"robot description not read ({pkg.urdf_origin}); skipped: {RUNTIME_ONLY_SKIPPED}"
     hint = "pass --urdf FILE (and --xacro-arg NAME:=VALUE) to run them"
     return warning("urdf.runtime-only", launch, "robot_description", msg, hint)

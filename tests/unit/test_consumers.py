@@ -352,6 +352,9 @@ def test_a_misspelling_is_one_or_two_letters_from_a_name_the_package_declares():
         ('<param name="p" value="$(eval arg(\'speed\') * 2)"/>', True),
         ('<rosparam subst_value="true">a: $(arg gain)</rosparam>', True),
         ("<!-- $(arg commented) --><param name='p' value='1'/>", False),
+        ('<arg name="fake" default="$(arg fake)"/>', True),  # its own default: only an includer sets it
+        ('<param name="p" value="$(arg t)"/><arg name="t" default="e"/>', True),  # used before declared
+        ('<arg name="d" default="false"/><arg name="i" default="$(arg d)"/>', False),
     ],
 )
 def test_a_launch_file_using_an_arg_it_never_declares_is_an_include(tmp_path, body, included):

@@ -395,3 +395,61 @@ def test_a_description_remapped_for_move_group_is_the_robot(tmp_path, where, fou
         assert pkg.urdf_origin.endswith(" in launch/planning_context.launch")
     else:
         assert pkg.urdf == (tmp_path / "other_description/urdf/other.urdf").resolve()
+
+
+NO_DESCRIPTION = """<launch>
+  <arg name="load_robot_description" default="false"/>
+  <!--param if="$(arg load_robot_description)" name="robot_description" textfile="$(find vd_description)/urdf/vd.urdf"/-->
+  <param name="robot_description_semantic" textfile="$(find vd_moveit_config)/config/vd.srdf"/>
+</launch>
+"""
+
+
+@pytest.mark.parametrize("urdf_package", ['""', "'\"\"'"])  # empty, and the two quotes it checks for
+def test_a_setup_assistant_naming_no_package_and_launch_files_loading_no_description_is_runtime_only(
+    tmp_path, urdf_package
+):
+    """The MoveIt 1 Setup Assistant takes relative_path itself when package is empty (a file
+    outside any package); move_group takes /robot_description as something else loads it."""
+    build_file_tree(
+        tmp_path,
+        {
+            "vd_moveit_config/package.xml": CATKIN.format(name="vd_moveit_config"),
+            "vd_moveit_config/launch/planning_context.launch": NO_DESCRIPTION,
+            "vd_moveit_config/launch/demo.launch": DEMO,
+            "vd_moveit_config/config/vd.srdf": _srdf("vd", 6, False),
+            "vd_moveit_config/.setup_assistant": (
+                f"moveit_setup_assistant_config:\n  URDF:\n    package: {urdf_package}\n"
+                "    relative_path: /home/someone/ws/src/vd/vd.urdf\n  SRDF:\n    relative_path: config/vd.srdf\n"
+            ),
+        },
+    )
+    result = validate(tmp_path / "vd_moveit_config", plan=False)
+    assert result.robot is None
+    runtime = [f for f in result.findings if f.rule == "urdf.runtime-only"]
+    assert [(f.severity, f.file, f.element) for f in runtime] == [
+        ("warning", "launch/*.launch", "robot_description")
+    ]
+    assert ".setup_assistant names no package" in runtime[0].message
+    assert not [f for f in result.findings if f.severity == "error"]
+
+
+def test_a_ros2_package_whose_setup_assistant_names_no_package_stays_exit_2(tmp_path):
+    """MoveItConfigsBuilder looks the empty package up in the ament index and stops the launch:
+    no run time description to wait for."""
+    from marm_setup.errors import InputError
+
+    build_file_tree(
+        tmp_path,
+        {
+            "vd_moveit_config/package.xml": AMENT.format(name="vd_moveit_config"),
+            "vd_moveit_config/launch/demo.launch.py": "from moveit_configs_utils import MoveItConfigsBuilder\n",
+            "vd_moveit_config/config/vd.srdf": _srdf("vd", 6, False),
+            "vd_moveit_config/.setup_assistant": (
+                "moveit_setup_assistant_config:\n  urdf:\n    package: ''\n"
+                "    relative_path: /home/someone/vd.urdf\n  srdf:\n    relative_path: config/vd.srdf\n"
+            ),
+        },
+    )
+    with pytest.raises(InputError, match="gives no URDF package"):
+        read_package(tmp_path / "vd_moveit_config")

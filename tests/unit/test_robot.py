@@ -211,3 +211,26 @@ def test_a_xacro_records_the_unset_environment_variables_it_reads_with_optenv(tm
     assert "arm" not in robot.link_map
     monkeypatch.setenv("MARM_TEST_ARM", "true")
     assert load_robot(path).env_defaults == ("MARM_TEST_SIDE",)
+
+
+def test_a_folder_of_the_package_name_holding_other_packages_is_not_that_package(tmp_path):
+    """A repository folder named like a package (prbt_robot/ holding prbt_description/ and
+    prbt_robot_support/) is no package: packages do not nest (catkin_pkg find_package_paths stops
+    at a package.xml; rospack likewise), so $(find prbt_robot) finds no package there."""
+    from marm_setup.robot.ros_packages import find_packages
+
+    root = build_file_tree(
+        tmp_path,
+        {
+            "ws/prbt_robot/prbt_description/package.xml": "<package><name>prbt_description</name></package>",
+            "ws/prbt_robot/prbt_robot_support/package.xml": "<package><name>prbt_robot_support</name></package>",
+            "ws/prbt_robot/README.md": "repository",
+            "ws/plain_description/urdf/a.urdf": "<robot name='a'/>",
+        },
+    )
+    index = find_packages([root / "ws"], environ={})
+    assert index.lookup("prbt_robot") is None
+    assert index.lookup("prbt_description") == (root / "ws/prbt_robot/prbt_description").resolve()
+    assert (
+        index.lookup("plain_description") == (root / "ws/plain_description").resolve()
+    )  # the fallback stays

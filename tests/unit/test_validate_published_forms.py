@@ -344,8 +344,8 @@ def test_a_description_a_python_launch_file_builds_with_xacro_is_read(tmp_path):
     """franka_ros2's form: `{"robot_description": Command([FindExecutable(name="xacro"), " ",
     PathJoinSubstitution([FindPackageShare(...), ...]), " hw:=", LaunchConfiguration(...)])}`.
     Read statically: the file, the args whose value is known (launch argument defaults); an arg
-    only the run time gives that the xacro needs, or a file it cannot find, is a warning (the
-    rules needing no robot still run); a file its package lacks is bad input (exit 2)."""
+    only the run time gives that the xacro needs, or a file in a package no path holds, is a
+    warning (the rules needing no robot still run); a file its package lacks is bad input (exit 2)."""
     import pytest
 
     from marm_setup.errors import InputError
@@ -376,8 +376,9 @@ def test_a_description_a_python_launch_file_builds_with_xacro_is_read(tmp_path):
         'FindPackageShare("elsewhere")',
     )
     found = findings(source, paths)
-    [runtime] = [f for f in found if f.rule == "urdf.runtime-only"]
-    assert "cannot read statically" in runtime.message and str(runtime.severity) == "warning"
+    [missing] = [f for f in found if f.rule == "urdf.package-missing"]  # the package it names
+    assert "'elsewhere'" in missing.message and str(missing.severity) == "warning"
+    assert not [f for f in found if f.rule == "urdf.runtime-only"]
     edit(
         source / "launch/move_group.launch.py",
         'FindPackageShare("elsewhere")',
