@@ -85,15 +85,8 @@ class HardwareArg:
 
 def systems_in_urdf(xml: str) -> tuple[Ros2ControlSystem, ...]:
     """The `<ros2_control>` elements directly under a URDF's `<robot>` (empty for unparsable XML)."""
-    if not xml:
-        return ()
-    from lxml import etree
-
-    from marm_setup.robot.tinyxml import tinyxml_comments
-
-    try:
-        root = etree.fromstring(tinyxml_comments(xml).encode(), parser=etree.XMLParser(remove_comments=True))
-    except etree.XMLSyntaxError:
+    root = _robot_element(xml)
+    if root is None:
         return ()
     systems = []
     for element in root.findall("ros2_control"):
@@ -122,15 +115,8 @@ def simulator_parameter_files(xml: str) -> tuple[str, ...]:
     (ros-controls/gazebo_ros2_control gazebo_ros2_control/src/gazebo_ros2_control_plugin.cpp
     l.269-277 at 3e6d3f4; ros-controls/gz_ros2_control gz_ros2_control/src/gz_ros2_control_plugin.cpp
     l.281-300 at e19b0ef), in document order; empty for unparsable XML."""
-    if not xml:
-        return ()
-    from lxml import etree
-
-    from marm_setup.robot.tinyxml import tinyxml_comments
-
-    try:
-        root = etree.fromstring(tinyxml_comments(xml).encode(), parser=etree.XMLParser(remove_comments=True))
-    except etree.XMLSyntaxError:
+    root = _robot_element(xml)
+    if root is None:
         return ()
     out = []
     for plugin in root.iterfind("gazebo/plugin"):
@@ -164,3 +150,18 @@ def on_mock_hardware(xml: str) -> str:
         etree.SubElement(hardware, "plugin").text = MOCK_PLUGIN
         system.insert(0, hardware)
     return etree.tostring(root, encoding="unicode")
+
+
+def _robot_element(xml: str) -> Any:
+    """The URDF's `<robot>` element, comments left out as tinyxml reads them; None for empty or
+    unparsable XML."""
+    if not xml:
+        return None
+    from lxml import etree
+
+    from marm_setup.robot.tinyxml import tinyxml_comments
+
+    try:
+        return etree.fromstring(tinyxml_comments(xml).encode(), parser=etree.XMLParser(remove_comments=True))
+    except etree.XMLSyntaxError:
+        return None
