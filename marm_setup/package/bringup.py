@@ -39,6 +39,7 @@ if TYPE_CHECKING:
 
 
 Found = tuple[Path, tuple[tuple[str, str], ...], tuple[str, ...]]  # (file, xacro args, unread args)
+Robot = tuple[Found, Found | None, tuple[str, ...] | None]  # description, SRDF, files loaded by hand
 
 MOVEIT_NODE_WORDS = ("move_group", "robot_description_semantic")
 
@@ -96,6 +97,19 @@ def find_bringup_robot(
     return dataclasses.replace(best, qualified=len(found))
 
 
+@dataclass(frozen=True)
+class _Query:
+    """What a bringup launch file is read for: the config package `name` at `root`, the package
+    finder (recording the packages it is `asked` for), the target, and the launch arguments."""
+
+    name: str
+    root: Path
+    find: Callable[[str], str | None]
+    target: Target
+    args: Mapping[str, str]
+    asked: set[str]
+
+
 def _finder(index: PackageIndex) -> Callable[[str], str | None]:
     return lambda pkg: str(index[pkg]) if pkg in index else None
 
@@ -121,7 +135,7 @@ def _package_robots(
             return find(pkg)
 
         read = _python_robot if rel.endswith(".py") else _xml_robot
-        robot = read(folder, rel, name, root, recording, how, asked)
+        robot = read(folder, rel, _Query(name, root, recording, how[0], how[1], asked))
         if robot is not None:
             (urdf, args, unread), semantic, hand = robot
             label, path = f"{package}/{rel}", folder / rel
@@ -140,15 +154,7 @@ def _mentions(path: Path, name: str) -> bool:
         return False
 
 
-def _python_robot(
-    folder: Path,
-    rel: str,
-    name: str,
-    root: Path,
-    find: Callable[[str], str | None],
-    how: tuple[Target, Mapping[str, str]],
-    asked: set[str],
-) -> tuple[Found, Found | None, tuple[str, ...] | None] | None:
+def _python_robot(folder: Path, rel: str, query: _Query) -> Robot | None:
     from marm_setup.package.launch_python import Unreadable, parse_launch_module, read_python_launch
 
     try:
@@ -158,9 +164,10 @@ def _python_robot(
     words = _call_strings(tree)
     if not any(w in MOVEIT_NODE_WORDS for w in _strings(tree)):
         return None
-    launch = read_python_launch(folder, (rel,), find, how[1])
+    launch = read_python_launch(folder, (rel,), query.find, query.args)
+    name, root = query.name, query.root
     builders = [b for b in launch.builders if b.package_name == name]
-    if name not in asked and name not in words and not builders:
+    if name not in query.asked and name not in words and not builders:
         return None
     robot = _python_file(launch, builders, root, "robot_description")
     if robot is None:
@@ -213,15 +220,7 @@ def _call_strings(tree: ast.AST) -> set[str]:
     return out
 
 
-def _xml_robot(
-    folder: Path,
-    rel: str,
-    name: str,
-    root: Path,
-    find: Callable[[str], str | None],
-    how: tuple[Target, Mapping[str, str]],
-    asked: set[str],
-) -> tuple[Found, Found | None, tuple[str, ...] | None] | None:
+def _xml_robot(folder: Path, rel: str, query: _Query) -> Robot | None:
     from marm_setup.bounded_read import XML_BYTES, FileTooLarge, read_text
     from marm_setup.package.launch_ros1 import evaluate_ros1
     from marm_setup.package.launch_ros2 import evaluate_ros2_xml
@@ -234,9 +233,10 @@ def _xml_robot(
     if not any(w in text for w in MOVEIT_NODE_WORDS):
         return None
     trees = {rel: parse_launch(folder / rel, rel)}
-    evaluate = evaluate_ros1 if how[0] == Target.ROS1 else evaluate_ros2_xml
-    launch = evaluate(folder, trees, find, how[1])
-    named = name in asked or re.search(rf"\$\((find|find-pkg-share)\s+{re.escape(name)}\)", text)
+    evaluate = evaluate_ros1 if query.target == Target.ROS1 else evaluate_ros2_xml
+    launch = evaluate(folder, trees, query.find, query.args)
+    name = query.name
+    named = name in query.asked or re.search(rf"\$\((find|find-pkg-share)\s+{re.escape(name)}\)", text)
     robot = _xml_file(folder, launch.description)
     return (robot, _xml_file(folder, launch.semantic), None) if robot is not None and named else None
 
