@@ -401,11 +401,9 @@ def test_a_description_a_python_launch_file_builds_with_xacro_is_read(tmp_path):
     outside.unlink()
 
 
-def test_an_srdf_xacro_arg_only_the_run_time_gives_is_a_warning(tmp_path):
-    """UR's ur_moveit_config: `.robot_description_semantic(Path("srdf") / "ur.srdf.xacro",
-    {"name": ur_type})`, `ur_type` a launch argument without default, the xacro's robot name
-    `$(arg name)`. MoveIt has the value at run time; validate says what it could not read, and
-    the controller rules (which need neither robot nor SRDF) still run."""
+def _srdf_named_by_a_launch_arg(tmp_path: Path) -> tuple[Path, list[Path]]:
+    """UR's form: the builder's SRDF xacro takes name:= from a launch argument without default
+    (here robot_ip), and no .setup_assistant names a description."""
     source, paths = PACKAGES["python_launch"](tmp_path)
     (source / ".setup_assistant").unlink()
     srdf = (source / "config/bot.srdf").read_text().replace('name="bot"', 'name="$(arg name)"', 1)
@@ -418,6 +416,15 @@ def test_an_srdf_xacro_arg_only_the_run_time_gives_is_a_warning(tmp_path):
         ".robot_description(mappings=mappings)",
         '.robot_description_semantic("config/bot.srdf.xacro", {"name": LaunchConfiguration("robot_ip")})',
     )
+    return source, paths
+
+
+def test_an_srdf_xacro_arg_only_the_run_time_gives_is_a_warning(tmp_path):
+    """UR's ur_moveit_config: `.robot_description_semantic(Path("srdf") / "ur.srdf.xacro",
+    {"name": ur_type})`, `ur_type` a launch argument without default, the xacro's robot name
+    `$(arg name)`. MoveIt has the value at run time; validate says what it could not read, and
+    the controller rules (which need neither robot nor SRDF) still run."""
+    source, paths = _srdf_named_by_a_launch_arg(tmp_path)
     found = findings(source, paths)
     assert errors(found) == []
     assert {f.rule for f in found if str(f.severity) == "warning"} >= {
@@ -434,18 +441,7 @@ def test_launch_args_given_as_ros2_launch_takes_them_fill_what_only_the_run_time
     """`--launch-arg NAME:=VALUE` (`ros2 launch pkg file ur_type:=ur5e`): a launch argument
     without default is known, so the SRDF xacro's name:= and the description's xacro arg are read
     instead of left to the run time; a given value beats a declared default."""
-    source, paths = PACKAGES["python_launch"](tmp_path)
-    (source / ".setup_assistant").unlink()
-    srdf = (source / "config/bot.srdf").read_text().replace('name="bot"', 'name="$(arg name)"', 1)
-    (source / "config/bot.srdf.xacro").write_text(
-        srdf.replace("<robot ", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" ', 1)
-    )
-    (source / "config/bot.srdf").unlink()
-    edit(
-        source / "launch/move_group.launch.py",
-        ".robot_description(mappings=mappings)",
-        '.robot_description_semantic("config/bot.srdf.xacro", {"name": LaunchConfiguration("robot_ip")})',
-    )
+    source, paths = _srdf_named_by_a_launch_arg(tmp_path)
     given = validate(
         source, package_paths=paths, plan=False, matrix_trials=0, launch_args={"robot_ip": "bot"}
     )
