@@ -195,16 +195,22 @@ def test_validate_reads_the_parameters_as_the_distro_does(tmp_path):
     assert not jazzy_only.is_error and "jazzy's does" in jazzy_only.message
 
 
+def _jazzy_package(tmp_path: Path, params: tuple, pipelines: tuple[str, ...]) -> tuple[Path, Path]:
+    """Our Jazzy marm package with these pipeline parameters and pipelines, clean of pipeline
+    findings: its folder and its config/moveit.yaml."""
+    out = tmp_path / "marm_moveit_config"
+    model, robot = with_params("jazzy", params, pipelines)
+    model = with_collision_matrix(model, robot, trials=200, seed=0)
+    apply_writes(plan_writes(render_package(model, robot), out), out)
+    assert not [r for r in rules(out) if r.startswith("pipeline.")]
+    return out, out / "config" / "moveit.yaml"
+
+
 def test_validate_a_chomp_setting_in_a_pipeline_not_named_chomp_is_never_read(tmp_path):
     """CHOMP reads `chomp.<name>` whatever its pipeline's name (chomp_interface.cpp jazzy
     l.57-87): in a pipeline named otherwise each setting is unread (a warning), and a value of
     the wrong type there stops nothing."""
-    out = tmp_path / "marm_moveit_config"
-    model, robot = with_params("jazzy", (), ("ompl", "chomp"))
-    model = with_collision_matrix(model, robot, trials=200, seed=0)
-    apply_writes(plan_writes(render_package(model, robot), out), out)
-    moveit = out / "config" / "moveit.yaml"
-    assert not [r for r in rules(out) if r.startswith("pipeline.")]
+    out, moveit = _jazzy_package(tmp_path, (), ("ompl", "chomp"))
     edit(moveit, "      - chomp\n", "      - chomp_fast\n")
     edit(moveit, "    chomp:\n", "    chomp_fast:\n")
     edit(moveit, "max_iterations: 200", "max_iterations: 2.5")
@@ -221,13 +227,8 @@ def test_validate_checks_jazzys_declarations_types_bounds_and_choices(tmp_path):
     double totg.path_tolerance (default_response_adapter_params.yaml) and a negative
     exponentiated_cost_sensitivity (stomp_moveit.yaml gt_eq 0.0) stop the pipeline; an unknown
     CHOMP initialization method is logged and quintic-spline kept (chomp_interface.cpp)."""
-    out = tmp_path / "marm_moveit_config"
     chomp = (("chomp", (("trajectory_initialization_method", "linear"),)),)
-    model, robot = with_params("jazzy", SEED_LIKE[1:] + chomp, ("ompl", "stomp", "chomp"))
-    model = with_collision_matrix(model, robot, trials=200, seed=0)
-    apply_writes(plan_writes(render_package(model, robot), out), out)
-    moveit = out / "config" / "moveit.yaml"
-    assert not [r for r in rules(out) if r.startswith("pipeline.")]
+    out, moveit = _jazzy_package(tmp_path, SEED_LIKE[1:] + chomp, ("ompl", "stomp", "chomp"))
     edit(moveit, "    ompl:\n", "    ompl:\n      totg:\n        path_tolerance: 1\n")
     edit(moveit, "exponentiated_cost_sensitivity: 0.8", "exponentiated_cost_sensitivity: -0.5")
     edit(moveit, "trajectory_initialization_method: linear", "trajectory_initialization_method: spline")
