@@ -13,6 +13,7 @@ import pytest
 
 from marm_setup.errors import InputError
 from marm_setup.package import read_package
+from tests.vendor_packages import AMENT
 
 URDF = """<robot name="{name}"><link name="base"/><link name="l1"/>
   <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/>
@@ -60,17 +61,8 @@ URDF_XACRO = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="tri">
 """
 
 
-def _package_xml(name: str) -> str:
-    return (
-        f'<?xml version="1.0"?><package format="3"><name>{name}</name><version>0.0.0</version>'
-        '<description>t</description><maintainer email="a@b.c">a</maintainer><license>BSD</license>'
-        "<buildtool_depend>ament_cmake</buildtool_depend><export><build_type>ament_cmake</build_type></export>"
-        "</package>\n"
-    )
-
-
 def _package(folder: Path, files: dict[str, str]) -> Path:
-    for rel, text in {"package.xml": _package_xml(folder.name), **files}.items():
+    for rel, text in {"package.xml": AMENT.format(name=folder.name), **files}.items():
         (folder / rel).parent.mkdir(parents=True, exist_ok=True)
         (folder / rel).write_text(text, encoding="utf-8")
     return folder
