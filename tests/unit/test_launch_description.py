@@ -186,12 +186,18 @@ ROS2_LAUNCH = """<launch>
 """
 
 
-def test_a_ros2_xml_launch_gives_move_group_its_description(tmp_path):
+def ros2_vendor(tmp_path: Path, launch: str, text: str) -> Path:
+    """The vendor package made a ROS 2 one: its ROS 1 entry launch files replaced by `launch`."""
     root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
-    (root / "launch/planning_context.launch").unlink()
-    (root / "launch/demo.launch").unlink()
-    (root / "launch/move_group.launch.xml").write_text(ROS2_LAUNCH)
+    for rel in ("launch/planning_context.launch", "launch/demo.launch"):
+        (root / rel).unlink()
+    (root / launch).write_text(text)
     (root / "package.xml").write_text(AMENT.format(name="vd_moveit_config"))
+    return root
+
+
+def test_a_ros2_xml_launch_gives_move_group_its_description(tmp_path):
+    root = ros2_vendor(tmp_path, "launch/move_group.launch.xml", ROS2_LAUNCH)
     pkg = read_package(root)
     assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
     assert (pkg.urdf_origin, dict(pkg.xacro_args)) == (
@@ -300,11 +306,7 @@ def generate_launch_description():
 def test_a_python_launch_running_xacros_python_api_gives_move_group_its_description(tmp_path, make):
     """IFRA-Cranfield's ros2_RobotSimulation packages expand the description with xacro's
     Python API (xacro/__init__.py process_file; parse + process_doc) inside the launch file."""
-    root = vendor(tmp_path, XACRO_COMMAND, TEXTFILE_SRDF)
-    for rel in ("launch/planning_context.launch", "launch/demo.launch"):
-        (root / rel).unlink()
-    (root / "launch/move_group.launch.py").write_text(XACRO_API_LAUNCH.format(make=make))
-    (root / "package.xml").write_text(AMENT.format(name="vd_moveit_config"))
+    root = ros2_vendor(tmp_path, "launch/move_group.launch.py", XACRO_API_LAUNCH.format(make=make))
     pkg = read_package(root)
     assert pkg.urdf == (tmp_path / "vd_description/urdf/vd.urdf.xacro").resolve()
     assert (pkg.urdf_origin, dict(pkg.xacro_args)) == (
