@@ -280,19 +280,25 @@ def _environment(
     return env
 
 
-def _bind(tree: ast.AST, env: _Env) -> None:
-    for node in ast.walk(tree):  # simple `name = value` bindings, in source order
+def _assignments(tree: ast.AST) -> Iterator[tuple[str, ast.AST]]:
+    """(name, value) of each simple `name = value` of a module, in ast.walk's order (the later of
+    two bindings of a name wins where they are put in one dict)."""
+    for node in ast.walk(tree):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-            name = node.targets[0].id
-            try:
-                env.values[name] = static(node.value, env)
-                env.unheld.pop(name, None)
-            except UnheldPackage as exc:
-                env.values.pop(name, None)
-                env.unheld[name] = exc.package
-            except Unknown:
-                env.values.pop(name, None)
-                env.unheld.pop(name, None)
+            yield node.targets[0].id, node.value
+
+
+def _bind(tree: ast.AST, env: _Env) -> None:
+    for name, value in _assignments(tree):
+        try:
+            env.values[name] = static(value, env)
+            env.unheld.pop(name, None)
+        except UnheldPackage as exc:
+            env.values.pop(name, None)
+            env.unheld[name] = exc.package
+        except Unknown:
+            env.values.pop(name, None)
+            env.unheld.pop(name, None)
 
 
 def static(node: ast.AST | None, env: _Env) -> Any:
@@ -596,11 +602,7 @@ def xacro_commands(tree: ast.AST, rel: str, env: _Env) -> list[XacroCommand]:
     """`{"robot_description": <xacro Command>}` dicts of a module (the value directly, through a
     name bound to it, or wrapped in `ParameterValue(..., value_type=str)`), and those whose value
     is the XML of xacro's Python API (`_xacro_api`)."""
-    bound: dict[str, ast.AST] = {
-        n.targets[0].id: n.value
-        for n in ast.walk(tree)
-        if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name)
-    }
+    bound = dict(_assignments(tree))
     out = []
     for node in ast.walk(tree):
         if not isinstance(node, ast.Dict):
@@ -784,11 +786,7 @@ def hands_bare_to_move_group(root: Path, launch: str, rel: str) -> bool:
     except Unreadable:
         return False
     env = _environment(tree, lambda _name: None)
-    bound = {
-        node.targets[0].id: node.value
-        for node in ast.walk(tree)
-        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
-    }
+    bound = dict(_assignments(tree))
     for item in _node_parameters(tree, env, "move_group"):
         held = bound.get(item.id, item) if isinstance(item, ast.Name) else item
         if not isinstance(held, ast.Dict) and any(
@@ -855,10 +853,10 @@ def _bound_names(tree: ast.AST) -> dict[str, list[ast.AST]]:
     """`name = value` and `with value as name` of a module: the name -> every expression bound to
     it (the branches of an `if` each bind theirs: `x = load_yaml(a)` / `else: x = load_yaml(b)`)."""
     bound: dict[str, list[ast.AST]] = {}
+    for name, value in _assignments(tree):
+        bound.setdefault(name, []).append(value)
     for node in ast.walk(tree):
-        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-            bound.setdefault(node.targets[0].id, []).append(node.value)
-        elif isinstance(node, ast.With):
+        if isinstance(node, ast.With):
             for item in node.items:
                 if isinstance(item.optional_vars, ast.Name):
                     bound.setdefault(item.optional_vars.id, []).append(item.context_expr)
