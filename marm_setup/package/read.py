@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -136,7 +136,6 @@ def _read_package(
     trees = {rel: parse_launch(root / rel, rel) for rel in files.inside_only(launch_file_names(root))}
     wanted = _wanted_robots(srdf, urdf)
     launched = _launched(files, trees, found.paths, found.target, found.name, wanted, launch_args)
-    launched = replace(launched, args=tuple(sorted(launch_args.items())))
     problems += _other_robots(launched.builder, root, found.sa)
     srdf_rel, srdf_args, guessed = _srdf_choice(files, srdf, found, launched, wanted)
     if found.package_xml is None and srdf_rel is None:
@@ -297,6 +296,7 @@ def _launched(
     """What the launch files load, given the launch arguments `args`; subst_value files get
     their launch args before any is read."""
     find = _finder(paths)
+    given = tuple(sorted((args or {}).items()))
     if target == Target.ROS1:
         ros1: Ros1Launch = evaluate_ros1(files.root, trees, find, args)
         _stopped_walks(files, ros1.stopped)
@@ -311,6 +311,7 @@ def _launched(
             move_groups=ros1.move_groups,
             managers=ros1.managers,
             taken_managers=ros1.taken_managers,
+            args=given,
         )
     xml = evaluate_ros2_xml(files.root, trees, find, args)
     _stopped_walks(files, xml.stopped)
@@ -328,7 +329,9 @@ def _launched(
         rel for path, _ in python.control_files if (rel := _relative(path, files.root)) is not None
     )
     named = tuple((rel, launch) for path, launch in python.named_yaml if (rel := _relative(path, files.root)))
-    return _Launched(xml.loads, xml.semantic, builder, control, python.commands, named, xml.description)
+    return _Launched(
+        xml.loads, xml.semantic, builder, control, python.commands, named, xml.description, args=given
+    )
 
 
 def _stopped_walks(files: PackageFiles, stopped: tuple[str, ...]) -> None:
