@@ -615,7 +615,27 @@ def xacro_commands(tree: ast.AST, rel: str, env: _Env) -> list[XacroCommand]:
                     out.append(found)
                 elif (api := _xacro_api(value, bound, tree, env)) is not None:
                     out.append(XacroCommand(rel, parameter, *api))
+                elif (text_file := _loaded_text(value, bound, env)) is not None:
+                    out.append(XacroCommand(rel, parameter, text_file))
     return out
+
+
+TEXT_FILES = (".urdf", ".srdf")  # read as they are (a .xacro read so would reach MoveIt unexpanded)
+
+
+def _loaded_text(value: ast.AST, bound: dict[str, ast.AST], env: _Env) -> str | None:
+    """The file of `load_file("pkg", "path")`, the helper MoveIt 2's early tutorials and many
+    hand-written launch files define to read a file of a package's share folder as text
+    (`open(os.path.join(get_package_share_directory(pkg), path)).read()`): a plain URDF or SRDF
+    handed to move_group as it is. None for any other value, or a package no path holds."""
+    call = _followed(value, bound)
+    if not (isinstance(call, ast.Call) and _name(call.func) == "load_file" and len(call.args) == 2):
+        return None
+    package, path = (_try(arg, env) for arg in call.args)
+    if not (isinstance(package, str) and isinstance(path, str) and path.endswith(TEXT_FILES)):
+        return None
+    share = env.find(package)
+    return os.path.join(share, path) if share is not None else None
 
 
 def _xacro_api(

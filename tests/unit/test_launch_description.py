@@ -455,3 +455,41 @@ def test_a_ros2_package_whose_setup_assistant_names_no_package_stays_exit_2(tmp_
     )
     with pytest.raises(InputError, match="gives no URDF package"):
         read_package(tmp_path / "vd_moveit_config")
+
+
+LOAD_FILE_LAUNCH = """import os
+from ament_index_python.packages import get_package_share_directory
+from launch_ros.actions import Node
+
+
+def load_file(package_name, file_path):
+    with open(os.path.join(get_package_share_directory(package_name), file_path)) as f:
+        return f.read()
+
+
+def generate_launch_description():
+    robot_description = {"robot_description": load_file("vd_description", "urdf/vd.urdf")}
+    semantic = load_file("vd_moveit_config", "config/vd.srdf")
+    return LaunchDescription([Node(package="moveit_ros_move_group", executable="move_group",
+        parameters=[robot_description, {"robot_description_semantic": semantic}])])
+"""
+
+
+def test_a_plain_urdf_and_srdf_a_launch_reads_with_load_file_are_what_move_group_gets(tmp_path):
+    """MoveIt 2's early tutorials' `load_file(pkg, path)` (the file's text, handed over as it is):
+    its URDF and SRDF are the ones validate takes; a .xacro read so is not (it would reach MoveIt
+    unexpanded)."""
+    from marm_setup.package.launch_python import read_python_launch
+
+    root = tmp_path / "vd_moveit_config"
+    (root / "launch").mkdir(parents=True)
+    (root / "launch/move_group.launch.py").write_text(LOAD_FILE_LAUNCH)
+    shares = {"vd_description": "/share/vd_description", "vd_moveit_config": str(root)}
+    launch = read_python_launch(root, ("launch/move_group.launch.py",), shares.get)
+    assert {c.parameter: c.file for c in launch.commands} == {
+        "robot_description": "/share/vd_description/urdf/vd.urdf",
+        "robot_description_semantic": str(root / "config/vd.srdf"),
+    }
+    (root / "launch/move_group.launch.py").write_text(LOAD_FILE_LAUNCH.replace("vd.urdf", "vd.urdf.xacro"))
+    launch = read_python_launch(root, ("launch/move_group.launch.py",), shares.get)
+    assert [c.parameter for c in launch.commands] == ["robot_description_semantic"]
